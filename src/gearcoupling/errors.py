@@ -1,0 +1,25 @@
+"""The one error hierarchy of gearcoupling, based on builtin exceptions."""
+
+from __future__ import annotations
+
+
+class GearCouplingError(Exception):
+    """Base class of every error gearcoupling raises on purpose."""
+
+
+class SpecError(GearCouplingError, ValueError):
+    """An invalid spec value or combination; the message names field, value and what is allowed."""
+
+    def __init__(self, field: str, value: object, allowed: str):
+        self.field = field
+        self.value = value
+        self.allowed = allowed
+        super().__init__(f"{field} = {value!r}: {allowed}")
+
+
+class GeometryError(GearCouplingError, ValueError):
+    """A geometric query outside the domain where the surface exists (e.g. off the flank)."""
+
+
+class BackendError(GearCouplingError, RuntimeError):
+    """An optional back-end is missing or failed; the message says what to install or change."""

@@ -1,0 +1,171 @@
+"""Spec checks that need the geometry, and the derived values a designer reads.
+
+:func:`check_spec` runs from ``CouplingSpec.__post_init__``; it turns every geometric
+impossibility into a :class:`~gearcoupling.errors.SpecError` naming the field to change.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..errors import GeometryError, SpecError
+from .hub import HubModel, form_radius, hub_flank_model, hub_model, root_radius, tip_radius
+from .hub import _radius2 as radius2
+from .sleeve import sleeve_model
+
+_Z_SAMPLES = 17  # planes from the midplane to the face end checked for undercut and points
+
+
+def _max_curvature(m: HubModel, crowning) -> float:
+    if crowning.kind == "table":
+        s = np.linspace(0.0, m.half_face * 1.5, 400)
+        return float(np.max(np.abs(m.path.evaluate(s)[0])))
+    radii = [crowning.radius] + ([crowning.end_radius] if crowning.kind == "end_round" else [])
+    return max(0.0 if math.isinf(r) else 1.0 / r for r in radii)
+
+
+def check_spec(spec) -> None:
+    """Raise :class:`SpecError` if the spec's geometry cannot be built as specified."""
+    t, hub, sl = spec.tooth, spec.hub, spec.sleeve
+    R, m_ = t.pitch_radius, t.module
+    cr = hub.crowning
+
+    if hub.tooth_thickness > sl.space_width:
+        raise SpecError("hub.tooth_thickness", hub.tooth_thickness,
+                        f"exceeds the sleeve space width {sl.space_width:.6g} mm: the parts "
+                        "would interfere when aligned (aligned backlash must be >= 0)")
+    if sl.face_width < hub.face_width:
+        raise SpecError("sleeve.face_width", sl.face_width,
+                        f"must cover the hub face width {hub.face_width:.6g} mm")
+    m = hub_model(spec)
+    u_c, _ = m.round_centre
+    if u_c > 0.5 * t.circular_pitch:
+        raise SpecError("hub.root.fillet_radius", hub.root.fillet_radius,
+                        "too large: the hob tip rounds of adjacent flanks overlap; use a "
+                        "smaller radius or a thinner hub tooth")
+    kmax = _max_curvature(m, cr)
+    if kmax * hub.root.dedendum > 0.5:
+        raise SpecError(f"hub.crowning.{'end_radius' if cr.kind == 'end_round' else 'radius'}",
+                        1.0 / kmax, f"crowning radius must be at least twice the hub dedendum "
+                        f"({2 * hub.root.dedendum:.6g} mm)")
+    z_end = m.half_face
+    try:
+        depths = np.array([-(m.tip_radius - R), hub.root.dedendum])
+        e_end = float(np.max(np.abs(m.path.solve_plane(z_end, depths)[2])))
+    except GeometryError:
+        e_end = math.pi / 2
+    if abs(math.degrees(e_end)) > 45.0:
+        raise SpecError("hub.crowning.radius", cr.radius,
+                        f"too small for the face width {hub.face_width:.6g} mm: the feed path "
+                        f"turns {math.degrees(e_end):.1f}° by the face end, at most 45° allowed")
+
+    try:
+        sm = sleeve_model(spec)
+    except GeometryError as err:
+        if sl.minor_diameter < 2 * t.base_radius:
+            raise SpecError("sleeve.minor_diameter", sl.minor_diameter,
+                            f"must be at least the base diameter {2 * t.base_radius:.6g} mm "
+                            "(the involute starts there)") from err
+        raise SpecError("sleeve.root_fillet_radius", sl.root_fillet_radius,
+                        "does not fit between the flank and the major circle") from err
+    if sm.major_angle >= 0:
+        raise SpecError("sleeve.major_diameter", sl.major_diameter,
+                        "too large: the sleeve space is pointed before the major circle")
+    if sm.chamfer_tip_angle <= -math.pi / t.teeth:
+        raise SpecError("sleeve.minor_diameter", sl.minor_diameter,
+                        "too small: the sleeve teeth are pointed at the minor circle "
+                        "(with the tip chamfer)")
+
+    r_tip0 = float(tip_radius(m, 0.0))
+    if r_tip0 >= sm.r_major:
+        raise SpecError("hub.tip.diameter", hub.tip.diameter,
+                        f"hub tips reach the sleeve root: must be below the sleeve major "
+                        f"diameter {sl.major_diameter:.6g} mm")
+    r_root0 = float(root_radius(m, 0.0))
+    if sm.r_minor <= r_root0:
+        raise SpecError("sleeve.minor_diameter", sl.minor_diameter,
+                        f"sleeve tips reach the hub root: must exceed the hub root diameter "
+                        f"{2 * r_root0:.6g} mm")
+    if r_tip0 <= sm.r_form:
+        raise SpecError("hub.tip.diameter", hub.tip.diameter,
+                        f"the hub teeth do not reach the sleeve flank, which starts at "
+                        f"diameter {2 * sm.r_form:.6g} mm")
+
+    z = np.linspace(0.0, z_end, _Z_SAMPLES)
+    try:
+        _, d_r2 = radius2(m, z, m.h_form, m.phi)
+    except GeometryError as err:
+        raise SpecError("hub.crowning.radius", cr.radius, f"the rack cannot reach the "
+                        f"dedendum {hub.root.dedendum:.6g} mm in every plane") from err
+    if np.any(d_r2 >= 0):
+        zi = float(z[np.argmax(d_r2 >= 0)])
+        raise SpecError("hub.root.dedendum", hub.root.dedendum,
+                        f"undercut at z = {zi:.4g} mm: the hob's straight flank reaches below "
+                        "the base circle, which the generator does not model; use more teeth, "
+                        "a larger pressure angle, a smaller dedendum or a larger fillet radius")
+    r_form = form_radius(m, z)
+    r_tip = tip_radius(m, z)
+    if np.any(r_form >= r_tip):
+        zi = float(z[np.argmax(r_form >= r_tip)])
+        raise SpecError("hub.tip.diameter", hub.tip.diameter,
+                        f"no flank left at z = {zi:.4g} mm: the tip falls below the form "
+                        "radius (crown drop too large for the tooth depth)")
+    try:
+        pts, _, _ = hub_flank_model(m, "cw", z, r_tip, check=False)
+    except GeometryError as err:
+        raise SpecError("hub.tip.diameter", hub.tip.diameter,
+                        "the flank cannot be generated up to the tip") from err
+    if np.any(pts[:, 1] >= 0):
+        zi = float(z[np.argmax(pts[:, 1] >= 0)])
+        raise SpecError("hub.tip.diameter", hub.tip.diameter,
+                        f"hub teeth are pointed at z = {zi:.4g} mm: lower the tip or the crown")
+    r_root_min = float(np.min(root_radius(m, z)))
+    if hub.body.bore_diameter > 2 * r_root_min - m_:
+        raise SpecError("hub.body.bore_diameter", hub.body.bore_diameter,
+                        f"leaves less than half a module of rim under the tooth roots: must "
+                        f"be at most {2 * r_root_min - m_:.6g} mm")
+    if not (np.all(np.isfinite(pts)) and np.all(np.isfinite(r_form))):
+        raise SpecError("spec", spec.name, "geometry is not finite (please report this spec)")
+
+
+def derived_values(spec) -> dict[str, float]:
+    """Derived sizes (mm, degrees) a designer checks, keyed with their unit.
+
+    Includes Renzo's maximum separation ``z0 = R_c cot(phi) tan^2(i) / 2`` (eq. 4) at the
+    design misalignment, with ``R_c`` the midplane crowning radius.
+    """
+    t, hub = spec.tooth, spec.hub
+    m = hub_model(spec)
+    sm = sleeve_model(spec)
+    R = t.pitch_radius
+    kappa0 = float(m.path.evaluate(0.0)[0])
+    rc = math.inf if kappa0 == 0 else 1.0 / kappa0
+    i = spec.design_misalignment
+    z0 = 0.5 * rc * math.tan(i) ** 2 / math.tan(t.pressure_angle) if i > 0 else 0.0
+    backlash = spec.sleeve.space_width - hub.tooth_thickness
+    zend = m.half_face
+    return {
+        "module_mm": t.module,
+        "pitch_radius_mm": R,
+        "base_radius_mm": t.base_radius,
+        "circular_pitch_mm": t.circular_pitch,
+        "base_pitch_mm": t.base_pitch,
+        "crowning_radius_midplane_mm": rc,
+        "crown_drop_at_face_end_mm": float(m.path.drop(zend)),
+        "hub_tip_radius_midplane_mm": float(tip_radius(m, 0.0)),
+        "hub_tip_radius_face_end_mm": float(tip_radius(m, zend)),
+        "hub_root_radius_midplane_mm": float(root_radius(m, 0.0)),
+        "hub_root_radius_face_end_mm": float(root_radius(m, zend)),
+        "hub_form_radius_midplane_mm": float(form_radius(m, 0.0)),
+        "sleeve_minor_radius_mm": sm.r_minor,
+        "sleeve_major_radius_mm": sm.r_major,
+        "sleeve_form_radius_mm": sm.r_form,
+        "sleeve_fillet_start_radius_mm": sm.r_fillet,
+        "aligned_backlash_mm": backlash,
+        "aligned_backlash_deg": math.degrees(backlash / R),
+        "design_misalignment_deg": math.degrees(i),
+        "renzo_z0_mm": z0,
+        "renzo_z0_circumferential_mm": z0 / math.cos(t.pressure_angle),
+    }

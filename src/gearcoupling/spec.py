@@ -1,0 +1,572 @@
+"""Coupling specs: frozen dataclasses in mm and radians, validated on construction.
+
+Spec files are TOML with ``units = "mm"`` (default) or ``"in"`` for lengths and angles in
+degrees (keys ending in ``_deg``). :func:`load_spec` reads a bundled template by name or a
+file by path and applies dotted overrides; every invalid value or combination raises
+:class:`~gearcoupling.errors.SpecError` naming the field, the value and what is allowed.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+import tomllib
+from dataclasses import asdict, dataclass, field, fields, replace
+from functools import cached_property
+from importlib import resources
+from pathlib import Path
+from typing import Any, ClassVar
+
+from .errors import SpecError
+
+MM_PER_INCH = 25.4
+UNITS = {"mm": 1.0, "in": MM_PER_INCH}
+TEETH_RANGE = (6, 300)
+MODULE_RANGE_MM = (0.2, 60.0)
+PRESSURE_ANGLE_RANGE_DEG = (14.5, 30.0)
+MISALIGNMENT_RANGE_DEG = (0.0, 6.0)
+CROWNING_KINDS = ("none", "circular", "vari_crown", "end_round", "table")
+GENERATIONS = ("enveloped", "revolved")
+TIP_KINDS = ("sphere", "cylinder")
+MAX_END_TANGENT_DEG = 45.0  # steepest feed-path tangent allowed at the face ends
+
+
+def _check(ok: bool, field_name: str, value: object, allowed: str) -> None:
+    if not ok:
+        raise SpecError(field_name, value, allowed)
+
+
+def _positive(path: str, value: float, *, finite: bool = True) -> None:
+    good = value > 0 and (math.isfinite(value) or not finite) and not math.isnan(value)
+    _check(good, path, value, "must be a positive finite length in mm" if finite else
+           "must be positive (inf allowed)")
+
+
+def _as_mm(obj) -> str:
+    return f"{obj:.6g} mm"
+
+
+@dataclass(frozen=True)
+class ToothSystem:
+    """Tooth system shared by hub and sleeve.
+
+    Attributes
+    ----------
+    teeth : int
+        Number of teeth ``N`` (hub = sleeve), 6-300.
+    module : float
+        Module ``m`` in mm, 0.2-60 (diametral pitch ``P`` per inch gives ``m = 25.4 / P``).
+    pressure_angle : float
+        Pressure angle ``phi`` in radians, 14.5°-30°.
+    """
+
+    PATH: ClassVar[str] = "tooth"
+    teeth: int
+    module: float
+    pressure_angle: float
+
+    def __post_init__(self):
+        lo, hi = TEETH_RANGE
+        _check(isinstance(self.teeth, int) and not isinstance(self.teeth, bool)
+               and lo <= self.teeth <= hi, "tooth.teeth", self.teeth,
+               f"must be a whole number from {lo} to {hi}")
+        lo, hi = MODULE_RANGE_MM
+        _check(math.isfinite(self.module) and lo <= self.module <= hi, "tooth.module",
+               self.module, f"module must be {lo}-{hi} mm (diametral pitch "
+               f"{MM_PER_INCH / hi:.3g}-{MM_PER_INCH / lo:.3g} per inch)")
+        lo, hi = PRESSURE_ANGLE_RANGE_DEG
+        deg = math.degrees(self.pressure_angle)
+        _check(math.isfinite(deg) and lo - 1e-9 <= deg <= hi + 1e-9,
+               "tooth.pressure_angle_deg", deg, f"must be {lo}-{hi} degrees")
+
+    @property
+    def pitch_radius(self) -> float:
+        """``R = m N / 2``."""
+        return 0.5 * self.module * self.teeth
+
+    @property
+    def base_radius(self) -> float:
+        """``r_b = R cos phi``."""
+        return self.pitch_radius * math.cos(self.pressure_angle)
+
+    @property
+    def circular_pitch(self) -> float:
+        """``p = pi m``."""
+        return math.pi * self.module
+
+    @property
+    def base_pitch(self) -> float:
+        """``p_b = pi m cos phi``, the normal distance of same-side flanks."""
+        return self.circular_pitch * math.cos(self.pressure_angle)
+
+
+@dataclass(frozen=True)
+class Crowning:
+    """Hub crowning: the hob feed path and the generation method.
+
+    Attributes
+    ----------
+    kind : str
+        ``none`` (straight), ``circular`` (radius ``R_c``), ``vari_crown`` (radius
+        ``radius`` at the midplane growing smoothly to ``end_radius`` at the face ends),
+        ``end_round`` (``radius`` up to ``start_z``, then ``end_radius``), ``table``
+        (``table_s``/``table_kappa`` or ``table_z``/``table_drop`` samples, splined).
+    radius, end_radius : float
+        Path radii in mm; ``inf`` means straight.
+    start_z : float
+        ``end_round``: axial distance from the midplane where ``end_radius`` begins.
+    generation : str
+        ``enveloped`` (hob-generated, exact) or ``revolved`` (constant profile in planes
+        perpendicular to the hub axis, for comparison).
+    """
+
+    PATH: ClassVar[str] = "hub.crowning"
+    kind: str = "circular"
+    radius: float = math.inf
+    end_radius: float = math.inf
+    start_z: float = 0.0
+    table_s: tuple[float, ...] = ()
+    table_kappa: tuple[float, ...] = ()
+    table_z: tuple[float, ...] = ()
+    table_drop: tuple[float, ...] = ()
+    generation: str = "enveloped"
+
+    def __post_init__(self):
+        p = self.PATH
+        _check(self.kind in CROWNING_KINDS, f"{p}.kind", self.kind, f"one of {CROWNING_KINDS}")
+        _check(self.generation in GENERATIONS, f"{p}.generation", self.generation,
+               f"one of {GENERATIONS}")
+        if self.kind in ("circular", "vari_crown", "end_round"):
+            _positive(f"{p}.radius", self.radius, finite=self.kind != "circular")
+        if self.kind == "vari_crown":
+            _check(self.radius < self.end_radius, f"{p}.end_radius", self.end_radius,
+                   f"vari_crown is less curved toward the ends: end_radius must exceed "
+                   f"radius = {self.radius:.6g} mm (inf allowed)")
+        if self.kind == "end_round":
+            _positive(f"{p}.end_radius", self.end_radius)
+            _check(self.end_radius < self.radius, f"{p}.end_radius", self.end_radius,
+                   f"end_round turns sharper at the ends: end_radius must be below "
+                   f"radius = {self.radius:.6g} mm")
+            _check(math.isfinite(self.start_z) and self.start_z >= 0, f"{p}.start_z",
+                   self.start_z, "must be a finite length >= 0 mm")
+        if self.kind == "table":
+            self._check_table()
+
+    def _check_table(self):
+        p = self.PATH
+        by_s = bool(self.table_s or self.table_kappa)
+        by_z = bool(self.table_z or self.table_drop)
+        _check(by_s != by_z, f"{p}.s|z", None,
+               "give either s and kappa samples or z and drop samples, not both or neither")
+        xs, ys, xn, yn = (
+            (self.table_s, self.table_kappa, "s", "kappa") if by_s
+            else (self.table_z, self.table_drop, "z", "drop")
+        )
+        _check(len(xs) == len(ys) and len(xs) >= 3, f"{p}.{yn}", len(ys),
+               f"needs as many samples as {xn} ({len(xs)}), at least 3")
+        _check(all(math.isfinite(x) for x in xs + ys), f"{p}.{xn}", xs, "samples must be finite")
+        _check(xs[0] == 0 and all(b > a for a, b in zip(xs, xs[1:], strict=False)), f"{p}.{xn}",
+               xs, "must start at 0 (the midplane) and increase strictly")
+        if by_z:
+            _check(ys[0] == 0 and all(d >= 0 for d in ys), f"{p}.drop", ys,
+                   "crown drop must be 0 at z = 0 and >= 0 elsewhere")
+        else:
+            _check(all(k >= 0 for k in ys), f"{p}.kappa", ys, "curvatures must be >= 0 (1/mm)")
+
+
+@dataclass(frozen=True)
+class HubTip:
+    """Hub tip surface: a sphere about O (for centring) or a cylinder, by diameter (mm)."""
+
+    PATH: ClassVar[str] = "hub.tip"
+    kind: str
+    diameter: float
+
+    def __post_init__(self):
+        _check(self.kind in TIP_KINDS, "hub.tip.kind", self.kind, f"one of {TIP_KINDS}")
+        _positive("hub.tip.diameter", self.diameter)
+
+
+@dataclass(frozen=True)
+class HubRoot:
+    """Hub root as cut by the hob: hob addendum below the feed path and hob tip radius (mm)."""
+
+    PATH: ClassVar[str] = "hub.root"
+    dedendum: float
+    fillet_radius: float
+
+    def __post_init__(self):
+        _positive("hub.root.dedendum", self.dedendum)
+        _check(math.isfinite(self.fillet_radius) and 0 <= self.fillet_radius < self.dedendum,
+               "hub.root.fillet_radius", self.fillet_radius,
+               f"must be >= 0 and below the dedendum {self.dedendum:.6g} mm")
+
+
+@dataclass(frozen=True)
+class HubBody:
+    """Hub body below the teeth: bore diameter and axial length centred on the midplane (mm)."""
+
+    PATH: ClassVar[str] = "hub.body"
+    bore_diameter: float
+    length: float
+
+    def __post_init__(self):
+        _check(math.isfinite(self.bore_diameter) and self.bore_diameter >= 0,
+               "hub.body.bore_diameter", self.bore_diameter, "must be >= 0 mm (0 = solid)")
+        _positive("hub.body.length", self.length)
+
+
+@dataclass(frozen=True)
+class Hub:
+    """Crowned external hub.
+
+    Attributes
+    ----------
+    face_width : float
+        Axial length ``b`` of the teeth, centred on the midplane (mm).
+    tooth_thickness : float
+        Arc tooth thickness ``t`` at the pitch circle in the midplane (mm).
+    """
+
+    PATH: ClassVar[str] = "hub"
+    face_width: float
+    tooth_thickness: float
+    tip: HubTip
+    root: HubRoot
+    crowning: Crowning
+    body: HubBody
+
+    def __post_init__(self):
+        _positive("hub.face_width", self.face_width)
+        _positive("hub.tooth_thickness", self.tooth_thickness)
+        _check(self.body.length >= self.face_width, "hub.body.length", self.body.length,
+               f"must be at least the face width {self.face_width:.6g} mm")
+        c = self.crowning
+        if c.kind == "end_round":
+            _check(c.start_z < 0.5 * self.face_width, "hub.crowning.start_z", c.start_z,
+                   f"must lie inside the half face width {0.5 * self.face_width:.6g} mm")
+
+
+@dataclass(frozen=True)
+class Sleeve:
+    """Sleeve with straight internal involute teeth (all lengths in mm).
+
+    Attributes
+    ----------
+    face_width : float
+        Axial length of the sleeve teeth, centred on the hub midplane.
+    minor_diameter, major_diameter : float
+        Tip (inner) and root (outer) diameters of the internal teeth.
+    space_width : float
+        Arc space width ``s`` at the pitch circle.
+    tip_chamfer : float
+        Radial (= circumferential) leg of the 45° chamfer on the tooth tip corners; 0 = none.
+    root_fillet_radius : float
+        Radius of the fillet between flank and major circle; 0 = sharp.
+    outer_diameter : float
+        Outer diameter of the sleeve ring.
+    """
+
+    PATH: ClassVar[str] = "sleeve"
+    face_width: float
+    minor_diameter: float
+    major_diameter: float
+    space_width: float
+    tip_chamfer: float
+    root_fillet_radius: float
+    outer_diameter: float
+
+    def __post_init__(self):
+        for name in ("face_width", "minor_diameter", "major_diameter", "space_width",
+                     "outer_diameter"):
+            _positive(f"sleeve.{name}", getattr(self, name))
+        for name in ("tip_chamfer", "root_fillet_radius"):
+            v = getattr(self, name)
+            _check(math.isfinite(v) and v >= 0, f"sleeve.{name}", v, "must be >= 0 mm")
+        _check(self.major_diameter > self.minor_diameter, "sleeve.major_diameter",
+               self.major_diameter, f"must exceed the minor diameter {self.minor_diameter:.6g} mm")
+        _check(self.outer_diameter > self.major_diameter, "sleeve.outer_diameter",
+               self.outer_diameter, f"must exceed the major diameter {self.major_diameter:.6g} mm")
+
+
+@dataclass(frozen=True)
+class CouplingSpec:
+    """A complete coupling: tooth system, hub, sleeve and design misalignment (radians)."""
+
+    tooth: ToothSystem
+    hub: Hub
+    sleeve: Sleeve
+    design_misalignment: float = 0.0
+    name: str = field(default="custom", compare=False)
+    units: str = field(default="mm", compare=False)
+
+    def __post_init__(self):
+        lo, hi = MISALIGNMENT_RANGE_DEG
+        deg = math.degrees(self.design_misalignment)
+        _check(math.isfinite(deg) and lo <= deg <= hi, "design_misalignment_deg", deg,
+               f"must be {lo}-{hi} degrees")
+        from .geometry.checks import check_spec  # geometry kernels check what needs them
+
+        check_spec(self)
+
+    def replace(self, **changes: Any) -> CouplingSpec:
+        """A copy with dotted-path changes in mm/radians, re-validated."""
+        return _replace_dotted(self, changes)
+
+    @cached_property
+    def derived(self) -> dict[str, float]:
+        """Derived values in mm and degrees (see :func:`derived_values`)."""
+        from .geometry.checks import derived_values
+
+        return derived_values(self)
+
+    def to_dict(self) -> dict[str, Any]:
+        """The resolved spec as plain data in mm and degrees (keys say their unit)."""
+        out = {"name": self.name, "units": "mm",
+               "design_misalignment_deg": math.degrees(self.design_misalignment)}
+        d = asdict(self)
+        tooth = d["tooth"]
+        tooth["pressure_angle_deg"] = math.degrees(tooth.pop("pressure_angle"))
+        out.update(tooth=tooth, hub=d["hub"], sleeve=d["sleeve"])
+        cr = out["hub"]["crowning"]
+        for key in ("table_s", "table_kappa", "table_z", "table_drop"):
+            cr[key] = list(cr[key])
+        return out
+
+
+def _replace_dotted(obj, changes: dict[str, Any]):
+    groups: dict[str, dict[str, Any]] = {}
+    direct = {}
+    for key, value in changes.items():
+        head, _, rest = key.partition(".")
+        if rest:
+            groups.setdefault(head, {})[rest] = value
+        else:
+            direct[key] = value
+    names = {f.name for f in fields(obj)}
+    for head, sub in groups.items():
+        _check(head in names, head, None, f"unknown field; allowed: {sorted(names)}")
+        direct[head] = _replace_dotted(getattr(obj, head), sub)
+    unknown = set(direct) - names
+    _check(not unknown, ",".join(sorted(unknown)), None, f"unknown field; allowed: {sorted(names)}")
+    return replace(obj, **direct)
+
+
+# --------------------------------------------------------------------------- loading
+
+
+class _Table:
+    """Reads one TOML table with unit conversion and reports unknown keys."""
+
+    def __init__(self, data: Any, path: str, scale: float):
+        _check(isinstance(data, dict), path or "spec", data, "must be a TOML table")
+        self.data, self.path, self.scale = dict(data), path, scale
+
+    def _name(self, key: str) -> str:
+        return f"{self.path}.{key}" if self.path else key
+
+    def table(self, key: str) -> _Table:
+        return _Table(self.data.pop(key, {}), self._name(key), self.scale)
+
+    def _number(self, key: str, value: Any) -> float:
+        if isinstance(value, bool) or not isinstance(value, int | float):
+            raise SpecError(self._name(key), value, "must be a number")
+        return float(value)
+
+    def has(self, key: str) -> bool:
+        return key in self.data
+
+    def length(self, key: str, default: float | None = None) -> float:
+        if key not in self.data:
+            if default is None:
+                raise SpecError(self._name(key), None, "is required (a length)")
+            return default
+        return self._number(key, self.data.pop(key)) * self.scale
+
+    def number(self, key: str, default: float | None = None) -> float:
+        if key not in self.data:
+            if default is None:
+                raise SpecError(self._name(key), None, "is required (a number)")
+            return default
+        return self._number(key, self.data.pop(key))
+
+    def angle(self, key: str, default_deg: float | None = None) -> float:
+        return math.radians(self.number(key, default_deg))
+
+    def integer(self, key: str) -> int:
+        value = self.data.pop(key, None)
+        _check(isinstance(value, int) and not isinstance(value, bool), self._name(key), value,
+               "is required and must be a whole number")
+        return value
+
+    def string(self, key: str, default: str) -> str:
+        value = self.data.pop(key, default)
+        _check(isinstance(value, str), self._name(key), value, "must be a string")
+        return value
+
+    def array(self, key: str, scale: float) -> tuple[float, ...]:
+        value = self.data.pop(key, [])
+        _check(isinstance(value, list), self._name(key), value, "must be an array of numbers")
+        return tuple(self._number(key, v) * scale for v in value)
+
+    def done(self) -> None:
+        if self.data:
+            key = sorted(self.data)[0]
+            raise SpecError(self._name(key), self.data[key], "unknown key (check the spelling; "
+                            "see templates/ for every key)")
+
+
+def spec_from_dict(data: dict[str, Any], name: str = "custom") -> CouplingSpec:
+    """Build a :class:`CouplingSpec` from parsed TOML data (file units, angles in degrees)."""
+    root = _Table(copy.deepcopy(data), "", 1.0)
+    units = root.string("units", "mm")
+    _check(units in UNITS, "units", units, f"one of {tuple(UNITS)}")
+    root.scale = UNITS[units]
+    name = root.string("name", name)
+    misalignment = root.angle("design_misalignment_deg", 0.0)
+
+    t = root.table("tooth")
+    teeth = t.integer("teeth")
+    if t.has("diametral_pitch"):
+        _check(not t.has("module"), "tooth.module", None, "give module or diametral_pitch, not both")
+        pd = t.number("diametral_pitch")
+        _check(pd > 0 and math.isfinite(pd), "tooth.diametral_pitch", pd,
+               "must be a positive number of teeth per inch of pitch diameter")
+        module = MM_PER_INCH / pd
+    else:
+        module = t.length("module")
+    tooth = ToothSystem(teeth, module, t.angle("pressure_angle_deg", 20.0))
+    t.done()
+    m, R = module, tooth.pitch_radius
+
+    s = root.table("sleeve")
+    space_width = s.length("space_width", 0.5 * math.pi * m)
+    h = root.table("hub")
+    face = h.length("face_width")
+    if h.has("tooth_thickness"):
+        _check(not h.has("backlash"), "hub.backlash", None,
+               "give tooth_thickness or backlash, not both")
+        thickness = h.length("tooth_thickness")
+    else:
+        thickness = space_width - h.length("backlash", 0.04 * m)
+
+    tip_t = h.table("tip")
+    tip = HubTip(tip_t.string("kind", "sphere"), tip_t.length("diameter", 2 * (R + m)))
+    tip_t.done()
+    root_t = h.table("root")
+    hub_root = HubRoot(root_t.length("dedendum", 1.25 * m), root_t.length("fillet_radius", 0.3 * m))
+    root_t.done()
+    c = h.table("crowning")
+    kind = c.string("kind", "circular")
+    needs_radius = kind in ("circular", "vari_crown", "end_round")
+    crowning = Crowning(
+        kind=kind,
+        radius=c.length("radius", None if needs_radius else math.inf),
+        end_radius=c.length("end_radius", math.inf),
+        start_z=c.length("start_z", 0.0),
+        table_s=c.array("s", root.scale),
+        table_kappa=c.array("kappa", 1.0 / root.scale),
+        table_z=c.array("z", root.scale),
+        table_drop=c.array("drop", root.scale),
+        generation=c.string("generation", "enveloped"),
+    )
+    c.done()
+    root_dia = 2 * (R - hub_root.dedendum)
+    b = h.table("body")
+    body = HubBody(b.length("bore_diameter", max(0.0, root_dia - 2 * max(3 * m, 0.15 * R))),
+                   b.length("length", face))
+    b.done()
+    hub = Hub(face, thickness, tip, hub_root, crowning, body)
+    h.done()
+
+    major = s.length("major_diameter", 2 * (R + 1.25 * m))
+    sleeve = Sleeve(
+        face_width=s.length("face_width", face + 4 * m),
+        minor_diameter=s.length("minor_diameter", 2 * (R - m)),
+        major_diameter=major,
+        space_width=space_width,
+        tip_chamfer=s.length("tip_chamfer", 0.1 * m),
+        root_fillet_radius=s.length("root_fillet_radius", 0.25 * m),
+        outer_diameter=s.length("outer_diameter", major + 2 * max(3 * m, 0.1 * R)),
+    )
+    s.done()
+    root.done()
+    return CouplingSpec(tooth, hub, sleeve, misalignment, name=name, units=units)
+
+
+def _set_dotted(data: dict[str, Any], key: str, value: Any) -> None:
+    parts = key.split(".")
+    node = data
+    for part in parts[:-1]:
+        nxt = node.setdefault(part, {})
+        _check(isinstance(nxt, dict), key, value, f"'{part}' is a value, not a table")
+        node = nxt
+    node[parts[-1]] = value
+
+
+def parse_override(text: str) -> tuple[str, Any]:
+    """Parse a CLI override ``KEY=VALUE``; the value is read as TOML, else as a string."""
+    key, sep, raw = text.partition("=")
+    _check(bool(sep) and bool(key.strip()), "--set", text, "must look like KEY=VALUE, "
+           "e.g. hub.crowning.radius=80")
+    try:
+        value = tomllib.loads(f"v = {raw.strip()}")["v"]
+    except tomllib.TOMLDecodeError:
+        value = raw.strip()
+    return key.strip(), value
+
+
+def template_dir() -> Path:
+    """Folder of the bundled templates (in the wheel, or the repo's ``templates/``)."""
+    packaged = resources.files("gearcoupling") / "templates"
+    if packaged.is_dir():
+        return Path(str(packaged))
+    return Path(__file__).resolve().parents[2] / "templates"
+
+
+def template_names() -> list[str]:
+    """Names of the bundled templates."""
+    return sorted(p.stem for p in template_dir().glob("*.toml"))
+
+
+def resolve_spec_path(name_or_path: str | Path) -> Path:
+    """A template name or a file path, as a path to a TOML file."""
+    p = Path(name_or_path)
+    if p.suffix == ".toml" or p.exists():
+        _check(p.is_file(), "spec", str(p), "no such spec file")
+        return p
+    candidate = template_dir() / f"{name_or_path}.toml"
+    _check(candidate.is_file(), "spec", str(name_or_path),
+           f"not a file and not a template; templates: {template_names()}")
+    return candidate
+
+
+def load_spec(name_or_path: str | Path, **overrides: Any) -> CouplingSpec:
+    """Load a template (by name) or a TOML spec file, with dotted overrides in file units.
+
+    >>> spec = load_spec("renzo-1967", **{"hub.crowning.radius": 2.0})  # doctest: +SKIP
+    """
+    path = resolve_spec_path(name_or_path)
+    try:
+        data = tomllib.loads(path.read_text())
+    except tomllib.TOMLDecodeError as err:
+        raise SpecError(str(path), None, f"is not valid TOML: {err}") from err
+    for key, value in overrides.items():
+        _set_dotted(data, key, value)
+    return spec_from_dict(data, name=path.stem)
+
+
+__all__ = [
+    "CouplingSpec",
+    "Crowning",
+    "Hub",
+    "HubBody",
+    "HubRoot",
+    "HubTip",
+    "Sleeve",
+    "ToothSystem",
+    "load_spec",
+    "parse_override",
+    "spec_from_dict",
+    "template_names",
+]
