@@ -331,7 +331,22 @@ class CouplingSpec:
         cr = out["hub"]["crowning"]
         for key in ("table_s", "table_kappa", "table_z", "table_drop"):
             cr[key] = list(cr[key])
-        return out
+        return json_safe(out)
+
+
+def json_safe(data: Any) -> Any:
+    """Plain data with infinite floats as the strings ``"inf"``/``"-inf"`` (as TOML writes
+    them); NaN is a bug and raises ``ValueError``."""
+    if isinstance(data, dict):
+        return {k: json_safe(v) for k, v in data.items()}
+    if isinstance(data, list | tuple):
+        return [json_safe(v) for v in data]
+    if isinstance(data, float):
+        if math.isnan(data):
+            raise ValueError("NaN in spec data")
+        if math.isinf(data):
+            return "inf" if data > 0 else "-inf"
+    return data
 
 
 def _replace_dotted(obj, changes: dict[str, Any]):

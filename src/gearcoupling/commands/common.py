@@ -1,0 +1,49 @@
+"""Options and helpers shared by the CLI commands."""
+
+from __future__ import annotations
+
+import argparse
+from contextlib import contextmanager
+from pathlib import Path
+
+from ..spec import CouplingSpec, load_spec, parse_override
+
+
+def add_spec_arguments(parser: argparse.ArgumentParser, *, output: bool = True) -> None:
+    """``SPEC`` (template name or TOML path), ``--set KEY=VALUE`` and ``-o DIR``."""
+    parser.add_argument("spec", metavar="SPEC", help="template name or path to a TOML spec")
+    parser.add_argument("--set", dest="overrides", action="append", default=[],
+                        metavar="KEY=VALUE",
+                        help="override a spec value in the file's units, e.g. "
+                             "hub.crowning.radius=80 (repeatable)")
+    if output:
+        parser.add_argument("-o", "--output", metavar="DIR", default=None,
+                            help="output folder (default: outputs/<spec name>)")
+
+
+def spec_from_args(args: argparse.Namespace) -> CouplingSpec:
+    overrides = dict(parse_override(text) for text in args.overrides)
+    return load_spec(args.spec, **overrides)
+
+
+def output_dir(args: argparse.Namespace, spec: CouplingSpec) -> Path:
+    out = Path(args.output) if getattr(args, "output", None) else Path("outputs") / spec.name
+    out.mkdir(parents=True, exist_ok=True)
+    return out
+
+
+@contextmanager
+def progress(description: str, total: int):
+    """A rich progress bar on stderr; yields ``advance(label)``."""
+    from rich.console import Console
+    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+
+    with Progress(TextColumn("{task.description}"), BarColumn(), TextColumn("{task.completed}/"
+                  "{task.total}"), TimeElapsedColumn(), console=Console(stderr=True),
+                  transient=False) as bar:
+        task = bar.add_task(description, total=total)
+
+        def advance(label: str | None = None) -> None:
+            bar.update(task, advance=1, description=label or description)
+
+        yield advance

@@ -1,0 +1,52 @@
+"""``gearcoupling run``: everything the project can make for a spec, into one folder.
+
+Steps are registered in :data:`STEPS` as ``(label, function(spec, out_dir) -> [paths])``;
+later features add theirs (parts, STEP, sweep, viewer) without touching this loop.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from pathlib import Path
+
+from ..atomic import write_json
+from .common import add_spec_arguments, output_dir, progress, spec_from_args
+
+Step = Callable[[object, Path], list[Path]]
+
+
+def _spec_step(spec, out: Path) -> list[Path]:
+    from .spec import resolved
+
+    return [write_json(out / "spec.json", resolved(spec))]
+
+
+def _sections_step(spec, out: Path) -> list[Path]:
+    from ..plots import plot_sections
+
+    return [plot_sections(spec, out / "sections.png")]
+
+
+STEPS: list[tuple[str, Step]] = [
+    ("resolved spec", _spec_step),
+    ("section plots", _sections_step),
+]
+
+
+def register(sub) -> None:
+    p = sub.add_parser("run", help="write everything for a spec into outputs/<spec>/")
+    add_spec_arguments(p)
+    p.set_defaults(func=run)
+
+
+def run(args) -> int:
+    spec = spec_from_args(args)
+    out = output_dir(args, spec)
+    written: list[Path] = []
+    with progress(f"{spec.name}", len(STEPS)) as advance:
+        for label, step in STEPS:
+            written.extend(step(spec, out))
+            advance(label)
+    for path in written:
+        print(path)
+    return 0

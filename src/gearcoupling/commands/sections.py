@@ -1,0 +1,22 @@
+"""``gearcoupling sections``: plot transverse sections and the crown along the face."""
+
+from __future__ import annotations
+
+from .common import add_spec_arguments, output_dir, spec_from_args
+
+
+def register(sub) -> None:
+    p = sub.add_parser("sections", help="plot transverse sections and the axial crown view")
+    add_spec_arguments(p)
+    p.add_argument("--tolerance", type=float, default=None, metavar="MM",
+                   help="chordal tolerance of the plotted sections (default: module / 1000)")
+    p.set_defaults(func=run)
+
+
+def run(args) -> int:
+    from ..plots import plot_sections
+
+    spec = spec_from_args(args)
+    path = plot_sections(spec, output_dir(args, spec) / "sections.png", args.tolerance)
+    print(path)
+    return 0

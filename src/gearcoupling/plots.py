@@ -1,0 +1,118 @@
+"""Pictures of the tooth geometry: transverse sections and the axial view of the crown."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+
+from .atomic import atomic_path
+from .geometry.hub import hub_flank_model, hub_model, plane_rack
+from .geometry.section import transverse_section
+
+
+def _figure(*args, **kwargs):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt.subplots(*args, **kwargs)
+
+
+def _save(fig, path: str | Path) -> Path:
+    import matplotlib.pyplot as plt
+
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, format="png", dpi=130)
+    plt.close(fig)
+    return Path(path)
+
+
+def section_planes(spec, count: int = 5) -> np.ndarray:
+    """Axial positions (mm) from the midplane to the face end for the section plots."""
+    return np.linspace(0.0, 0.5 * spec.hub.face_width, count)
+
+
+def crown_profile(spec, z_mm: np.ndarray) -> dict[str, np.ndarray]:
+    """Pitch-circle tooth thickness, transverse pressure angle and crown drop along ``z``.
+
+    Returns arrays in mm and degrees for the spec's crowning generated both ways, and
+    ``e``, the feed-path tangent angle (rad) at the enveloped pitch-line point.
+    """
+    out: dict[str, np.ndarray] = {}
+    for gen in ("enveloped", "revolved"):
+        m = hub_model(spec.replace(**{"hub.crowning.generation": gen}))
+        pts, nrm, h = hub_flank_model(m, "cw", z_mm, m.R)
+        out[f"thickness_{gen}_mm"] = 2.0 * m.R * np.abs(np.arctan2(pts[:, 1], pts[:, 0]))
+        radial = pts[:, :2] / np.linalg.norm(pts[:, :2], axis=1)[:, None]
+        tangential = np.stack([-radial[:, 1], radial[:, 0]], axis=-1)
+        nr = np.einsum("ij,ij->i", nrm[:, :2], radial)
+        nt = np.abs(np.einsum("ij,ij->i", nrm[:, :2], tangential))
+        out[f"pressure_angle_{gen}_deg"] = np.degrees(np.arctan2(nr, nt))
+        if gen == "enveloped":
+            out["e"] = plane_rack(m, z_mm, h)[1]
+    out["crown_drop_mm"] = hub_model(spec).path.drop(z_mm)
+    return out
+
+
+def plot_sections(spec, path: str | Path, tolerance_mm: float | None = None) -> Path:
+    """Transverse sections of hub and sleeve at several planes, and the crown along the face.
+
+    Left: three hub teeth and the sleeve spaces around them at planes from the midplane
+    to the face end. Right: pitch-circle tooth thickness and transverse pressure angle
+    along the face for the enveloped (hob-generated) and revolved constructions, with
+    Renzo's eq. (1) ``tan phi' = tan phi cos e`` for comparison.
+    """
+    tol = tolerance_mm or 1e-3 * spec.tooth.module
+    N = spec.tooth.teeth
+    fig, axes = _figure(1, 3, figsize=(17, 6), gridspec_kw={"width_ratios": [1.5, 1, 1]})
+    ax = axes[0]
+    planes = section_planes(spec)
+    import matplotlib.pyplot as plt
+
+    colours = plt.cm.viridis(np.linspace(0, 0.9, len(planes)))
+    window = 1.25 * 2 * math.pi / N
+
+    def clip(poly):
+        ang = np.arctan2(poly[:, 1], poly[:, 0])
+        keep = np.abs(ang) < window
+        # rotate so tooth 0 points up
+        x, y = poly[keep, 0], poly[keep, 1]
+        return -y, x
+
+    sleeve = transverse_section(spec, "sleeve", 0.0, tol)
+    ax.plot(*clip(sleeve), color="k", lw=1.2, label="sleeve (all z)")
+    for z, c in zip(planes, colours, strict=True):
+        hub = transverse_section(spec, "hub", z, tol)
+        ax.plot(*clip(hub), color=c, lw=1.0, label=f"hub z = {z:.3g} mm")
+    ax.set_aspect("equal")
+    ax.set_title(f"{spec.name}: transverse sections (tooth 0 up)")
+    ax.set_xlabel("mm")
+    ax.legend(fontsize=7, loc="lower left")
+
+    z = np.linspace(-0.5 * spec.hub.face_width, 0.5 * spec.hub.face_width, 81)
+    prof = crown_profile(spec, z)
+    ax = axes[1]
+    ax.plot(z, prof["thickness_enveloped_mm"], label="enveloped (hob)")
+    ax.plot(z, prof["thickness_revolved_mm"], "--", label="revolved")
+    ax.set_xlabel("z (mm)")
+    ax.set_ylabel("tooth thickness at pitch circle (mm)")
+    ax.set_title("crown: tooth thickness along the face")
+    ax.legend(fontsize=8)
+    ax2 = ax.twinx()
+    ax2.plot(z, prof["crown_drop_mm"], color="grey", lw=0.8)
+    ax2.set_ylabel("feed-path crown drop (mm)", color="grey")
+
+    ax = axes[2]
+    ax.plot(z, prof["pressure_angle_enveloped_deg"], label="enveloped (hob)")
+    ax.plot(z, prof["pressure_angle_revolved_deg"], "--", label="revolved")
+    ax.plot(z, np.degrees(np.arctan(np.tan(spec.tooth.pressure_angle) * np.cos(prof["e"]))),
+            ":", color="k", label="tan φ' = tan φ cos e (Renzo eq. 1)")
+    ax.set_xlabel("z (mm)")
+    ax.set_ylabel("transverse pressure angle at pitch circle (deg)")
+    ax.set_title("transverse pressure angle (cf. Renzo Fig. 7)")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    return _save(fig, path)
