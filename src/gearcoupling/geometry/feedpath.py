@@ -157,7 +157,7 @@ class FeedPath:
 
 
 def _spline_path(R: float, s_knots, kappa_knots, kind: str) -> FeedPath:
-    spline = CubicSpline(s_knots, kappa_knots, bc_type=((1, 0.0), (2, 0.0)))
+    spline = CubicSpline(s_knots, kappa_knots, bc_type=((1, 0.0), "not-a-knot"))
     anti = spline.antiderivative()
 
     def smooth(s):
@@ -175,7 +175,7 @@ def drop_table_to_curvature(z_knots, drop_knots, n: int = 400):
     ``v = R - drop(z)`` then has ``tan e = drop'``, ``kappa = drop'' / (1 + drop'^2)^1.5``
     and arc length ``s = ∫ sqrt(1 + drop'^2) dz``, sampled at ``n`` points.
     """
-    d = CubicSpline(z_knots, drop_knots, bc_type=((1, 0.0), (2, 0.0)))
+    d = CubicSpline(z_knots, drop_knots, bc_type=((1, 0.0), "not-a-knot"))
     z = np.linspace(0.0, float(z_knots[-1]), n)
     d1, d2 = d(z, 1), d(z, 2)
     kappa = d2 / (1.0 + d1**2) ** 1.5

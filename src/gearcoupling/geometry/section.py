@@ -118,7 +118,7 @@ def sleeve_space_outline(m: SleeveModel, tol: float) -> NDArray[np.float64]:
     half_pitch = math.pi / m.teeth
     tip = arc(m.r_minor, -half_pitch, m.chamfer_tip_angle, tol)
     fl = adaptive_curve(lambda r: flank_point(m, r)[0], m.r_form, m.r_fillet, tol)
-    pieces = [tip, fl]
+    pieces = [tip, np.stack([tip[-1], fl[0]]), fl] if m.chamfer > 0 else [tip, fl]
     if m.fillet > 0:
         cx, cy = m.fillet_centre
         a0 = math.atan2(fl[-1, 1] - cy, fl[-1, 0] - cx)
