@@ -137,7 +137,7 @@ class Crowning:
         _check(self.generation in GENERATIONS, f"{p}.generation", self.generation,
                f"one of {GENERATIONS}")
         if self.kind in ("circular", "vari_crown", "end_round"):
-            _positive(f"{p}.radius", self.radius, finite=self.kind != "circular")
+            _positive(f"{p}.radius", self.radius, finite=self.kind == "vari_crown")
         if self.kind == "vari_crown":
             _check(self.radius < self.end_radius, f"{p}.end_radius", self.end_radius,
                    f"vari_crown is less curved toward the ends: end_radius must exceed "
@@ -147,8 +147,9 @@ class Crowning:
             _check(self.end_radius < self.radius, f"{p}.end_radius", self.end_radius,
                    f"end_round turns sharper at the ends: end_radius must be below "
                    f"radius = {self.radius:.6g} mm")
-            _check(math.isfinite(self.start_z) and self.start_z >= 0, f"{p}.start_z",
-                   self.start_z, "must be a finite length >= 0 mm")
+            limit = self.radius * math.sin(math.radians(MAX_END_TANGENT_DEG))
+            _check(math.isfinite(self.start_z) and 0 <= self.start_z <= limit, f"{p}.start_z",
+                   self.start_z, f"must be a length from 0 to radius * sin 45° = {limit:.6g} mm")
         if self.kind == "table":
             self._check_table()
 
@@ -303,7 +304,7 @@ class CouplingSpec:
     def __post_init__(self):
         lo, hi = MISALIGNMENT_RANGE_DEG
         deg = math.degrees(self.design_misalignment)
-        _check(math.isfinite(deg) and lo <= deg <= hi, "design_misalignment_deg", deg,
+        _check(math.isfinite(deg) and lo <= deg <= hi + 1e-9, "design_misalignment_deg", deg,
                f"must be {lo}-{hi} degrees")
         from .geometry.checks import check_spec  # geometry kernels check what needs them
 
@@ -458,6 +459,7 @@ def spec_from_dict(data: dict[str, Any], name: str = "custom") -> CouplingSpec:
     space_width = s.length("space_width", 0.5 * math.pi * m)
     h = root.table("hub")
     face = h.length("face_width")
+    _positive("hub.face_width", face)
     if h.has("tooth_thickness"):
         _check(not h.has("backlash"), "hub.backlash", None,
                "give tooth_thickness or backlash, not both")
@@ -465,8 +467,12 @@ def spec_from_dict(data: dict[str, Any], name: str = "custom") -> CouplingSpec:
     else:
         thickness = space_width - h.length("backlash", 0.04 * m)
 
+    # defaults: standard proportions, kept below where hub teeth or sleeve spaces turn
+    # pointed (which matters for few teeth)
+    r_hub_pointed = _pointed_radius(tooth, thickness)
+    tip_default = min(R + m, R + 0.75 * (r_hub_pointed - R))
     tip_t = h.table("tip")
-    tip = HubTip(tip_t.string("kind", "sphere"), tip_t.length("diameter", 2 * (R + m)))
+    tip = HubTip(tip_t.string("kind", "sphere"), tip_t.length("diameter", 2 * tip_default))
     tip_t.done()
     root_t = h.table("root")
     hub_root = HubRoot(root_t.length("dedendum", 1.25 * m), root_t.length("fillet_radius", 0.3 * m))
@@ -494,19 +500,32 @@ def spec_from_dict(data: dict[str, Any], name: str = "custom") -> CouplingSpec:
     hub = Hub(face, thickness, tip, hub_root, crowning, body)
     h.done()
 
-    major = s.length("major_diameter", 2 * (R + 1.25 * m))
+    r_space_pointed = _pointed_radius(tooth, space_width)
+    major = s.length("major_diameter", 2 * min(R + 1.25 * m,
+                                               tip_default + 0.5 * (r_space_pointed - tip_default)))
+    minor_default = max(R - hub_root.dedendum + 0.25 * m, tooth.base_radius + 0.1 * m)
     sleeve = Sleeve(
         face_width=s.length("face_width", face + 4 * m),
-        minor_diameter=s.length("minor_diameter", 2 * (R - m)),
+        minor_diameter=s.length("minor_diameter", 2 * minor_default),
         major_diameter=major,
         space_width=space_width,
         tip_chamfer=s.length("tip_chamfer", 0.1 * m),
-        root_fillet_radius=s.length("root_fillet_radius", 0.25 * m),
+        root_fillet_radius=s.length("root_fillet_radius", min(
+            0.25 * m, 0.3 * (r_space_pointed - 0.5 * major) * math.tan(tooth.pressure_angle))),
         outer_diameter=s.length("outer_diameter", major + 2 * max(3 * m, 0.1 * R)),
     )
     s.done()
     root.done()
     return CouplingSpec(tooth, hub, sleeve, misalignment, name=name, units=units)
+
+
+def _pointed_radius(tooth: ToothSystem, arc_width: float) -> float:
+    """Radius where a spur tooth (or space) of ``arc_width`` at the pitch circle is pointed."""
+    from .geometry.involute import inv_inverse
+
+    phi = tooth.pressure_angle
+    alpha = float(inv_inverse(0.5 * arc_width / tooth.pitch_radius + math.tan(phi) - phi))
+    return tooth.base_radius / math.cos(alpha)
 
 
 def _set_dotted(data: dict[str, Any], key: str, value: Any) -> None:

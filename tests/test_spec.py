@@ -1,0 +1,148 @@
+"""Spec loading, units, overrides and validation errors that name field, value and range."""
+
+import math
+
+import pytest
+
+import gearcoupling as gc
+from gearcoupling.spec import parse_override, spec_from_dict
+
+BASE = {
+    "units": "mm",
+    "tooth": {"teeth": 38, "module": 2.0, "pressure_angle_deg": 20},
+    "hub": {"face_width": 16.0, "backlash": 0.25, "crowning": {"kind": "circular", "radius": 38.0}},
+}
+
+
+def build(**changes):
+    data = {k: (dict(v) if isinstance(v, dict) else v) for k, v in BASE.items()}
+    data["hub"] = {**BASE["hub"], "crowning": dict(BASE["hub"]["crowning"])}
+    for key, value in changes.items():
+        node = data
+        parts = key.split("__")
+        for p in parts[:-1]:
+            node = node.setdefault(p, {})
+        node[parts[-1]] = value
+    return spec_from_dict(data)
+
+
+def test_defaults_follow_the_module():
+    s = build()
+    m, R = 2.0, 38.0
+    assert s.hub.tip.diameter == pytest.approx(2 * (R + m))
+    assert s.hub.root.dedendum == pytest.approx(1.25 * m)
+    assert s.sleeve.space_width == pytest.approx(math.pi * m / 2)
+    assert s.sleeve.space_width - s.hub.tooth_thickness == pytest.approx(0.25)
+    assert s.design_misalignment == 0.0
+
+
+def test_inches_and_diametral_pitch_convert_to_mm():
+    s = gc.load_spec("renzo-1967")
+    assert s.tooth.module == pytest.approx(2.54)
+    assert s.tooth.pitch_radius == pytest.approx(2.5 * 25.4)
+    assert s.hub.crowning.radius == pytest.approx(63.5)
+    assert s.derived["renzo_z0_mm"] / 25.4 == pytest.approx(0.00105, abs=5e-6)
+    mm = gc.load_spec("renzo-1967", units="mm", **{
+        "tooth.diametral_pitch": 10, "hub.face_width": 12.7, "hub.backlash": 0.1524,
+        "hub.tip.diameter": 132.08, "hub.root.dedendum": 3.175, "hub.root.fillet_radius": 0.762,
+        "hub.crowning.radius": 63.5, "hub.body.bore_diameter": 88.9, "hub.body.length": 25.4,
+        "sleeve.face_width": 19.05, "sleeve.minor_diameter": 121.92,
+        "sleeve.major_diameter": 133.35, "sleeve.tip_chamfer": 0.254,
+        "sleeve.root_fillet_radius": 0.508, "sleeve.outer_diameter": 152.4})
+    # same coupling, whatever the file's units (up to the rounding of inch conversions)
+    assert mm.derived == pytest.approx(s.derived, rel=1e-12)
+    assert mm.hub.tooth_thickness == pytest.approx(s.hub.tooth_thickness, rel=1e-12)
+
+
+def test_overrides_and_replace():
+    s = gc.load_spec("renzo-1967", **{"hub.crowning.radius": 2.0})
+    assert s.hub.crowning.radius == pytest.approx(50.8)
+    assert s.replace(**{"hub.crowning.radius": 50.8}) == s
+    assert parse_override("hub.crowning.radius=80") == ("hub.crowning.radius", 80)
+    assert parse_override("hub.crowning.kind=none") == ("hub.crowning.kind", "none")
+    assert parse_override("hub.crowning.radius=inf")[1] == math.inf
+    with pytest.raises(gc.SpecError, match="KEY=VALUE"):
+        parse_override("nonsense")
+
+
+@pytest.mark.parametrize(
+    "changes, field, words",
+    [
+        ({"tooth__teeth": 5}, "tooth.teeth", "6 to 300"),
+        ({"tooth__teeth": 12.5}, "tooth.teeth", "whole number"),
+        ({"tooth__module": 0.1}, "tooth.module", "0.2-60"),
+        ({"tooth__pressure_angle_deg": 35}, "tooth.pressure_angle_deg", "14.5-30"),
+        ({"hub__face_width": -3.0}, "hub.face_width", "positive"),
+        ({"hub__backlash": -0.1}, "hub.tooth_thickness", "interfere"),
+        ({"hub__crowning__kind": "parabolic"}, "hub.crowning.kind", "one of"),
+        ({"hub__crowning__radius": 4.0}, "hub.crowning.radius", "dedendum"),
+        ({"hub__crowning__radius": 10.0}, "hub.crowning.radius", "face width"),
+        ({"hub__tip__diameter": 82.0}, "hub.tip.diameter", "reach the sleeve root"),
+        ({"hub__tip__diameter": 72.0}, "hub.tip.diameter", "do not reach the sleeve flank"),
+        ({"hub__root__dedendum": 1.0, "sleeve__minor_diameter": 73.0}, "sleeve.minor_diameter",
+         "hub root"),
+        ({"sleeve__minor_diameter": 70.0}, "sleeve.minor_diameter", "base diameter"),
+        ({"sleeve__major_diameter": 60.0}, "sleeve.major_diameter", "minor"),
+        ({"hub__root__fillet_radius": 3.0}, "hub.root.fillet_radius", "dedendum"),
+        ({"hub__body__bore_diameter": 70.0}, "hub.body.bore_diameter", "rim"),
+        ({"sleeve__face_width": 10.0}, "sleeve.face_width", "cover the hub"),
+        ({"design_misalignment_deg": 7.0}, "design_misalignment_deg", "0.0-6.0"),
+        ({"units": "cm"}, "units", "one of"),
+        ({"hub__colour": "red"}, "hub.colour", "unknown key"),
+        ({"hub__crowning__generation": "milled"}, "hub.crowning.generation", "one of"),
+        ({"hub__crowning__kind": "vari_crown", "hub__crowning__end_radius": 20.0},
+         "hub.crowning.end_radius", "exceed"),
+        ({"hub__crowning__kind": "end_round", "hub__crowning__end_radius": 20.0,
+          "hub__crowning__start_z": 9.0}, "hub.crowning.start_z", "half face"),
+        ({"hub__crowning__kind": "table", "hub__crowning__z": [0, 4, 8],
+          "hub__crowning__drop": [0.1, 0.2, 0.3]}, "hub.crowning.drop", "0 at z = 0"),
+        ({"hub__crowning__kind": "table", "hub__crowning__s": [0, 4, 8]},
+         "hub.crowning.kappa", "as many samples"),
+        ({"tooth__module": "two"}, "tooth.module", "number"),
+    ],
+)
+def test_invalid_values_name_field_value_and_range(changes, field, words):
+    with pytest.raises(gc.SpecError) as info:
+        build(**changes)
+    err = info.value
+    assert err.field == field, str(err)
+    assert words in str(err), str(err)
+    assert isinstance(err, ValueError)
+
+
+def test_undercut_is_refused():
+    with pytest.raises(gc.SpecError, match="undercut") as info:
+        spec_from_dict({"tooth": {"teeth": 9, "module": 3.0, "pressure_angle_deg": 14.5},
+                        "hub": {"face_width": 10.0, "crowning": {"kind": "none"},
+                                "root": {"fillet_radius": 0.3}},
+                        "sleeve": {"minor_diameter": 26.6}})
+    assert info.value.field == "hub.root.dedendum"
+
+
+def test_missing_and_unknown_templates():
+    with pytest.raises(gc.SpecError, match="templates"):
+        gc.load_spec("no-such-coupling")
+    with pytest.raises(gc.SpecError, match="required"):
+        spec_from_dict({"tooth": {"teeth": 20, "module": 1.0}, "hub": {}})
+
+
+def test_table_crowning_by_curvature_and_by_drop():
+    s = build(hub__crowning={"kind": "table", "s": [0, 4, 8, 12], "kappa": [1 / 38] * 4})
+    c = build()
+    import numpy as np
+
+    from gearcoupling.geometry.hub import hub_model
+
+    z = np.linspace(-8, 8, 9)
+    assert np.allclose(hub_model(s).path.drop(z), hub_model(c).path.drop(z), atol=1e-12)
+    d = build(hub__crowning={"kind": "table", "z": [0, 4, 8],
+                             "drop": [0, 0.2, 0.8], "generation": "revolved"})
+    assert hub_model(d).path.drop(4.0) == pytest.approx(0.2, abs=1e-6)
+
+
+def test_spec_dict_is_json_ready():
+    import json
+
+    data = gc.load_spec("renzo-1967", **{"hub.crowning.kind": "none"}).to_dict()
+    text = json.dumps(data, allow_nan=False)
+    assert '"inf"' in text and data["tooth"]["pressure_angle_deg"] == pytest.approx(20)
