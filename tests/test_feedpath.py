@@ -101,7 +101,7 @@ def test_solve_plane_puts_rack_points_in_the_plane(renzo):
     m = feed_path(renzo.hub.crowning, renzo.tooth.pitch_radius, renzo.hub.face_width)
     z = np.linspace(-6, 6, 13)[:, None]
     h = np.linspace(-3, 3, 7)[None, :]
-    s, kap, e, qv, qz = m.solve_plane(z, h)
+    _, _, e, _, qz = m.solve_plane(z, h)
     assert np.allclose(qz - h * np.sin(e), z, atol=1e-12)
 
 

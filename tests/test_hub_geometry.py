@@ -5,11 +5,12 @@ import math
 
 import numpy as np
 import pytest
-from conftest import flank_grid
 from scipy.optimize import brentq, minimize_scalar
 
 import gearcoupling as gc
 from gearcoupling.geometry.hub import form_radius, hub_flank_model, hub_model, tip_radius
+
+from conftest import flank_grid
 
 
 def polar(p):

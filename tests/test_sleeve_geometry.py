@@ -31,7 +31,7 @@ def test_normals_are_normal_to_the_flank(template):
     sm = sleeve_model(template)
     r = np.linspace(sm.r_form, sm.r_fillet, 9)[1:-1]
     d = 1e-6 * sm.R
-    p, n = flank_point(sm, r)
+    _, n = flank_point(sm, r)
     t = flank_point(sm, r + d)[0] - flank_point(sm, r - d)[0]
     t /= np.linalg.norm(t, axis=1)[:, None]
     assert np.max(np.abs(np.einsum("ij,ij->i", t, n))) < 1e-8

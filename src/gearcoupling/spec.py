@@ -14,6 +14,7 @@ import tomllib
 from dataclasses import asdict, dataclass, field, fields, replace
 from functools import cached_property
 from importlib import resources
+from itertools import pairwise
 from pathlib import Path
 from typing import Any, ClassVar
 
@@ -166,7 +167,7 @@ class Crowning:
         _check(len(xs) == len(ys) and len(xs) >= 3, f"{p}.{yn}", len(ys),
                f"needs as many samples as {xn} ({len(xs)}), at least 3")
         _check(all(math.isfinite(x) for x in xs + ys), f"{p}.{xn}", xs, "samples must be finite")
-        _check(xs[0] == 0 and all(b > a for a, b in zip(xs, xs[1:], strict=False)), f"{p}.{xn}",
+        _check(xs[0] == 0 and all(b > a for a, b in pairwise(xs)), f"{p}.{xn}",
                xs, "must start at 0 (the midplane) and increase strictly")
         if by_z:
             _check(ys[0] == 0 and all(d >= 0 for d in ys), f"{p}.drop", ys,
@@ -444,7 +445,8 @@ def spec_from_dict(data: dict[str, Any], name: str = "custom") -> CouplingSpec:
     t = root.table("tooth")
     teeth = t.integer("teeth")
     if t.has("diametral_pitch"):
-        _check(not t.has("module"), "tooth.module", None, "give module or diametral_pitch, not both")
+        _check(not t.has("module"), "tooth.module", None,
+               "give module or diametral_pitch, not both")
         pd = t.number("diametral_pitch")
         _check(pd > 0 and math.isfinite(pd), "tooth.diametral_pitch", pd,
                "must be a positive number of teeth per inch of pitch diameter")

@@ -15,6 +15,7 @@ curvatures used here).
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
+from itertools import pairwise
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -163,7 +164,7 @@ def _spline_path(R: float, s_knots, kappa_knots, kind: str) -> FeedPath:
     def smooth(s):
         return spline(s), anti(s)
 
-    segments = [(float(b - a), None) for a, b in zip(s_knots[:-1], s_knots[1:], strict=True)]
+    segments = [(float(b - a), None) for a, b in pairwise(s_knots)]
     segments.append((np.inf, float(kappa_knots[-1])))
     return FeedPath(R, segments, smooth, kind=kind)
 

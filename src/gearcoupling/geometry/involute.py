@@ -28,7 +28,8 @@ def inv(a: ArrayLike) -> NDArray[np.float64]:
     return np.where(np.abs(a) < _SERIES_LIMIT, series, np.tan(a) - a)
 
 
-def inv_inverse(y: ArrayLike, *, rtol: float = 1e-15, max_iter: int = 60) -> NDArray[np.float64]:
+def inv_inverse(y: ArrayLike, *, rtol: float = 1e-15,
+                max_iter: int = 60) -> NDArray[np.float64]:
     """Inverse of :func:`inv`: the angle ``a`` in ``(-pi/2, pi/2)`` with ``inv(a) = y``.
 
     Newton's method on the convex function ``tan a - a`` started above the root
@@ -57,6 +58,6 @@ def inv_inverse(y: ArrayLike, *, rtol: float = 1e-15, max_iter: int = 60) -> NDA
 
 
 def roll_angle(r: ArrayLike, r_base: float) -> NDArray[np.float64]:
-    """Pressure angle ``arccos(r_base / r)`` of an involute of base radius ``r_base`` at radius ``r``."""
+    """Pressure angle ``arccos(r_base / r)`` at radius ``r`` of an involute of base ``r_base``."""
     r = np.asarray(r, dtype=float)
     return np.arccos(np.clip(r_base / r, -1.0, 1.0))

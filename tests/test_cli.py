@@ -1,0 +1,47 @@
+"""The command line, called in-process."""
+
+import json
+
+import pytest
+
+from gearcoupling.cli import main
+
+
+def test_spec_json_has_derived_values(capsys):
+    assert main(["spec", "renzo-1967", "--json", "--set", "hub.crowning.radius=3.0"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["hub"]["crowning"]["radius"] == pytest.approx(76.2)
+    d = data["derived"]
+    assert d["pitch_radius_mm"] == pytest.approx(63.5)
+    assert d["base_radius_mm"] == pytest.approx(63.5 * 0.9396926207859084)
+    # Renzo eq. 4 with R_c = 3 in, i = 1 deg
+    tan_i, tan_phi = 0.017455064928217585, 0.36397023426620234
+    assert d["renzo_z0_mm"] == pytest.approx(0.5 * 76.2 * tan_i**2 / tan_phi)
+
+
+def test_spec_table_output(capsys):
+    assert main(["spec", "industrial-m2"]) == 0
+    out = capsys.readouterr().out
+    assert "aligned_backlash_mm" in out and "renzo_z0_mm" in out
+
+
+def test_sections_and_run_write_files(tmp_path, capsys):
+    assert main(["sections", "industrial-m2", "-o", str(tmp_path / "s")]) == 0
+    png = tmp_path / "s" / "sections.png"
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert main(["run", "industrial-m2", "-o", str(tmp_path / "r")]) == 0
+    spec = json.loads((tmp_path / "r" / "spec.json").read_text())
+    assert spec["name"] == "industrial-m2" and spec["tooth"]["teeth"] == 38
+    assert not list((tmp_path / "r").glob(".*"))  # no temporary files left behind
+
+
+@pytest.mark.parametrize("argv, words", [
+    (["spec", "renzo-1967", "--set", "hub.face_width=-1"], "hub.face_width = -25.4"),
+    (["spec", "renzo-1967", "--set", "hub.crowning.radius=0.01"], "hub.crowning.radius"),
+    (["spec", "nope"], "templates"),
+    (["spec", "renzo-1967", "--set", "oops"], "KEY=VALUE"),
+])
+def test_bad_input_exits_2_with_a_clear_message(argv, words, capsys):
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert words in err and "Traceback" not in err

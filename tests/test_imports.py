@@ -1,0 +1,17 @@
+"""One-way imports: the kernels and the package top level load no mesh, CAD or viewer library."""
+
+import subprocess
+import sys
+
+import pytest
+
+HEAVY = ("trimesh", "manifold3d", "viser", "OCP", "meshio", "matplotlib", "dask")
+
+
+@pytest.mark.parametrize("module", ["gearcoupling", "gearcoupling.geometry", "gearcoupling.spec",
+                                    "gearcoupling.cli"])
+def test_kernels_import_no_heavy_backend(module):
+    code = (f"import sys, {module}; "
+            f"print(','.join(m for m in {HEAVY!r} if m in sys.modules))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "", f"{module} imported {out.stdout.strip()}"
