@@ -67,8 +67,11 @@ def plot_sections(spec, path: str | Path, tolerance_mm: float | None = None) -> 
     """
     tol = tolerance_mm or 1e-3 * spec.tooth.module
     N = spec.tooth.teeth
-    fig, axes = _figure(1, 3, figsize=(17, 6), gridspec_kw={"width_ratios": [1.5, 1, 1]})
-    ax = axes[0]
+    fig, axes = _figure(2, 2, figsize=(14, 10), gridspec_kw={"height_ratios": [1.1, 1]})
+    axes[0, 1].remove()
+    axes[0, 0].remove()
+    ax = fig.add_subplot(2, 1, 1)
+    axes = [ax, axes[1, 0], axes[1, 1]]
     planes = section_planes(spec)
     import matplotlib.pyplot as plt
 
@@ -76,6 +79,8 @@ def plot_sections(spec, path: str | Path, tolerance_mm: float | None = None) -> 
     window = 1.25 * 2 * math.pi / N
 
     def clip(poly):
+        # start the ring opposite tooth 0 so the kept window is one contiguous run
+        poly = np.roll(poly, -int(np.argmin(np.abs(np.arctan2(-poly[:, 1], -poly[:, 0])))), axis=0)
         ang = np.arctan2(poly[:, 1], poly[:, 0])
         keep = np.abs(ang) < window
         # rotate so tooth 0 points up

@@ -11,8 +11,15 @@ import math
 import numpy as np
 
 from ..errors import GeometryError, SpecError
-from .hub import HubModel, form_radius, hub_flank_model, hub_model, root_radius, tip_radius
-from .hub import _radius2 as radius2
+from .hub import (
+    HubModel,
+    form_radius,
+    hub_flank_model,
+    hub_model,
+    radius_squared,
+    root_radius,
+    tip_radius,
+)
 from .sleeve import sleeve_model
 
 _Z_SAMPLES = 17  # planes from the midplane to the face end checked for undercut and points
@@ -95,7 +102,7 @@ def check_spec(spec) -> None:
 
     z = np.linspace(0.0, z_end, _Z_SAMPLES)
     try:
-        _, d_r2 = radius2(m, z, m.h_form, m.phi)
+        _, d_r2 = radius_squared(m, z, m.h_form, m.phi)
     except GeometryError as err:
         raise SpecError("hub.crowning.radius", cr.radius, f"the rack cannot reach the "
                         f"dedendum {hub.root.dedendum:.6g} mm in every plane") from err
