@@ -45,3 +45,11 @@ def test_bad_input_exits_2_with_a_clear_message(argv, words, capsys):
     assert main(argv) == 2
     err = capsys.readouterr().err
     assert words in err and "Traceback" not in err
+
+
+def test_templates_lists_every_template(capsys):
+    import gearcoupling as gc
+
+    assert main(["templates"]) == 0
+    out = capsys.readouterr().out
+    assert all(name in out for name in gc.template_names())

@@ -1,5 +1,5 @@
 """CLI commands; each module has ``register(subparsers)``. Add new commands to COMMANDS."""
 
-from . import run, sections, spec
+from . import run, sections, spec, templates
 
-COMMANDS = [spec, sections, run]
+COMMANDS = [spec, sections, run, templates]
