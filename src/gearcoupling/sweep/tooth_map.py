@@ -1,0 +1,143 @@
+"""``sweep``: the clearance map of every tooth and flank over a set of rotations."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ..errors import SpecError
+from ..geometry.sleeve import sleeve_model
+from ..spec import MISALIGNMENT_RANGE_DEG
+from .clearance import DEFAULT_GRID, DEFAULT_TOLERANCE_MM, minimise
+from .flank_table import DEFAULT_TABLE_TOLERANCE_MM, flank_table
+from .pose import turning_angles
+from .result import SweepResult
+
+_KEY_SCALE = 1e11  # turning angles closer than 1e-11 rad share one evaluation
+
+
+def check_misalignment(misalignment_deg: float) -> float:
+    """The misalignment in radians, or :class:`SpecError` outside 0-6°."""
+    lo, hi = MISALIGNMENT_RANGE_DEG
+    try:
+        value = float(misalignment_deg)
+    except (TypeError, ValueError) as err:
+        raise SpecError("misalignment_deg", misalignment_deg, "must be a number") from err
+    if not (math.isfinite(value) and lo <= value <= hi):
+        raise SpecError("misalignment_deg", misalignment_deg, f"must be {lo}-{hi} degrees")
+    return math.radians(value)
+
+
+def check_angles(angles_deg: ArrayLike) -> np.ndarray:
+    """Rotation angles as a finite 1-D float array (degrees)."""
+    a = np.atleast_1d(np.asarray(angles_deg, dtype=float))
+    if a.ndim != 1 or a.size == 0 or not np.all(np.isfinite(a)):
+        raise SpecError("angles_deg", angles_deg, "must be a non-empty 1-D list of finite "
+                        "angles in degrees")
+    return a
+
+
+def flank_minima(spec, misalignment: float, theta, *, tolerance_mm: float,
+                 grid: int = DEFAULT_GRID, periodic: bool = True):
+    """Minima of tooth 0's cw flank at turning angles ``theta`` (any shape), all measures.
+
+    With ``periodic`` (ideal geometry) equal turning angles are evaluated once.
+
+    Returns
+    -------
+    dict of name -> array shaped like ``theta``
+        ``clearance``, ``normal``, ``pitch``, ``pitch_normal`` (mm), ``z``, ``r`` (mm),
+        ``kind`` and ``rate`` of the normal minimum (the point of first touch).
+    """
+    table = flank_table(spec, min(DEFAULT_TABLE_TOLERANCE_MM, tolerance_mm))
+    sm = sleeve_model(spec)
+    theta = np.asarray(theta, dtype=float)
+    flat = np.mod(theta.ravel(), 2.0 * np.pi)
+    if periodic:
+        _, first, inverse = np.unique(np.round(flat * _KEY_SCALE).astype(np.int64),
+                                      return_index=True, return_inverse=True)
+        th = flat[first]
+    else:
+        th, inverse = flat, np.arange(flat.size)
+    n = th.size
+    both = np.concatenate([th, th])
+    normal = np.repeat([False, True], n)
+    full = minimise(table, sm, misalignment, both, normal, tolerance_mm=tolerance_mm, grid=grid)
+    pitch = minimise(table, sm, misalignment, both, normal, tolerance_mm=tolerance_mm,
+                     grid=grid, pitch_radius=spec.tooth.pitch_radius)
+    out = {
+        "clearance": full.value_mm[:n], "normal": full.value_mm[n:],
+        "pitch": pitch.value_mm[:n], "pitch_normal": pitch.value_mm[n:],
+        "z": full.z_mm[n:], "r": full.r_mm[n:], "kind": full.kind[n:], "rate": full.rate[n:],
+    }
+    return {k: v[inverse].reshape(theta.shape) for k, v in out.items()}, table
+
+
+def sweep(spec, misalignment_deg: float, angles_deg: ArrayLike, *,
+          tolerance_mm: float = DEFAULT_TOLERANCE_MM, grid: int = DEFAULT_GRID,
+          periodic: bool = True) -> SweepResult:
+    """Clearance of every hub tooth and flank at misalignment ``i`` over rotations ``psi``.
+
+    Parameters
+    ----------
+    spec : CouplingSpec
+    misalignment_deg : float
+        Misalignment ``i`` in degrees (0-6).
+    angles_deg : (n_angle,) float
+        Rotations ``psi`` of the coupling in degrees (DESIGN.md §2).
+    tolerance_mm : float
+        Accuracy of every minimum (mm); also bounds the flank table error. The default
+        1e-7 mm costs about twice 1e-4 mm (see ``benchmarks/bench_sweep.py``).
+    grid : int
+        Coarse planes over the face width before refinement.
+    periodic : bool
+        Use the tooth periodicity of the ideal geometry (tooth ``k`` at rotation ``psi`` is
+        tooth 0 at ``theta_k = psi + 2 pi k / N``) and evaluate each distinct turning angle
+        once; ``False`` evaluates every (tooth, angle) on its own, the path for specs with
+        tooth errors.
+
+    Returns
+    -------
+    SweepResult
+        Arrays shaped ``(flank, tooth, angle)`` with flanks ``(cw, ccw)``.
+    """
+    i = check_misalignment(misalignment_deg)
+    psi = np.radians(check_angles(angles_deg))
+    N = spec.tooth.teeth
+    theta = turning_angles(N, psi)  # (N, M)
+    # the ccw flank at theta is the cw flank at pi - theta (mirror y -> -y)
+    both = np.stack([theta, np.pi - theta])
+    mins, table = flank_minima(spec, i, both, tolerance_mm=tolerance_mm, grid=grid,
+                               periodic=periodic)
+    r_b = spec.tooth.base_radius
+    R = spec.tooth.pitch_radius
+    with np.errstate(invalid="ignore"):
+        gap_angle = mins["normal"] / r_b / mins["rate"]  # (2, N, M), first order in the gap
+    backlash = np.min(gap_angle[0], axis=0) + np.min(gap_angle[1], axis=0)
+    derived = spec.derived
+    return SweepResult(
+        spec_name=spec.name,
+        misalignment_deg=float(misalignment_deg),
+        teeth=N,
+        pitch_radius_mm=R,
+        base_radius_mm=r_b,
+        pressure_angle_deg=math.degrees(spec.tooth.pressure_angle),
+        aligned_backlash_mm=derived["aligned_backlash_mm"],
+        half_face_mm=0.5 * spec.hub.face_width,
+        angles_deg=np.degrees(psi),
+        theta_deg=np.mod(np.degrees(theta), 360.0),
+        clearance_mm=mins["clearance"],
+        normal_clearance_mm=mins["normal"],
+        pitch_clearance_mm=mins["pitch"],
+        pitch_normal_clearance_mm=mins["pitch_normal"],
+        contact_z_mm=mins["z"],
+        contact_r_mm=mins["r"],
+        contact_kind=mins["kind"],
+        backlash_rad=backlash,
+        backlash_mm=backlash * R,
+        tolerance_mm=tolerance_mm,
+        table_error_mm=table.max_error_mm,
+        design={"crowning_radius_midplane_mm": derived["crowning_radius_midplane_mm"]},
+    )
