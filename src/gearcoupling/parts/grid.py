@@ -218,7 +218,7 @@ def hub_tooth_grid(m: HubModel, tol: float) -> HubToothGrid:
     for _ in range(2):
         def axial(z, params=params):
             p = _hub_pitch(m, z, *params)  # (nz, columns, 2)
-            pts = np.concatenate([p, np.broadcast_to(z[:, None, None], p.shape[:2] + (1,))],
+            pts = np.concatenate([p, np.broadcast_to(z[:, None, None], (*p.shape[:2], 1))],
                                  axis=-1)
             return np.swapaxes(pts, 0, 1)
 

@@ -1,0 +1,86 @@
+"""Watertight hub and sleeve solids as triangle meshes at a chosen chordal tolerance.
+
+:func:`build_part` returns a :class:`trimesh.Trimesh` whose ``face_attributes`` hold the
+surface kind (``"kind"``, codes into :data:`SURFACE_KINDS`) and the tooth index
+(``"tooth"``, ``-1`` for body, bore, outer diameter and sector side walls) of every
+triangle. This package sits after the geometry kernels in the data flow; the kernels
+never import it (nor trimesh or manifold3d).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+
+from ..geometry.section import PARTS
+from .builder import SURFACE_KINDS, tooth_runs
+from .hub import build_hub
+from .sleeve import build_sleeve
+
+_BUILDERS = {"hub": build_hub, "sleeve": build_sleeve}
+
+
+def default_tolerance(spec) -> float:
+    """Default chordal tolerance: module / 200 (0.0127 mm for renzo-1967), in mm."""
+    return spec.tooth.module / 200.0
+
+
+def check_tolerance(spec, tolerance_mm) -> float:
+    """The tolerance as a float, or ``ValueError`` naming the allowed range."""
+    tol = default_tolerance(spec) if tolerance_mm is None else tolerance_mm
+    try:
+        tol = float(tol)
+    except (TypeError, ValueError) as err:
+        raise ValueError(f"tolerance_mm = {tolerance_mm!r}: must be a number (mm)") from err
+    lo, hi = spec.tooth.module * 1e-5, spec.tooth.module * 0.1
+    if not (math.isfinite(tol) and lo <= tol <= hi):
+        raise ValueError(f"tolerance_mm = {tolerance_mm!r}: must be from {lo:.3g} to {hi:.3g} mm "
+                         "(1e-5 to 0.1 module) for this spec")
+    return tol
+
+
+def build_part(spec, part: str, tolerance_mm: float | None = None, teeth=None):
+    """Closed triangle mesh of the hub or the sleeve within a chordal tolerance.
+
+    Parameters
+    ----------
+    spec : CouplingSpec
+    part : {"hub", "sleeve"}
+        ``hub`` in the hub frame, ``sleeve`` in the sleeve frame (mm).
+    tolerance_mm : float, optional
+        Largest distance from the exact surface to the mesh (default
+        :func:`default_tolerance`). Vertex spacing follows the local curvature of every
+        surface (profile, crown, fillet, tip sphere, circles).
+    teeth : iterable of int, optional
+        Only these teeth (a sector per cyclic run, closed by planar side walls through the
+        middle of the neighbouring spaces/teeth); default all.
+
+    Returns
+    -------
+    trimesh.Trimesh
+        Watertight, outward wound; ``face_attributes["kind"]`` (int16 codes into
+        :data:`SURFACE_KINDS`) and ``face_attributes["tooth"]`` (int32);
+        ``metadata`` holds part, tolerance, spec name and build time.
+    """
+    import trimesh
+
+    if part not in PARTS:
+        raise ValueError(f"part = {part!r}: must be one of {PARTS}")
+    tol = check_tolerance(spec, tolerance_mm)
+    runs = tooth_runs(spec.tooth.teeth, teeth)
+    t0 = time.perf_counter()
+    verts, faces, kind, tooth = _BUILDERS[part](spec, tol, runs).arrays()
+    if not np.all(np.isfinite(verts)):
+        raise ValueError(f"{part} mesh of spec {spec.name!r} has non-finite vertices")
+    mesh = trimesh.Trimesh(verts, faces, face_attributes={"kind": kind, "tooth": tooth},
+                           process=False, validate=False)
+    mesh.metadata.update(part=part, tolerance_mm=tol, spec=spec.name,
+                         bore=part == "sleeve" or spec.hub.body.bore_diameter > 0,
+                         teeth=None if teeth is None else sorted({int(k) for k in teeth}),
+                         build_seconds=time.perf_counter() - t0, units="mm")
+    return mesh
+
+
+__all__ = ["PARTS", "SURFACE_KINDS", "build_part", "check_tolerance", "default_tolerance"]

@@ -1,0 +1,73 @@
+"""Sleeve solid: ring with straight internal teeth, root fillets, tip chamfers, face ends.
+
+The toothed bore is the exact transverse outline (the same in every plane), extruded over
+the sleeve face width ``|z| <= B/2``; the ring is closed by the outer cylinder and two
+annular end faces.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..geometry.sleeve import sleeve_model
+from .builder import KIND_CODE, MeshBuilder, Run, ring_pitch, tile, zipper
+from .grid import arc_count, sleeve_pitch
+from .hub import _with_z, add_cap
+
+
+@dataclass(frozen=True, eq=False)
+class SleeveLayout:
+    """Everything the sleeve mesh needs, computed once per (spec, tolerance)."""
+
+    pitch: NDArray[np.float64]  # (M, 2) space outline of one pitch
+    kinds: NDArray[np.int16]
+    half_face: float
+    r_outer: float
+    ring: int
+    cap: NDArray[np.intp]
+
+
+@lru_cache(maxsize=16)
+def sleeve_layout(spec, tol: float) -> SleeveLayout:
+    sm = sleeve_model(spec)
+    pitch, kinds = sleeve_pitch(sm, tol)
+    r_outer = 0.5 * spec.sleeve.outer_diameter
+    ring = arc_count(r_outer, 2 * math.pi / sm.teeth, 0.9 * tol)
+    cap = zipper(ring_pitch(r_outer, sm.teeth, ring), pitch)
+    codes = np.array([KIND_CODE[k] for k in kinds], dtype=np.int16)
+    return SleeveLayout(pitch, codes, sm.half_face, r_outer, ring, cap)
+
+
+def build_sleeve_run(b: MeshBuilder, lay: SleeveLayout, run: Run) -> None:
+    """Add the sleeve solid of one run of teeth (closed ring or a sector with side walls)."""
+    hf = lay.half_face
+    nseg = len(lay.pitch) - 1
+    band = tile(lay.pitch[None], run)[0]
+    i_bot, i_top = b.vertices(_with_z(band, -hf)), b.vertices(_with_z(band, hf))
+    n_quads = len(band) if run.closed else len(band) - 1
+    tooth = np.array([run.tooth(q // nseg) for q in range(n_quads)])
+    b.strip(i_bot, i_top, np.resize(lay.kinds, n_quads), tooth, closed=run.closed, flip=True)
+    ring = tile(ring_pitch(lay.r_outer, run.teeth, lay.ring)[None], run)[0]
+    o_bot, o_top = b.vertices(_with_z(ring, -hf)), b.vertices(_with_z(ring, hf))
+    b.strip(o_bot, o_top, "body", -1, closed=run.closed)
+    add_cap(b, lay.cap, o_top, i_top, run, lay.ring, nseg, flip=False)
+    add_cap(b, lay.cap, o_bot, i_bot, run, lay.ring, nseg, flip=True)
+    if run.closed:
+        return
+    for col in (0, -1):
+        b.wall(np.array([o_bot[col], o_top[col]]), np.array([i_bot[col], i_top[col]]),
+               start=col == 0)
+
+
+def build_sleeve(spec, tol: float, runs: list[Run]) -> MeshBuilder:
+    """Sleeve mesh of the given runs of teeth at chordal tolerance ``tol`` (mm)."""
+    lay = sleeve_layout(spec, tol)
+    b = MeshBuilder()
+    for run in runs:
+        build_sleeve_run(b, lay, run)
+    return b
