@@ -1,0 +1,13 @@
+"""Interference and minimum gap of the posed hub and sleeve meshes across rotation angles.
+
+Sits after the part meshes and the sweep in the data flow: :func:`check_interference`
+poses :func:`gearcoupling.parts.build_part` meshes (DESIGN.md §2), measures overlap by
+manifold3d booleans or signed distances and the minimum gap by python-fcl, on sector
+submodels chosen from :func:`gearcoupling.sweep.sweep` or on the full parts.
+"""
+
+from .check import METHODS, InterferenceResult, Overlap, check_interference, posed_meshes
+from .submodel import Model, build_model
+
+__all__ = ["METHODS", "InterferenceResult", "Model", "Overlap", "build_model",
+           "check_interference", "posed_meshes"]
