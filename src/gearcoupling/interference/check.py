@@ -417,8 +417,8 @@ def check_interference(spec, misalignment_deg: float, angles_deg: ArrayLike, *,
                 if dep > acc.depth:
                     acc.depth = dep
                     acc.deep = (window_to_sleeve(deep[0], centre, N),
-                                window_to_sleeve(deep[1], centre, N), tooth, "overlap",
-                                "overlap")
+                                window_to_sleeve(deep[1], centre, N), tooth,
+                                f"flank_{flank}", "overlap")
             if c is not None and c.distance_mm < acc.gap:
                 t_rel = int(model.hub.tooth[c.hub_face])
                 t_rel = t_rel - N if t_rel > N // 2 else t_rel

@@ -1,0 +1,179 @@
+"""``gearcoupling check``: interference and minimum gap of the posed meshes over rotation.
+
+Writes ``interference.csv`` (one row per angle), ``interference.json`` (settings, timings,
+every overlap), ``interference.png`` (overlap volume and signed minimum gap against the
+angle, with the semi-analytic sweep's smallest normal clearance) and the posed meshes of
+the worst pose (``worst_hub.stl``, ``worst_sleeve.stl``, ``worst_overlap.stl``), prints a
+table of the worst angles, and exits with status 1 when any pose overlaps.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import math
+from pathlib import Path
+
+import numpy as np
+
+from ..atomic import atomic_path, write_json, write_text
+from .common import add_spec_arguments, output_dir, progress, spec_from_args
+
+EXIT_INTERFERENCE = 1
+
+
+def _teeth(text: str):
+    if text in ("sweep", "all"):
+        return text
+    try:
+        return int(text)
+    except ValueError as err:
+        import argparse
+
+        raise argparse.ArgumentTypeError(f"--teeth {text!r}: use 'sweep', 'all' or a half "
+                                         "window k (integer)") from err
+
+
+def _positive_int(text: str) -> int:
+    import argparse
+
+    try:
+        value = int(text)
+    except ValueError as err:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a whole number") from err
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"{value} must be at least 1")
+    return value
+
+
+def register(sub) -> None:
+    p = sub.add_parser("check", help="interference and minimum gap of the posed part meshes "
+                       "over rotation (exit status 1 when they overlap)")
+    add_spec_arguments(p)
+    p.add_argument("--misalignment", type=float, default=None, metavar="DEG",
+                   help="misalignment in degrees (default: the spec's design angle)")
+    p.add_argument("--angles", type=_positive_int, default=72, metavar="N",
+                   help="rotation angles evenly spaced over a turn (default 72)")
+    p.add_argument("--method", choices=("boolean", "distance"), default="boolean",
+                   help="overlap by manifold3d booleans (exact volume, default) or by "
+                        "signed distances (faster, estimated volume)")
+    p.add_argument("--tolerance", type=float, default=None, metavar="MM",
+                   help="chordal tolerance of the meshes (default: module / 200)")
+    p.add_argument("--teeth", type=_teeth, default="sweep", metavar="sweep|all|K",
+                   help="model: tooth pairs chosen by the sweep (default), windows of 2K+1 "
+                        "teeth there, or the full parts")
+    p.add_argument("--hub-rotation", type=float, default=0.0, metavar="DEG",
+                   help="extra turn of the hub about its axis (degrees, + closes ccw flanks)")
+    p.add_argument("--worst", type=_positive_int, default=10, metavar="N",
+                   help="rows of the worst-angle table (default 10)")
+    p.set_defaults(func=run)
+
+
+def write_csv(result, path: Path) -> Path:
+    rows = result.rows()
+    buf = io.StringIO()
+    fields = [k for k in rows[0] if not k.endswith("point_mm")] + [
+        "hub_x_mm", "hub_y_mm", "hub_z_mm", "sleeve_x_mm", "sleeve_y_mm", "sleeve_z_mm"]
+    w = csv.DictWriter(buf, fieldnames=fields, lineterminator="\n")
+    w.writeheader()
+    for row in rows:
+        hub, sl = row.pop("hub_point_mm"), row.pop("sleeve_point_mm")
+        row.update(zip(fields[-6:], [*hub, *sl], strict=True))
+        w.writerow({k: (f"{v:.9g}" if isinstance(v, float) else v) for k, v in row.items()})
+    return write_text(path, buf.getvalue())
+
+
+def plot(result, reference_mm, path: Path) -> Path:
+    """Overlap volume and signed minimum gap against the angle (PNG)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    a = result.angles_deg
+    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(9, 6.5), sharex=True)
+    ax1.plot(a, result.overlap_volume_mm3, ".-", color="tab:red")
+    ax1.set_ylabel("overlap volume (mm³)")
+    ax1.set_title(f"{result.spec_name}: i = {result.misalignment_deg:g}°, {result.method}, "
+                  f"{result.model}, tolerance {result.tolerance_mm:.4g} mm")
+    ax1.grid(alpha=0.3)
+    ax2.plot(a, result.min_gap_mm, ".-", label="mesh minimum gap (− depth when overlapping)")
+    if reference_mm is not None:
+        ax2.plot(a, reference_mm, "--", color="k", lw=1,
+                 label="sweep: smallest normal clearance (exact)")
+    tol = result.tolerance_mm
+    ax2.axhspan(-tol, tol, color="0.85", label="± chordal tolerance")
+    ax2.axhline(0.0, color="tab:red", lw=0.8)
+    ax2.set_xlabel("rotation ψ (deg)")
+    ax2.set_ylabel("gap (mm)")
+    ax2.legend(fontsize=8)
+    ax2.grid(alpha=0.3)
+    fig.tight_layout()
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, format="png", dpi=120)
+    plt.close(fig)
+    return path
+
+
+def write_meshes(result, index: int, out: Path) -> list[Path]:
+    from ..interference import posed_meshes
+
+    written = []
+    for name, mesh in posed_meshes(result, index).items():
+        path = out / f"worst_{name}.stl"
+        with atomic_path(path) as tmp:
+            mesh.export(tmp, file_type="stl")
+        written.append(path)
+    return written
+
+
+def print_table(result, count: int) -> None:
+    from rich.console import Console
+    from rich.table import Table
+
+    t = Table(title=f"worst angles: {result.spec_name}, i = {result.misalignment_deg:g}°, "
+                    f"{result.method} on {result.model}")
+    for col in ("ψ°", "overlap mm³", "depth mm", "gap mm", "teeth", "at tooth: hub/sleeve"):
+        t.add_column(col, justify="right", overflow="fold")
+    for j in result.worst(count):
+        teeth = result.teeth_involved(j)
+        shown = " ".join(map(str, teeth[:4])) + (f" +{len(teeth) - 4}" if len(teeth) > 4 else "")
+        t.add_row(f"{result.angles_deg[j]:.2f}", f"{result.overlap_volume_mm3[j]:.4g}",
+                  f"{result.overlap_depth_mm[j]:.5f}", f"{result.min_gap_mm[j]:+.5f}", shown,
+                  f"{result.gap_tooth[j]}: {result.gap_hub_surface[j]}/"
+                  f"{result.gap_sleeve_surface[j]}")
+    console = Console()
+    console.print(t)
+    console.print(f"triangles hub/sleeve {result.triangles[0]}/{result.triangles[1]}, setup "
+                  f"{result.setup_seconds:.2f} s, {1e3 * result.seconds_per_pose:.1f} ms per "
+                  f"pose; {'INTERFERENCE' if result.interferes else 'no interference'}")
+
+
+def run(args) -> int:
+    from ..interference import check_interference
+    from ..sweep import sweep
+
+    spec = spec_from_args(args)
+    mis = (math.degrees(spec.design_misalignment) if args.misalignment is None
+           else args.misalignment)
+    angles = 360.0 * np.arange(args.angles) / args.angles
+    out = output_dir(args, spec)
+    with progress(f"check {spec.name}", args.angles) as advance:
+        result = check_interference(spec, mis, angles, method=args.method,
+                                    tolerance_mm=args.tolerance, teeth=args.teeth,
+                                    hub_rotation_deg=args.hub_rotation,
+                                    progress=lambda j: advance())
+    reference = None
+    if args.hub_rotation == 0.0:
+        reference = np.min(sweep(spec, mis, angles).normal_clearance_mm, axis=(0, 1))
+    summary = result.summary()
+    if reference is not None:
+        summary["sweep_min_normal_clearance_mm"] = [float(v) for v in reference]
+    written = [write_csv(result, out / "interference.csv"),
+               write_json(out / "interference.json", summary),
+               plot(result, reference, out / "interference.png")]
+    written += write_meshes(result, int(result.worst(1)[0]), out)
+    print_table(result, args.worst)
+    for path in written:
+        print(path)
+    return EXIT_INTERFERENCE if result.interferes else 0
