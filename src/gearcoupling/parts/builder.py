@@ -21,6 +21,7 @@ SURFACE_KINDS = ("flank_cw", "flank_ccw", "fillet_cw", "fillet_ccw", "root", "ti
                  "chamfer_cw", "chamfer_ccw", "end", "body", "bore", "side")
 """Surface kinds, in the order of their integer codes (``SURFACE_KINDS.index(kind)``)."""
 KIND_CODE = {k: i for i, k in enumerate(SURFACE_KINDS)}
+MIN_RING = 8  # circle segments per pitch at least: end faces need vertices to fan from
 
 
 @dataclass(frozen=True)

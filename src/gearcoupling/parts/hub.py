@@ -17,7 +17,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..geometry.hub import hub_model, root_radius
-from .builder import KIND_CODE, MeshBuilder, Run, ring_pitch, tile, zipper
+from .builder import KIND_CODE, MIN_RING, MeshBuilder, Run, ring_pitch, tile, zipper
 from .grid import HubToothGrid, arc_count, hub_tooth_grid
 
 
@@ -55,7 +55,7 @@ def hub_layout(spec, tol: float) -> HubLayout:
         r_inner = r_bore
     else:
         r_inner = 0.5 * r_root
-    ring = arc_count(r_inner, 2 * math.pi / m.teeth, 0.9 * tol)
+    ring = max(arc_count(r_inner, 2 * math.pi / m.teeth, 0.9 * tol), MIN_RING)
     inner = ring_pitch(r_inner, m.teeth, ring)
     cap = zipper(pitch[-1], inner)
     kinds = np.array([KIND_CODE[k] for k in grid.kinds()], dtype=np.int16)

@@ -15,7 +15,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..geometry.sleeve import sleeve_model
-from .builder import KIND_CODE, MeshBuilder, Run, ring_pitch, tile, zipper
+from .builder import KIND_CODE, MIN_RING, MeshBuilder, Run, ring_pitch, tile, zipper
 from .grid import arc_count, sleeve_pitch
 from .hub import _with_z, add_cap
 
@@ -37,7 +37,7 @@ def sleeve_layout(spec, tol: float) -> SleeveLayout:
     sm = sleeve_model(spec)
     pitch, kinds = sleeve_pitch(sm, tol)
     r_outer = 0.5 * spec.sleeve.outer_diameter
-    ring = arc_count(r_outer, 2 * math.pi / sm.teeth, 0.9 * tol)
+    ring = max(arc_count(r_outer, 2 * math.pi / sm.teeth, 0.9 * tol), MIN_RING)
     cap = zipper(ring_pitch(r_outer, sm.teeth, ring), pitch)
     codes = np.array([KIND_CODE[k] for k in kinds], dtype=np.int16)
     return SleeveLayout(pitch, codes, sm.half_face, r_outer, ring, cap)
