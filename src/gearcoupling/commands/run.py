@@ -27,9 +27,23 @@ def _sections_step(spec, out: Path) -> list[Path]:
     return [plot_sections(spec, out / "sections.png")]
 
 
+def _parts_step(spec, out: Path) -> list[Path]:
+    from .generate import parts_step
+
+    return parts_step(spec, out)
+
+
+def _step_step(spec, out: Path) -> list[Path]:
+    from .generate import step_step
+
+    return step_step(spec, out)
+
+
 STEPS: list[tuple[str, Step]] = [
     ("resolved spec", _spec_step),
     ("section plots", _sections_step),
+    ("parts", _parts_step),
+    ("STEP", _step_step),
 ]
 
 
