@@ -27,6 +27,12 @@ def _sections_step(spec, out: Path) -> list[Path]:
     return [plot_sections(spec, out / "sections.png")]
 
 
+def _viewer_step(spec, out: Path) -> list[Path]:
+    from ..viewer.html import write_html
+
+    return [write_html(spec, out / "viewer.html")]
+
+
 def _parts_step(spec, out: Path) -> list[Path]:
     from .generate import parts_step
 
@@ -44,6 +50,7 @@ STEPS: list[tuple[str, Step]] = [
     ("section plots", _sections_step),
     ("parts", _parts_step),
     ("STEP", _step_step),
+    ("static viewer HTML", _viewer_step),
 ]
 
 

@@ -1,0 +1,75 @@
+"""``gearcoupling view``: the browser 3D viewer (viser), or its static HTML with ``--html``."""
+
+from __future__ import annotations
+
+import math
+import sys
+import time
+
+from ..errors import SpecError
+from ..viewer.scene import CUTAWAYS, LOD_DIVISORS
+from .common import add_spec_arguments, output_dir, spec_from_args
+
+
+def register(sub) -> None:
+    p = sub.add_parser("view", help="3D viewer in the browser (viser) or a static HTML scene")
+    add_spec_arguments(p)
+    p.add_argument("--host", default="127.0.0.1", help="address to serve on (default 127.0.0.1)")
+    p.add_argument("--port", type=int, default=8080, help="port (default 8080; the next free "
+                   "one is used if taken)")
+    p.add_argument("--misalignment", type=float, default=None, metavar="DEG",
+                   help="start misalignment in degrees (default: the spec's design angle)")
+    p.add_argument("--angle", type=float, default=0.0, metavar="DEG",
+                   help="start rotation psi in degrees (default 0)")
+    p.add_argument("--cutaway", choices=CUTAWAYS, default="quarter",
+                   help="part of the sleeve removed to show the teeth (default quarter)")
+    p.add_argument("--lod", choices=tuple(LOD_DIVISORS), default="coarse",
+                   help="mesh level of detail: chordal tolerance module/20, /100, /400")
+    p.add_argument("--tolerance", type=float, default=None, metavar="MM",
+                   help="chordal tolerance of the meshes in mm (overrides --lod)")
+    p.add_argument("--html", metavar="FILE", default=None,
+                   help="write a self-contained HTML of the scene to FILE and exit")
+    p.add_argument("--serve-seconds", type=float, default=None, metavar="S",
+                   help="stop the server after S seconds (default: until Ctrl-C)")
+    p.set_defaults(func=run)
+
+
+def run(args) -> int:
+    from ..viewer.nodes import ViewSettings
+    from ..viewer.scene import check_pose, lod_tolerance
+
+    spec = spec_from_args(args)
+    mis = math.degrees(spec.design_misalignment) if args.misalignment is None \
+        else args.misalignment
+    mis, psi = check_pose(mis, args.angle)
+    if args.port is not None and not 0 < args.port < 65536:
+        raise SpecError("--port", args.port, "must be from 1 to 65535")
+    settings = ViewSettings(misalignment_deg=mis, psi_deg=psi, cutaway=args.cutaway)
+    tol = lod_tolerance(spec, args.lod) if args.tolerance is None else args.tolerance
+    if args.html:
+        from ..viewer.html import write_html
+
+        t0 = time.perf_counter()
+        path = write_html(spec, args.html, settings=settings, tolerance_mm=tol)
+        print(f"{path} ({path.stat().st_size / 1e6:.2f} MB, "
+              f"{time.perf_counter() - t0:.1f} s)")
+        return 0
+    from ..viewer.server import serve
+
+    t0 = time.perf_counter()
+    app = serve(spec, host=args.host, port=args.port, settings=settings, lod=args.lod,
+                tolerance_mm=args.tolerance,
+                html_path=output_dir(args, spec) / "viewer.html")
+    print(f"gearcoupling viewer for {spec.name}: {app.url}  (scene ready in "
+          f"{time.perf_counter() - t0:.2f} s; Ctrl-C to stop)", flush=True)
+    try:
+        if args.serve_seconds is not None:
+            time.sleep(max(args.serve_seconds, 0.0))
+        else:
+            while True:
+                time.sleep(3600)
+    except KeyboardInterrupt:
+        print("stopping", file=sys.stderr)
+    finally:
+        app.stop()
+    return 0
