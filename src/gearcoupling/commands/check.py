@@ -12,6 +12,7 @@ from __future__ import annotations
 import csv
 import io
 import math
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -158,11 +159,15 @@ def run(args) -> int:
            else args.misalignment)
     angles = 360.0 * np.arange(args.angles) / args.angles
     out = output_dir(args, spec)
-    with progress(f"check {spec.name}", args.angles) as advance:
-        result = check_interference(spec, mis, angles, method=args.method,
-                                    tolerance_mm=args.tolerance, teeth=args.teeth,
-                                    hub_rotation_deg=args.hub_rotation,
-                                    progress=lambda j: advance())
+    try:
+        with progress(f"check {spec.name}", args.angles) as advance:
+            result = check_interference(spec, mis, angles, method=args.method,
+                                        tolerance_mm=args.tolerance, teeth=args.teeth,
+                                        hub_rotation_deg=args.hub_rotation,
+                                        progress=lambda j: advance())
+    except ValueError as err:  # bad option values: say which, no traceback
+        print(f"error: {err}", file=sys.stderr)
+        return 2
     reference = None
     if args.hub_rotation == 0.0:
         reference = np.min(sweep(spec, mis, angles).normal_clearance_mm, axis=(0, 1))

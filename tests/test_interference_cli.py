@@ -1,0 +1,57 @@
+"""``gearcoupling check``: files, table and exit status (called in-process)."""
+
+import csv
+import json
+
+import pytest
+
+from gearcoupling.cli import main
+
+
+def test_free_coupling_exits_0_and_writes_everything(tmp_path, capsys):
+    out = tmp_path / "free"
+    assert main(["check", "renzo-1967", "--angles", "6", "-o", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "worst angles" in text and "no interference" in text
+    rows = list(csv.DictReader((out / "interference.csv").open()))
+    assert len(rows) == 6 and all(float(r["min_gap_mm"]) > 0 for r in rows)
+    data = json.loads((out / "interference.json").read_text())
+    assert data["interferes"] is False and data["misalignment_deg"] == pytest.approx(1.0)
+    # mesh gap vs the exact sweep, per angle, within the chordal tolerance
+    for r, exact in zip(rows, data["sweep_min_normal_clearance_mm"], strict=True):
+        assert abs(float(r["min_gap_mm"]) - exact) < data["tolerance_mm"]
+    assert (out / "interference.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert (out / "worst_hub.stl").stat().st_size > 0
+    assert not (out / "worst_overlap.stl").exists()
+    assert not list(out.glob(".*"))
+
+
+def test_binding_coupling_exits_1(tmp_path, capsys):
+    out = tmp_path / "tight"
+    argv = ["check", "renzo-1967", "--misalignment", "1", "--angles", "4", "--set",
+            "hub.backlash=0.001", "--method", "distance", "-o", str(out)]
+    assert main(argv) == 1
+    assert "INTERFERENCE" in capsys.readouterr().out
+    data = json.loads((out / "interference.json").read_text())
+    assert data["interferes"] is True and data["overlaps"]
+    assert data["max_overlap_depth_mm"] > 0
+    assert (out / "worst_hub.stl").exists()
+
+
+def test_hub_turned_past_backlash_exits_1(tmp_path):
+    assert main(["check", "renzo-1967", "--misalignment", "0", "--angles", "2",
+                 "--hub-rotation", "0.1", "-o", str(tmp_path)]) == 1
+    data = json.loads((tmp_path / "interference.json").read_text())
+    assert {o["flank"] for o in data["overlaps"]} == {"ccw"}
+
+
+@pytest.mark.parametrize("argv, words", [
+    (["--tolerance", "-1"], "tolerance_mm"),
+    (["--misalignment", "9"], "misalignment_deg"),
+    (["--hub-rotation", "20"], "hub_rotation_deg"),
+    (["--teeth", "40"], "teeth = 40"),
+])
+def test_bad_options_exit_2(tmp_path, capsys, argv, words):
+    assert main(["check", "renzo-1967", "--angles", "2", "-o", str(tmp_path), *argv]) == 2
+    err = capsys.readouterr().err
+    assert words in err and "Traceback" not in err
