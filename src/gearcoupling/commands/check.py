@@ -150,9 +150,34 @@ def print_table(result, count: int) -> None:
                   f"pose; {'INTERFERENCE' if result.interferes else 'no interference'}")
 
 
+def write_outputs(spec, result, out: Path) -> list[Path]:
+    """CSV, JSON (with the sweep's exact clearance), plot and worst posed meshes."""
+    from ..sweep import sweep
+
+    reference = None
+    if result.hub_rotation_deg == 0.0:
+        reference = np.min(sweep(spec, result.misalignment_deg, result.angles_deg)
+                           .normal_clearance_mm, axis=(0, 1))
+    summary = result.summary()
+    if reference is not None:
+        summary["sweep_min_normal_clearance_mm"] = [float(v) for v in reference]
+    written = [write_csv(result, out / "interference.csv"),
+               write_json(out / "interference.json", summary),
+               plot(result, reference, out / "interference.png")]
+    return written + write_meshes(result, int(result.worst(1)[0]), out)
+
+
+def run_step(spec, out: Path, angles: int = 72) -> list[Path]:
+    """The ``gearcoupling run`` step: the check at the design angle, defaults otherwise."""
+    from ..interference import check_interference
+
+    result = check_interference(spec, math.degrees(spec.design_misalignment),
+                                360.0 * np.arange(angles) / angles)
+    return write_outputs(spec, result, out)
+
+
 def run(args) -> int:
     from ..interference import check_interference
-    from ..sweep import sweep
 
     spec = spec_from_args(args)
     mis = (math.degrees(spec.design_misalignment) if args.misalignment is None
@@ -168,16 +193,7 @@ def run(args) -> int:
     except ValueError as err:  # bad option values: say which, no traceback
         print(f"error: {err}", file=sys.stderr)
         return 2
-    reference = None
-    if args.hub_rotation == 0.0:
-        reference = np.min(sweep(spec, mis, angles).normal_clearance_mm, axis=(0, 1))
-    summary = result.summary()
-    if reference is not None:
-        summary["sweep_min_normal_clearance_mm"] = [float(v) for v in reference]
-    written = [write_csv(result, out / "interference.csv"),
-               write_json(out / "interference.json", summary),
-               plot(result, reference, out / "interference.png")]
-    written += write_meshes(result, int(result.worst(1)[0]), out)
+    written = write_outputs(spec, result, out)
     print_table(result, args.worst)
     for path in written:
         print(path)

@@ -45,12 +45,19 @@ def _step_step(spec, out: Path) -> list[Path]:
     return step_step(spec, out)
 
 
+def _check_step(spec, out: Path) -> list[Path]:
+    from .check import run_step
+
+    return run_step(spec, out)
+
+
 STEPS: list[tuple[str, Step]] = [
     ("resolved spec", _spec_step),
     ("section plots", _sections_step),
     ("parts", _parts_step),
     ("STEP", _step_step),
     ("static viewer HTML", _viewer_step),
+    ("interference check", _check_step),
 ]
 
 
