@@ -73,7 +73,8 @@ def test_minimum_matches_brute_force(renzo, theta_deg, normal):
     by more than 1e-9 mm; the dense grid (1201 x 201) is within 1e-6 mm of it."""
     mis = math.radians(1.0)
     th = math.radians(theta_deg)
-    res = minimise(flank_table(renzo), sleeve_model(renzo), mis, [th], [normal])
+    res = minimise(flank_table(renzo), sleeve_model(renzo), mis, [th],
+                   pitch_radius=renzo.tooth.pitch_radius)["normal" if normal else "circumferential"]
     value, z, r = float(res.value_mm[0]), float(res.z_mm[0]), float(res.r_mm[0])
     attained, _, _ = exact_gap(renzo, mis, th, z, r, normal)
     assert abs(float(attained) - value) < 1e-8

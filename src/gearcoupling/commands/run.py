@@ -45,6 +45,14 @@ def _step_step(spec, out: Path) -> list[Path]:
     return step_step(spec, out)
 
 
+def _sweep_step(spec, out: Path) -> list[Path]:
+    import math
+
+    from .sweep import sweep_files
+
+    return sweep_files(spec, out, math.degrees(spec.design_misalignment), 360)
+
+
 def _check_step(spec, out: Path) -> list[Path]:
     from .check import run_step
 
@@ -58,6 +66,7 @@ STEPS: list[tuple[str, Step]] = [
     ("STEP", _step_step),
     ("static viewer HTML", _viewer_step),
     ("interference check", _check_step),
+    ("sweep at the design angle", _sweep_step),
 ]
 
 

@@ -31,12 +31,13 @@ from numpy.typing import NDArray
 from ..geometry.involute import inv
 from ..geometry.sleeve import SleeveModel
 from .flank_table import FlankTable
-from .pose import map_polar
+from .pose import map_point, map_polar
 
 KINDS = ("interior", "face end", "tip edge", "form edge", "sleeve tip edge",
          "sleeve root fillet", "sleeve face end", "no contact")
 INTERIOR, FACE_END, TIP_EDGE, FORM_EDGE, SLEEVE_TIP, SLEEVE_FILLET, SLEEVE_FACE, NONE = range(8)
 MEASURES = ("circumferential", "normal", "pitch_circumferential", "pitch_normal")
+CIRC, NORMAL, PITCH_CIRC, PITCH_NORMAL = range(4)
 DEFAULT_TOLERANCE_MM = 1e-7
 DEFAULT_GRID = 17  # coarse planes over the face width
 
@@ -75,33 +76,47 @@ class _Sleeve:
 
     def delta(self, rq, aq):
         """Angular gap ``aq + sigma(rq)/2`` to the involute (its extension off the flank)."""
+        # inv(arccos(r_b / rq)) = tan - angle, with tan = sqrt(rq^2 - r_b^2) / r_b
         x = np.minimum(self.r_b / rq, 1.0)
-        return aq + self.c0 - inv(np.arccos(x))
+        return aq + self.c0 - (np.sqrt(np.maximum(rq * rq - self.r_b**2, 0.0)) / self.r_b
+                               - np.arccos(x))
 
-    def gap(self, rq, aq, normal):
-        """Gap (mm) at sleeve radius ``rq``: circumferential, or normal where ``normal``."""
+    def gaps(self, rq, aq):
+        """``(circumferential, normal)`` gaps (mm) at sleeve radius ``rq``, polar angle
+        ``aq``; above ``r_fillet`` against the root fillet."""
         d = self.delta(rq, aq)
-        val = np.where(normal, self.r_b, rq) * d
+        circ, normal = rq * d, self.r_b * d
         fil = rq > self.r_fillet
         if self.rho > 0 and np.any(fil):
             r, a = rq[fil], aq[fil]
             cosb = np.clip((r * r + self.cn**2 - self.rho**2) / (2 * r * self.cn), -1.0, 1.0)
             beta = self.gc - np.arccos(cosb)
-            circ = r * (a - beta)
-            nor = self.rho - np.hypot(r * np.cos(a) - self.cx, r * np.sin(a) - self.cy)
-            val[fil] = np.where(normal[fil], nor, circ)
-        return val
+            circ[fil] = r * (a - beta)
+            normal[fil] = self.rho - np.hypot(r * np.cos(a) - self.cx, r * np.sin(a) - self.cy)
+        return circ, normal
 
 
 class _Planes:
-    """A batch of (plane z, pose theta, measure) whose gaps are minimised over ``t``."""
+    """A batch of (plane z, turning angle theta) rows whose gaps are minimised over ``t``."""
 
-    def __init__(self, table: FlankTable, sl: _Sleeve, mis: float, z, theta, normal):
+    def __init__(self, table: FlankTable, sl: _Sleeve, mis: float, z, theta, planes=None):
         self.table, self.sl, self.mis = table, sl, mis
-        self.z, self.theta, self.normal = z, theta, normal
-        self.kz = table.z_coefficients(z)
-        self.lo, hi = table.radii(z)
-        self.span = hi - self.lo
+        self.z, self.theta = z, theta
+        if planes is None:
+            self.kz = table.z_coefficients(z)
+            self.lo, hi = table.radii(z)
+            self.span = hi - self.lo
+            self.y_ends = None
+        else:  # precomputed per plane: coefficients, radii and y at t = 0 and 1
+            self.kz, self.lo, self.span, self.y_ends = planes
+
+    def at_end(self, end: int):
+        """``(rq, aq, zq)`` at ``t = end`` (0 or 1) for all rows."""
+        if self.y_ends is None:
+            return self.at(np.full(self.z.shape, float(end)))
+        r = self.lo + end * self.span
+        y = self.y_ends[end]
+        return map_point(np.sqrt(r * r - y * y), y, self.z, self.mis, self.theta)
 
     def at(self, t, idx=None):
         """``(rq, aq, zq)`` at heights ``t`` (for the rows ``idx``, all when None)."""
@@ -111,12 +126,13 @@ class _Planes:
             z, th, kz = self.z[idx], self.theta[idx], self.kz[idx]
             lo, sp = self.lo[idx], self.span[idx]
         r = lo + t * sp
-        return map_polar(r, self.table.alpha_at(kz, t), z, self.mis, th)
+        y = self.table.y_at(kz, t)
+        return map_point(np.sqrt(r * r - y * y), y, z, self.mis, th)
 
     def f(self, t, idx=None):
+        """``(circumferential, normal)`` gaps at heights ``t``."""
         rq, aq, _ = self.at(t, idx)
-        normal = self.normal if idx is None else self.normal[idx]
-        return self.sl.gap(rq, aq, normal)
+        return self.sl.gaps(rq, aq)
 
     def cross(self, which: str, target: float, a, b, fa, fb, idx):
         """``t`` in ``[a, b]`` where ``rq`` (or ``zq``) equals ``target``; ``fa``, ``fb``
@@ -134,13 +150,18 @@ class _Planes:
                 return t
         return t
 
-    def minimum_over_t(self):
-        """Exact minimum over the active ``t`` interval: value, t, kind (each ``(n,)``)."""
+    def active_interval(self):
+        """The active ``t`` interval of each row and what bounds it.
+
+        Returns ``feasible, (t_lo, k_lo), (t_a, k_a), (t_hi, k_hi)``: ``[t_lo, t_a]`` faces
+        the involute, ``[t_a, t_hi]`` the root fillet (empty unless the hub reaches it).
+        """
         n = self.z.shape[0]
         sl = self.sl
         zeros, ones = np.zeros(n), np.ones(n)
-        rq0, _, zq0 = self.at(zeros)
-        rq1, _, zq1 = self.at(ones)
+        rq0, aq0, zq0 = self.at_end(0)
+        rq1, aq1, zq1 = self.at_end(1)
+        self.g0, self.g1 = np.stack(self.sl.gaps(rq0, aq0)), np.stack(self.sl.gaps(rq1, aq1))
         t_lo, k_lo = zeros.copy(), np.full(n, FORM_EDGE, np.int8)
         t_hi, k_hi = ones.copy(), np.full(n, TIP_EDGE, np.int8)
         feasible = rq1 > sl.r_form
@@ -165,8 +186,8 @@ class _Planes:
                         upd = tc < t_hi[idx]
                         t_hi[idx[upd]], k_hi[idx[upd]] = tc[upd], SLEEVE_FACE
         feasible &= t_lo <= t_hi
-        t_a, k_a = t_hi.copy(), k_hi.copy()  # end of the involute piece
-        rqh, _, _ = self.at(t_hi)
+        t_a, k_a = t_hi.copy(), k_hi.copy()
+        rqh = np.where(t_hi == 1.0, rq1, self.at(t_hi)[0])
         idx = np.flatnonzero(feasible & (rqh > sl.r_fillet))
         if idx.size:
             rql, _, _ = self.at(t_lo[idx], idx)
@@ -174,67 +195,94 @@ class _Planes:
                             rqh[idx] - sl.r_fillet, idx)
             t_a[idx], k_a[idx] = tf, SLEEVE_FILLET
             k_hi[idx] = SLEEVE_FILLET
-        fa, fb, fh = self.f(t_lo), self.f(t_a), self.f(t_hi)
-        cand_t = [t_lo, t_a, t_hi]
-        cand_f = [fa, fb, fh]
-        cand_k = [k_lo, k_a, k_hi]
-        # interior stationary point of the involute piece: parabola, then one Newton step
+        return feasible, (t_lo, k_lo), (t_a, k_a), (t_hi, k_hi)
+
+    def minimum_over_t(self):
+        """Exact minima over the active ``t`` interval of both gaps: ``V, T, K`` each
+        ``(2, n)`` (circumferential, normal)."""
+        n = self.z.shape[0]
+        feasible, (t_lo, k_lo), (t_a, k_a), (t_hi, k_hi) = self.active_interval()
         tm = 0.5 * (t_lo + t_a)
-        fm = self.f(tm)
+        fa = self._f_or(t_lo, 0.0, self.g0)
+        fh = self._f_or(t_hi, 1.0, self.g1)
+        fb = np.where(t_a == t_hi, fh, self._f_or(t_a, 1.0, self.g1))
+        fm = np.stack(self.f(tm))
         h = 0.5 * (t_a - t_lo)
+        interior = np.full(n, INTERIOR, np.int8)
+        V, T, K = [], [], []
+        for mi in range(2):
+            a_, b_, m_ = fa[mi], fb[mi], fm[mi]
+            ti, fi = self._interior(mi, t_lo, t_a, tm, h, a_, b_, m_, feasible)
+            F = np.stack([a_, b_, fh[mi], m_, fi])
+            j = np.argmin(F, axis=0)
+            cols = np.arange(n)
+            V.append(np.where(feasible, F[j, cols], np.inf))
+            T.append(np.stack([t_lo, t_a, t_hi, tm, ti])[j, cols])
+            K.append(np.where(feasible, np.stack([k_lo, k_a, k_hi, interior, interior])[j, cols],
+                              NONE))
+        return np.array(V), np.array(T), np.array(K, dtype=np.int8)
+
+    def _f_or(self, t, known_t: float, known):
+        """Both gaps at ``t``, taken from ``known`` (at ``known_t``) where ``t`` equals it."""
+        out = known.copy()
+        idx = np.flatnonzero(t != known_t)
+        if idx.size:
+            out[:, idx] = np.stack(self.f(t[idx], idx))
+        return out
+
+    def _interior(self, mi, t_lo, t_a, tm, h, fa, fb, fm, feasible):
+        """Interior stationary point of gap ``mi`` on ``[t_lo, t_a]``: parabola through the
+        ends and the middle, then one Newton step with central differences."""
         curv = fa + fb - 2.0 * fm
         with np.errstate(divide="ignore", invalid="ignore"):
             s = -(fb - fa) * h / (2.0 * curv)
-        ok = feasible & (curv > 0) & (np.abs(s) < h) & (h > 0)
-        idx = np.flatnonzero(ok)
-        ti = tm.copy()
-        fi = fm.copy()
+        idx = np.flatnonzero(feasible & (curv > 0) & (np.abs(s) < h) & (h > 0))
+        ti, fi = tm.copy(), fm.copy()
         if idx.size:
             a, b = t_lo[idx], t_a[idx]
             t = tm[idx] + s[idx]
             d = 1e-4 * h[idx]
-            f0 = self.f(t, idx)
-            fp, fn = self.f(np.minimum(t + d, b), idx), self.f(np.maximum(t - d, a), idx)
+            f0 = self.f(t, idx)[mi]
+            fp = self.f(np.minimum(t + d, b), idx)[mi]
+            fn = self.f(np.maximum(t - d, a), idx)[mi]
             g1 = (fp - fn) / (2 * d)
             g2 = (fp + fn - 2 * f0) / (d * d)
             step = np.where(g2 > 0, g1 / np.where(g2 > 0, g2, 1.0), 0.0)
             t2 = np.clip(t - step, a, b)
-            f2 = self.f(t2, idx)
+            f2 = self.f(t2, idx)[mi]
             better = f2 < f0
             ti[idx] = np.where(better, t2, t)
             fi[idx] = np.where(better, f2, f0)
-        cand_t += [tm, ti]
-        cand_f += [fm, fi]
-        cand_k += [np.full(n, INTERIOR, np.int8)] * 2
-        F = np.stack(cand_f)
-        j = np.argmin(F, axis=0)
-        cols = np.arange(n)
-        value = F[j, cols]
-        t_best = np.stack(cand_t)[j, cols]
-        kind = np.stack(cand_k)[j, cols]
-        value = np.where(feasible, value, np.inf)
-        kind = np.where(feasible, kind, NONE).astype(np.int8)
-        return value, t_best, kind
+        return ti, fi
 
     def pitch_line(self, R: float):
-        """Gap on the pitch circle ``r = R`` of each plane: value, t, kind."""
+        """Both gaps on the pitch circle ``r = R`` of each plane: ``V, T, K`` ``(2, n)``."""
         t = (R - self.lo) / self.span
         rq, aq, zq = self.at(np.clip(t, 0.0, 1.0))
         ok = (t >= 0) & (t <= 1) & (rq >= self.sl.r_form) & (np.abs(zq) <= self.sl.half_face)
-        val = np.where(ok, self.sl.gap(rq, aq, self.normal), np.inf)
-        kind = np.where(ok, INTERIOR, NONE).astype(np.int8)
-        return val, t, kind
+        circ, normal = self.sl.gaps(rq, aq)
+        V = np.where(ok, np.stack([circ, normal]), np.inf)
+        K = np.where(ok, INTERIOR, NONE).astype(np.int8)
+        return V, np.stack([t, t]), np.stack([K, K])
 
 
-def _plane_minimum(table, sl, mis, z, theta, normal, pitch_R):
-    planes = _Planes(table, sl, mis, z, theta, normal)
-    return planes.pitch_line(pitch_R) if pitch_R is not None else planes.minimum_over_t()
+def _plane_minima(table, sl, mis, z, theta, R, planes=None, need=(True, True)):
+    """Minima in the planes ``z`` of the four measures (:data:`MEASURES`): ``V, T, K``
+    ``(4, n)``; ``need`` = (whole flank, pitch line) skips what is not needed (inf)."""
+    p = _Planes(table, sl, mis, z, theta, planes)
+    n = z.shape[0]
+    V, T, K = np.full((4, n), np.inf), np.zeros((4, n)), np.full((4, n), NONE, np.int8)
+    if need[0]:
+        V[:2], T[:2], K[:2] = p.minimum_over_t()
+    if need[1]:
+        V[2:], T[2:], K[2:] = p.pitch_line(R)
+    return V, T, K
 
 
-def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, normal,
-             *, pitch_radius: float | None = None, tolerance_mm: float = DEFAULT_TOLERANCE_MM,
-             grid: int = DEFAULT_GRID, max_levels: int = 30) -> Minimum:
-    """Minimum gap of tooth 0's cw flank to space 0 at turning angles ``theta``.
+def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
+             pitch_radius: float, tolerance_mm: float = DEFAULT_TOLERANCE_MM,
+             grid: int = DEFAULT_GRID, max_levels: int = 40) -> dict[str, Minimum]:
+    """Minimum gaps of tooth 0's cw flank to space 0 at turning angles ``theta``.
 
     Parameters
     ----------
@@ -245,70 +293,114 @@ def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, nor
         Tilt ``i`` (radians).
     theta : (n,) float
         Turning angles (radians).
-    normal : (n,) bool
-        Per row: minimise the normal gap (True) or the circumferential gap (False).
-    pitch_radius : float, optional
-        If given, minimise only along the pitch line ``r = pitch_radius`` of the hub flank.
+    pitch_radius : float
+        Radius of the pitch line (``R``).
     tolerance_mm : float
-        Stop refining a row when its bracket cannot hide a lower value by more than this.
+        Stop refining a minimum when its bracket cannot hide a lower value by more than this
+        (and the flank table error is below it).
     grid : int
         Coarse planes over the face width (>= 3); more finds narrow minima more surely.
 
     Returns
     -------
-    Minimum
+    dict of measure name -> Minimum
+        For each of :data:`MEASURES`.
     """
     if grid < 3:
         raise ValueError(f"grid must be at least 3 planes, got {grid}")
     if not tolerance_mm > 0:
         raise ValueError(f"tolerance_mm must be > 0, got {tolerance_mm!r}")
     theta = np.asarray(theta, dtype=float).ravel()
-    normal = np.broadcast_to(np.asarray(normal, dtype=bool), theta.shape).copy()
     n = theta.size
     sl = _Sleeve(sm)
     hf = table.half_face
     zg = np.linspace(-hf, hf, grid)
-    Z = np.broadcast_to(zg, (n, grid)).ravel()
-    TH = np.repeat(theta, grid)
-    NM = np.repeat(normal, grid)
-    v, t, k = _plane_minimum(table, sl, misalignment, Z, TH, NM, pitch_radius)
-    v, t, k = v.reshape(n, grid), t.reshape(n, grid), k.reshape(n, grid)
+    kz_g = table.z_coefficients(zg)
+    lo_g, hi_g = table.radii(zg)
+    tile = np.tile(np.arange(grid), n)
+    y_ends = (table.y_at(kz_g, np.zeros(grid))[tile], table.y_at(kz_g, np.ones(grid))[tile])
+    planes = (kz_g[tile], lo_g[tile], (hi_g - lo_g)[tile], y_ends)
+    V, T, K = _plane_minima(table, sl, misalignment, zg[tile], np.repeat(theta, grid),
+                            pitch_radius, planes)
+    # rows = (measure, theta) pairs
+    meas = np.repeat(np.arange(4), n)
+    th_of = np.tile(np.arange(n), 4)
+    v, t, k = (X.reshape(4 * n, grid) for X in (V, T, K))
+    rows_all = np.arange(4 * n)
+
+    def evaluate(z, rows):
+        """Minima of each row's own measure in the planes ``z`` (whole-flank rows and
+        pitch-line rows evaluated apart)."""
+        m = meas[rows]
+        out = np.empty(rows.size), np.empty(rows.size), np.empty(rows.size, np.int8)
+        for need, sel in (((True, False), m < 2), ((False, True), m >= 2)):
+            idx = np.flatnonzero(sel)
+            if idx.size:
+                Vr, Tr, Kr = _plane_minima(table, sl, misalignment, z[idx],
+                                           theta[th_of[rows[idx]]], pitch_radius, need=need)
+                c = np.arange(idx.size)
+                for o, X in zip(out, (Vr, Tr, Kr), strict=True):
+                    o[idx] = X[m[idx], c]
+        return out
+
     j = np.argmin(v, axis=1)
-    rows = np.arange(n)
-    best_v, best_z, best_t, best_k = v[rows, j], zg[j], t[rows, j], k[rows, j]
+    best_v, best_z = v[rows_all, j], zg[j]
+    best_t, best_k = t[rows_all, j], k[rows_all, j]
     jl, jr = np.maximum(j - 1, 0), np.minimum(j + 1, grid - 1)
-    a_z, a_v = zg[jl], v[rows, jl]
-    b_z, b_v = zg[jr], v[rows, jr]
+    a_z, a_v = zg[jl], v[rows_all, jl]
+    b_z, b_v = zg[jr], v[rows_all, jr]
     active = np.flatnonzero(np.isfinite(best_v))
+
+    def take(rows, zz, vv, tt, kk):
+        """Keep the best of the evaluated points ``(len(rows), m)`` where it improves."""
+        r = np.arange(rows.size)
+        jj = np.argmin(vv, axis=1)
+        better = vv[r, jj] < best_v[rows]
+        upd = rows[better]
+        best_v[upd], best_z[upd] = vv[r, jj][better], zz[r, jj][better]
+        best_t[upd], best_k[upd] = tt[r, jj][better], kk[r, jj][better]
+        return jj, better
+
+    # smooth minima: step to the vertex of the coarse parabola and bracket it by +-delta,
+    # delta = sqrt(tol / g'') so that a bracket around the true minimum closes at once
+    par = active[(a_z[active] < best_z[active]) & (best_z[active] < b_z[active])
+                 & np.isfinite(a_v[active]) & np.isfinite(b_v[active])]
+    if par.size:
+        h = b_z[par] - best_z[par]  # uniform coarse grid: equal spacing on both sides
+        curv = (a_v[par] + b_v[par] - 2.0 * best_v[par]) / (h * h)
+        ok = curv > 0
+        par, h, curv = par[ok], h[ok], curv[ok]
+        z1 = best_z[par] - 0.5 * (b_v[par] - a_v[par]) / (h * curv)
+        delta = np.minimum(np.sqrt(tolerance_mm / curv), 0.25 * h)
+        z1 = np.clip(z1, a_z[par] + delta, b_z[par] - delta)
+        zz = np.stack([z1 - delta, z1, z1 + delta], axis=1)
+        m = par.size
+        out = evaluate(zz.ravel(), np.repeat(par, 3))
+        v3, t3, k3 = (X.reshape(m, 3) for X in out)
+        jj, better = take(par, zz, v3, t3, k3)
+        mid = (jj == 1) & better  # the small triple brackets the minimum
+        sel = par[mid]
+        a_z[sel], a_v[sel] = zz[mid, 0], v3[mid, 0]
+        b_z[sel], b_v[sel] = zz[mid, 2], v3[mid, 2]
+    # nested grids until the bracket cannot hide more than the tolerance
     inner = 6
+    frac = np.arange(1, inner + 1) / (inner + 1)
     for _ in range(max_levels):
         if active.size == 0:
             break
         excess = np.maximum(a_v[active], b_v[active]) - best_v[active]
         width = b_z[active] - a_z[active]
-        keep = (excess > tolerance_mm) & (width > 1e-12 * hf)
-        active = active[keep]
+        active = active[(excess > tolerance_mm) & (width > 1e-12 * hf)]
         if active.size == 0:
             break
-        frac = np.arange(1, inner + 1) / (inner + 1)
-        zz = a_z[active, None] + frac[None, :] * (b_z - a_z)[active, None]
         m = active.size
-        v2, t2, k2 = _plane_minimum(table, sl, misalignment, zz.ravel(),
-                                    np.repeat(theta[active], inner),
-                                    np.repeat(normal[active], inner), pitch_radius)
-        v2, t2, k2 = v2.reshape(m, inner), t2.reshape(m, inner), k2.reshape(m, inner)
-        # candidates: left end, inner points, right end and the old best
+        zz = a_z[active, None] + frac[None, :] * (b_z - a_z)[active, None]
+        out = evaluate(zz.ravel(), np.repeat(active, inner))
+        v2, t2, k2 = (X.reshape(m, inner) for X in out)
+        take(active, zz, v2, t2, k2)
         allz = np.concatenate([a_z[active, None], zz, b_z[active, None]], axis=1)
         allv = np.concatenate([a_v[active, None], v2, b_v[active, None]], axis=1)
-        jj = np.argmin(v2, axis=1)
         r2 = np.arange(m)
-        better = v2[r2, jj] < best_v[active]
-        upd = active[better]
-        best_v[upd] = v2[r2, jj][better]
-        best_z[upd] = zz[r2, jj][better]
-        best_t[upd] = t2[r2, jj][better]
-        best_k[upd] = k2[r2, jj][better]
-        # new bracket: neighbours of the best of the inner points (or of the old best)
         jb = np.argmin(allv, axis=1)
         jl2, jr2 = np.maximum(jb - 1, 0), np.minimum(jb + 1, inner + 1)
         a_z[active], a_v[active] = allz[r2, jl2], allv[r2, jl2]
@@ -326,18 +418,18 @@ def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, nor
         good = np.isfinite(zp) & (zp > x0) & (zp < x2)
         fin, zp = fin[good], zp[good]
         if fin.size:
-            vp, tp, kp = _plane_minimum(table, sl, misalignment, zp, theta[fin], normal[fin],
-                                        pitch_radius)
-            better = vp < best_v[fin]
-            upd = fin[better]
-            best_v[upd], best_z[upd], best_t[upd], best_k[upd] = (vp[better], zp[better],
-                                                                  tp[better], kp[better])
+            out = evaluate(zp, fin)
+            take(fin, zp[:, None], *(X[:, None] for X in out))
     at_end = (np.abs(np.abs(best_z) - hf) <= 1e-12 * hf) & (best_k != NONE)
     best_k = np.where(at_end, FACE_END, best_k).astype(np.int8)
     lo, hi = table.radii(best_z)
     r = lo + best_t * (hi - lo)
-    rate = turning_rate(table, misalignment, best_z, best_t, theta)
-    return Minimum(best_v, best_z, r, best_t, best_k, rate)
+    rate = turning_rate(table, misalignment, best_z, best_t, theta[th_of])
+    result = {}
+    for mi, name in enumerate(MEASURES):
+        s = slice(mi * n, (mi + 1) * n)
+        result[name] = Minimum(best_v[s], best_z[s], r[s], best_t[s], best_k[s], rate[s])
+    return result
 
 
 def turning_rate(table: FlankTable, misalignment: float, z, t, theta):

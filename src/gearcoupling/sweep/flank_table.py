@@ -1,10 +1,12 @@
-"""A hub flank as a smooth table: polar angle ``alpha(z, t)`` in Chebyshev form.
+"""A hub flank as a smooth table: ``y(z, t) = r sin(alpha)`` in Chebyshev form.
 
 The exact flank (:func:`~gearcoupling.geometry.hub.hub_flank_model`) costs a Newton solve
 per point; a sweep evaluates it millions of times. Tooth 0's cw flank is fully described by
-its polar angle ``alpha`` as a function of the axial position ``z`` and the normalised
-height ``t`` in ``[0, 1]``, with ``r = r_form(z) + t (r_tip(z) - r_form(z))``; both are
-analytic, so a tensor Chebyshev interpolant on ``nz x nt`` nodes converges geometrically.
+its polar angle ``alpha`` (or ``y = r sin(alpha)``, which spares the sweep two sines) as a
+function of the axial position ``z`` and the normalised height ``t`` in ``[0, 1]``, with
+``r = r_form(z) + t (r_tip(z) - r_form(z))``; both are analytic, so a tensor Chebyshev
+interpolant on ``nz x nt`` nodes converges geometrically (paths with a curvature jump,
+``end_round``, converge only algebraically).
 :func:`flank_table` builds it once per spec (cached) and records the interpolation error
 measured at the cell centres between the nodes (``max_error_mm``, arc length at ``r``).
 """
@@ -34,19 +36,19 @@ class FlankTable:
     ----------
     half_face : float
         Hub half face width (mm); ``z`` spans ``[-half_face, half_face]``.
-    alpha : (nz, nt) float
-        Chebyshev coefficients of the polar angle ``alpha(z, t)`` (radians) in ``x = z /
-        half_face`` and ``y = 2 t - 1``.
+    y : (nz, nt) float
+        Chebyshev coefficients of ``y(z, t) = r sin(alpha)`` (mm) in ``z / half_face`` and
+        ``2 t - 1``.
     form : (nz,) float
         Chebyshev coefficients of the form radius ``r_form(z)`` (mm) in ``x``.
     tip_kind, tip_radius : str, float
         The tip surface (sphere about O or cylinder), evaluated in closed form.
     max_error_mm : float
-        Largest interpolation error of ``r alpha`` found at the cell centres (mm).
+        Largest interpolation error of ``y`` found at the cell centres (mm).
     """
 
     half_face: float
-    alpha: NDArray[np.float64]
+    y: NDArray[np.float64]
     form: NDArray[np.float64]
     tip_kind: str
     tip_radius: float
@@ -63,12 +65,12 @@ class FlankTable:
         return lo, hi
 
     def z_coefficients(self, z: NDArray[np.float64]) -> NDArray[np.float64]:
-        """Coefficients in ``t`` of ``alpha`` in the planes ``z``: ``(..., nt)``."""
-        vz = C.chebvander(z / self.half_face, self.alpha.shape[0] - 1)
-        return vz @ self.alpha
+        """Coefficients in ``t`` of ``y`` in the planes ``z``: ``(..., nt)``."""
+        vz = C.chebvander(z / self.half_face, self.y.shape[0] - 1)
+        return np.einsum("...i,ij->...j", vz, self.y)  # no BLAS threads for small products
 
-    def alpha_at(self, kz: NDArray[np.float64], t: NDArray[np.float64]) -> NDArray[np.float64]:
-        """``alpha`` at heights ``t`` for per-plane coefficients ``kz`` (``(..., nt)``)."""
+    def y_at(self, kz: NDArray[np.float64], t: NDArray[np.float64]) -> NDArray[np.float64]:
+        """``y`` at heights ``t`` for per-plane coefficients ``kz`` (``(..., nt)``)."""
         vt = C.chebvander(2.0 * t - 1.0, kz.shape[-1] - 1)
         return np.einsum("...j,...j->...", kz, vt)
 
@@ -76,7 +78,8 @@ class FlankTable:
         """``(r, alpha)`` at ``(z, t)`` (broadcast)."""
         z, t = np.broadcast_arrays(np.asarray(z, float), np.asarray(t, float))
         lo, hi = self.radii(z)
-        return lo + t * (hi - lo), self.alpha_at(self.z_coefficients(z), t)
+        r = lo + t * (hi - lo)
+        return r, np.arcsin(self.y_at(self.z_coefficients(z), t) / r)
 
 
 def _nodes(n: int) -> NDArray[np.float64]:
@@ -101,9 +104,9 @@ def build_flank_table(m: HubModel, nodes: tuple[int, int] = DEFAULT_NODES) -> Fl
     hf = m.half_face
     z = hf * xz
     t = 0.5 * (yt + 1.0)
-    _, a = exact_alpha(m, z[:, None], t[None, :])
+    r, a = exact_alpha(m, z[:, None], t[None, :])
     vz, vt = C.chebvander(xz, nz - 1), C.chebvander(yt, nt - 1)
-    coef = np.linalg.solve(vz, np.linalg.solve(vt, a.T).T)
+    coef = np.linalg.solve(vz, np.linalg.solve(vt, (r * np.sin(a)).T).T)
     form = np.linalg.solve(vz, form_radius(m, z))
     table = FlankTable(hf, coef, form, m.tip_kind, m.tip_radius, 0.0)
     # measured error at the cell centres (worst place for an interpolant)
@@ -111,7 +114,7 @@ def build_flank_table(m: HubModel, nodes: tuple[int, int] = DEFAULT_NODES) -> Fl
     tc = 0.5 * (0.5 * (yt[1:] + yt[:-1]) + 1.0)
     r_ex, a_ex = exact_alpha(m, zc[:, None], tc[None, :])
     r_in, a_in = table.evaluate(zc[:, None], tc[None, :])
-    err = float(np.max(np.abs(r_ex * a_ex - r_in * a_in)))
+    err = float(np.max(np.abs(r_ex * np.sin(a_ex) - r_in * np.sin(a_in))))
     if not np.isfinite(err):
         raise GeometryError("hub flank table is not finite")
     return FlankTable(hf, coef, form, m.tip_kind, m.tip_radius, err)

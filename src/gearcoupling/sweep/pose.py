@@ -50,21 +50,25 @@ def turning_angles(teeth: int, psi: ArrayLike) -> NDArray[np.float64]:
 def map_polar(r, alpha, z, misalignment: float, theta):
     """Map hub points given in cylinder coordinates ``(r, alpha, z)`` by ``P(theta)``.
 
-    Closed form of ``P(theta) p`` (cheaper than matrices in a batch).
-
     Returns
     -------
     rq, aq, zq : (...) float
         Radius, polar angle (in ``(-pi, pi]`` about the space centre) and axial position in
         the sleeve frame.
     """
+    return map_point(r * np.cos(alpha), r * np.sin(alpha), z, misalignment, theta)
+
+
+def map_point(x, y, z, misalignment: float, theta):
+    """:func:`map_polar` for points given by ``(x, y, z)`` (closed form of ``P(theta) p``,
+    cheaper than matrices in a batch)."""
     ci, si = np.cos(misalignment), np.sin(misalignment)
-    w = alpha + theta
-    x1 = r * np.cos(w)
-    y1 = r * np.sin(w)
-    y2 = y1 * ci - z * si
-    zq = y1 * si + z * ci
-    rq = np.hypot(x1, y2)
-    aq = np.arctan2(y2, x1) - theta
-    aq = np.remainder(aq + np.pi, 2.0 * np.pi) - np.pi
+    ct, st = np.cos(theta), np.sin(theta)
+    u = x * st + y * ct  # y after Rz(theta)
+    v = u * (ci - 1.0) - z * si  # its change by the tilt
+    qx = x + v * st
+    qy = y + v * ct
+    zq = u * si + z * ci
+    rq = np.sqrt(qx * qx + qy * qy)
+    aq = np.arctan2(qy, qx)
     return rq, aq, zq

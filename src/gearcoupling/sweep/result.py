@@ -87,14 +87,15 @@ class SweepResult:
         return np.array([np.max(np.where(np.isfinite(s), s, -np.inf)) for s in sep])
 
     def contacting_theta_deg(self, which: str = "pitch_normal") -> NDArray[np.float64]:
-        """Turning angle (in ``(-180, 180]``) of the tooth with the smallest clearance of
-        each flank, over all teeth and rotations, ``(2,)``."""
+        """Turning angle of the tooth with the smallest clearance of each flank over all
+        teeth and rotations, ``(2,)``, folded into ``(-90, 90]``: the tilt repeats every
+        180° of theta, so the teeth at theta and theta + 180° touch alike."""
         c = self._measure(which)
         out = []
         for f in range(2):
             k, j = np.unravel_index(np.argmin(c[f]), c[f].shape)
-            th = self.theta_deg[k, j]
-            out.append(th - 360.0 if th > 180.0 else th)
+            th = float(np.mod(self.theta_deg[k, j], 180.0))
+            out.append(th - 180.0 if th > 90.0 else th)
         return np.array(out)
 
     def summary(self) -> dict[str, Any]:

@@ -61,16 +61,14 @@ def flank_minima(spec, misalignment: float, theta, *, tolerance_mm: float,
         th = flat[first]
     else:
         th, inverse = flat, np.arange(flat.size)
-    n = th.size
-    both = np.concatenate([th, th])
-    normal = np.repeat([False, True], n)
-    full = minimise(table, sm, misalignment, both, normal, tolerance_mm=tolerance_mm, grid=grid)
-    pitch = minimise(table, sm, misalignment, both, normal, tolerance_mm=tolerance_mm,
-                     grid=grid, pitch_radius=spec.tooth.pitch_radius)
+    res = minimise(table, sm, misalignment, th, pitch_radius=spec.tooth.pitch_radius,
+                   tolerance_mm=tolerance_mm, grid=grid)
+    full = res["normal"]
     out = {
-        "clearance": full.value_mm[:n], "normal": full.value_mm[n:],
-        "pitch": pitch.value_mm[:n], "pitch_normal": pitch.value_mm[n:],
-        "z": full.z_mm[n:], "r": full.r_mm[n:], "kind": full.kind[n:], "rate": full.rate[n:],
+        "clearance": res["circumferential"].value_mm, "normal": full.value_mm,
+        "pitch": res["pitch_circumferential"].value_mm,
+        "pitch_normal": res["pitch_normal"].value_mm,
+        "z": full.z_mm, "r": full.r_mm, "kind": full.kind, "rate": full.rate,
     }
     return {k: v[inverse].reshape(theta.shape) for k, v in out.items()}, table
 

@@ -1,0 +1,127 @@
+"""Speed and accuracy of the misalignment sweep (issue 4).
+
+Prints (1) the time of the full map - every tooth x 360 rotations x both flanks, all four
+clearance measures - for ``renzo-1967`` at 1°, and (2) the speed/accuracy table: coarse
+grid and tolerance against the time of the full map and the error of its minima against a
+brute-force evaluation of the exact flank (``hub_flank_model``) on a dense grid.
+
+Run: ``python benchmarks/bench_sweep.py [--quick]``. Times are the best of several runs
+of CPU time of this process (the machine is shared; wall time is printed beside it).
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import os
+import time
+
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+import numpy as np
+
+from gearcoupling.geometry.hub import hub_model
+from gearcoupling.geometry.sleeve import sleeve_model
+from gearcoupling.spec import load_spec
+from gearcoupling.sweep import sweep
+from gearcoupling.sweep.clearance import minimise
+from gearcoupling.sweep.flank_table import exact_alpha, flank_table
+from gearcoupling.sweep.pose import hub_to_sleeve
+
+
+def timed(fn, repeats):
+    cpu, wall = [], []
+    for _ in range(repeats):
+        c, w = time.process_time(), time.perf_counter()
+        fn()
+        cpu.append(time.process_time() - c)
+        wall.append(time.perf_counter() - w)
+    return min(cpu), min(wall)
+
+
+def brute_force(spec, mis, theta, nz=1601, nt=241):
+    """Dense exact grid (circumferential, normal) minima of tooth 0's cw flank; in each
+    plane ``t`` runs from the sleeve tip edge (bisection on the exact flank) to the tip."""
+    m, sm = hub_model(spec), sleeve_model(spec)
+    z = np.linspace(-m.half_face, m.half_face, nz)
+    P = hub_to_sleeve(mis, theta)
+
+    def mapped(zz, t):
+        r, a = exact_alpha(m, zz, t)
+        p = np.stack([r * np.cos(a), r * np.sin(a), zz], axis=-1)
+        q = p @ P.T
+        rq = np.hypot(q[..., 0], q[..., 1])
+        d = np.arctan2(q[..., 1], q[..., 0]) + sm.half_angle(rq)
+        return rq, d, q[..., 2]
+
+    lo, hi = np.zeros(nz), np.ones(nz)
+    below = mapped(z, lo)[0] < sm.r_form
+    for _ in range(45):
+        mid = 0.5 * (lo + hi)
+        up = mapped(z, mid)[0] >= sm.r_form
+        hi, lo = np.where(up, mid, hi), np.where(up, lo, mid)
+    t0 = np.where(below, hi, 0.0)
+    t = t0[:, None] + np.linspace(0.0, 1.0, nt)[None, :] * (1.0 - t0[:, None])
+    zz = np.broadcast_to(z[:, None], t.shape)
+    rq, d, zq = mapped(zz, t)
+    ok = (rq >= sm.r_form - 1e-9) & (np.abs(zq) <= sm.half_face)
+    circ = np.min(np.where(ok, rq * d, np.inf))
+    normal = np.min(np.where(ok, sm.r_base * d, np.inf))
+    return circ, normal
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--quick", action="store_true", help="fewer repeats and reference angles")
+    args = ap.parse_args(argv)
+    repeats = 3 if args.quick else 7
+    spec = load_spec("renzo-1967")
+    angles = np.arange(360.0)
+    mis_deg = 1.0
+    c0 = time.process_time()
+    flank_table(spec)
+    print(f"flank table (renzo-1967): {time.process_time() - c0:.4f} s CPU, "
+          f"interpolation error {flank_table(spec).max_error_mm:.2e} mm")
+    sweep(spec, mis_deg, angles, tolerance_mm=1e-6)  # warm caches
+    cpu, wall = timed(lambda: sweep(spec, mis_deg, angles, tolerance_mm=1e-6), repeats)
+    n = 2 * spec.tooth.teeth * angles.size
+    print(f"\nfull map renzo-1967 at {mis_deg}°: {spec.tooth.teeth} teeth x {angles.size} "
+          f"angles x 2 flanks = {n} minima x 4 measures, tolerance 1e-6 mm")
+    print(f"  periodic (default): {cpu * 1e3:.1f} ms CPU ({wall * 1e3:.1f} ms wall)")
+    cpu, wall = timed(lambda: sweep(spec, mis_deg, angles, tolerance_mm=1e-6, periodic=False),
+                      max(1, repeats // 3))
+    print(f"  per tooth (periodic=False): {cpu * 1e3:.1f} ms CPU ({wall * 1e3:.1f} ms wall)")
+    other = load_spec("industrial-m2")
+    sweep(other, 0.75, angles, tolerance_mm=1e-6)
+    cpu, wall = timed(lambda: sweep(other, 0.75, angles, tolerance_mm=1e-6), repeats)
+    print(f"  industrial-m2 at 0.75° (38 teeth, 6840 distinct turning angles): "
+          f"{cpu * 1e3:.1f} ms CPU ({wall * 1e3:.1f} ms wall)")
+
+    # reference: brute force on the exact flank at sample turning angles
+    n_ref = 6 if args.quick else 16
+    thetas = np.radians(np.linspace(0.0, 360.0, n_ref, endpoint=False) + 3.7)
+    mis = math.radians(mis_deg)
+    c0 = time.process_time()
+    ref = np.array([brute_force(spec, mis, th) for th in thetas])  # (n_ref, 2)
+    t_ref = (time.process_time() - c0) / n_ref
+    print(f"\nbrute force: 1601 x 241 exact flank points per turning angle, "
+          f"{t_ref:.2f} s CPU each ({t_ref * 1800:.0f} s for the 1800 distinct angles of the map)")
+    print("\nspeed/accuracy (full map time; error = kernel minus brute force over "
+          f"{n_ref} turning angles, both gaps; negative = kernel found a lower point)")
+    print(f"{'grid':>5} {'tol mm':>8} {'map ms':>8} {'max err mm':>11} {'min err mm':>11}")
+    table = flank_table(spec)
+    sm = sleeve_model(spec)
+    for grid in (5, 9, 17, 33):
+        for tol in (1e-4, 1e-6, 1e-8):
+            cpu, _ = timed(lambda grid=grid, tol=tol: sweep(spec, mis_deg, angles,
+                                                             tolerance_mm=tol, grid=grid),
+                           max(1, repeats // 2))
+            res = minimise(table, sm, mis, thetas, pitch_radius=spec.tooth.pitch_radius,
+                           tolerance_mm=tol, grid=grid)
+            got = np.stack([res["circumferential"].value_mm, res["normal"].value_mm], axis=1)
+            err = got - ref
+            print(f"{grid:>5} {tol:>8.0e} {cpu * 1e3:>8.1f} {err.max():>11.2e} {err.min():>11.2e}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,78 @@
+"""``gearcoupling sweep``: clearance, contact and backlash of every tooth over a turn."""
+
+from __future__ import annotations
+
+import csv
+import math
+from pathlib import Path
+
+import numpy as np
+
+from ..atomic import atomic_path, write_json
+from ..errors import SpecError
+from .common import add_spec_arguments, output_dir, spec_from_args
+
+
+def register(sub) -> None:
+    p = sub.add_parser("sweep", help="clearance, contact and backlash of every tooth over a "
+                       "turn at a misalignment (CSV, summary JSON, plots)")
+    add_spec_arguments(p)
+    p.add_argument("--misalignment", type=float, default=None, metavar="DEG",
+                   help="misalignment in degrees (default: the spec's design angle)")
+    p.add_argument("--angles", type=int, default=360, metavar="N",
+                   help="rotations over one turn (default 360)")
+    p.add_argument("--tolerance", type=float, default=1e-7, metavar="MM",
+                   help="accuracy of every minimum in mm (default 1e-7)")
+    p.add_argument("--no-design", action="store_true",
+                   help="skip the critical and binding angles (root finding, a few seconds)")
+    p.add_argument("--no-plots", action="store_true", help="write only the CSV and JSON")
+    p.add_argument("--quick-plots", action="store_true",
+                   help="skip the backlash, R_c and generation studies among the plots")
+    p.set_defaults(func=run)
+
+
+def write_csv(result, path: str | Path) -> Path:
+    """The long-form CSV of a sweep, written atomically."""
+    from ..sweep import CSV_COLUMNS
+
+    with atomic_path(path) as tmp, open(tmp, "w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(CSV_COLUMNS)
+        for row in result.rows():
+            w.writerow([f"{v:.9g}" if isinstance(v, float) else v for v in row])
+    return Path(path)
+
+
+def sweep_files(spec, out: Path, misalignment_deg: float, angles: int, *,
+                tolerance_mm: float = 1e-7, design: bool = True, plots: bool = True,
+                studies: bool = True) -> list[Path]:
+    """Run a sweep and write ``sweep.csv``, ``sweep_summary.json`` and the plots."""
+    from ..sweep import sweep
+    from ..sweep.design import design_quantities
+
+    if angles < 1:
+        raise SpecError("--angles", angles, "must be at least 1")
+    psi = np.arange(angles) * 360.0 / angles
+    result = sweep(spec, misalignment_deg, psi, tolerance_mm=tolerance_mm)
+    summary = result.summary()
+    extra = design_quantities(spec, misalignment_deg) if design else {}
+    summary.update(extra)
+    paths = [write_csv(result, out / "sweep.csv"),
+             write_json(out / "sweep_summary.json", summary)]
+    if plots:
+        from ..sweep.plots import plot_all
+
+        paths += plot_all(result, spec, out, design=extra if design else None, studies=studies)
+    return paths
+
+
+def run(args) -> int:
+    spec = spec_from_args(args)
+    mis = (math.degrees(spec.design_misalignment) if args.misalignment is None
+           else args.misalignment)
+    out = output_dir(args, spec)
+    for path in sweep_files(spec, out, mis, args.angles, tolerance_mm=args.tolerance,
+                            design=not args.no_design, plots=not args.no_plots,
+                            studies=not args.quick_plots):
+        print(path)
+    return 0

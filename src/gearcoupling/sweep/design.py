@@ -1,0 +1,196 @@
+"""Design quantities from the clearance kernel: contact travel, critical misalignment,
+binding angle and the two gear meshes of a double-engagement coupling.
+
+All use the ideal geometry's periodicity: tooth ``k`` at rotation ``psi`` is tooth 0 at
+``theta = psi + 2 pi k / N``, so a rotation of one pitch with every tooth covers a turn.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import brentq
+
+from ..errors import SpecError
+from ..geometry.sleeve import sleeve_model
+from ..spec import MISALIGNMENT_RANGE_DEG
+from .clearance import DEFAULT_TOLERANCE_MM, FACE_END, minimise
+from .tooth_map import check_misalignment, flank_minima
+
+ANGLE_TOLERANCE_DEG = 1e-4
+DEFAULT_STEPS = 16  # rotations per tooth pitch for the design searches
+
+
+def pitch_turning_angles(teeth: int, steps: int = DEFAULT_STEPS) -> np.ndarray:
+    """``theta[k, j]`` for ``steps`` rotations over one tooth pitch, ``(N, steps)``."""
+    psi = 2.0 * np.pi * np.arange(steps) / (teeth * steps)
+    return psi[None, :] + 2.0 * np.pi * np.arange(teeth)[:, None] / teeth
+
+
+def contact_travel(spec, misalignment_deg: float, *, tolerance_mm: float = DEFAULT_TOLERANCE_MM
+                   ) -> dict[str, float]:
+    """Axial position of the contact on the pivot teeth (theta = 0 and 180°), in mm.
+
+    ``pitch_line_z_mm`` is where the pitch-line clearance of tooth 0's cw flank is smallest
+    (Renzo's measure), ``flank_z_mm`` the point of first touch over the whole flank;
+    ``renzo_mm`` the small-angle estimate ``R_c cot(phi) i``.
+    """
+    i = check_misalignment(misalignment_deg)
+    mins, table = flank_minima(spec, i, np.array([0.0, np.pi]), tolerance_mm=tolerance_mm)
+    pitch = minimise(table, sleeve_model(spec), i, np.array([0.0, np.pi]),
+                     pitch_radius=spec.tooth.pitch_radius,
+                     tolerance_mm=tolerance_mm)["pitch_normal"]
+    rc = spec.derived["crowning_radius_midplane_mm"]
+    return {
+        "pitch_line_z_mm": float(pitch.z_mm[0]),
+        "pitch_line_z_opposite_mm": float(pitch.z_mm[1]),
+        "flank_z_mm": float(mins["z"][0]),
+        "renzo_mm": rc / math.tan(spec.tooth.pressure_angle) * i if math.isfinite(rc) else 0.0,
+    }
+
+
+def min_backlash_rad(spec, misalignment: float, *, steps: int = DEFAULT_STEPS,
+                     tolerance_mm: float = DEFAULT_TOLERANCE_MM) -> float:
+    """Smallest backlash (rad) over a full turn at misalignment ``i`` (radians)."""
+    theta = pitch_turning_angles(spec.tooth.teeth, steps)
+    both = np.stack([theta, np.pi - theta])
+    mins, _ = flank_minima(spec, misalignment, both, tolerance_mm=tolerance_mm)
+    gap = mins["normal"] / spec.tooth.base_radius / mins["rate"]
+    return float(np.min(np.min(gap[0], axis=0) + np.min(gap[1], axis=0)))
+
+
+def contact_on_face_end(spec, misalignment: float, *, steps: int = DEFAULT_STEPS,
+                        tolerance_mm: float = DEFAULT_TOLERANCE_MM) -> bool:
+    """Whether the contacting tooth (smallest normal clearance at a rotation) touches at a
+    face end at some rotation of the turn."""
+    theta = pitch_turning_angles(spec.tooth.teeth, steps)
+    mins, _ = flank_minima(spec, misalignment, theta, tolerance_mm=tolerance_mm)
+    k = np.argmin(mins["normal"], axis=0)
+    kinds = mins["kind"][k, np.arange(theta.shape[1])]
+    return bool(np.any(kinds == FACE_END))
+
+
+def critical_misalignment_deg(spec, *, tolerance_deg: float = ANGLE_TOLERANCE_DEG,
+                              steps: int = DEFAULT_STEPS) -> float | None:
+    """Largest misalignment (degrees) at which the contact of the contacting tooth stays
+    off the face ends through a whole turn, by bisection to ``tolerance_deg``.
+
+    The profile ends (tip, form circle, sleeve tip edge) do not count: the hub profile is
+    conjugate to the sleeve's, so the gap is nearly constant along the profile and its
+    minimum sits at a profile end after any twist; a loaded contact spreads over the
+    profile. Returns ``None`` when the contact reaches no face end up to 6°.
+    """
+    hi = math.radians(MISALIGNMENT_RANGE_DEG[1])
+    if not contact_on_face_end(spec, hi, steps=steps):
+        return None
+    lo = 0.0
+    tol = math.radians(tolerance_deg)
+    while hi - lo > tol:
+        mid = 0.5 * (lo + hi)
+        if contact_on_face_end(spec, mid, steps=steps):
+            hi = mid
+        else:
+            lo = mid
+    return math.degrees(0.5 * (lo + hi))
+
+
+def binding_angle_deg(spec, *, tolerance_deg: float = ANGLE_TOLERANCE_DEG,
+                      steps: int = DEFAULT_STEPS) -> float | None:
+    """Misalignment (degrees) at which the smallest backlash over a turn reaches zero
+    (Brent's method to ``tolerance_deg``); ``None`` if the coupling does not bind by 6°."""
+    hi = math.radians(MISALIGNMENT_RANGE_DEG[1])
+
+    def f(i):
+        return min_backlash_rad(spec, i, steps=steps)
+
+    if f(hi) > 0:
+        return None
+    root = brentq(f, 0.0, hi, xtol=math.radians(tolerance_deg), rtol=1e-12)
+    return math.degrees(root)
+
+
+# ------------------------------------------------------------- double engagement
+
+
+@dataclass(frozen=True)
+class MeshAngles:
+    """Misalignment of each gear mesh of a double-engagement coupling (degrees)."""
+
+    a_deg: float
+    b_deg: float
+    sleeve_tilt_deg: float
+
+
+def _direction(angle: float, azimuth: float) -> np.ndarray:
+    return np.array([math.sin(angle) * math.cos(azimuth), math.sin(angle) * math.sin(azimuth),
+                     math.cos(angle)])
+
+
+def mesh_angles(offset_mm: float, angle_deg: float, span_mm: float, *,
+                offset_azimuth_deg: float = 0.0, angle_azimuth_deg: float = 0.0) -> MeshAngles:
+    """Angles at the two gear meshes of a double-engagement coupling.
+
+    Shaft A runs along ``z``; hub A's tooth midplane centre ``O_A`` is the origin. Hub B's
+    midplane lies ``span_mm`` along ``z``; shaft B meets that plane at the parallel offset
+    ``offset_mm`` (direction ``offset_azimuth_deg`` about ``z``) and is tilted by
+    ``angle_deg`` (in the plane at ``angle_azimuth_deg``). The floating sleeve centres on
+    both meshes, so its axis runs through ``O_A`` and ``O_B``; each mesh angle is the
+    angle between its shaft and the sleeve axis.
+    """
+    for name, value in (("offset_mm", offset_mm), ("angle_deg", angle_deg),
+                        ("span_mm", span_mm)):
+        if not math.isfinite(value):
+            raise SpecError(name, value, "must be finite")
+    if span_mm <= 0:
+        raise SpecError("span_mm", span_mm, "distance between the hub midplanes must be > 0 mm")
+    if offset_mm < 0 or not 0 <= angle_deg < 90:
+        raise SpecError("offset_mm/angle_deg", (offset_mm, angle_deg),
+                        "offset must be >= 0 mm and the angle 0-90°")
+    az = math.radians(offset_azimuth_deg)
+    ob = np.array([offset_mm * math.cos(az), offset_mm * math.sin(az), span_mm])
+    sleeve = ob / np.linalg.norm(ob)
+    shaft_b = _direction(math.radians(angle_deg), math.radians(angle_azimuth_deg))
+
+    def between(u, v):
+        return math.degrees(math.atan2(np.linalg.norm(np.cross(u, v)), float(np.dot(u, v))))
+
+    a = between(np.array([0.0, 0.0, 1.0]), sleeve)
+    b = between(shaft_b, sleeve)
+    return MeshAngles(a, b, a)
+
+
+def double_engagement(spec, offset_mm: float, angle_deg: float, span_mm: float,
+                      angles_deg, **kwargs):
+    """Sweeps of both gear meshes: ``(MeshAngles, result_a, result_b)``.
+
+    Raises :class:`SpecError` if a mesh angle exceeds the 6° the sweeps cover.
+    """
+    from .tooth_map import sweep
+
+    mesh = mesh_angles(offset_mm, angle_deg, span_mm,
+                       offset_azimuth_deg=kwargs.pop("offset_azimuth_deg", 0.0),
+                       angle_azimuth_deg=kwargs.pop("angle_azimuth_deg", 0.0))
+    for name, value in (("mesh A angle", mesh.a_deg), ("mesh B angle", mesh.b_deg)):
+        if value > MISALIGNMENT_RANGE_DEG[1]:
+            raise SpecError(name, round(value, 6), f"must be at most "
+                            f"{MISALIGNMENT_RANGE_DEG[1]}°: reduce the offset or angle, or "
+                            "lengthen the span")
+    return mesh, sweep(spec, mesh.a_deg, angles_deg, **kwargs), sweep(spec, mesh.b_deg,
+                                                                        angles_deg, **kwargs)
+
+
+def design_quantities(spec, misalignment_deg: float, *,
+                      tolerance_deg: float = ANGLE_TOLERANCE_DEG) -> dict:
+    """Root-found design angles and the pivot-tooth contact travel, as plain data."""
+    travel = contact_travel(spec, misalignment_deg)
+    crit = critical_misalignment_deg(spec, tolerance_deg=tolerance_deg)
+    bind = binding_angle_deg(spec, tolerance_deg=tolerance_deg)
+    return {
+        "pivot_contact_z_mm": travel,
+        "critical_misalignment_deg": crit,
+        "binding_angle_deg": bind,
+        "design_angle_tolerance_deg": tolerance_deg,
+        "design_rotations_per_pitch": DEFAULT_STEPS,
+    }
