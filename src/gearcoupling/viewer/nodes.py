@@ -194,7 +194,7 @@ class CouplingScene:
         patch = None
         volume = 0.0
         if np.any(state.interfering):
-            patch, volume = interference_mesh(self.meshes, rot)
+            patch, volume = interference_mesh(self.meshes, rot, state.interfering)
         with self.server.atomic():
             self.hub_frame.wxyz = quaternion_wxyz(rot)
             for f in range(2):

@@ -433,15 +433,41 @@ def plot_series(curve: ClearanceCurve, state: PoseState) -> tuple[NDArray, ...]:
 # ------------------------------------------------------------------ interference
 
 
-def interference_mesh(meshes: SceneMeshes, rotation: ArrayLike) -> tuple[Patch, float]:
+def interference_mesh(meshes: SceneMeshes, rotation: ArrayLike,
+                      interfering: ArrayLike | None = None) -> tuple[Patch, float]:
     """Hub ∩ sleeve at a pose: the overlap solid in the sleeve frame and its volume (mm³).
 
-    The meshes' chords lie inside both (convex flanks), so the volume never shows
-    interference the exact surfaces do not have; it underestimates by about the chordal
-    tolerance times the contact area.
+    Parameters
+    ----------
+    meshes : SceneMeshes
+    rotation : (3, 3) float
+        Hub pose (:func:`hub_rotation`).
+    interfering : (2, N) bool, optional
+        Keep only the overlap pieces at these (flank, tooth) pairs, e.g.
+        :attr:`PoseState.interfering` from the exact sweep. The meshes' chords lie inside
+        the convex hub flanks but outside the concave flanks of the internal sleeve teeth,
+        so a coarse mesh shows overlap up to about its chordal tolerance deep where the
+        exact surfaces are still apart; filtering by the exact clearance removes those
+        pieces. Each piece is assigned to the hub tooth and flank nearest its centroid.
     """
-    posed = meshes.hub_manifold.transform(affine(np.asarray(rotation, dtype=float)))
-    overlap = posed ^ meshes.sleeve_manifold
+    rot = np.asarray(rotation, dtype=float)
+    overlap = meshes.hub_manifold.transform(affine(rot)) ^ meshes.sleeve_manifold
+    if interfering is not None:
+        mask = np.asarray(interfering, dtype=bool)
+        teeth = mask.shape[1]
+        pitch = 2.0 * np.pi / teeth
+        keep = []
+        for piece in overlap.decompose():
+            verts = np.asarray(piece.to_mesh().vert_properties, dtype=float)[:, :3]
+            if verts.size == 0:
+                continue
+            c = rot.T @ verts.mean(axis=0)  # hub frame
+            a = math.atan2(c[1], c[0])
+            k = int(np.rint(a / pitch)) % teeth
+            rel = math.remainder(a - k * pitch, 2.0 * np.pi)
+            if mask[0 if rel < 0 else 1, k]:
+                keep.append(piece)
+        overlap = type(overlap).compose(keep) if keep else type(overlap)()
     volume = float(overlap.volume())
     return _patch_from_manifold(overlap), max(volume, 0.0)
 
