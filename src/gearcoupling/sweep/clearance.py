@@ -136,18 +136,28 @@ class _Planes:
 
     def cross(self, which: str, target: float, a, b, fa, fb, idx):
         """``t`` in ``[a, b]`` where ``rq`` (or ``zq``) equals ``target``; ``fa``, ``fb``
-        are the values minus target at the ends (opposite signs). Regula falsi (Illinois)."""
-        for _ in range(40):
-            t = np.clip(a - fa * (b - a) / (fb - fa), a, b)
+        are the values minus target at the ends (opposite signs). Secant steps on the two
+        latest points, kept inside the shrinking bracket (regula falsi when they leave it);
+        ``rq`` is nearly linear in ``t``, so 3-4 steps reach 1e-11 relative."""
+        x0, f0 = a, fa
+        x1, f1 = b, fb
+        tol = 1e-11 * (abs(target) + 1.0)
+        t = a
+        for _ in range(60):
+            with np.errstate(divide="ignore", invalid="ignore"):
+                t = x1 - f1 * (x1 - x0) / (f1 - f0)
+            out = ~np.isfinite(t) | (t <= np.minimum(a, b)) | (t >= np.maximum(a, b))
+            if np.any(out):
+                rf = a - fa * (b - a) / (fb - fa)
+                t = np.where(out, rf, t)
             rq, _, zq = self.at(t, idx)
             ft = (rq if which == "r" else zq) - target
-            left = np.sign(ft) == np.sign(fa)
-            a, fa, fb = (np.where(left, t, a), np.where(left, ft, fa),
-                         np.where(left, 0.5 * fb, fb))
-            b, fb, fa = (np.where(left, b, t), np.where(left, fb, ft),
-                         np.where(left, fa, 0.5 * fa))
-            if np.all(np.abs(ft) <= 1e-11 * (abs(target) + 1.0)):
+            if np.all(np.abs(ft) <= tol):
                 return t
+            left = np.sign(ft) == np.sign(fa)
+            a, fa = np.where(left, t, a), np.where(left, ft, fa)
+            b, fb = np.where(left, b, t), np.where(left, fb, ft)
+            x0, f0, x1, f1 = x1, f1, t, ft
         return t
 
     def active_interval(self):

@@ -61,35 +61,34 @@ def min_backlash_rad(spec, misalignment: float, *, steps: int = DEFAULT_STEPS,
     return float(np.min(np.min(gap[0], axis=0) + np.min(gap[1], axis=0)))
 
 
-def contact_on_face_end(spec, misalignment: float, *, steps: int = DEFAULT_STEPS,
-                        tolerance_mm: float = DEFAULT_TOLERANCE_MM) -> bool:
-    """Whether the contacting tooth (smallest normal clearance at a rotation) touches at a
-    face end at some rotation of the turn."""
-    theta = pitch_turning_angles(spec.tooth.teeth, steps)
-    mins, _ = flank_minima(spec, misalignment, theta, tolerance_mm=tolerance_mm)
-    k = np.argmin(mins["normal"], axis=0)
-    kinds = mins["kind"][k, np.arange(theta.shape[1])]
-    return bool(np.any(kinds == FACE_END))
+def pivot_on_face_end(spec, misalignment: float) -> bool:
+    """Whether the pivot teeth (theta = 0 and 180°) touch first at a face end."""
+    mins, _ = flank_minima(spec, misalignment, np.array([0.0, np.pi]),
+                           tolerance_mm=DEFAULT_TOLERANCE_MM)
+    return bool(np.any(mins["kind"] == FACE_END))
 
 
-def critical_misalignment_deg(spec, *, tolerance_deg: float = ANGLE_TOLERANCE_DEG,
-                              steps: int = DEFAULT_STEPS) -> float | None:
-    """Largest misalignment (degrees) at which the contact of the contacting tooth stays
-    off the face ends through a whole turn, by bisection to ``tolerance_deg``.
+def critical_misalignment_deg(spec, *, tolerance_deg: float = ANGLE_TOLERANCE_DEG
+                              ) -> float | None:
+    """Smallest misalignment (degrees) at which the contact on the pivot teeth runs onto a
+    face end (DESIGN.md §5: it travels axially by about ``R_c cot(phi) i``), by bisection
+    to ``tolerance_deg``; below it the contact stays on the flank.
 
-    The profile ends (tip, form circle, sleeve tip edge) do not count: the hub profile is
-    conjugate to the sleeve's, so the gap is nearly constant along the profile and its
-    minimum sits at a profile end after any twist; a loaded contact spreads over the
-    profile. Returns ``None`` when the contact reaches no face end up to 6°.
+    The pivot teeth carry the largest axial travel. Near the contacting teeth the
+    clearance is flat in theta (Renzo's separation grows like theta^2 sin^2 from there), so
+    "the" contacting tooth is ill-conditioned while the pivot teeth are not. The profile
+    ends (tip, form circle, sleeve tip edge) do not count: the hub profile is conjugate to
+    the sleeve's, so the gap is nearly constant along the profile and its minimum sits at a
+    profile end after any twist. Returns ``None`` when no face end is reached up to 6°.
     """
-    hi = math.radians(MISALIGNMENT_RANGE_DEG[1])
-    if not contact_on_face_end(spec, hi, steps=steps):
+    top = math.radians(MISALIGNMENT_RANGE_DEG[1])
+    if not pivot_on_face_end(spec, top):
         return None
-    lo = 0.0
+    lo, hi = 0.0, top
     tol = math.radians(tolerance_deg)
     while hi - lo > tol:
         mid = 0.5 * (lo + hi)
-        if contact_on_face_end(spec, mid, steps=steps):
+        if pivot_on_face_end(spec, mid):
             hi = mid
         else:
             lo = mid

@@ -156,7 +156,7 @@ def critical_curve(spec, radius_ratios, *, tolerance_deg: float = 1e-3):
     out = []
     for q in radius_ratios:
         s = spec.replace(**{"hub.crowning.kind": "circular", "hub.crowning.radius": q * R})
-        c = critical_misalignment_deg(s, tolerance_deg=tolerance_deg, steps=8)
+        c = critical_misalignment_deg(s, tolerance_deg=tolerance_deg)
         out.append(np.nan if c is None else c)
     return np.array(out)
 
