@@ -213,10 +213,12 @@ def test_extreme_poses_stay_finite(overrides, mis):
 # ---------------------------------------------------------------- viser, no browser
 
 
-viser = pytest.importorskip("viser")
+@pytest.fixture(scope="module")
+def viser():
+    return pytest.importorskip("viser")
 
 
-def test_pose_change_sends_no_mesh(renzo):
+def test_pose_change_sends_no_mesh(renzo, viser):
     """A new pose moves the hub and recolours: no mesh message is sent again."""
     from gearcoupling.viewer.html import free_port
     from gearcoupling.viewer.nodes import CouplingScene, ViewSettings
@@ -246,7 +248,7 @@ def test_pose_change_sends_no_mesh(renzo):
         server.stop()
 
 
-def test_write_html_is_self_contained(renzo, tmp_path):
+def test_write_html_is_self_contained(renzo, tmp_path, viser):
     from gearcoupling.viewer.html import write_html
 
     path = write_html(renzo, tmp_path / "sub" / "v.html", tolerance_mm=TOL)
@@ -256,7 +258,7 @@ def test_write_html_is_self_contained(renzo, tmp_path):
     assert [p.name for p in path.parent.iterdir()] == ["v.html"]  # no temporary left
 
 
-def test_cli_view_html_and_bad_input(tmp_path, capsys):
+def test_cli_view_html_and_bad_input(tmp_path, capsys, viser):
     out = tmp_path / "scene.html"
     assert main(["view", "renzo-1967", "--html", str(out), "--misalignment", "2",
                  "--cutaway", "half"]) == 0
@@ -280,3 +282,13 @@ def test_missing_viser_names_the_extra(monkeypatch):
     monkeypatch.setattr(nodes.importlib, "import_module", fake)
     with pytest.raises(BackendError, match=r"gearcoupling\[viewer\]"):
         nodes.import_viser()
+
+
+def test_plot_range_covers_every_finite_value():
+    x = np.arange(5.0)
+    y = np.array([np.nan, -0.1, 0.05, np.inf, np.nan])
+    lo, hi = vs.plot_range((x, y, np.array([0.2, np.nan, np.nan, np.nan, np.nan])))
+    assert lo < -0.1 and hi > 0.2 and hi - lo < 0.4
+    assert vs.plot_range((x, np.full(5, np.nan))) == (-1.0, 1.0)
+    lo, hi = vs.plot_range((x, np.full(5, 0.07)))
+    assert lo < 0.07 < hi

@@ -430,6 +430,21 @@ def plot_series(curve: ClearanceCurve, state: PoseState) -> tuple[NDArray, ...]:
     return tuple(np.where(np.isfinite(a), a, np.nan) for a in out)
 
 
+def plot_range(series: tuple[NDArray, ...], pad: float = 0.08) -> tuple[float, float]:
+    """A fixed y range ``(lo, hi)`` (mm) covering every finite value of the y series.
+
+    The plot sets it explicitly: uPlot's automatic range breaks on a NaN first sample,
+    which the marker series have.
+    """
+    ys = np.concatenate([np.asarray(a, dtype=float).ravel() for a in series[1:]])
+    ys = ys[np.isfinite(ys)]
+    if ys.size == 0:
+        return -1.0, 1.0
+    lo, hi = float(ys.min()), float(ys.max())
+    span = hi - lo if hi > lo else max(abs(hi), 1e-3)
+    return lo - pad * span, hi + pad * span
+
+
 # ------------------------------------------------------------------ interference
 
 
@@ -475,5 +490,5 @@ def interference_mesh(meshes: SceneMeshes, rotation: ArrayLike,
 __all__ = ["CUTAWAYS", "LOD_DIVISORS", "ClearanceCurve", "HubPieces", "Patch", "PoseState",
            "SceneMeshes", "build_scene_meshes", "check_pose", "clearance_colors",
            "clearance_curve", "cut_sleeve", "default_color_scale_mm", "hub_rotation",
-           "interference_mesh", "legend", "legend_markdown", "lod_tolerance", "plot_series",
-           "pose_state", "quaternion_wxyz", "split_hub", "submesh"]
+           "interference_mesh", "legend", "legend_markdown", "lod_tolerance", "plot_range",
+           "plot_series", "pose_state", "quaternion_wxyz", "split_hub", "submesh"]

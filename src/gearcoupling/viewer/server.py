@@ -28,6 +28,7 @@ from .scene import (
     clearance_curve,
     legend_markdown,
     lod_tolerance,
+    plot_range,
     plot_series,
 )
 
@@ -95,8 +96,11 @@ class ViewerApp:
                                            float(np.mod(st.psi_deg, 360.0)))
             self.play = gui.add_button("Play", icon=None)
             self.speed = gui.add_slider("speed (°/s)", 1.0, 90.0, 1.0, 15.0)
-        self.plot = gui.add_uplot(*self._plot_args(), aspect=1.4,
-                                  title="clearance vs θ (mm); markers: teeth now")
+        data, series = self._plot_args()
+        self.plot = gui.add_uplot(data, series, aspect=1.3,
+                                  title="clearance (mm) vs θ; dots: every tooth now",
+                                  scales=_scales(data),
+                                  axes=({"label": "θ (°)"}, {"label": "mm", "size": 60}))
         with gui.add_folder("Clearance"):
             self.scale = gui.add_number("colour scale (mm)", round(self.scene.color_scale_mm, 5),
                                         min=1e-5, max=10.0, step=1e-4)
@@ -220,7 +224,9 @@ class ViewerApp:
         if dirty & {"display", "cutaway", "lod", "pose", "misalignment"}:
             sc.set_display()
         if dirty & {"pose", "misalignment", "lod", "scale"}:
-            self.plot.data = self._plot_args()[0]
+            data = self._plot_args()[0]
+            self.plot.scales = _scales(data)
+            self.plot.data = data
         self._update_readouts()
         if "save" in dirty:
             from ..atomic import write_text
@@ -235,6 +241,11 @@ class ViewerApp:
         self._wake.set()
         self._worker.join(timeout=5)
         self.server.stop()
+
+
+def _scales(data) -> dict:
+    lo, hi = plot_range(data)
+    return {"x": {"time": False}, "y": {"auto": False, "range": [lo, hi]}}
 
 
 def serve(spec, **kwargs) -> ViewerApp:
