@@ -24,7 +24,7 @@ from ..errors import GeometryError
 from ..geometry.hub import HubModel, form_radius, hub_flank_model, hub_model, tip_radius
 
 DEFAULT_NODES = (24, 12)  # (nz, nt): interpolation error ~1e-8 mm on renzo-1967
-NODE_LADDER = ((16, 8), (24, 12), (32, 16), (48, 20), (64, 24))
+NODE_LADDER = ((16, 8), (24, 12), (32, 16), (32, 32), (48, 48), (64, 64))
 DEFAULT_TABLE_TOLERANCE_MM = 1e-7
 
 
