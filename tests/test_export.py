@@ -1,0 +1,214 @@
+"""Exports: every format round-trips, cell data survive, writes are atomic, STEP solids are
+B-spline solids of the exact geometry whose read-back volume matches the part, CLI."""
+
+from __future__ import annotations
+
+import json
+import sys
+
+import numpy as np
+import pytest
+import trimesh
+
+import gearcoupling as gc
+from gearcoupling.cli import main
+from gearcoupling.errors import BackendError
+from gearcoupling.export import EXPORTERS, export_part, formats
+from gearcoupling.export.meshes import read_mesh
+from gearcoupling.parts import SURFACE_KINDS, build_part
+
+MESH_FORMATS = ["stl", "ply", "obj", "glb", "3mf", "vtu", "vtk", "msh", "inp"]
+CELL_DATA_FORMATS = ["vtu", "vtk", "msh"]
+TOL = 0.05
+
+
+@pytest.fixture(scope="module")
+def hub_sector():
+    spec = gc.load_spec("renzo-1967")
+    return spec, build_part(spec, "hub", TOL, teeth=[49, 0, 1])
+
+
+def test_every_format_is_registered():
+    assert {*MESH_FORMATS, "step", "stp"} <= set(formats())
+    assert set(EXPORTERS) == set(formats())
+
+
+@pytest.mark.parametrize("ext", MESH_FORMATS)
+def test_mesh_round_trip(tmp_path, hub_sector, ext):
+    spec, mesh = hub_sector
+    path = export_part(spec, "hub", tmp_path / f"hub.{ext}", tolerance_mm=TOL,
+                       teeth=[49, 0, 1], mesh=mesh)
+    assert path.is_file() and [p.name for p in tmp_path.iterdir()] == [f"hub.{ext}"]
+    v, f, data, sets = read_mesh(path)
+    back = trimesh.Trimesh(v, f, process=True)
+    assert len(back.faces) == len(mesh.faces)
+    assert back.is_watertight and back.is_winding_consistent
+    # float32 formats (STL, PLY, GLB) keep volume to single precision
+    assert back.volume == pytest.approx(mesh.volume, rel=1e-6)
+    scale = np.abs(mesh.vertices).max()
+    assert np.abs(np.sort(back.vertices, axis=0) - np.sort(mesh.vertices, axis=0)).max() \
+        < 1e-6 * scale
+    if ext in CELL_DATA_FORMATS:
+        assert np.array_equal(data["kind"].ravel(), mesh.face_attributes["kind"])
+        assert np.array_equal(data["tooth"].ravel(), mesh.face_attributes["tooth"])
+        assert np.array_equal(f, mesh.faces)
+    if ext == "inp":
+        kind = mesh.face_attributes["kind"]
+        for code, name in enumerate(SURFACE_KINDS):
+            if np.any(kind == code):
+                assert np.array_equal(np.sort(sets[name.upper()]), np.flatnonzero(kind == code))
+        for k in (49, 0, 1):
+            assert np.array_equal(np.sort(sets[f"TOOTH_{k}"]),
+                                  np.flatnonzero(mesh.face_attributes["tooth"] == k))
+
+
+def test_stl_is_binary(tmp_path, hub_sector):
+    spec, mesh = hub_sector
+    path = export_part(spec, "hub", tmp_path / "hub.stl", mesh=mesh)
+    assert path.stat().st_size == 84 + 50 * len(mesh.faces)
+
+
+def test_a_failing_writer_leaves_no_file(tmp_path, hub_sector, monkeypatch):
+    spec, mesh = hub_sector
+    target = tmp_path / "hub.stl"
+    target.write_bytes(b"old")
+
+    def broken(job, path):
+        path.write_bytes(b"half")
+        raise RuntimeError("disk full")
+
+    monkeypatch.setitem(EXPORTERS, "stl", broken)
+    with pytest.raises(RuntimeError):
+        export_part(spec, "hub", target, mesh=mesh)
+    assert target.read_bytes() == b"old"
+    assert [p.name for p in tmp_path.iterdir()] == ["hub.stl"]
+
+
+def test_unknown_extension_names_the_allowed_ones(tmp_path, hub_sector):
+    spec, mesh = hub_sector
+    with pytest.raises(ValueError, match=r"'dxf'.*allowed: .*stl"):
+        export_part(spec, "hub", tmp_path / "hub.dxf", mesh=mesh)
+
+
+def test_missing_opencascade_is_a_backend_error(tmp_path, monkeypatch):
+    spec = gc.load_spec("renzo-1967")
+    monkeypatch.setitem(sys.modules, "OCP", None)
+    with pytest.raises(BackendError, match=r"gearcoupling\[step\]"):
+        export_part(spec, "sleeve", tmp_path / "sleeve.step", tolerance_mm=TOL)
+    assert not list(tmp_path.iterdir())
+
+
+# ---------------------------------------------------------------------------- STEP
+
+ocp = pytest.importorskip("OCP", reason="STEP needs the step extra")
+
+
+def _step_distance(shape, points):
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeVertex
+    from OCP.BRepExtrema import BRepExtrema_DistShapeShape
+    from OCP.gp import gp_Pnt
+
+    out = []
+    for q in points:
+        v = BRepBuilderAPI_MakeVertex(gp_Pnt(*map(float, q))).Vertex()
+        out.append(BRepExtrema_DistShapeShape(v, shape).Value())
+    return np.array(out)
+
+
+def _face_types(shape):
+    from OCP.BRepAdaptor import BRepAdaptor_Surface
+    from OCP.TopAbs import TopAbs_FACE
+    from OCP.TopExp import TopExp_Explorer
+    from OCP.TopoDS import TopoDS
+
+    types = {}
+    exp = TopExp_Explorer(shape, TopAbs_FACE)
+    while exp.More():
+        t = BRepAdaptor_Surface(TopoDS.Face(exp.Current())).GetType().name
+        types[t] = types.get(t, 0) + 1
+        exp.Next()
+    return types
+
+
+@pytest.mark.parametrize("name, part", [("renzo-1967", "sleeve"), ("renzo-1967", "hub"),
+                                        ("renzo-1967-end-round", "hub")])
+def test_step_solid_is_exact_geometry_and_round_trips(tmp_path, name, part):
+    from gearcoupling.export.step import part_solid, read_step_volume, shape_volume
+    from gearcoupling.parts.deviation import hub_samples, sleeve_samples
+
+    spec = gc.load_spec(name)
+    tol = 0.0127
+    shape = part_solid(spec, part, tol)
+    types = _face_types(shape)
+    n = spec.tooth.teeth
+    # flanks are smooth surfaces, one face per flank, not facets
+    assert "GeomAbs_Plane" in types and sum(types.values()) < 20 * n
+    smooth = types.get("GeomAbs_BSplineSurface", 0) + types.get("GeomAbs_SurfaceOfExtrusion", 0)
+    assert smooth >= 2 * n
+    samples = (hub_samples if part == "hub" else sleeve_samples)(spec, 4, np.random.default_rng(3))
+    pts = np.concatenate(list(samples.values()))
+    assert _step_distance(shape, pts).max() <= tol
+    path = export_part(spec, part, tmp_path / f"{part}.step", tolerance_mm=tol)
+    mesh = build_part(spec, part, tol)
+    v_back = read_step_volume(path)
+    assert v_back == pytest.approx(shape_volume(shape), rel=1e-9)
+    # the mesh is within tol of the exact surface, so volumes differ by at most tol x area
+    assert abs(v_back - mesh.volume) <= tol * mesh.area
+    assert abs(v_back - mesh.volume) <= 1e-3 * mesh.volume
+
+
+def test_step_sector_matches_the_mesh_sector(tmp_path):
+    from gearcoupling.export.step import read_step_volume
+
+    spec = gc.load_spec("renzo-1967")
+    teeth = [49, 0, 1]
+    path = export_part(spec, "sleeve", tmp_path / "s.stp", tolerance_mm=TOL, teeth=teeth)
+    mesh = build_part(spec, "sleeve", TOL, teeth=teeth)
+    assert abs(read_step_volume(path) - mesh.volume) <= TOL * mesh.area
+
+
+# ----------------------------------------------------------------------------- CLI
+
+
+def test_generate_writes_parts_and_report(tmp_path, capsys):
+    rc = main(["generate", "renzo-1967", "--parts", "sleeve,hub", "--format", "stl,vtu",
+               "--teeth", "0-1,49", "--tolerance", "0.05", "-o", str(tmp_path)])
+    assert rc == 0
+    names = sorted(p.name for p in tmp_path.iterdir())
+    assert names == ["hub-teeth-0-1-49.stl", "hub-teeth-0-1-49.vtu", "parts.json",
+                     "sleeve-teeth-0-1-49.stl", "sleeve-teeth-0-1-49.vtu"]
+    report = json.loads((tmp_path / "parts.json").read_text())
+    assert report["teeth"] == [0, 1, 49] and report["tolerance_mm"] == 0.05
+    for part in ("hub", "sleeve"):
+        info = report["parts"][part]
+        assert info["valid"] and info["genus"] == 0
+        mesh = trimesh.load(tmp_path / f"{part}-teeth-0-1-49.stl")
+        assert len(mesh.faces) == info["triangles"]
+        assert mesh.volume == pytest.approx(info["volume_mm3"], rel=1e-6)
+    out = capsys.readouterr().out.split()
+    assert str(tmp_path / "parts.json") in out
+
+
+@pytest.mark.parametrize("argv, field", [
+    (["--format", "dxf"], "--format"), (["--parts", "shaft"], "--parts"),
+    (["--teeth", "50"], "--teeth"), (["--teeth", "a-b"], "--teeth"),
+    (["--tolerance", "-1"], "--tolerance"),
+])
+def test_generate_bad_options_exit_2(tmp_path, capsys, argv, field):
+    rc = main(["generate", "renzo-1967", "-o", str(tmp_path), *argv])
+    assert rc == 2
+    assert field in capsys.readouterr().err
+    assert not any(p.suffix in (".stl", ".step") for p in tmp_path.iterdir())
+
+
+def test_run_has_parts_and_step_steps(tmp_path):
+    from gearcoupling.commands.generate import parts_step
+    from gearcoupling.commands.run import STEPS
+
+    labels = [label for label, _ in STEPS]
+    assert "parts" in labels and "STEP" in labels
+    spec = gc.load_spec("industrial-m2")
+    written = parts_step(spec, tmp_path)
+    assert {p.name for p in written} == {"hub.stl", "sleeve.stl", "parts.json"}
+    for part in ("hub", "sleeve"):
+        assert trimesh.load(tmp_path / f"{part}.stl").is_watertight
