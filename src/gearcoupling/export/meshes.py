@@ -30,7 +30,7 @@ def write_trimesh(job: PartJob, path: Path) -> None:
             import networkx  # noqa: F401
         except ImportError as err:
             raise BackendError("3MF export needs lxml and networkx: pip install "
-                               "'gearcoupling[3mf]'") from err
+                               "'gearcoupling[mesh3mf]'") from err
     job.mesh.export(str(path), file_type=_TRIMESH_TYPES[ext])
 
 
