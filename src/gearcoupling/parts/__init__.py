@@ -15,11 +15,11 @@ import time
 import numpy as np
 
 from ..geometry.section import PARTS
-from .builder import SURFACE_KINDS, tooth_runs
-from .hub import build_hub
-from .sleeve import build_sleeve
+from .builder import SURFACE_KINDS, MeshBuilder, tooth_runs
+from .hub import build_hub_run, hub_layout
+from .sleeve import build_sleeve_run, sleeve_layout
 
-_BUILDERS = {"hub": build_hub, "sleeve": build_sleeve}
+_BUILDERS = {"hub": (hub_layout, build_hub_run), "sleeve": (sleeve_layout, build_sleeve_run)}
 
 
 def default_tolerance(spec) -> float:
@@ -71,7 +71,12 @@ def build_part(spec, part: str, tolerance_mm: float | None = None, teeth=None):
     tol = check_tolerance(spec, tolerance_mm)
     runs = tooth_runs(spec.tooth.teeth, teeth)
     t0 = time.perf_counter()
-    verts, faces, kind, tooth = _BUILDERS[part](spec, tol, runs).arrays()
+    layout, add_run = _BUILDERS[part]
+    lay = layout(spec, tol)  # cached per (spec, tolerance)
+    builder = MeshBuilder()
+    for run in runs:
+        add_run(builder, lay, run)
+    verts, faces, kind, tooth = builder.arrays()
     if not np.all(np.isfinite(verts)):
         raise ValueError(f"{part} mesh of spec {spec.name!r} has non-finite vertices")
     mesh = trimesh.Trimesh(verts, faces, face_attributes={"kind": kind, "tooth": tooth},

@@ -159,11 +159,3 @@ def _fan(b: MeshBuilder, centre: int, chain: NDArray, closed: bool, *, flip: boo
     tris = np.stack([np.full(len(cur), centre), cur, nxt], axis=1)
     b.faces(tris[:, ::-1] if flip else tris, "end", -1)
 
-
-def build_hub(spec, tol: float, runs: list[Run]) -> MeshBuilder:
-    """Hub mesh of the given runs of teeth at chordal tolerance ``tol`` (mm)."""
-    lay = hub_layout(spec, tol)
-    b = MeshBuilder()
-    for run in runs:
-        build_hub_run(b, lay, run)
-    return b

@@ -63,11 +63,3 @@ def build_sleeve_run(b: MeshBuilder, lay: SleeveLayout, run: Run) -> None:
         b.wall(np.array([o_bot[col], o_top[col]]), np.array([i_bot[col], i_top[col]]),
                start=col == 0)
 
-
-def build_sleeve(spec, tol: float, runs: list[Run]) -> MeshBuilder:
-    """Sleeve mesh of the given runs of teeth at chordal tolerance ``tol`` (mm)."""
-    lay = sleeve_layout(spec, tol)
-    b = MeshBuilder()
-    for run in runs:
-        build_sleeve_run(b, lay, run)
-    return b
