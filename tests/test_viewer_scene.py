@@ -132,8 +132,11 @@ def test_aligned_coupling_has_constant_clearance_half_the_backlash(renzo):
 def test_plot_series_marks_every_tooth_at_its_theta(renzo):
     curve = vs.clearance_curve(renzo, 1.0, samples=200)
     st = vs.pose_state(renzo, 1.0, 33.0)
-    x, cw, ccw, cw_now, ccw_now = vs.plot_series(curve, st)
-    assert x.shape == cw.shape == ccw.shape == cw_now.shape == ccw_now.shape
+    x, cw, ccw, cw_now, ccw_now, first = vs.plot_series(curve, st)
+    assert x.shape == cw.shape == ccw.shape == cw_now.shape == ccw_now.shape == first.shape
+    ring = np.flatnonzero(np.isfinite(first))
+    assert ring.size == 1 and x[ring[0]] == pytest.approx(33.0)
+    assert first[ring[0]] == pytest.approx(st.clearance_mm[:, 0].min())
     assert np.all(np.diff(x) >= 0)
     for now, f in ((cw_now, 0), (ccw_now, 1)):
         marks = np.isfinite(now)

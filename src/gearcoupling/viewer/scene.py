@@ -402,12 +402,14 @@ def clearance_curve(spec, misalignment_deg: float, samples: int = DEFAULT_PLOT_S
 
 
 def plot_series(curve: ClearanceCurve, state: PoseState) -> tuple[NDArray, ...]:
-    """Plot data ``(x, cw, ccw, cw_now, ccw_now)`` on one shared x axis (degrees).
+    """Plot data ``(x, cw, ccw, cw_now, ccw_now, tooth0)`` on one shared x axis (degrees).
 
     ``x`` merges the curve's θ with the current θ of every tooth; ``cw``/``ccw`` are the
     curve (interpolated at the merged points, periodic in θ); ``*_now`` hold the exact
     clearance of each tooth at the current pose where ``x`` is that tooth's θ, NaN
-    elsewhere (drawn as markers). Infinite clearances (no contact) become NaN (gaps).
+    elsewhere (drawn as markers); ``tooth0`` is the smaller of tooth 0's two clearances
+    at its θ = ψ (the current angle), NaN elsewhere. Infinite clearances (no contact)
+    become NaN (gaps).
     """
     now = np.mod(state.theta_deg, 360.0)
     x = np.concatenate([curve.theta_deg, now])
@@ -421,12 +423,12 @@ def plot_series(curve: ClearanceCurve, state: PoseState) -> tuple[NDArray, ...]:
         finite = np.isfinite(fp)
         y = np.interp(x, xp[finite], fp[finite]) if np.any(finite) else np.full(x.shape, np.nan)
         out.append(y)
-    n_curve = curve.theta_deg.size
+    blank = np.full(curve.theta_deg.size, np.nan)
     for f in range(2):
-        y = np.full(x.shape, np.nan)
-        marks = np.concatenate([np.full(n_curve, np.nan), state.clearance_mm[f]])[order]
-        y[:] = marks
-        out.append(y)
+        out.append(np.concatenate([blank, state.clearance_mm[f]])[order])
+    first = np.full(now.size, np.nan)
+    first[0] = np.min(state.clearance_mm[:, 0])
+    out.append(np.concatenate([blank, first])[order])
     return tuple(np.where(np.isfinite(a), a, np.nan) for a in out)
 
 

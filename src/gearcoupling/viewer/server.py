@@ -98,7 +98,7 @@ class ViewerApp:
             self.speed = gui.add_slider("speed (°/s)", 1.0, 90.0, 1.0, 15.0)
         data, series = self._plot_args()
         self.plot = gui.add_uplot(data, series, aspect=1.3,
-                                  title="clearance (mm) vs θ; dots: every tooth now",
+                                  title="clearance (mm) vs θ; dots: teeth now, ring: θ = ψ",
                                   scales=_scales(data),
                                   axes=({"label": "θ (°)"}, {"label": "mm", "size": 60}))
         with gui.add_folder("Clearance"):
@@ -162,7 +162,10 @@ class ViewerApp:
                   up.Series(label="cw now", stroke="rgb(30,110,200)", width=0,
                             points={"show": True, "size": 6, "fill": "rgb(30,110,200)"}),
                   up.Series(label="ccw now", stroke="rgb(230,120,20)", width=0,
-                            points={"show": True, "size": 6, "fill": "rgb(230,120,20)"}))
+                            points={"show": True, "size": 6, "fill": "rgb(230,120,20)"}),
+                  up.Series(label="tooth 0 (θ = ψ)", stroke="black", width=0,
+                            points={"show": True, "size": 12, "width": 2,
+                                    "stroke": "black", "fill": "rgba(0,0,0,0)"}))
         return data, series
 
     def _get_curve(self) -> ClearanceCurve:
