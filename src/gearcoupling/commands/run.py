@@ -28,9 +28,16 @@ def _sections_step(spec, out: Path) -> list[Path]:
 
 
 def _viewer_step(spec, out: Path) -> list[Path]:
+    import sys
+
+    from ..errors import BackendError
     from ..viewer.html import write_html
 
-    return [write_html(spec, out / "viewer.html")]
+    try:
+        return [write_html(spec, out / "viewer.html")]
+    except BackendError as err:  # viser is an optional extra: the other outputs stand
+        print(f"gearcoupling: viewer.html skipped: {err}", file=sys.stderr)
+        return []
 
 
 def _parts_step(spec, out: Path) -> list[Path]:

@@ -29,6 +29,16 @@ def scene_html(scene: CouplingScene, *, dark_mode: bool = False) -> str:
     return scene.server.get_scene_serializer().as_html(dark_mode=dark_mode)
 
 
+def save_html(scene: CouplingScene, path: str | os.PathLike) -> Path:
+    """Write the current scene's HTML atomically, readable as the umask allows (it is
+    meant to be shared; the atomic temporary file starts private)."""
+    out = write_text(path, scene_html(scene))
+    mask = os.umask(0)
+    os.umask(mask)
+    out.chmod(0o666 & ~mask)
+    return out
+
+
 def write_html(spec, path: str | os.PathLike, *, settings: ViewSettings | None = None,
                tolerance_mm: float | None = None) -> Path:
     """Write the static HTML of a coupling scene.
@@ -60,11 +70,10 @@ def write_html(spec, path: str | os.PathLike, *, settings: ViewSettings | None =
         server = viser.ViserServer(host="127.0.0.1", port=free_port(), verbose=False)
     try:
         scene = CouplingScene(server, spec, settings, tolerance_mm, legend_in_scene=True)
-        html = scene_html(scene)
+        return save_html(scene, path)
     finally:
         with contextlib.redirect_stdout(io.StringIO()):
             server.stop()
-    return write_text(path, html)
 
 
 def _design_deg(spec) -> float:

@@ -67,6 +67,7 @@ class ViewerApp:
         self.html_path = Path(html_path) if html_path else Path("outputs") / spec.name / \
             "viewer.html"
         self._lock = threading.Lock()
+        self._apply_lock = threading.Lock()
         self._wake = threading.Event()
         self._stop = threading.Event()
         self._dirty: set[str] = set()
@@ -206,7 +207,12 @@ class ViewerApp:
                     self.status.content = f"**error:** {err}"
 
     def apply(self, dirty: set[str]) -> None:
-        """Apply the GUI's current values for the kinds of change in ``dirty``."""
+        """Apply the GUI's current values for the kinds of change in ``dirty`` (any of
+        pose, misalignment, display, cutaway, lod, scale, save)."""
+        with self._apply_lock:
+            self._apply(dirty)
+
+    def _apply(self, dirty: set[str]) -> None:
         sc, st = self.scene, self.scene.settings
         if "lod" in dirty and self.lod.value in LOD_DIVISORS:
             sc.set_tolerance(lod_tolerance(self.spec, self.lod.value))
@@ -232,10 +238,9 @@ class ViewerApp:
             self.plot.data = data
         self._update_readouts()
         if "save" in dirty:
-            from ..atomic import write_text
-            from .html import scene_html
+            from .html import save_html
 
-            write_text(self.html_path, scene_html(sc))
+            save_html(sc, self.html_path)
             self.saved.content = f"saved {self.html_path}"
 
     def stop(self) -> None:
