@@ -3,7 +3,7 @@
 Run::
 
     python benchmarks/bench_interference.py [TEMPLATE] [--misalignment DEG] [--angles N]
-        [--tolerances MM,MM,...] [--engines]
+        [--tolerances MM,MM,...] [--repeat N] [--engines]
 
 (default renzo-1967 at its design angle, 24 angles over a turn). For each chordal
 tolerance it prints the triangles of the full parts and of one tooth-pair sector, the wall
@@ -37,10 +37,18 @@ def _gap_error(res, exact) -> float:
     return float(np.max(np.abs(res.min_gap_mm - exact)[flanks]))
 
 
-def table(spec, mis: float, angles, tolerances) -> list[str]:
-    t0 = time.perf_counter()
-    sw = sweep(spec, mis, angles)
-    t_sweep = (time.perf_counter() - t0) / len(angles)
+def best_of(repeat: int, fn):
+    """The run with the smallest time per pose among ``repeat`` (shared, noisy machine)."""
+    return min((fn() for _ in range(repeat)), key=lambda r: r.seconds_per_pose)
+
+
+def table(spec, mis: float, angles, tolerances, repeat: int = 2) -> list[str]:
+    sw = sweep(spec, mis, angles)  # warm-up: builds the cached flank table
+    t_sweep = math.inf
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        sweep(spec, mis, angles)
+        t_sweep = min(t_sweep, (time.perf_counter() - t0) / len(angles))
     exact = sw.normal_clearance_mm.min(axis=(0, 1))
     lines = [
         f"{spec.name}, misalignment {mis:g}°, {len(angles)} angles over a turn; exact "
@@ -54,10 +62,12 @@ def table(spec, mis: float, angles, tolerances) -> list[str]:
     for tol in tolerances:
         full = build_model(spec, tol, None)
         pair = build_model(spec, tol, 0)
-        rf = check_interference(spec, mis, angles, tolerance_mm=tol, teeth="all", model=full)
-        rs = check_interference(spec, mis, angles, tolerance_mm=tol, model=pair)
-        rd = check_interference(spec, mis, angles, tolerance_mm=tol, model=pair,
-                                method="distance")
+        rf = best_of(repeat, lambda tol=tol, full=full: check_interference(
+            spec, mis, angles, tolerance_mm=tol, teeth="all", model=full))
+        rs = best_of(repeat, lambda tol=tol, pair=pair: check_interference(
+            spec, mis, angles, tolerance_mm=tol, model=pair))
+        rd = best_of(repeat, lambda tol=tol, pair=pair: check_interference(
+            spec, mis, angles, tolerance_mm=tol, model=pair, method="distance"))
         err = max(_gap_error(rf, exact), _gap_error(rs, exact))
         lines.append(
             f"| {tol:g} | {sum(full.triangles)} | {sum(pair.triangles)} | "
@@ -128,6 +138,8 @@ def main(argv=None) -> None:
     p.add_argument("--angles", type=int, default=24)
     p.add_argument("--tolerances", default=None, metavar="MM,MM",
                    help="chordal tolerances (default module/50, /200, /1000, /2500)")
+    p.add_argument("--repeat", type=int, default=2,
+                   help="runs per measurement; the fastest counts (default 2)")
     p.add_argument("--engines", action="store_true")
     args = p.parse_args(argv)
     spec = gc.load_spec(args.template)
@@ -140,7 +152,7 @@ def main(argv=None) -> None:
     mis = math.degrees(spec.design_misalignment) if args.misalignment is None \
         else args.misalignment
     angles = 360.0 * np.arange(args.angles) / args.angles
-    print("\n".join(table(spec, mis, angles, tols)))
+    print("\n".join(table(spec, mis, angles, tols, max(1, args.repeat))))
 
 
 if __name__ == "__main__":
