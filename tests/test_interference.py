@@ -272,3 +272,14 @@ def test_bad_input_names_the_field(renzo, kwargs, match):
 def test_bad_angles_raise_spec_error(renzo, mis, angles):
     with pytest.raises(SpecError):
         check_interference(renzo, mis, angles)
+
+
+def test_missing_backend_names_the_extra(renzo, monkeypatch):
+    import sys
+
+    from gearcoupling.errors import BackendError
+
+    model = build_model(renzo, 0.0127, 0)  # fresh: its fcl tree is not built yet
+    monkeypatch.setitem(sys.modules, "fcl", None)  # import fcl now raises ImportError
+    with pytest.raises(BackendError, match=r"gearcoupling\[interference\]"):
+        check_interference(renzo, 1.0, [0.0], tolerance_mm=0.0127, model=model)
