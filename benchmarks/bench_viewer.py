@@ -33,7 +33,7 @@ from gearcoupling.viewer.html import free_port, write_html
 from gearcoupling.viewer.nodes import CouplingScene, ViewSettings, import_viser
 from gearcoupling.viewer.scene import LOD_DIVISORS, lod_tolerance
 
-VIEWPORT = {"width": 1100, "height": 720}
+VIEWPORT = {"width": 800, "height": 560}  # larger views cost seconds per frame
 
 
 def command_to_render(name: str, browser) -> tuple[float, float]:

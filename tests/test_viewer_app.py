@@ -56,6 +56,12 @@ def test_controls_reach_the_scene(app, renzo):
     assert "0.0200 mm" in app.legend.content
     cols = vs.clearance_colors(sc.state.clearance_mm, 0.02)
     assert tuple(sc._flanks[0][3].color) == tuple(int(c) for c in cols[0, 3])
+    app.color_mode.value = "separation"
+    app.apply({"scale"})
+    assert "separation" in app.legend.content
+    cols = vs.clearance_colors(vs.flank_values(sc.state, "separation"), 0.02)
+    k = int(np.argmin(sc.state.clearance_mm[1]))  # first contact: the touching colour
+    assert tuple(sc._flanks[1][k].color) == tuple(int(c) for c in cols[1, k]) == (255, 215, 0)
 
     # pose: misalignment 3° at psi 45° interferes; status, plot and red solid follow
     app.misalignment.value = 3.0

@@ -18,7 +18,7 @@ from gearcoupling.errors import BackendError
 from gearcoupling.viewer import browser as br
 
 SHOTS = Path(__file__).resolve().parents[1] / "outputs" / "test-screenshots"
-VIEWPORT = {"width": 1100, "height": 720}
+VIEWPORT = {"width": 800, "height": 560}  # larger views cost seconds per frame
 
 
 @pytest.fixture(scope="module")

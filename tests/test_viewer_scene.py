@@ -264,7 +264,7 @@ def test_write_html_is_self_contained(renzo, tmp_path, viser):
 def test_cli_view_html_and_bad_input(tmp_path, capsys, viser):
     out = tmp_path / "scene.html"
     assert main(["view", "renzo-1967", "--html", str(out), "--misalignment", "2",
-                 "--cutaway", "half"]) == 0
+                 "--cutaway", "half", "--color-by", "separation"]) == 0
     assert out.stat().st_size > 100_000 and "MB" in capsys.readouterr().out
     assert main(["view", "renzo-1967", "--html", str(out), "--misalignment", "9"]) == 2
     assert "misalignment_deg" in capsys.readouterr().err
@@ -295,3 +295,17 @@ def test_plot_range_covers_every_finite_value():
     assert vs.plot_range((x, np.full(5, np.nan))) == (-1.0, 1.0)
     lo, hi = vs.plot_range((x, np.full(5, 0.07)))
     assert lo < 0.07 < hi
+
+
+def test_separation_colours_zero_on_first_contact(renzo):
+    st = vs.pose_state(renzo, 1.0, 12.0)
+    sep = vs.flank_values(st, "separation")
+    np.testing.assert_allclose(sep.min(axis=1), 0.0, atol=1e-12)
+    np.testing.assert_allclose(sep, st.clearance_mm - st.clearance_mm.min(axis=1, keepdims=True),
+                               atol=1e-12)
+    bad = vs.pose_state(renzo, 3.0, 12.0)
+    sep = vs.flank_values(bad, "separation")
+    assert np.array_equal(sep < 0, bad.interfering)  # interference stays red
+    assert np.all(sep[~bad.interfering] >= 0)
+    with pytest.raises(ValueError, match="color mode"):
+        vs.flank_values(st, "temperature")

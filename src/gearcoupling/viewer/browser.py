@@ -51,7 +51,7 @@ def view_pixels(page) -> np.ndarray:
 
     img = np.asarray(Image.open(io.BytesIO(page.screenshot())).convert("RGB"), dtype=np.int16)
     h, w, _ = img.shape
-    return img[int(0.2 * h):int(0.95 * h), int(0.05 * w):int(0.6 * w)]
+    return img[int(0.2 * h):int(0.95 * h), int(0.03 * w):int(0.5 * w)]
 
 
 def drawn_fraction(view: np.ndarray, threshold: int = 40) -> float:

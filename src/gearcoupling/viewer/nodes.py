@@ -26,15 +26,18 @@ import numpy as np
 from ..errors import BackendError
 from ..geometry.hub import FLANKS
 from .scene import (
+    COLOR_MODES,
     CUTAWAYS,
     PoseState,
     SceneMeshes,
     build_scene_meshes,
     clearance_colors,
     default_color_scale_mm,
+    flank_values,
     hub_rotation,
     interference_mesh,
     legend,
+    legend_title,
     pose_state,
     quaternion_wxyz,
 )
@@ -65,6 +68,7 @@ class ViewSettings:
     hub_opacity: float = 1.0
     sleeve_opacity: float = 1.0
     color_scale_mm: float | None = None  # None: default_color_scale_mm(spec)
+    color_mode: str = "clearance"  # scene.COLOR_MODES
     band_mm: float = 0.005
     show_contacts: bool = True
     show_interference: bool = True
@@ -72,6 +76,9 @@ class ViewSettings:
     def __post_init__(self):
         if self.cutaway not in CUTAWAYS:
             raise ValueError(f"cutaway = {self.cutaway!r}: must be one of {CUTAWAYS}")
+        if self.color_mode not in COLOR_MODES:
+            raise ValueError(f"color_mode = {self.color_mode!r}: must be one of "
+                             f"{COLOR_MODES}")
         for name in ("hub_opacity", "sleeve_opacity"):
             v = getattr(self, name)
             if not 0.0 <= v <= 1.0:
@@ -190,7 +197,7 @@ class CouplingScene:
         state = pose_state(self.spec, misalignment_deg, psi_deg, band_mm=st.band_mm)
         st.misalignment_deg, st.psi_deg = state.misalignment_deg, state.psi_deg
         rot = hub_rotation(state.misalignment_deg, state.psi_deg)
-        colors = clearance_colors(state.clearance_mm, self.color_scale_mm)
+        colors = clearance_colors(flank_values(state, st.color_mode), self.color_scale_mm)
         patch = None
         volume = 0.0
         if np.any(state.interfering):
@@ -221,7 +228,8 @@ class CouplingScene:
         """Recolour the flanks after a colour-scale change (same pose)."""
         if self.state is None:
             return
-        colors = clearance_colors(self.state.clearance_mm, self.color_scale_mm)
+        colors = clearance_colors(flank_values(self.state, self.settings.color_mode),
+                                  self.color_scale_mm)
         with self.server.atomic():
             for f in range(2):
                 for k, handle in enumerate(self._flanks[f]):
@@ -230,17 +238,21 @@ class CouplingScene:
     # ---------------------------------------------------------------- legend
 
     def _add_legend(self) -> None:
-        """Colour legend beside the coupling: boxes with labels (static HTML)."""
+        """Colour legend above the coupling, right of the axis: boxes with labels (for
+        the static HTML, which has no GUI panel)."""
         spec = self.spec
         size = 1.5 * spec.tooth.module
-        x = 1.25 * self.meshes.sleeve.bounds[1][0] + 2 * size
-        entries = legend(self.color_scale_mm)
-        z0 = 0.5 * (len(entries) - 1) * 1.6 * size
+        step = 1.6 * size
+        bounds = self.meshes.sleeve.bounds
+        x = 0.9 * bounds[1][0]
+        mode = self.settings.color_mode
+        entries = legend(self.color_scale_mm, mode=mode)
+        z_top = bounds[1][2] + (len(entries) + 1) * step
         scene = self.server.scene
-        scene.add_label("/legend/title", "flank clearance (circumferential)",
-                        position=(x, 0.0, z0 + 1.6 * size), anchor="bottom-left")
+        scene.add_label("/legend/title", legend_title(mode),
+                        position=(x - 0.5 * size, 0.0, z_top + step), anchor="bottom-left")
         for j, (label, rgb) in enumerate(entries):
-            z = z0 - j * 1.6 * size
+            z = z_top - j * step
             scene.add_box(f"/legend/box{j}", color=rgb, dimensions=(size, size, size),
                           position=(x, 0.0, z))
             scene.add_label(f"/legend/label{j}", label, position=(x + size, 0.0, z),

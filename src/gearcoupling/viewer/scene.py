@@ -41,6 +41,10 @@ NO_CONTACT_RGB = (150, 150, 150)
 # clearance colour stops from 0 (touching) to the colour scale (free)
 _STOPS = np.array([[0.0, 255, 215, 0], [0.35, 120, 200, 60], [0.7, 40, 170, 170],
                    [1.0, 40, 80, 200]])
+COLOR_MODES = ("clearance", "separation")
+"""What the flank colours show: the clearance itself, or Renzo's separation (clearance
+minus the smallest of its flank at this pose: 0 on the teeth that touch first when torque
+closes the backlash)."""
 DEFAULT_PLOT_SAMPLES = 720
 VIEW_SWEEP_TOLERANCE_MM = 1e-5
 """Accuracy of the clearance minima the viewer shows (mm), far below what colours show."""
@@ -321,6 +325,22 @@ def pose_state(spec, misalignment_deg: float, psi_deg: float, *, band_mm: float 
 # ------------------------------------------------------------------ colours
 
 
+def flank_values(state: PoseState, mode: str = "clearance") -> NDArray[np.float64]:
+    """The ``(2, N)`` values the flank colours show (:data:`COLOR_MODES`): the clearance,
+    or the separation ``clearance - max(0, smallest clearance of the flank)``;
+    interfering flanks stay negative (red) and unfaced ones infinite (grey) in both."""
+    if mode not in COLOR_MODES:
+        raise ValueError(f"color mode = {mode!r}: must be one of {COLOR_MODES}")
+    c = state.clearance_mm
+    if mode == "clearance":
+        return c
+    low = np.min(np.where(np.isfinite(c), c, np.inf), axis=1, keepdims=True)
+    low = np.where(np.isfinite(low), np.maximum(low, 0.0), 0.0)  # 0 where it interferes
+    with np.errstate(invalid="ignore"):
+        sep = np.where(np.isfinite(c), c - low, np.inf)
+    return np.where(state.interfering, c, np.maximum(sep, 0.0))
+
+
 def default_color_scale_mm(spec) -> float:
     """Clearance shown at the free end of the colour scale: half the aligned backlash
     (the clearance of every flank when aligned)."""
@@ -341,25 +361,32 @@ def clearance_colors(clearance_mm: ArrayLike, scale_mm: float) -> NDArray[np.uin
     return np.rint(rgb).astype(np.uint8)
 
 
-def legend(scale_mm: float, steps: int = 4) -> list[tuple[str, tuple[int, int, int]]]:
-    """Legend entries ``(label, rgb)``: interference, then ``steps + 1`` clearances from
-    0 to ``scale_mm``, then no contact."""
+def legend(scale_mm: float, steps: int = 4,
+           mode: str = "clearance") -> list[tuple[str, tuple[int, int, int]]]:
+    """Legend entries ``(label, rgb)``: interference, then ``steps + 1`` values from 0 to
+    ``scale_mm``, then no contact."""
     values = np.linspace(0.0, scale_mm, steps + 1)
     cols = clearance_colors(values, scale_mm)
     out = [("< 0 mm (interference)", INTERFERENCE_RGB)]
+    zero = " (touching)" if mode == "clearance" else " (first contact)"
     for v, c in zip(values, cols, strict=True):
-        label = f"{v:.4f} mm" + (" (touching)" if v == 0 else "") + \
+        label = f"{v:.4f} mm" + (zero if v == 0 else "") + \
             (" and above" if v == scale_mm else "")
         out.append((label, tuple(int(x) for x in c)))
     out.append(("no sleeve flank opposite", NO_CONTACT_RGB))
     return out
 
 
-def legend_markdown(scale_mm: float) -> str:
+def legend_title(mode: str = "clearance") -> str:
+    return ("flank clearance (circumferential)" if mode == "clearance" else
+            "flank separation z (clearance minus the flank's smallest)")
+
+
+def legend_markdown(scale_mm: float, mode: str = "clearance") -> str:
     """The legend as HTML-coloured markdown for the GUI."""
     rows = [f'<span style="color:rgb{rgb}">■■</span> {label}'
-            for label, rgb in legend(scale_mm)]
-    return "**Flank clearance** (circumferential)<br/>" + "<br/>".join(rows)
+            for label, rgb in legend(scale_mm, mode=mode)]
+    return f"**{legend_title(mode)}**<br/>" + "<br/>".join(rows)
 
 
 # ------------------------------------------------------------------ plot
@@ -489,8 +516,32 @@ def interference_mesh(meshes: SceneMeshes, rotation: ArrayLike,
     return _patch_from_manifold(overlap), max(volume, 0.0)
 
 
-__all__ = ["CUTAWAYS", "LOD_DIVISORS", "ClearanceCurve", "HubPieces", "Patch", "PoseState",
-           "SceneMeshes", "build_scene_meshes", "check_pose", "clearance_colors",
-           "clearance_curve", "cut_sleeve", "default_color_scale_mm", "hub_rotation",
-           "interference_mesh", "legend", "legend_markdown", "lod_tolerance", "plot_range",
-           "plot_series", "pose_state", "quaternion_wxyz", "split_hub", "submesh"]
+__all__ = [
+    "COLOR_MODES",
+    "CUTAWAYS",
+    "LOD_DIVISORS",
+    "ClearanceCurve",
+    "HubPieces",
+    "Patch",
+    "PoseState",
+    "SceneMeshes",
+    "build_scene_meshes",
+    "check_pose",
+    "clearance_colors",
+    "clearance_curve",
+    "cut_sleeve",
+    "default_color_scale_mm",
+    "flank_values",
+    "hub_rotation",
+    "interference_mesh",
+    "legend",
+    "legend_markdown",
+    "legend_title",
+    "lod_tolerance",
+    "plot_range",
+    "plot_series",
+    "pose_state",
+    "quaternion_wxyz",
+    "split_hub",
+    "submesh",
+]

@@ -22,6 +22,7 @@ import numpy as np
 
 from .nodes import CouplingScene, ViewSettings, import_viser
 from .scene import (
+    COLOR_MODES,
     CUTAWAYS,
     LOD_DIVISORS,
     ClearanceCurve,
@@ -103,6 +104,8 @@ class ViewerApp:
                                   scales=_scales(data),
                                   axes=({"label": "θ (°)"}, {"label": "mm", "size": 60}))
         with gui.add_folder("Clearance"):
+            self.color_mode = gui.add_dropdown("colour by", COLOR_MODES,
+                                               initial_value=st.color_mode)
             self.scale = gui.add_number("colour scale (mm)", round(self.scene.color_scale_mm, 5),
                                         min=1e-5, max=10.0, step=1e-4)
             self.band = gui.add_number("contact band (mm)", st.band_mm, min=0.0, max=1.0,
@@ -110,7 +113,8 @@ class ViewerApp:
             self.show_contacts = gui.add_checkbox("mark contact points", st.show_contacts)
             self.show_interference = gui.add_checkbox("show interference (red)",
                                                       st.show_interference)
-            self.legend = gui.add_markdown(legend_markdown(self.scene.color_scale_mm))
+            self.legend = gui.add_markdown(legend_markdown(self.scene.color_scale_mm,
+                                                           st.color_mode))
             self.status = gui.add_markdown("")
         with gui.add_folder("Parts"):
             self.show_hub = gui.add_checkbox("show hub", st.show_hub)
@@ -131,7 +135,7 @@ class ViewerApp:
                              (self.band, "pose"), (self.show_hub, "display"),
                              (self.hub_opacity, "display"), (self.show_sleeve, "display"),
                              (self.sleeve_opacity, "display"), (self.cutaway, "cutaway"),
-                             (self.lod, "lod"), (self.scale, "scale"),
+                             (self.lod, "lod"), (self.scale, "scale"), (self.color_mode, "scale"),
                              (self.show_contacts, "display"),
                              (self.show_interference, "display")):
             handle.on_update(self._marker(what))
@@ -225,7 +229,8 @@ class ViewerApp:
         st.band_mm = float(self.band.value)
         if "scale" in dirty and self.scale.value > 0:
             st.color_scale_mm = float(self.scale.value)
-            self.legend.content = legend_markdown(sc.color_scale_mm)
+            st.color_mode = self.color_mode.value
+            self.legend.content = legend_markdown(sc.color_scale_mm, st.color_mode)
             sc.recolor()
         if dirty & {"pose", "misalignment", "lod"}:
             sc.set_pose(self.misalignment.value, self.rotation.value)
