@@ -76,6 +76,33 @@ def test_controls_reach_the_scene(app, renzo):
     assert lo < sc.state.clearance_mm.min() and hi > 0
 
 
+def test_ground_frame_turns_both_members(app):
+    """Ground frame: the sleeve turns by Rz(psi), the hub by Rx(i) Rz(psi) (DESIGN.md §2
+    seen from the ground: Rz(psi) Rz(-psi) Rx(i) Rz(psi))."""
+    from scipy.spatial.transform import Rotation
+
+    app.frame.value = "ground"
+    app.misalignment.value = 2.0
+    app.rotation.value = 70.0
+    app.apply({"pose"})
+    sc = app.scene
+
+    def quat(rot):
+        x, y, z, w = rot.as_quat()
+        q = np.array([w, x, y, z])
+        return q if w >= 0 else -q
+
+    hub = Rotation.from_euler("x", 2.0, degrees=True) * Rotation.from_euler("z", 70.0,
+                                                                             degrees=True)
+    np.testing.assert_allclose(sc.hub_frame.wxyz, quat(hub), atol=1e-12)
+    np.testing.assert_allclose(sc.sleeve.wxyz, quat(Rotation.from_euler("z", 70.0,
+                                                                         degrees=True)),
+                               atol=1e-12)
+    app.frame.value = "sleeve"
+    app.apply({"pose"})
+    np.testing.assert_allclose(sc.sleeve.wxyz, [1, 0, 0, 0], atol=1e-12)
+
+
 def test_play_turns_the_coupling_and_pause_stops_it(app):
     app.speed.value = 60.0
     updates = app.pose_updates

@@ -264,7 +264,7 @@ def test_write_html_is_self_contained(renzo, tmp_path, viser):
 def test_cli_view_html_and_bad_input(tmp_path, capsys, viser):
     out = tmp_path / "scene.html"
     assert main(["view", "renzo-1967", "--html", str(out), "--misalignment", "2",
-                 "--cutaway", "half", "--color-by", "separation"]) == 0
+                 "--cutaway", "half", "--color-by", "separation", "--frame", "ground"]) == 0
     assert out.stat().st_size > 100_000 and "MB" in capsys.readouterr().out
     assert main(["view", "renzo-1967", "--html", str(out), "--misalignment", "9"]) == 2
     assert "misalignment_deg" in capsys.readouterr().err

@@ -7,6 +7,7 @@ import sys
 import time
 
 from ..errors import SpecError
+from ..viewer.nodes import FRAMES
 from ..viewer.scene import COLOR_MODES, CUTAWAYS, LOD_DIVISORS
 from .common import add_spec_arguments, output_dir, spec_from_args
 
@@ -23,6 +24,9 @@ def register(sub) -> None:
                    help="start rotation psi in degrees (default 0)")
     p.add_argument("--cutaway", choices=CUTAWAYS, default="quarter",
                    help="part of the sleeve removed to show the teeth (default quarter)")
+    p.add_argument("--frame", choices=FRAMES, default="sleeve",
+                   help="what stays still: the sleeve (the hub wobbles in it) or the ground "
+                        "(both members turn; default sleeve)")
     p.add_argument("--color-by", choices=COLOR_MODES, default="clearance",
                    help="flank colours: clearance, or separation (clearance minus the "
                         "flank's smallest: 0 where torque makes first contact)")
@@ -48,7 +52,7 @@ def run(args) -> int:
     if args.port is not None and not 0 < args.port < 65536:
         raise SpecError("--port", args.port, "must be from 1 to 65535")
     settings = ViewSettings(misalignment_deg=mis, psi_deg=psi, cutaway=args.cutaway,
-                            color_mode=args.color_by)
+                            color_mode=args.color_by, frame=args.frame)
     tol = lod_tolerance(spec, args.lod) if args.tolerance is None else args.tolerance
     if args.html:
         from ..viewer.html import write_html

@@ -25,6 +25,7 @@ import numpy as np
 
 from ..errors import BackendError
 from ..geometry.hub import FLANKS
+from ..sweep.pose import rot_z
 from .scene import (
     COLOR_MODES,
     CUTAWAYS,
@@ -45,6 +46,10 @@ from .scene import (
 HUB_RGB = (190, 160, 110)
 SLEEVE_RGB = (120, 140, 175)
 CONTACT_RGB = (230, 0, 200)
+FRAMES = ("sleeve", "ground")
+"""``sleeve``: the sleeve body frame stays still and the hub wobbles by
+``Rz(-psi) Rx(i) Rz(psi)``; ``ground``: both members turn, the sleeve by ``Rz(psi)`` and
+the hub by ``Rx(i) Rz(psi)`` about its tilted axis (the tilt axis stays on screen ``x``)."""
 
 
 def import_viser():
@@ -72,10 +77,13 @@ class ViewSettings:
     band_mm: float = 0.005
     show_contacts: bool = True
     show_interference: bool = True
+    frame: str = "sleeve"  # FRAMES: what stays still on screen
 
     def __post_init__(self):
         if self.cutaway not in CUTAWAYS:
             raise ValueError(f"cutaway = {self.cutaway!r}: must be one of {CUTAWAYS}")
+        if self.frame not in FRAMES:
+            raise ValueError(f"frame = {self.frame!r}: must be one of {FRAMES}")
         if self.color_mode not in COLOR_MODES:
             raise ValueError(f"color_mode = {self.color_mode!r}: must be one of "
                              f"{COLOR_MODES}")
@@ -172,7 +180,17 @@ class CouplingScene:
         self.sleeve.remove()
         self.sleeve = self.server.scene.add_mesh_simple(
             "/sleeve", cut.vertices, cut.faces, color=SLEEVE_RGB,
-            opacity=_opacity(st.sleeve_opacity), side="double", visible=st.show_sleeve)
+            opacity=_opacity(st.sleeve_opacity), side="double", visible=st.show_sleeve,
+            wxyz=self._ground_wxyz())
+
+    def _ground(self) -> np.ndarray:
+        """Sleeve body frame to screen: ``Rz(psi)`` in the ground frame, else identity."""
+        if self.settings.frame == "ground":
+            return rot_z(np.radians(self.settings.psi_deg))
+        return np.eye(3)
+
+    def _ground_wxyz(self) -> np.ndarray:
+        return quaternion_wxyz(self._ground())
 
     def set_display(self) -> None:
         """Apply visibility and opacity from the settings to the existing nodes."""
@@ -202,8 +220,10 @@ class CouplingScene:
         volume = 0.0
         if np.any(state.interfering):
             patch, volume = interference_mesh(self.meshes, rot, state.interfering)
+        ground = self._ground()
         with self.server.atomic():
-            self.hub_frame.wxyz = quaternion_wxyz(rot)
+            self.hub_frame.wxyz = quaternion_wxyz(ground @ rot)
+            self.sleeve.wxyz = quaternion_wxyz(ground)
             for f in range(2):
                 for k, handle in enumerate(self._flanks[f]):
                     handle.color = tuple(int(c) for c in colors[f, k])
@@ -219,7 +239,8 @@ class CouplingScene:
             if patch is not None and patch.faces.shape[0]:
                 self._interference = self.server.scene.add_mesh_simple(
                     "/interference", patch.vertices, patch.faces, color=(220, 20, 20),
-                    side="double", visible=st.show_interference)
+                    side="double", visible=st.show_interference,
+                    wxyz=quaternion_wxyz(ground))
         self.state = state
         self.interference_volume_mm3 = volume
         return state

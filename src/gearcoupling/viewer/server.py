@@ -20,7 +20,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .nodes import CouplingScene, ViewSettings, import_viser
+from .nodes import FRAMES, CouplingScene, ViewSettings, import_viser
 from .scene import (
     COLOR_MODES,
     CUTAWAYS,
@@ -98,6 +98,9 @@ class ViewerApp:
                                            float(np.mod(st.psi_deg, 360.0)))
             self.play = gui.add_button("Play", icon=None)
             self.speed = gui.add_slider("speed (°/s)", 1.0, 90.0, 1.0, 15.0)
+            self.frame = gui.add_dropdown("still frame", FRAMES, initial_value=st.frame,
+                                          hint="sleeve: the hub wobbles in the sleeve; "
+                                               "ground: both turn about their axes")
         data, series = self._plot_args()
         self.plot = gui.add_uplot(data, series, aspect=1.3,
                                   title="clearance (mm) vs θ; dots: teeth now, ring: θ = ψ",
@@ -132,6 +135,7 @@ class ViewerApp:
             self.saved = gui.add_markdown("")
 
         for handle, what in ((self.misalignment, "misalignment"), (self.rotation, "pose"),
+                             (self.frame, "pose"),
                              (self.band, "pose"), (self.show_hub, "display"),
                              (self.hub_opacity, "display"), (self.show_sleeve, "display"),
                              (self.sleeve_opacity, "display"), (self.cutaway, "cutaway"),
@@ -227,6 +231,7 @@ class ViewerApp:
         st.show_contacts = self.show_contacts.value
         st.show_interference = self.show_interference.value
         st.band_mm = float(self.band.value)
+        st.frame = self.frame.value
         if "scale" in dirty and self.scale.value > 0:
             st.color_scale_mm = float(self.scale.value)
             st.color_mode = self.color_mode.value
