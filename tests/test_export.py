@@ -212,3 +212,44 @@ def test_run_has_parts_and_step_steps(tmp_path):
     assert {p.name for p in written} == {"hub.stl", "sleeve.stl", "parts.json"}
     for part in ("hub", "sleeve"):
         assert trimesh.load(tmp_path / f"{part}.stl").is_watertight
+
+
+@pytest.mark.parametrize("data", [
+    {"design_misalignment_deg": 6.0,
+     "tooth": {"teeth": 6, "module": 60.0, "pressure_angle_deg": 30},
+     "hub": {"face_width": 36.0, "crowning": {"kind": "circular", "radius": 180.0},
+             "root": {"dedendum": 48.0, "fillet_radius": 18.0}}},
+    {"tooth": {"teeth": 24, "module": 3.0},
+     "hub": {"face_width": 20.0, "tip": {"kind": "cylinder"}, "crowning": {"kind": "none"},
+             "body": {"bore_diameter": 0.0, "length": 20.0}}},
+    {"tooth": {"teeth": 30, "module": 2.0},
+     "hub": {"face_width": 16.0, "crowning": {"kind": "table", "z": [0, 4, 8],
+                                               "drop": [0, 0.05, 0.2],
+                                               "generation": "revolved"}}},
+], ids=["6-teeth-m60", "straight-solid", "table-revolved"])
+def test_step_of_unusual_specs_matches_the_mesh(data):
+    from gearcoupling.export.step import part_solid, shape_volume
+
+    spec = gc.spec_from_dict(data)
+    tol = spec.tooth.module / 50
+    for part in ("hub", "sleeve"):
+        mesh = build_part(spec, part, tol)
+        assert abs(shape_volume(part_solid(spec, part, tol)) - mesh.volume) <= tol * mesh.area
+
+
+def test_curvature_breaks_only_where_the_feed_path_jumps():
+    from gearcoupling.export.step import curvature_breaks
+    from gearcoupling.geometry.hub import hub_model
+
+    spec = gc.load_spec("renzo-1967-end-round")
+    assert curvature_breaks(hub_model(spec)) == pytest.approx([0.15 * 25.4], rel=1e-9)
+    for name in ("renzo-1967", "renzo-1967-vari-crown"):
+        assert curvature_breaks(hub_model(gc.load_spec(name))).size == 0
+
+
+def test_export_package_imports_no_opencascade():
+    import subprocess
+
+    code = ("import sys, gearcoupling.export, gearcoupling.parts; "
+            "assert 'OCP' not in sys.modules, 'OCP imported eagerly'")
+    subprocess.run([sys.executable, "-c", code], check=True)

@@ -208,10 +208,12 @@ def curvature_breaks(m) -> NDArray[np.float64]:
     for sb in m.path.breaks[1:-1]:
         if not np.isfinite(sb):
             continue
-        eps = 1e-7 * max(sb, 1.0)
-        k = m.path.evaluate(np.array([sb - eps, sb + eps]))[0]
+        eps = 1e-6 * max(sb, 1.0)
+        k = m.path.evaluate(sb + np.array([-eps, eps, -1e-3 * eps, 1e-3 * eps]))[0]
+        wide, narrow = abs(k[1] - k[0]), abs(k[3] - k[2])
+        jump = wide > 1e-9 * max(abs(k).max(), 1e-12) and narrow > 0.5 * wide  # not a slope
         z = float(m.path.evaluate(sb)[3])
-        if abs(k[1] - k[0]) > 1e-9 * max(abs(k).max(), 1e-12) and 0 < z < m.half_face * (1 - 1e-6):
+        if jump and 0 < z < m.half_face * (1 - 1e-6):
             out.append(z)
     return np.array(sorted(out))
 
