@@ -162,9 +162,10 @@ def test_step_sector_matches_the_mesh_sector(tmp_path):
 
     spec = gc.load_spec("renzo-1967")
     teeth = [49, 0, 1]
-    path = export_part(spec, "sleeve", tmp_path / "s.stp", tolerance_mm=TOL, teeth=teeth)
-    mesh = build_part(spec, "sleeve", TOL, teeth=teeth)
-    assert abs(read_step_volume(path) - mesh.volume) <= TOL * mesh.area
+    for part in ("sleeve", "hub"):
+        path = export_part(spec, part, tmp_path / f"{part}.stp", tolerance_mm=TOL, teeth=teeth)
+        mesh = build_part(spec, part, TOL, teeth=teeth)
+        assert abs(read_step_volume(path) - mesh.volume) <= TOL * mesh.area
 
 
 # ----------------------------------------------------------------------------- CLI
@@ -182,6 +183,7 @@ def test_generate_writes_parts_and_report(tmp_path, capsys):
     for part in ("hub", "sleeve"):
         info = report["parts"][part]
         assert info["valid"] and info["genus"] == 0
+        assert 0 < info["measured_deviation_mm"] <= 0.05
         mesh = trimesh.load(tmp_path / f"{part}-teeth-0-1-49.stl")
         assert len(mesh.faces) == info["triangles"]
         assert mesh.volume == pytest.approx(info["volume_mm3"], rel=1e-6)

@@ -67,6 +67,7 @@ def generate(spec, out: Path, parts, formats, tolerance_mm=None, teeth=None,
     """Build the parts and write every format; returns the files and the report."""
     from ..export import export_part
     from ..parts import build_part, check_tolerance
+    from ..parts.deviation import measure_deviation
     from ..parts.validity import check_part
 
     try:
@@ -92,6 +93,7 @@ def generate(spec, out: Path, parts, formats, tolerance_mm=None, teeth=None,
             "triangles": len(mesh.faces), "volume_mm3": float(mesh.volume),
             "area_mm2": float(mesh.area), "valid": check.ok, "problems": check.problems(),
             "genus": check.genus, "build_seconds": mesh.metadata["build_seconds"],
+            "measured_deviation_mm": measure_deviation(spec, mesh, samples=500)["max"],
             "files": files,
         }
     written.append(write_json(out / "parts.json", report))
@@ -110,8 +112,8 @@ def run(args) -> int:
         written, report = generate(spec, out, parts, fmts, args.tolerance, teeth, advance)
     for part, info in report["parts"].items():
         state = "valid" if info["valid"] else "INVALID: " + "; ".join(info["problems"])
-        print(f"{part}: {info['triangles']} triangles, {info['volume_mm3']:.6g} mm³, {state}",
-              file=sys.stderr)
+        print(f"{part}: {info['triangles']} triangles, {info['volume_mm3']:.6g} mm³, measured "
+              f"deviation {info['measured_deviation_mm']:.3g} mm, {state}", file=sys.stderr)
     for path in written:
         print(path)
     return 0 if all(i["valid"] for i in report["parts"].values()) else 1
