@@ -125,6 +125,14 @@ def test_sectors_are_exact_fractions_of_the_part(renzo, part):
         assert np.count_nonzero(sector.face_attributes["kind"] == KIND["side"]) > 0
 
 
+def test_selecting_every_tooth_is_the_whole_part(renzo):
+    n = renzo.tooth.teeth
+    whole = build_part(renzo, "hub", 0.05, teeth=range(n))
+    check = check_part(whole)
+    assert check.ok and check.genus == 1
+    assert whole.volume == pytest.approx(build_part(renzo, "hub", 0.05).volume, rel=1e-12)
+
+
 def test_solid_hub_and_body_as_long_as_the_face(renzo):
     for changes, genus in (({"hub.body.bore_diameter": 0.0}, 0),
                            ({"hub.body.length": renzo.hub.face_width}, 1),

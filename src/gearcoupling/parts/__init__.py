@@ -83,7 +83,7 @@ def build_part(spec, part: str, tolerance_mm: float | None = None, teeth=None):
                            process=False, validate=False)
     mesh.metadata.update(part=part, tolerance_mm=tol, spec=spec.name,
                          bore=part == "sleeve" or spec.hub.body.bore_diameter > 0,
-                         teeth=None if teeth is None else sorted({int(k) for k in teeth}),
+                         teeth=None if runs[0].closed else sorted({int(k) for k in teeth}),
                          build_seconds=time.perf_counter() - t0, units="mm")
     return mesh
 
