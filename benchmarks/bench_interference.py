@@ -75,9 +75,8 @@ def table(spec, mis: float, angles, tolerances, repeat: int = 2) -> list[str]:
             f"{1e3 * rd.seconds_per_pose:.1f} | "
             f"{rf.seconds_per_pose / rs.seconds_per_pose:.1f}x | {rs.windows.mean():.1f} | "
             f"{err:.5f} | {rs.overlap_volume_mm3.max():.4g} |")
-    lines.append(f"| sweep (exact, 1e-7 mm) | – | – | – | – | – | – | all teeth | 0 (reference)"
-                 f" | – |  ← {1e3 * t_sweep:.1f} ms/pose, all {spec.tooth.teeth} teeth "
-                 "and both flanks")
+    lines.append(f"| sweep (exact, 1e-7 mm) | – | – | {1e3 * t_sweep:.1f} (every tooth and "
+                 f"flank) | – | – | – | {spec.tooth.teeth} | 0 (reference) | – |")
     return lines
 
 
