@@ -67,12 +67,17 @@ def test_live_viewer_renders_and_the_rotation_slider_moves_the_hub(browser, renz
         while app.pose_updates == updates and time.time() < deadline:
             time.sleep(0.2)
         assert app.pose_updates > updates, "the server never saw the slider move"
-        assert 80.0 <= app.scene.settings.psi_deg <= 100.0
+        psi = app.scene.settings.psi_deg
+        assert 80.0 <= psi <= 100.0, f"the click set psi = {psi}"
         after, seconds = br.wait_rendered(page, previous=before)
-        print(f"live viewer: redrawn {seconds:.1f} s after the slider moved")
-        page.screenshot(path=str(SHOTS / "live-rotated-90.png"))
         changed = np.mean(np.abs(after - before).max(axis=-1) > 40)
+        print(f"live viewer: redrawn {seconds:.1f} s after the slider moved, "
+              f"{changed:.1%} of the view changed")
+        page.screenshot(path=str(SHOTS / "live-rotated-90.png"))
         assert changed > 0.01, f"only {changed:.2%} of the view changed"
+    except Exception:
+        page.screenshot(path=str(SHOTS / "live-failure.png"))  # for a person to look at
+        raise
     finally:
         page.close()
         app.stop()
