@@ -134,14 +134,14 @@ class _Planes:
         rq, aq, _ = self.at(t, idx)
         return self.sl.gaps(rq, aq)
 
-    def cross(self, which: str, target: float, a, b, fa, fb, idx):
+    def cross(self, which: str, target: float, a, b, fa, fb, idx, rel: float = 1e-11):
         """``t`` in ``[a, b]`` where ``rq`` (or ``zq``) equals ``target``; ``fa``, ``fb``
         are the values minus target at the ends (opposite signs). Secant steps on the two
         latest points, kept inside the shrinking bracket (regula falsi when they leave it);
         ``rq`` is nearly linear in ``t``, so 3-4 steps reach 1e-11 relative."""
         x0, f0 = a, fa
         x1, f1 = b, fb
-        tol = 1e-11 * (abs(target) + 1.0)
+        tol = rel * (abs(target) + 1.0)
         t = a
         for _ in range(60):
             with np.errstate(divide="ignore", invalid="ignore"):
@@ -160,7 +160,7 @@ class _Planes:
             x0, f0, x1, f1 = x1, f1, t, ft
         return t
 
-    def active_interval(self):
+    def active_interval(self, rel: float = 1e-11):
         """The active ``t`` interval of each row and what bounds it.
 
         Returns ``feasible, (t_lo, k_lo), (t_a, k_a), (t_hi, k_hi)``: ``[t_lo, t_a]`` faces
@@ -178,7 +178,7 @@ class _Planes:
         idx = np.flatnonzero(feasible & (rq0 < sl.r_form))
         if idx.size:
             t_lo[idx] = self.cross("r", sl.r_form, zeros[idx], ones[idx],
-                                   rq0[idx] - sl.r_form, rq1[idx] - sl.r_form, idx)
+                                   rq0[idx] - sl.r_form, rq1[idx] - sl.r_form, idx, rel)
             k_lo[idx] = SLEEVE_TIP
         hf = sl.half_face
         for sign in (1.0, -1.0):  # sleeve face ends: sign * zq <= hf
@@ -207,29 +207,27 @@ class _Planes:
             k_hi[idx] = SLEEVE_FILLET
         return feasible, (t_lo, k_lo), (t_a, k_a), (t_hi, k_hi)
 
-    def minimum_over_t(self):
-        """Exact minima over the active ``t`` interval of both gaps: ``V, T, K`` each
-        ``(2, n)`` (circumferential, normal)."""
+    def minimum_over_t(self, exact: bool = True):
+        """Minima over the active ``t`` interval of both gaps: ``V, T, K`` each ``(2, n)``
+        (circumferential, normal). ``exact=False`` (for the coarse search) solves the
+        sleeve tip edge to 1e-7 only and takes two secant steps toward an interior
+        minimum: values at real points, so never below the exact minimum."""
         n = self.z.shape[0]
-        feasible, (t_lo, k_lo), (t_a, k_a), (t_hi, k_hi) = self.active_interval()
-        tm = 0.5 * (t_lo + t_a)
+        feasible, (t_lo, k_lo), (t_a, k_a), (t_hi, k_hi) = self.active_interval(
+            1e-11 if exact else 1e-7)
         fa = self._f_or(t_lo, 0.0, self.g0)
         fh = self._f_or(t_hi, 1.0, self.g1)
         fb = np.where(t_a == t_hi, fh, self._f_or(t_a, 1.0, self.g1))
-        fm = np.stack(self.f(tm))
-        h = 0.5 * (t_a - t_lo)
+        TI, FI = self._interior(t_lo, t_a, fa, fb, feasible, iters=12 if exact else 2)
         interior = np.full(n, INTERIOR, np.int8)
+        cols = np.arange(n)
         V, T, K = [], [], []
         for mi in range(2):
-            a_, b_, m_ = fa[mi], fb[mi], fm[mi]
-            ti, fi = self._interior(mi, t_lo, t_a, tm, h, a_, b_, m_, feasible)
-            F = np.stack([a_, b_, fh[mi], m_, fi])
+            F = np.stack([fa[mi], fb[mi], fh[mi], FI[mi]])
             j = np.argmin(F, axis=0)
-            cols = np.arange(n)
             V.append(np.where(feasible, F[j, cols], np.inf))
-            T.append(np.stack([t_lo, t_a, t_hi, tm, ti])[j, cols])
-            K.append(np.where(feasible, np.stack([k_lo, k_a, k_hi, interior, interior])[j, cols],
-                              NONE))
+            T.append(np.stack([t_lo, t_a, t_hi, TI[mi]])[j, cols])
+            K.append(np.where(feasible, np.stack([k_lo, k_a, k_hi, interior])[j, cols], NONE))
         return np.array(V), np.array(T), np.array(K, dtype=np.int8)
 
     def _f_or(self, t, known_t: float, known):
@@ -240,30 +238,50 @@ class _Planes:
             out[:, idx] = np.stack(self.f(t[idx], idx))
         return out
 
-    def _interior(self, mi, t_lo, t_a, tm, h, fa, fb, fm, feasible):
-        """Interior stationary point of gap ``mi`` on ``[t_lo, t_a]``: parabola through the
-        ends and the middle, then one Newton step with central differences."""
-        curv = fa + fb - 2.0 * fm
-        with np.errstate(divide="ignore", invalid="ignore"):
-            s = -(fb - fa) * h / (2.0 * curv)
-        idx = np.flatnonzero(feasible & (curv > 0) & (np.abs(s) < h) & (h > 0))
-        ti, fi = tm.copy(), fm.copy()
-        if idx.size:
-            a, b = t_lo[idx], t_a[idx]
-            t = tm[idx] + s[idx]
-            d = 1e-4 * h[idx]
-            f0 = self.f(t, idx)[mi]
-            fp = self.f(np.minimum(t + d, b), idx)[mi]
-            fn = self.f(np.maximum(t - d, a), idx)[mi]
-            g1 = (fp - fn) / (2 * d)
-            g2 = (fp + fn - 2 * f0) / (d * d)
-            step = np.where(g2 > 0, g1 / np.where(g2 > 0, g2, 1.0), 0.0)
-            t2 = np.clip(t - step, a, b)
-            f2 = self.f(t2, idx)[mi]
-            better = f2 < f0
-            ti[idx] = np.where(better, t2, t)
-            fi[idx] = np.where(better, f2, f0)
-        return ti, fi
+    def _interior(self, t_lo, t_a, fa, fb, feasible, iters: int = 12):
+        """Interior minima of both gaps on ``[t_lo, t_a]``: where the one-sided slopes at
+        the ends point inward, the root of the slope (central differences) by secant steps
+        kept inside the shrinking bracket, to 1e-7 in ``t``. Returns ``t, f`` each
+        ``(2, n)`` (``inf`` where the minimum is at an end)."""
+        n = t_lo.shape[0]
+        T, F = np.zeros((2, n)), np.full((2, n), np.inf)
+        d = 1e-6
+        idx0 = np.flatnonzero(feasible & (t_a - t_lo > 8 * d))
+        if idx0.size == 0:
+            return T, F
+        a0, b0 = t_lo[idx0], t_a[idx0]
+        GA = (np.stack(self.f(a0 + d, idx0)) - fa[:, idx0]) / d
+        GB = (fb[:, idx0] - np.stack(self.f(b0 - d, idx0))) / d
+        for mi in range(2):
+            inner = (GA[mi] < 0) & (GB[mi] > 0)
+            idx, a, b = idx0[inner], a0[inner], b0[inner]
+            if idx.size == 0:
+                continue
+            x0, g0, x1, g1 = a, GA[mi][inner], b, GB[mi][inner]
+            res = np.empty(idx.size)
+            live = np.arange(idx.size)  # rows still iterating (positions in idx)
+            for _ in range(iters):
+                with np.errstate(divide="ignore", invalid="ignore"):
+                    x = x1 - g1 * (x1 - x0) / (g1 - g0)
+                bad = ~np.isfinite(x) | (x <= a) | (x >= b)
+                x = np.where(bad, 0.5 * (a + b), x)
+                xc = np.clip(x, a + d, b - d)
+                rows = idx[live]
+                gx = (self.f(xc + d, rows)[mi] - self.f(xc - d, rows)[mi]) / (2 * d)
+                right = gx > 0
+                a, b = np.where(right, a, xc), np.where(right, xc, b)
+                x0, g0, x1, g1 = x1, g1, xc, gx
+                done = np.abs(x1 - x0) <= 1e-7  # value error ~ f'' dt^2: negligible
+                res[live[done]] = x1[done]
+                keep = ~done
+                live, a, b, x0, g0, x1, g1 = (live[keep], a[keep], b[keep], x0[keep],
+                                              g0[keep], x1[keep], g1[keep])
+                if live.size == 0:
+                    break
+            res[live] = x1
+            x1 = res
+            T[mi, idx], F[mi, idx] = x1, self.f(x1, idx)[mi]
+        return T, F
 
     def pitch_line(self, R: float):
         """Both gaps on the pitch circle ``r = R`` of each plane: ``V, T, K`` ``(2, n)``."""
@@ -276,14 +294,14 @@ class _Planes:
         return V, np.stack([t, t]), np.stack([K, K])
 
 
-def _plane_minima(table, sl, mis, z, theta, R, planes=None, need=(True, True)):
+def _plane_minima(table, sl, mis, z, theta, R, planes=None, need=(True, True), exact=True):
     """Minima in the planes ``z`` of the four measures (:data:`MEASURES`): ``V, T, K``
     ``(4, n)``; ``need`` = (whole flank, pitch line) skips what is not needed (inf)."""
     p = _Planes(table, sl, mis, z, theta, planes)
     n = z.shape[0]
     V, T, K = np.full((4, n), np.inf), np.zeros((4, n)), np.full((4, n), NONE, np.int8)
     if need[0]:
-        V[:2], T[:2], K[:2] = p.minimum_over_t()
+        V[:2], T[:2], K[:2] = p.minimum_over_t(exact)
     if need[1]:
         V[2:], T[2:], K[2:] = p.pitch_line(R)
     return V, T, K
@@ -331,7 +349,7 @@ def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
     y_ends = (table.y_at(kz_g, np.zeros(grid))[tile], table.y_at(kz_g, np.ones(grid))[tile])
     planes = (kz_g[tile], lo_g[tile], (hi_g - lo_g)[tile], y_ends)
     V, T, K = _plane_minima(table, sl, misalignment, zg[tile], np.repeat(theta, grid),
-                            pitch_radius, planes)
+                            pitch_radius, planes, exact=False)
     # rows = (measure, theta) pairs
     meas = np.repeat(np.arange(4), n)
     th_of = np.tile(np.arange(n), 4)
@@ -356,6 +374,7 @@ def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
     j = np.argmin(v, axis=1)
     best_v, best_z = v[rows_all, j], zg[j]
     best_t, best_k = t[rows_all, j], k[rows_all, j]
+    exact_val = np.zeros(4 * n, dtype=bool)  # coarse values are upper bounds
     jl, jr = np.maximum(j - 1, 0), np.minimum(j + 1, grid - 1)
     a_z, a_v = zg[jl], v[rows_all, jl]
     b_z, b_v = zg[jr], v[rows_all, jr]
@@ -369,6 +388,7 @@ def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
         upd = rows[better]
         best_v[upd], best_z[upd] = vv[r, jj][better], zz[r, jj][better]
         best_t[upd], best_k[upd] = tt[r, jj][better], kk[r, jj][better]
+        exact_val[upd] = True
         return jj, better
 
     # smooth minima: step to the vertex of the coarse parabola and bracket it by +-delta,
@@ -392,8 +412,104 @@ def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
         sel = par[mid]
         a_z[sel], a_v[sel] = zz[mid, 0], v3[mid, 0]
         b_z[sel], b_v[sel] = zz[mid, 2], v3[mid, 2]
+    def _triple(rows, zc, eps):
+        """Evaluate ``zc - eps, zc, zc + eps``; where the middle is lowest it brackets."""
+        zz3 = np.stack([zc - eps, zc, zc + eps], axis=1)
+        out3 = evaluate(zz3.ravel(), np.repeat(rows, 3))
+        v3_, t3_, k3_ = (X.reshape(rows.size, 3) for X in out3)
+        jj, better = take(rows, zz3, v3_, t3_, k3_)
+        mid = (jj == 1) & better
+        sel = rows[mid]
+        a_z[sel], a_v[sel] = zz3[mid, 0], v3_[mid, 0]
+        b_z[sel], b_v[sel] = zz3[mid, 2], v3_[mid, 2]
+
+    def _parabola_step(rows, allz, allv, jb):
+        """Smooth minima: vertex of the parabola through the best point and its neighbours,
+        bracketed by +-sqrt(tol / g'')."""
+        last = allz.shape[1] - 1
+        ok = (jb >= 1) & (jb <= last - 1)
+        rows, zz, vv, j = rows[ok], allz[ok], allv[ok], jb[ok]
+        r = np.arange(rows.size)
+        x0, x1, x2 = zz[r, j - 1], zz[r, j], zz[r, j + 1]
+        y0, y1, y2 = vv[r, j - 1], vv[r, j], vv[r, j + 1]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            d01, d12 = (y1 - y0) / (x1 - x0), (y2 - y1) / (x2 - x1)
+            curv = 2.0 * (d12 - d01) / (x2 - x0)
+            zp = x1 - (d01 * (x2 - x1) + d12 * (x1 - x0)) / (curv * (x2 - x0))
+        good = np.isfinite(zp) & (curv > 0) & (zp > x0) & (zp < x2)
+        if not np.any(good):
+            return
+        eps = np.sqrt(tolerance_mm / curv[good])
+        zc = zp[good]
+        eps = np.clip(eps, 1e-12 * hf, 0.25 * np.minimum(zc - x0[good], x2[good] - zc))
+        _triple(rows[good], zc, eps)
+
+    def _v_step(rows, allz, allv, jb):
+        """Corner minima (the active interval's end switches, e.g. from the form circle to
+        the sleeve tip edge): intersect the secants of the two branches either side of the
+        best point and bracket the intersection by +-eps, eps = tol / slope."""
+        last = allz.shape[1] - 1
+        ok = (jb >= 2) & (jb <= last - 2)
+        if not np.any(ok):
+            return
+        rows, zz, vv, j = rows[ok], allz[ok], allv[ok], jb[ok]
+        r = np.arange(rows.size)
+        z0, z1, z2, z3 = zz[r, j - 2], zz[r, j - 1], zz[r, j + 1], zz[r, j + 2]
+        v0, v1, v2, v3 = vv[r, j - 2], vv[r, j - 1], vv[r, j + 1], vv[r, j + 2]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            sl = (v1 - v0) / (z1 - z0)
+            sr = (v3 - v2) / (z3 - z2)
+            zk = (v2 - v1 + sl * z1 - sr * z2) / (sl - sr)
+        good = (sl < 0) & (sr > 0) & np.isfinite(zk) & (zk > z1) & (zk < z2)
+        if not np.any(good):
+            return
+        rows, zk = rows[good], zk[good]
+        eps = 0.5 * tolerance_mm / np.maximum(-sl[good], sr[good])
+        eps = np.clip(eps, 1e-12 * hf, 0.25 * np.minimum(zk - z1[good], z2[good] - zk))
+        _triple(rows, zk, eps)
+
+    def _corner_step(rows):
+        """Corner minima where the active interval's lower end switches from the hub form
+        circle to the sleeve tip edge: solve ``rq(z, t=0) = r_form`` in the bracket
+        (secant) and bracket the corner by +-eps, eps = tol / (2 slope)."""
+        rows = rows[meas[rows] < 2]
+        if rows.size == 0:
+            return
+        th = theta[th_of[rows]]
+
+        def g(z):
+            planes = _Planes(table, sl, misalignment, z, th_sel)
+            return planes.at_end(0)[0] - sl.r_form
+
+        th_sel = th
+        za, zb = a_z[rows].copy(), b_z[rows].copy()
+        ga, gb = g(za), g(zb)
+        ok = np.sign(ga) * np.sign(gb) < 0
+        if not np.any(ok):
+            return
+        rows, za, zb, ga, gb, th_sel = rows[ok], za[ok], zb[ok], ga[ok], gb[ok], th[ok]
+        z0, g0, z1, g1 = za, ga, zb, gb
+        for _ in range(30):
+            with np.errstate(divide="ignore", invalid="ignore"):
+                zc = z1 - g1 * (z1 - z0) / (g1 - g0)
+            zc = np.where(np.isfinite(zc), np.clip(zc, za, zb), 0.5 * (za + zb))
+            gc_ = g(zc)
+            z0, g0, z1, g1 = z1, g1, zc, gc_
+            if np.all(np.abs(gc_) <= 1e-11 * sl.r_form):
+                break
+        w_l = np.maximum(best_z[rows] - a_z[rows], 1e-12 * hf)
+        w_r = np.maximum(b_z[rows] - best_z[rows], 1e-12 * hf)
+        slope = np.maximum(np.abs(a_v[rows] - best_v[rows]) / w_l,
+                           np.abs(b_v[rows] - best_v[rows]) / w_r)
+        eps = 0.5 * tolerance_mm / np.maximum(slope, 1e-12)
+        eps = np.clip(eps, 1e-12 * hf, 0.25 * np.minimum(zc - a_z[rows], b_z[rows] - zc))
+        good = eps > 0
+        if np.any(good):
+            _triple(rows[good], zc[good], eps[good])
+
     # nested grids until the bracket cannot hide more than the tolerance
-    inner = 6
+    inner = 4
+    first = True
     frac = np.arange(1, inner + 1) / (inner + 1)
     for _ in range(max_levels):
         if active.size == 0:
@@ -403,6 +519,13 @@ def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
         active = active[(excess > tolerance_mm) & (width > 1e-12 * hf)]
         if active.size == 0:
             break
+        if first:
+            first = False
+            _corner_step(active)
+            excess = np.maximum(a_v[active], b_v[active]) - best_v[active]
+            active = active[excess > tolerance_mm]
+            if active.size == 0:
+                break
         m = active.size
         zz = a_z[active, None] + frac[None, :] * (b_z - a_z)[active, None]
         out = evaluate(zz.ravel(), np.repeat(active, inner))
@@ -415,6 +538,9 @@ def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
         jl2, jr2 = np.maximum(jb - 1, 0), np.minimum(jb + 1, inner + 1)
         a_z[active], a_v[active] = allz[r2, jl2], allv[r2, jl2]
         b_z[active], b_v[active] = allz[r2, jr2], allv[r2, jr2]
+        _v_step(active, allz, allv, jb)
+        _parabola_step(active, allz, allv, jb)
+
     # final parabolic step through the bracket (smooth minima)
     fin = np.flatnonzero(np.isfinite(best_v) & np.isfinite(a_v) & np.isfinite(b_v)
                          & (a_z < best_z) & (best_z < b_z))
@@ -430,6 +556,15 @@ def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
         if fin.size:
             out = evaluate(zp, fin)
             take(fin, zp[:, None], *(X[:, None] for X in out))
+    # the reported minimum is evaluated exactly where it lies (the coarse values are
+    # upper bounds; a refined value is kept where lower)
+    ex = np.flatnonzero(np.isfinite(best_v) & ~exact_val)
+    if ex.size:
+        ve, te, ke = evaluate(best_z[ex], ex)
+        use = ve <= best_v[ex] + 1e-7 * tolerance_mm
+        best_v[ex] = np.where(use, ve, best_v[ex])
+        best_t[ex] = np.where(use, te, best_t[ex])
+        best_k[ex] = np.where(use, ke, best_k[ex])
     at_end = (np.abs(np.abs(best_z) - hf) <= 1e-12 * hf) & (best_k != NONE)
     best_k = np.where(at_end, FACE_END, best_k).astype(np.int8)
     lo, hi = table.radii(best_z)
