@@ -166,6 +166,32 @@ def zipper(outer: NDArray, inner: NDArray) -> NDArray[np.intp]:
     return np.array(tris[::-1], dtype=np.intp)
 
 
+def with_z(xy: NDArray, z: NDArray | float) -> NDArray:
+    """Append the axial coordinate ``z`` (broadcast) to 2-D points ``(..., 2)``."""
+    z = np.broadcast_to(np.asarray(z, dtype=float)[..., None], (*xy.shape[:-1], 1))
+    return np.concatenate([xy, z], axis=-1)
+
+
+def add_cap(b: MeshBuilder, cap: NDArray, outer: NDArray, inner: NDArray, run: Run,
+            n_outer: int, n_inner: int, *, flip: bool) -> None:
+    """Add the pitch end-face triangulation ``cap`` to every tooth of the run.
+
+    ``outer``/``inner`` are the run's index chains; a pitch spans ``n_outer``/``n_inner``
+    segments of them; local indices ``< n_outer + 1`` are outer points.
+    """
+    p = np.arange(run.count)[:, None, None]
+    is_outer = cap < n_outer + 1
+    glob_o = (p * n_outer + cap) % len(outer) if run.closed else p * n_outer + cap
+    local_i = cap - (n_outer + 1)
+    glob_i = (p * n_inner + local_i) % len(inner) if run.closed else p * n_inner + local_i
+    tris = np.where(is_outer, outer[np.where(is_outer, glob_o, 0)],
+                    inner[np.where(is_outer, 0, glob_i)])
+    if flip:
+        tris = tris[..., ::-1]
+    tooth = np.repeat([run.tooth(k) for k in range(run.count)], len(cap))
+    b.faces(tris.reshape(-1, 3), "end", tooth)
+
+
 class MeshBuilder:
     """Collects vertices and labelled triangles of one part."""
 

@@ -26,7 +26,7 @@ from ..geometry.hub import (
     tip_radius,
 )
 from ..geometry.sleeve import flank_point, sleeve_model
-from .grid import _tip_corner
+from .grid import tip_corner
 
 
 def point_triangle_distance(p: NDArray, a: NDArray, b: NDArray, c: NDArray) -> NDArray:
@@ -109,7 +109,7 @@ def hub_samples(spec, n: int, rng: np.random.Generator) -> dict[str, NDArray[np.
     u, h = round_point(m, g)
     fil = envelope(m, z, u, h, g)[0]
     out["fillet_cw"], out["fillet_ccw"] = fil, _mirror(fil)
-    r_tip, _, a_top = _tip_corner(m, z)
+    r_tip, _, a_top = tip_corner(m, z)
     a = a_top * rng.uniform(-1, 1, n)
     out["tip"] = np.stack([r_tip * np.cos(a), r_tip * np.sin(a), z], -1)
     u_c, _ = m.round_centre

@@ -150,7 +150,7 @@ class HubToothGrid:
         return _hub_pitch(self.model, z, self.root, self.gamma, self.flank, self.tip)
 
 
-def _tip_corner(m: HubModel, z: NDArray):
+def tip_corner(m: HubModel, z: NDArray):
     """Tip radius, rack depth of the flank at the tip and tip-corner polar angle per plane."""
     r_tip = tip_radius(m, z)
     h_top = flank_depth(m, z, r_tip)
@@ -175,7 +175,7 @@ def _arc(radius: NDArray, angle: NDArray) -> NDArray:
 def _hub_pitch(m: HubModel, z, root, gamma, flank, tip) -> NDArray[np.float64]:
     z = np.atleast_1d(z)
     r_root = root_radius(m, z)
-    r_tip, h_top, a_top = _tip_corner(m, z)
+    r_tip, h_top, a_top = tip_corner(m, z)
     parts = [
         _arc(r_root[:, None], np.broadcast_to(root, (z.size, root.size))),
         _fillet(m, z, gamma)[:, 1:],
@@ -205,10 +205,10 @@ def hub_tooth_grid(m: HubModel, tol: float) -> HubToothGrid:
         root = np.linspace(-half_pitch, a_root, arc_count(r_root, a_root + half_pitch, target) + 1)
         gamma = refine_params(lambda g: _fillet(m, z_half, g), np.linspace(math.pi / 2, m.phi, 5),
                               target)
-        h_top = _tip_corner(m, z_half)[1]
+        h_top = tip_corner(m, z_half)[1]
         flank = refine_params(lambda s: _flank(m, z_half, s, h_top), np.linspace(0.0, 1.0, 5),
                               target)
-        r_tip, _, a_top = _tip_corner(m, z_half)
+        r_tip, _, a_top = tip_corner(m, z_half)
         n_tip = max(arc_count(float(r), float(a), target) for r, a in zip(r_tip, a_top,
                                                                            strict=True))
         tip = np.linspace(0.0, 1.0, n_tip + 1)

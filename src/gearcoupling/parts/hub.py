@@ -17,7 +17,17 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..geometry.hub import hub_model, root_radius
-from .builder import KIND_CODE, MIN_RING, MeshBuilder, Run, ring_pitch, tile, zipper
+from .builder import (
+    KIND_CODE,
+    MIN_RING,
+    MeshBuilder,
+    Run,
+    add_cap,
+    ring_pitch,
+    tile,
+    with_z,
+    zipper,
+)
 from .grid import HubToothGrid, arc_count, hub_tooth_grid
 
 
@@ -63,37 +73,12 @@ def hub_layout(spec, tol: float) -> HubLayout:
                      ring, cap, module)
 
 
-def _with_z(xy: NDArray, z: NDArray | float) -> NDArray:
-    z = np.broadcast_to(np.asarray(z, dtype=float)[..., None], (*xy.shape[:-1], 1))
-    return np.concatenate([xy, z], axis=-1)
-
-
-def add_cap(b: MeshBuilder, cap: NDArray, outer: NDArray, inner: NDArray, run: Run,
-            n_outer: int, n_inner: int, *, flip: bool) -> None:
-    """Add the pitch end-face triangulation ``cap`` to every tooth of the run.
-
-    ``outer``/``inner`` are the run's index chains; a pitch spans ``n_outer``/``n_inner``
-    segments of them; local indices ``< n_outer + 1`` are outer points.
-    """
-    p = np.arange(run.count)[:, None, None]
-    is_outer = cap < n_outer + 1
-    glob_o = (p * n_outer + cap) % len(outer) if run.closed else p * n_outer + cap
-    local_i = cap - (n_outer + 1)
-    glob_i = (p * n_inner + local_i) % len(inner) if run.closed else p * n_inner + local_i
-    tris = np.where(is_outer, outer[np.where(is_outer, glob_o, 0)],
-                    inner[np.where(is_outer, 0, glob_i)])
-    if flip:
-        tris = tris[..., ::-1]
-    tooth = np.repeat([run.tooth(k) for k in range(run.count)], len(cap))
-    b.faces(tris.reshape(-1, 3), "end", tooth)
-
-
 def build_hub_run(b: MeshBuilder, lay: HubLayout, run: Run) -> None:
     """Add the hub solid of one run of teeth (closed ring or a sector with side walls)."""
     z = lay.grid.z
     nseg = lay.pitch.shape[1] - 1
     band = tile(lay.pitch, run)
-    iT = b.vertices(_with_z(band, z[:, None]))
+    iT = b.vertices(with_z(band, z[:, None]))
     ncol = iT.shape[1]
     n_quads = ncol if run.closed else ncol - 1
     kinds = np.resize(lay.kinds, n_quads)
@@ -103,7 +88,7 @@ def build_hub_run(b: MeshBuilder, lay: HubLayout, run: Run) -> None:
 
     def ring(radius: float, zz: float) -> NDArray[np.intp]:
         pts = tile(ring_pitch(radius, run.teeth, lay.ring)[None], run)[0]
-        return b.vertices(_with_z(pts, zz))
+        return b.vertices(with_z(pts, zz))
 
     hf, hl = lay.half_face, lay.half_length
     q_top, q_bot = ring(lay.r_inner, hf), ring(lay.r_inner, -hf)

@@ -15,9 +15,18 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..geometry.sleeve import sleeve_model
-from .builder import KIND_CODE, MIN_RING, MeshBuilder, Run, ring_pitch, tile, zipper
+from .builder import (
+    KIND_CODE,
+    MIN_RING,
+    MeshBuilder,
+    Run,
+    add_cap,
+    ring_pitch,
+    tile,
+    with_z,
+    zipper,
+)
 from .grid import arc_count, sleeve_pitch
-from .hub import _with_z, add_cap
 
 
 @dataclass(frozen=True, eq=False)
@@ -48,12 +57,12 @@ def build_sleeve_run(b: MeshBuilder, lay: SleeveLayout, run: Run) -> None:
     hf = lay.half_face
     nseg = len(lay.pitch) - 1
     band = tile(lay.pitch[None], run)[0]
-    i_bot, i_top = b.vertices(_with_z(band, -hf)), b.vertices(_with_z(band, hf))
+    i_bot, i_top = b.vertices(with_z(band, -hf)), b.vertices(with_z(band, hf))
     n_quads = len(band) if run.closed else len(band) - 1
     tooth = np.array([run.tooth(q // nseg) for q in range(n_quads)])
     b.strip(i_bot, i_top, np.resize(lay.kinds, n_quads), tooth, closed=run.closed, flip=True)
     ring = tile(ring_pitch(lay.r_outer, run.teeth, lay.ring)[None], run)[0]
-    o_bot, o_top = b.vertices(_with_z(ring, -hf)), b.vertices(_with_z(ring, hf))
+    o_bot, o_top = b.vertices(with_z(ring, -hf)), b.vertices(with_z(ring, hf))
     b.strip(o_bot, o_top, "body", -1, closed=run.closed)
     add_cap(b, lay.cap, o_top, i_top, run, lay.ring, nseg, flip=False)
     add_cap(b, lay.cap, o_bot, i_bot, run, lay.ring, nseg, flip=True)
