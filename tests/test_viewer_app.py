@@ -128,3 +128,18 @@ def test_save_button_writes_a_shareable_html(app):
     os.umask(mask)
     assert stat.S_IMODE(path.stat().st_mode) == 0o666 & ~mask  # as the umask allows
     assert str(path) in app.saved.content
+
+
+def test_bad_tolerance_is_refused_and_frees_the_port(renzo):
+    import socket
+
+    from gearcoupling.errors import SpecError
+    from gearcoupling.viewer.html import free_port
+    from gearcoupling.viewer.server import ViewerApp
+
+    port = free_port()
+    with pytest.raises(SpecError, match="tolerance_mm"):
+        ViewerApp(renzo, port=port, tolerance_mm=50.0)
+    with socket.socket() as s:  # the server was stopped: the port binds again
+        s.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+        s.bind(("127.0.0.1", port))

@@ -73,9 +73,13 @@ class ViewerApp:
         self._stop = threading.Event()
         self._dirty: set[str] = set()
         self._curve: ClearanceCurve | None = None
-        self.scene = CouplingScene(self.server, spec, settings, tol)
-        self._build_gui(lod if tolerance_mm is None else None)
-        self._update_readouts()
+        try:
+            self.scene = CouplingScene(self.server, spec, settings, tol)
+            self._build_gui(lod if tolerance_mm is None else None)
+            self._update_readouts()
+        except BaseException:
+            self.server.stop()  # bad input: leave no server behind
+            raise
         self.pose_updates = 0
         self._worker = threading.Thread(target=self._run, name="gearcoupling-viewer",
                                         daemon=True)
