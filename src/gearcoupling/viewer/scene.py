@@ -145,13 +145,18 @@ class SceneMeshes:
         return len(self.hub.faces) + len(self.sleeve.faces)
 
 
-def build_scene_meshes(spec, tolerance_mm: float | None = None) -> SceneMeshes:
-    """Mesh hub and sleeve for viewing (default: the ``coarse`` level of detail)."""
+def view_tolerance(spec, tolerance_mm: float | None = None) -> float:
+    """The meshes' chordal tolerance (mm; default ``coarse``), or :class:`SpecError`."""
     tol = lod_tolerance(spec, "coarse") if tolerance_mm is None else tolerance_mm
     try:
-        tol = check_tolerance(spec, tol)
+        return check_tolerance(spec, tol)
     except ValueError as err:
         raise SpecError("tolerance_mm", tolerance_mm, str(err).split(": ", 1)[-1]) from err
+
+
+def build_scene_meshes(spec, tolerance_mm: float | None = None) -> SceneMeshes:
+    """Mesh hub and sleeve for viewing (default: the ``coarse`` level of detail)."""
+    tol = view_tolerance(spec, tolerance_mm)
     return SceneMeshes(spec, tol, build_part(spec, "hub", tolerance_mm=tol),
                        build_part(spec, "sleeve", tolerance_mm=tol))
 
@@ -544,4 +549,5 @@ __all__ = [
     "quaternion_wxyz",
     "split_hub",
     "submesh",
+    "view_tolerance",
 ]

@@ -31,6 +31,7 @@ from .scene import (
     lod_tolerance,
     plot_range,
     plot_series,
+    view_tolerance,
 )
 
 PLAY_INTERVAL_S = 0.1
@@ -62,7 +63,8 @@ class ViewerApp:
         self.spec = spec
         if settings is None:
             settings = ViewSettings(misalignment_deg=math.degrees(spec.design_misalignment))
-        tol = lod_tolerance(spec, lod) if tolerance_mm is None else tolerance_mm
+        tol = view_tolerance(spec, lod_tolerance(spec, lod) if tolerance_mm is None
+                             else tolerance_mm)
         self.server = viser.ViserServer(host=host, port=port, verbose=False)
         self.server.gui.configure_theme(control_width="large", show_share_button=False)
         self.html_path = Path(html_path) if html_path else Path("outputs") / spec.name / \
