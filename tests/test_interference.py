@@ -283,3 +283,51 @@ def test_missing_backend_names_the_extra(renzo, monkeypatch):
     monkeypatch.setitem(sys.modules, "fcl", None)  # import fcl now raises ImportError
     with pytest.raises(BackendError, match=r"gearcoupling\[interference\]"):
         check_interference(renzo, 1.0, [0.0], tolerance_mm=0.0127, model=model)
+
+
+@pytest.mark.parametrize("over, mis", [({}, 1.0), ({}, 0.0), ({"hub.backlash": 0.001}, 1.0)])
+def test_mesh_backlash_matches_sweep(over, mis):
+    """Free turn of the hub on the meshes (both flank sides, distance queries) against the
+    sweep's backlash: each side's gap is within the tolerance, so the sum is within
+    2 tol at the base circle, i.e. 2 tol R / r_b at the pitch circle."""
+    spec = gc.load_spec("renzo-1967", **over)
+    angles = [0.0, 17.0, 90.0]
+    res = check_interference(spec, mis, angles, backlash=True, method="distance")
+    sw = sweep(spec, mis, angles)
+    bound = 2 * res.tolerance_mm * spec.tooth.pitch_radius / spec.tooth.base_radius
+    assert np.all(np.abs(res.backlash_mm - sw.backlash_mm) < bound)
+    assert np.allclose(res.backlash_mm, spec.tooth.pitch_radius * res.backlash_rad)
+    assert np.allclose(res.side_gap_rad.sum(axis=0), res.backlash_rad)
+    if over:
+        assert np.all(res.backlash_mm < 0)  # binds: negative free turn
+
+
+def test_mesh_backlash_sees_tip_corner_contact():
+    """industrial-m2 aligned: turning the hub, the sleeve tooth's chamfer corner meets the
+    hub root fillet before the flanks touch. The mesh free turn equals the exact 2-D free
+    turn of the transverse outlines (shapely, bisection on the rotation) and is smaller
+    than the flank-only sweep's half backlash."""
+    import shapely
+    from shapely.affinity import rotate
+
+    from gearcoupling.geometry.section import transverse_section
+
+    spec = gc.load_spec("industrial-m2")
+    tol = 0.002
+    res = check_interference(spec, 0.0, [0.0], backlash=True, tolerance_mm=tol, teeth=0)
+    hub = shapely.Polygon(transverse_section(spec, "hub", 0.0, 1e-4))
+    space = shapely.Polygon(transverse_section(spec, "sleeve", 0.0, 1e-4))
+
+    def free(sign):
+        lo, hi = 0.0, 0.02
+        for _ in range(40):
+            mid = 0.5 * (lo + hi)
+            inside = rotate(hub, sign * mid, origin=(0, 0), use_radians=True).within(space)
+            lo, hi = (mid, hi) if inside else (lo, mid)
+        return lo
+
+    R, r_b = spec.tooth.pitch_radius, spec.tooth.base_radius
+    for f, sign in ((0, -1), (1, 1)):
+        assert res.side_gap_rad[f, 0] == pytest.approx(free(sign), abs=tol / r_b)
+    half_sweep = 0.5 * float(sweep(spec, 0.0, [0.0]).backlash_mm[0])
+    assert R * res.side_gap_rad[0, 0] < half_sweep - 2 * tol

@@ -55,3 +55,14 @@ def test_bad_options_exit_2(tmp_path, capsys, argv, words):
     assert main(["check", "renzo-1967", "--angles", "2", "-o", str(tmp_path), *argv]) == 2
     err = capsys.readouterr().err
     assert words in err and "Traceback" not in err
+
+
+def test_backlash_option_writes_mesh_and_sweep_backlash(tmp_path):
+    assert main(["check", "renzo-1967", "--angles", "3", "--backlash", "--method", "distance",
+                 "-o", str(tmp_path)]) == 0
+    rows = list(csv.DictReader((tmp_path / "interference.csv").open()))
+    data = json.loads((tmp_path / "interference.json").read_text())
+    bound = 2 * data["tolerance_mm"] * 63.5 / (63.5 * 0.9396926207859084)
+    for r, exact in zip(rows, data["sweep_backlash_mm"], strict=True):
+        assert abs(float(r["backlash_mm"]) - exact) < bound
+    assert data["min_backlash_mm"] == pytest.approx(min(float(r["backlash_mm"]) for r in rows))

@@ -65,6 +65,8 @@ def register(sub) -> None:
                         "teeth there, or the full parts")
     p.add_argument("--hub-rotation", type=float, default=0.0, metavar="DEG",
                    help="extra turn of the hub about its axis (degrees, + closes ccw flanks)")
+    p.add_argument("--backlash", action="store_true",
+                   help="also measure the free turn of the hub on the meshes (backlash)")
     p.add_argument("--worst", type=_positive_int, default=10, metavar="N",
                    help="rows of the worst-angle table (default 10)")
     p.set_defaults(func=run)
@@ -84,15 +86,17 @@ def write_csv(result, path: Path) -> Path:
     return write_text(path, buf.getvalue())
 
 
-def plot(result, reference_mm, path: Path) -> Path:
-    """Overlap volume and signed minimum gap against the angle (PNG)."""
+def plot(result, reference_mm, path: Path, backlash_mm=None) -> Path:
+    """Overlap volume, signed minimum gap and (if measured) backlash against the angle."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     a = result.angles_deg
-    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(9, 6.5), sharex=True)
+    rows = 3 if result.backlash_mm is not None else 2
+    fig, axes = plt.subplots(rows, 1, figsize=(9, 3.25 * rows), sharex=True)
+    ax1, ax2 = axes[0], axes[1]
     ax1.plot(a, result.overlap_volume_mm3, ".-", color="tab:red")
     ax1.set_ylabel("overlap volume (mm³)")
     ax1.set_title(f"{result.spec_name}: i = {result.misalignment_deg:g}°, {result.method}, "
@@ -105,10 +109,19 @@ def plot(result, reference_mm, path: Path) -> Path:
     tol = result.tolerance_mm
     ax2.axhspan(-tol, tol, color="0.85", label="± chordal tolerance")
     ax2.axhline(0.0, color="tab:red", lw=0.8)
-    ax2.set_xlabel("rotation ψ (deg)")
     ax2.set_ylabel("gap (mm)")
     ax2.legend(fontsize=8)
     ax2.grid(alpha=0.3)
+    if rows == 3:
+        ax3 = axes[2]
+        ax3.plot(a, result.backlash_mm, ".-", color="tab:green", label="mesh backlash")
+        if backlash_mm is not None:
+            ax3.plot(a, backlash_mm, "--", color="k", lw=1, label="sweep backlash")
+        ax3.axhline(0.0, color="tab:red", lw=0.8)
+        ax3.set_ylabel("backlash at R (mm)")
+        ax3.legend(fontsize=8)
+        ax3.grid(alpha=0.3)
+    axes[-1].set_xlabel("rotation ψ (deg)")
     fig.tight_layout()
     with atomic_path(path) as tmp:
         fig.savefig(tmp, format="png", dpi=120)
@@ -145,6 +158,9 @@ def print_table(result, count: int) -> None:
                   f"{result.gap_sleeve_surface[j]}")
     console = Console()
     console.print(t)
+    if result.backlash_mm is not None:
+        console.print(f"mesh backlash at the pitch radius: {result.backlash_mm.min():.5f} .. "
+                      f"{result.backlash_mm.max():.5f} mm")
     console.print(f"triangles hub/sleeve {result.triangles[0]}/{result.triangles[1]}, setup "
                   f"{result.setup_seconds:.2f} s, {1e3 * result.seconds_per_pose:.1f} ms per "
                   f"pose; {'INTERFERENCE' if result.interferes else 'no interference'}")
@@ -154,16 +170,18 @@ def write_outputs(spec, result, out: Path) -> list[Path]:
     """CSV, JSON (with the sweep's exact clearance), plot and worst posed meshes."""
     from ..sweep import sweep
 
-    reference = None
+    reference = backlash = None
     if result.hub_rotation_deg == 0.0:
-        reference = np.min(sweep(spec, result.misalignment_deg, result.angles_deg)
-                           .normal_clearance_mm, axis=(0, 1))
+        swept = sweep(spec, result.misalignment_deg, result.angles_deg)
+        reference = np.min(swept.normal_clearance_mm, axis=(0, 1))
+        backlash = swept.backlash_mm
     summary = result.summary()
     if reference is not None:
         summary["sweep_min_normal_clearance_mm"] = [float(v) for v in reference]
+        summary["sweep_backlash_mm"] = [float(v) for v in backlash]
     written = [write_csv(result, out / "interference.csv"),
                write_json(out / "interference.json", summary),
-               plot(result, reference, out / "interference.png")]
+               plot(result, reference, out / "interference.png", backlash)]
     return written + write_meshes(result, int(result.worst(1)[0]), out)
 
 
@@ -189,6 +207,7 @@ def run(args) -> int:
             result = check_interference(spec, mis, angles, method=args.method,
                                         tolerance_mm=args.tolerance, teeth=args.teeth,
                                         hub_rotation_deg=args.hub_rotation,
+                                        backlash=args.backlash,
                                         progress=lambda j: advance())
     except ValueError as err:  # bad option values: say which, no traceback
         print(f"error: {err}", file=sys.stderr)

@@ -36,7 +36,15 @@ from numpy.typing import ArrayLike, NDArray
 from ..errors import SpecError
 from . import distance as dist
 from .posed import hub_pose, window_pose, window_to_sleeve
-from .submodel import Model, build_model, flank_clearance, hot_teeth, windows
+from .submodel import (
+    Model,
+    Window,
+    build_model,
+    hot_teeth,
+    plan_pose,
+    side_clearance,
+    side_teeth,
+)
 
 METHODS = ("boolean", "distance")
 MIN_VOLUME_MM3 = 1e-9  # overlap pieces below this are numerical dust of the intersection
@@ -98,6 +106,11 @@ class InterferenceResult:
         Windows (sector poses) evaluated per angle (1 for the full parts).
     seconds_per_pose : float
         Mean wall time of one rotation, model building excluded (``setup_seconds``).
+    backlash_rad, backlash_mm : (M,) float or None
+        With ``backlash=True``: free turn of the hub (cw side + ccw side), as an angle and
+        as arc length at the pitch radius; negative where a side binds.
+    side_gap_rad : (2, M) float or None
+        The free turn toward each side ``(cw, ccw)``.
     """
 
     spec_name: str
@@ -122,6 +135,9 @@ class InterferenceResult:
     volume_exact: bool
     setup_seconds: float
     seconds_per_pose: float
+    backlash_rad: NDArray[np.float64] | None = None
+    backlash_mm: NDArray[np.float64] | None = None
+    side_gap_rad: NDArray[np.float64] | None = None
     prepared: Model | None = field(default=None, repr=False)
     poses: tuple = field(default=(), repr=False)
 
@@ -159,6 +175,8 @@ class InterferenceResult:
                 "sleeve_point_mm": [float(v) for v in self.sleeve_point_mm[j]],
                 "windows": int(self.windows[j]),
             })
+            if self.backlash_mm is not None:
+                out[-1]["backlash_mm"] = float(self.backlash_mm[j])
         return out
 
     def summary(self) -> dict[str, Any]:
@@ -175,6 +193,8 @@ class InterferenceResult:
             "max_overlap_volume_mm3": float(np.max(self.overlap_volume_mm3)),
             "max_overlap_depth_mm": float(np.max(self.overlap_depth_mm)),
             "min_gap_mm": float(self.min_gap_mm[w]), "worst_angle_deg": float(self.angles_deg[w]),
+            "min_backlash_mm": (None if self.backlash_mm is None
+                                else float(np.min(self.backlash_mm))),
             "overlaps": [
                 {"angle_deg": o.angle_deg, "tooth": o.tooth, "flank": o.flank,
                  "volume_mm3": o.volume_mm3, "depth_mm": o.depth_mm,
@@ -223,6 +243,10 @@ class _PoseAcc:
     depth: float = 0.0
     deep: tuple = ()
     pieces: list = field(default_factory=list)
+    side: list = field(default_factory=lambda: [math.inf, math.inf])  # -depth angles
+    side_free: list = field(default_factory=lambda: [math.inf, math.inf])  # gap angles
+    side_hit: list = field(default_factory=lambda: [False, False])
+    side_cands: list = field(default_factory=lambda: [[], []])  # (estimate, id, A, rate)
 
 
 def _boolean_pieces(model: Model, A: NDArray, N: int):
@@ -301,7 +325,8 @@ _PIECES = {"boolean": _boolean_pieces, "distance": _distance_pieces}
 def check_interference(spec, misalignment_deg: float, angles_deg: ArrayLike, *,
                        method: str = "boolean", tolerance_mm: float | None = None,
                        teeth: int | str = "sweep", margin_mm: float | None = None,
-                       hub_rotation_deg: float = 0.0, model: Model | None = None,
+                       hub_rotation_deg: float = 0.0, backlash: bool = False,
+                       model: Model | None = None,
                        progress: Callable[[int], None] | None = None) -> InterferenceResult:
     """Overlap volume, teeth, centroid, depth and minimum gap of the posed meshes per angle.
 
@@ -329,6 +354,14 @@ def check_interference(spec, misalignment_deg: float, angles_deg: ArrayLike, *,
     hub_rotation_deg : float
         Extra turn of the hub about its own axis (degrees, positive toward increasing
         polar angle: it closes the ccw flanks).
+    backlash : bool
+        Also measure the free turn of the hub toward each flank side on the meshes: turn
+        the posed hub about its own axis until that side's flank, fillet and chamfer
+        surfaces touch the sleeve (Newton steps on the closest distance, bisection on
+        overshoot, to 1e-3 tolerance at the pitch radius; where a side already overlaps,
+        minus its depth over ``r_b`` times the turning rate), summed over the sides:
+        ``backlash_rad`` / ``backlash_mm`` at the pitch radius (DESIGN.md §2). Costs two
+        distance queries per window plus a few per side for the refinement.
     model : Model, optional
         A prepared model from :func:`~.submodel.build_model` to reuse (it must match
         ``tolerance_mm`` and ``teeth``).
@@ -339,7 +372,7 @@ def check_interference(spec, misalignment_deg: float, angles_deg: ArrayLike, *,
     -------
     InterferenceResult
     """
-    from ..parts import SURFACE_KINDS, check_tolerance
+    from ..parts import check_tolerance
     from ..sweep import sweep
     from ..sweep.tooth_map import check_angles, check_misalignment
 
@@ -369,89 +402,153 @@ def check_interference(spec, misalignment_deg: float, angles_deg: ArrayLike, *,
         raise ValueError(f"the given model ({model.label}, tolerance {model.hub.tolerance_mm}"
                          f" mm) does not match teeth = {teeth!r}, tolerance_mm = {tol}")
     if model.full:
-        everything = frozenset(range(N))
-        plan = [[(0, everything, everything, everything)] for _ in psi]
+        every = frozenset(range(N))
+        sides = (every, every) if backlash else (frozenset(), frozenset())
+        plan = [[Window(0, every, every, sides)] for _ in psi]
     else:
         swept = sweep(spec, misalignment_deg, np.degrees(psi), tolerance_mm=min(1e-4, tol / 10))
-        gap_teeth, over_teeth = hot_teeth(flank_clearance(swept, delta), margin, 2.0 * tol)
-        plan = []
-        for g, o in zip(gap_teeth, over_teeth, strict=True):
-            g, o = frozenset(g.tolist()), frozenset(o.tolist())
-            plan.append([(c, owned, owned & o, owned & g)
-                         for c, owned in windows(sorted(g | o), N, k)])
+        per_side = side_clearance(swept, delta)
+        gap_teeth, over_teeth = hot_teeth(np.min(per_side, axis=0), margin, 2.0 * tol)
+        side_sets = side_teeth(per_side, margin) if backlash else [((), ())] * psi.size
+        plan = [plan_pose(N, k, o, g, sd)
+                for g, o, sd in zip(gap_teeth, over_teeth, side_sets, strict=True)]
     _ = model.hub.shell_bvh, model.sleeve.shell_bvh  # built once, before the timing
+    if backlash:
+        _ = [part.side_bvh(f) for part in (model.hub, model.sleeve) for f in FLANKS]
     if method == "boolean":
         _ = model.hub.manifold, model.sleeve.manifold
     setup = time.perf_counter() - t0
 
     M = psi.size
-    gap = np.zeros(M)
-    depth = np.zeros(M)
-    volume = np.zeros(M)
-    hub_pt, sl_pt = np.zeros((M, 3)), np.zeros((M, 3))
-    gap_tooth = np.zeros(M, dtype=np.int64)
-    hub_kind, sl_kind = [""] * M, [""] * M
+    out = _Arrays(M)
     overlaps: list[Overlap] = []
-    poses = []
     pieces_of = _PIECES[method]
+    r_b = spec.tooth.base_radius
     t1 = time.perf_counter()
     for j, p in enumerate(psi):
         acc = _PoseAcc()
-        seen: dict[bytes, tuple] = {}  # equal window poses (e.g. at i = 0) evaluated once
-        for centre, _, owned, wants_gap in plan[j]:
-            A = (hub_pose(mis, p, delta) if model.full
-                 else window_pose(mis, p, centre, N, delta))
-            key = np.round(A, 13).tobytes() + bytes([bool(owned), bool(wants_gap)])
+        seen: dict[bytes, _WindowResult] = {}  # equal poses (e.g. all teeth at i = 0) once
+        for w in plan[j]:
+            A = hub_pose(mis, p, delta) if model.full else window_pose(mis, p, w.centre, N,
+                                                                         delta)
+            key = np.round(A, 13).tobytes() + bytes([bool(w.overlap), bool(w.gap),
+                                                     bool(w.sides[0]), bool(w.sides[1])])
             if key not in seen:
-                pieces = pieces_of(model, A, N) if owned else []
-                seen[key] = (pieces, dist.closest_pair(model.hub, A, model.sleeve)
-                             if wants_gap and not pieces else None)
-            pieces, c = seen[key]
-            for rel, flank, vol, dep, cen, deep in pieces:
-                tooth = (rel + centre) % N
-                if tooth not in owned:
-                    continue
-                acc.pieces.append(Overlap(j, float(np.degrees(p)), tooth, flank, vol, dep,
-                                          tuple(float(x) for x in
-                                                window_to_sleeve(cen, centre, N))))
-                if dep > acc.depth:
-                    acc.depth = dep
-                    acc.deep = (window_to_sleeve(deep[0], centre, N),
-                                window_to_sleeve(deep[1], centre, N), tooth,
-                                f"flank_{flank}", "overlap")
-            if c is not None and c.distance_mm < acc.gap:
-                t_rel = int(model.hub.tooth[c.hub_face])
-                t_rel = t_rel - N if t_rel > N // 2 else t_rel
-                acc.gap = c.distance_mm
-                acc.pair = (window_to_sleeve(c.hub_point, centre, N),
-                            window_to_sleeve(c.sleeve_point, centre, N),
-                            (t_rel + centre) % N,
-                            SURFACE_KINDS[model.hub.kind[c.hub_face]],
-                            SURFACE_KINDS[model.sleeve.kind[c.sleeve_face]])
-        if acc.pieces:
-            overlaps.extend(acc.pieces)
-            volume[j] = sum(o.volume_mm3 for o in acc.pieces)
-            depth[j] = acc.depth
-            gap[j] = -acc.depth
-            pair = acc.deep
-        else:
-            gap[j] = acc.gap
-            pair = acc.pair
-        hub_pt[j], sl_pt[j], gap_tooth[j], hub_kind[j], sl_kind[j] = pair
-        poses.append(tuple(plan[j]))
+                seen[key] = _evaluate(model, A, N, w, pieces_of)
+            _collect(acc, seen[key], w, A, j, float(np.degrees(p)), N, r_b, model)
+        if backlash:
+            _refine_sides(acc, model, 1e-3 * tol / spec.tooth.pitch_radius)
+        overlaps.extend(acc.pieces)
+        out.store(j, acc)
         if progress is not None:
             progress(j)
     per_pose = (time.perf_counter() - t1) / M
+    R = spec.tooth.pitch_radius
     return InterferenceResult(
         spec_name=spec.name, misalignment_deg=float(misalignment_deg),
         hub_rotation_deg=delta_deg, method=method, model=model.label, tolerance_mm=tol,
-        teeth=N, angles_deg=np.degrees(psi), overlap_volume_mm3=volume,
-        overlap_depth_mm=depth, min_gap_mm=gap, hub_point_mm=hub_pt, sleeve_point_mm=sl_pt,
-        gap_tooth=gap_tooth, gap_hub_surface=tuple(hub_kind),
-        gap_sleeve_surface=tuple(sl_kind), overlaps=tuple(overlaps),
+        teeth=N, angles_deg=np.degrees(psi), overlap_volume_mm3=out.volume,
+        overlap_depth_mm=out.depth, min_gap_mm=out.gap, hub_point_mm=out.hub_pt,
+        sleeve_point_mm=out.sl_pt, gap_tooth=out.gap_tooth,
+        gap_hub_surface=tuple(out.hub_kind), gap_sleeve_surface=tuple(out.sl_kind),
+        overlaps=tuple(overlaps),
         windows=np.array([len(w) for w in plan], dtype=np.int64), triangles=model.triangles,
         volume_exact=method == "boolean", setup_seconds=setup, seconds_per_pose=per_pose,
-        prepared=model, poses=tuple(poses))
+        backlash_rad=np.sum(out.side_angle, axis=0) if backlash else None,
+        backlash_mm=R * np.sum(out.side_angle, axis=0) if backlash else None,
+        side_gap_rad=out.side_angle if backlash else None,
+        prepared=model, poses=tuple(tuple(windows) for windows in plan))
+
+
+@dataclass
+class _WindowResult:
+    pieces: list
+    closest: dist.Closest | None
+    sides: list  # per flank: Closest or None
+
+
+def _evaluate(model: Model, A: NDArray, N: int, w: Window, pieces_of) -> _WindowResult:
+    pieces = pieces_of(model, A, N) if w.overlap else []
+    closest = dist.closest_pair(model.hub, A, model.sleeve) if w.gap and not pieces else None
+    hit = {f for _, f, *_ in pieces}
+    sides = [dist.closest_pair(model.hub, A, model.sleeve, f)
+             if w.sides[i] and f not in hit else None for i, f in enumerate(FLANKS)]
+    return _WindowResult(pieces, closest, sides)
+
+
+def _collect(acc: _PoseAcc, ev: _WindowResult, w: Window, A: NDArray, j: int, angle: float,
+             N: int, r_b: float, model: Model) -> None:
+    """Add one window's findings to the pose, in sleeve-frame coordinates and real teeth."""
+    from ..parts import SURFACE_KINDS
+
+    c = w.centre
+    for rel, flank, vol, dep, cen, deep in ev.pieces:
+        tooth = (rel + c) % N
+        if tooth not in w.overlap:
+            continue
+        acc.pieces.append(Overlap(j, angle, tooth, flank, vol, dep,
+                                  tuple(float(x) for x in window_to_sleeve(cen, c, N))))
+        f = FLANKS.index(flank)
+        acc.side[f] = min(acc.side[f], -dep / (r_b * abs(dist.turning_rate(A, deep[0]))))
+        if dep > acc.depth:
+            acc.depth = dep
+            acc.deep = (window_to_sleeve(deep[0], c, N), window_to_sleeve(deep[1], c, N),
+                        tooth, f"flank_{flank}", "overlap")
+    if ev.closest is not None and ev.closest.distance_mm < acc.gap:
+        cl = ev.closest
+        t_rel = int(model.hub.tooth[cl.hub_face])
+        t_rel = t_rel - N if t_rel > N // 2 else t_rel
+        acc.gap = cl.distance_mm
+        acc.pair = (window_to_sleeve(cl.hub_point, c, N), window_to_sleeve(cl.sleeve_point, c, N),
+                    (t_rel + c) % N, SURFACE_KINDS[model.hub.kind[cl.hub_face]],
+                    SURFACE_KINDS[model.sleeve.kind[cl.sleeve_face]])
+    for f, cl in enumerate(ev.sides):
+        if cl is not None:
+            sign = 1.0 if FLANKS[f] == "ccw" else -1.0
+            fallback = r_b * abs(dist.turning_rate(A, cl.hub_point))
+            acc.side_cands[f].append((cl.distance_mm / dist.closing_speed(A, cl, sign, fallback),
+                                      id(A), A, fallback))
+    for p in acc.pieces:
+        acc.side_hit[FLANKS.index(p.flank)] = True
+
+
+def _refine_sides(acc: _PoseAcc, model: Model, tol_angle: float) -> None:
+    """Free turn per side: refine the window with the smallest first-order estimate by
+    distance queries, then any other whose estimate is still below the refined value."""
+    for f, flank in enumerate(FLANKS):
+        if acc.side_hit[f]:
+            continue
+        best = math.inf
+        for estimate, _, A, fallback in sorted(acc.side_cands[f], key=lambda c: c[0]):
+            if estimate >= best:
+                break
+            best = min(best, dist.free_turn(model.hub, A, model.sleeve, flank, fallback,
+                                            tol_angle))
+        acc.side_free[f] = best
+
+
+class _Arrays:
+    """Per-angle output arrays."""
+
+    def __init__(self, M: int):
+        self.gap, self.depth, self.volume = np.zeros(M), np.zeros(M), np.zeros(M)
+        self.hub_pt, self.sl_pt = np.zeros((M, 3)), np.zeros((M, 3))
+        self.gap_tooth = np.zeros(M, dtype=np.int64)
+        self.hub_kind, self.sl_kind = [""] * M, [""] * M
+        self.side_angle = np.zeros((2, M))
+
+    def store(self, j: int, acc: _PoseAcc) -> None:
+        if acc.pieces:
+            self.volume[j] = sum(o.volume_mm3 for o in acc.pieces)
+            self.depth[j] = acc.depth
+            self.gap[j] = -acc.depth
+            pair = acc.deep
+        else:
+            self.gap[j] = acc.gap
+            pair = acc.pair
+        self.hub_pt[j], self.sl_pt[j], self.gap_tooth[j], self.hub_kind[j], self.sl_kind[j] = pair
+        for f in range(2):  # an overlapping side binds: its (negative) depth angle counts
+            self.side_angle[f, j] = acc.side[f] if acc.side_hit[f] else acc.side_free[f]
 
 
 def posed_meshes(result: InterferenceResult, index: int) -> dict[str, Any]:
@@ -471,7 +568,7 @@ def posed_meshes(result: InterferenceResult, index: int) -> dict[str, Any]:
     p = math.radians(float(result.angles_deg[index]))
     delta = math.radians(result.hub_rotation_deg)
     hubs, sleeves, pieces = [], [], []
-    for centre, *_ in result.poses[index]:
+    for centre in (w.centre for w in result.poses[index]):
         A = hub_pose(mis, p, delta) if model.full else window_pose(mis, p, centre, N, delta)
         hubs.append(trimesh.Trimesh(window_to_sleeve(model.hub.vertices @ A.T, centre, N),
                                     model.hub.faces, process=False))

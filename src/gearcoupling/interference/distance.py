@@ -27,6 +27,7 @@ overlapping poses, on the few hundred vertices of a window.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -59,18 +60,40 @@ class Closest:
     sleeve_face: int
 
 
-def closest_pair(hub: PreparedPart, matrix: NDArray, sleeve: PreparedPart) -> Closest:
+def closest_pair(hub: PreparedPart, matrix: NDArray, sleeve: PreparedPart,
+                 flank: str | None = None) -> Closest:
     """Minimum distance between the hub shell posed by ``matrix`` and the sleeve shell.
 
-    Exact on the meshes (python-fcl, triangle-triangle). Zero when they intersect.
+    Exact on the meshes (python-fcl, triangle-triangle). Zero when they intersect. With
+    ``flank`` (``"cw"``/``"ccw"``) only that flank side of both parts (the surfaces that
+    close when the hub turns toward that side).
     """
     import fcl
 
     req = fcl.DistanceRequest(enable_nearest_points=True, enable_signed_distance=False)
     res = fcl.DistanceResult()
-    d = fcl.distance(hub.fcl_object(matrix), sleeve.fcl_object(), req, res)
+    d = fcl.distance(hub.fcl_object(matrix, flank), sleeve.fcl_object(None, flank), req, res)
     p, q = (np.asarray(x, dtype=float) for x in res.nearest_points)
-    return Closest(max(float(d), 0.0), p, q, hub.shell_face(res.b1), sleeve.shell_face(res.b2))
+    return Closest(max(float(d), 0.0), p, q, hub.shell_face(res.b1, flank),
+                   sleeve.shell_face(res.b2, flank))
+
+
+def turning_rate(matrix: NDArray, point: NDArray) -> float:
+    """Rate of the sleeve polar angle of a posed hub point per unit turn of the hub about
+    its own axis (1 when aligned).
+
+    Parameters
+    ----------
+    matrix : (3, 3) float
+        Hub pose; its third column is the hub axis in the sleeve frame.
+    point : (3,) float
+        The point in the sleeve frame.
+    """
+    k = np.asarray(matrix, dtype=float)[:, 2]
+    q = np.asarray(point, dtype=float)
+    v = np.cross(k, q)
+    r2 = q[0] ** 2 + q[1] ** 2
+    return float((v[1] * q[0] - v[0] * q[1]) / r2)
 
 
 def collide(hub: PreparedPart, matrix: NDArray, sleeve: PreparedPart) -> bool:
@@ -146,3 +169,51 @@ def positive_integral(vertices: NDArray, faces: NDArray, values: NDArray) -> NDA
     out = np.where(count == 1, corner, out)
     out = np.where(count == 2, full - corner, out)
     return np.where(np.isfinite(out), np.maximum(out, 0.0), 0.0)
+
+
+def closing_speed(matrix: NDArray, pair: Closest, sign: float, fallback: float) -> float:
+    """Rate at which the gap of a closest pair shrinks per unit turn of the hub about its
+    own axis (``sign`` +1 toward increasing polar angle, -1 the other way): the velocity
+    of the hub point along the unit vector to the sleeve point. For involute flanks it
+    is ``r_b`` times the turning rate; where the pair does not close at first order the
+    ``fallback`` rate is used so that a search keeps moving."""
+    k = np.asarray(matrix, dtype=float)[:, 2]
+    u = pair.sleeve_point - pair.hub_point
+    n = float(np.linalg.norm(u))
+    if n == 0.0:
+        return fallback
+    speed = float(sign * np.cross(k, pair.hub_point) @ u) / n
+    return speed if speed > 1e-6 * fallback else fallback
+
+
+def free_turn(hub: PreparedPart, matrix: NDArray, sleeve: PreparedPart, flank: str,
+              fallback: float, tol_angle: float, max_iter: int = 30) -> float:
+    """How far the posed hub turns about its own axis toward ``flank`` before that flank
+    side touches the sleeve (radians), by distance queries on the meshes.
+
+    Steps by ``gap / closing speed`` (Newton on the first-order gap; exact for parallel
+    involutes), bisecting between the last free turn and the first touching one when a
+    step overshoots; stops when the remaining step is below ``tol_angle``.
+    """
+    from ..sweep.pose import rot_z
+
+    sign = 1.0 if flank == "ccw" else -1.0
+    lo, hi = 0.0, math.inf
+    c = closest_pair(hub, matrix, sleeve, flank)
+    if c.distance_mm == 0.0:
+        return 0.0
+    step = c.distance_mm / closing_speed(matrix, c, sign, fallback)
+    for _ in range(max_iter):
+        trial = lo + step if lo + step < hi else 0.5 * (lo + hi)
+        m = matrix @ rot_z(sign * trial)
+        c = closest_pair(hub, m, sleeve, flank)
+        if c.distance_mm > 0.0:
+            lo = trial
+            step = c.distance_mm / closing_speed(m, c, sign, fallback)
+            if step < tol_angle:
+                return min(lo + step, hi)
+        else:
+            hi = trial
+            if hi - lo < tol_angle:
+                return lo
+    return min(lo + step, hi)

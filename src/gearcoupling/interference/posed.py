@@ -146,20 +146,43 @@ class PreparedPart:
     @cached_property
     def shell_bvh(self):
         """python-fcl bounding-volume tree of the shell, built once (in the part frame)."""
+        return self._bvh(self.shell)
+
+    def _bvh(self, faces_idx: NDArray):
         fcl = _fcl()
-        faces = self.faces[self.shell]
+        faces = self.faces[faces_idx]
         model = fcl.BVHModel()
         model.beginModel(len(self.vertices), len(faces))
         model.addSubModel(self.vertices, faces)
         model.endModel()
         return model
 
-    def fcl_object(self, matrix: NDArray | None = None):
-        """An fcl collision object of the shell at pose ``matrix`` (3x3, identity if None)."""
+    def side(self, flank: str) -> NDArray[np.int64]:
+        """Faces of one flank side (``"cw"``/``"ccw"``: flank, fillet, chamfer of that side)."""
+        key = ("side", flank)
+        if key not in self._cache:
+            from ..parts import SURFACE_KINDS
+
+            codes = [SURFACE_KINDS.index(f"{k}_{flank}") for k in ("flank", "fillet", "chamfer")]
+            self._cache[key] = np.flatnonzero(np.isin(self.kind, codes))
+        return self._cache[key]
+
+    def side_bvh(self, flank: str):
+        """python-fcl tree of one flank side, built once."""
+        key = ("bvh", flank)
+        if key not in self._cache:
+            self._cache[key] = self._bvh(self.side(flank))
+        return self._cache[key]
+
+    def fcl_object(self, matrix: NDArray | None = None, flank: str | None = None):
+        """An fcl collision object of the shell (or of one flank side) at pose ``matrix``
+        (3x3, identity if None)."""
         fcl = _fcl()
         rot = np.eye(3) if matrix is None else np.asarray(matrix, dtype=float)
-        return fcl.CollisionObject(self.shell_bvh, fcl.Transform(rot, np.zeros(3)))
+        bvh = self.shell_bvh if flank is None else self.side_bvh(flank)
+        return fcl.CollisionObject(bvh, fcl.Transform(rot, np.zeros(3)))
 
-    def shell_face(self, index: int) -> int:
-        """Face index in :attr:`faces` of the shell's ``index``-th triangle."""
-        return int(self.shell[index])
+    def shell_face(self, index: int, flank: str | None = None) -> int:
+        """Face index in :attr:`faces` of the ``index``-th triangle of the shell (or side)."""
+        faces = self.shell if flank is None else self.side(flank)
+        return int(faces[index])

@@ -90,8 +90,8 @@ def build_model(spec, tolerance_mm: float, half_window: int | None) -> Model:
                  PreparedPart.from_trimesh(sleeve, NOT_SHELL), k, N)
 
 
-def flank_clearance(sweep_result, hub_rotation: float = 0.0) -> NDArray[np.float64]:
-    """Smallest normal clearance of each tooth over both flanks, ``(tooth, angle)`` in mm.
+def side_clearance(sweep_result, hub_rotation: float = 0.0) -> NDArray[np.float64]:
+    """Normal clearance of each flank and tooth, ``(flank, tooth, angle)`` in mm.
 
     An extra hub turn ``delta`` (radians, toward increasing polar angle) opens the cw
     flanks and closes the ccw flanks by ``r_b * delta`` (first order), which is all the
@@ -99,7 +99,12 @@ def flank_clearance(sweep_result, hub_rotation: float = 0.0) -> NDArray[np.float
     """
     nc = np.asarray(sweep_result.normal_clearance_mm, dtype=float)
     shift = sweep_result.base_radius_mm * hub_rotation
-    return np.minimum(nc[0] + shift, nc[1] - shift)
+    return np.stack([nc[0] + shift, nc[1] - shift])
+
+
+def flank_clearance(sweep_result, hub_rotation: float = 0.0) -> NDArray[np.float64]:
+    """Smallest normal clearance of each tooth over both flanks, ``(tooth, angle)`` in mm."""
+    return np.min(side_clearance(sweep_result, hub_rotation), axis=0)
 
 
 def hot_teeth(clearance: NDArray, margin_mm: float, floor_mm: float):
@@ -125,6 +130,47 @@ def hot_teeth(clearance: NDArray, margin_mm: float, floor_mm: float):
     over = [np.union1d(np.flatnonzero(c[:, j] < floor_mm), [int(np.argmin(c[:, j]))])
             for j in range(c.shape[1])]
     return gap, over
+
+
+@dataclass(frozen=True)
+class Window:
+    """One posed sector: its centre tooth and the teeth it owns for each purpose.
+
+    Attributes
+    ----------
+    centre : int
+        Tooth the sector around tooth 0 stands for.
+    overlap, gap : frozenset of int
+        Owned teeth whose overlap / minimum gap this window reports.
+    sides : tuple of 2 frozensets
+        Owned teeth whose cw / ccw flank-side gap (for the backlash) it reports.
+    """
+
+    centre: int
+    overlap: frozenset
+    gap: frozenset
+    sides: tuple[frozenset, frozenset] = (frozenset(), frozenset())
+
+
+def plan_pose(count: int, half_window: int, overlap, gap,
+              sides=((), ())) -> list[Window]:
+    """Windows of ``2k + 1`` teeth covering every tooth any purpose needs, each tooth owned
+    by one window (see :func:`windows`)."""
+    want = [frozenset(int(t) for t in x) for x in (overlap, gap, *sides)]
+    union = frozenset().union(*want)
+    return [Window(c, owned & want[0], owned & want[1], (owned & want[2], owned & want[3]))
+            for c, owned in windows(sorted(union), count, half_window)]
+
+
+def side_teeth(clearance: NDArray, margin_mm: float) -> list[tuple[NDArray, NDArray]]:
+    """Per angle, the teeth within ``margin_mm`` of each flank side's smallest clearance.
+
+    ``clearance`` is ``(flank, tooth, angle)`` (:func:`side_clearance`).
+    """
+    c = np.where(np.isfinite(clearance), clearance, np.inf)
+    low = np.min(c, axis=1)  # (flank, angle)
+    return [tuple(np.flatnonzero(c[f, :, j] <= low[f, j] + margin_mm) for f in range(2))
+            for j in range(c.shape[2])]
 
 
 def windows(teeth: NDArray, count: int, half_window: int) -> list[tuple[int, frozenset]]:
