@@ -81,6 +81,7 @@ def build_part(spec, part: str, tolerance_mm: float | None = None, teeth=None):
         raise ValueError(f"{part} mesh of spec {spec.name!r} has non-finite vertices")
     mesh = trimesh.Trimesh(verts, faces, face_attributes={"kind": kind, "tooth": tooth},
                            process=False, validate=False)
+    mesh.units = "mm"
     mesh.metadata.update(part=part, tolerance_mm=tol, spec=spec.name,
                          bore=part == "sleeve" or spec.hub.body.bore_diameter > 0,
                          teeth=None if runs[0].closed else sorted({int(k) for k in teeth}),
