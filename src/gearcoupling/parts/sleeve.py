@@ -15,17 +15,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..geometry.sleeve import sleeve_model
-from .builder import (
-    KIND_CODE,
-    MIN_RING,
-    MeshBuilder,
-    Run,
-    add_cap,
-    ring_pitch,
-    tile,
-    with_z,
-    zipper,
-)
+from . import builder as mb
 from .grid import arc_count, sleeve_pitch
 
 
@@ -46,26 +36,26 @@ def sleeve_layout(spec, tol: float) -> SleeveLayout:
     sm = sleeve_model(spec)
     pitch, kinds = sleeve_pitch(sm, tol)
     r_outer = 0.5 * spec.sleeve.outer_diameter
-    ring = max(arc_count(r_outer, 2 * math.pi / sm.teeth, 0.9 * tol), MIN_RING)
-    cap = zipper(ring_pitch(r_outer, sm.teeth, ring), pitch)
-    codes = np.array([KIND_CODE[k] for k in kinds], dtype=np.int16)
+    ring = max(arc_count(r_outer, 2 * math.pi / sm.teeth, 0.9 * tol), mb.MIN_RING)
+    cap = mb.zipper(mb.ring_pitch(r_outer, sm.teeth, ring), pitch)
+    codes = np.array([mb.KIND_CODE[k] for k in kinds], dtype=np.int16)
     return SleeveLayout(pitch, codes, sm.half_face, r_outer, ring, cap)
 
 
-def build_sleeve_run(b: MeshBuilder, lay: SleeveLayout, run: Run) -> None:
+def build_sleeve_run(b: mb.MeshBuilder, lay: SleeveLayout, run: mb.Run) -> None:
     """Add the sleeve solid of one run of teeth (closed ring or a sector with side walls)."""
     hf = lay.half_face
     nseg = len(lay.pitch) - 1
-    band = tile(lay.pitch[None], run)[0]
-    i_bot, i_top = b.vertices(with_z(band, -hf)), b.vertices(with_z(band, hf))
+    band = mb.tile(lay.pitch[None], run)[0]
+    i_bot, i_top = b.vertices(mb.with_z(band, -hf)), b.vertices(mb.with_z(band, hf))
     n_quads = len(band) if run.closed else len(band) - 1
     tooth = np.array([run.tooth(q // nseg) for q in range(n_quads)])
     b.strip(i_bot, i_top, np.resize(lay.kinds, n_quads), tooth, closed=run.closed, flip=True)
-    ring = tile(ring_pitch(lay.r_outer, run.teeth, lay.ring)[None], run)[0]
-    o_bot, o_top = b.vertices(with_z(ring, -hf)), b.vertices(with_z(ring, hf))
+    ring = mb.tile(mb.ring_pitch(lay.r_outer, run.teeth, lay.ring)[None], run)[0]
+    o_bot, o_top = b.vertices(mb.with_z(ring, -hf)), b.vertices(mb.with_z(ring, hf))
     b.strip(o_bot, o_top, "body", -1, closed=run.closed)
-    add_cap(b, lay.cap, o_top, i_top, run, lay.ring, nseg, flip=False)
-    add_cap(b, lay.cap, o_bot, i_bot, run, lay.ring, nseg, flip=True)
+    mb.add_cap(b, lay.cap, o_top, i_top, run, lay.ring, nseg, flip=False)
+    mb.add_cap(b, lay.cap, o_bot, i_bot, run, lay.ring, nseg, flip=True)
     if run.closed:
         return
     for col in (0, -1):
