@@ -507,6 +507,36 @@ def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
         if np.any(good):
             _triple(rows[good], zc[good], eps[good])
 
+    def _local_newton(rows):
+        """Smooth minima next to a kink that spoiled the coarse parabola: a parabola from
+        the best point and two close neighbours (+-1e-3 of the half face), then a triple
+        around its vertex, +-sqrt(tol / g'')."""
+        if rows.size == 0:
+            return
+        h = np.minimum(1e-3 * hf, 0.25 * np.minimum(best_z[rows] - a_z[rows],
+                                                    b_z[rows] - best_z[rows]))
+        ok = h > 1e-9 * hf
+        rows, h = rows[ok], h[ok]
+        if rows.size == 0:
+            return
+        x1 = best_z[rows]
+        y1 = best_v[rows]
+        zz = np.stack([x1 - h, x1 + h], axis=1)
+        out = evaluate(zz.ravel(), np.repeat(rows, 2))
+        v2, t2, k2 = (X.reshape(rows.size, 2) for X in out)
+        y0, y2 = v2[:, 0], v2[:, 1]
+        take(rows, zz, v2, t2, k2)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            curv = (y0 + y2 - 2.0 * y1) / (h * h)
+            zp = x1 - 0.5 * (y2 - y0) / (h * curv)
+        good = np.isfinite(zp) & (curv > 0) & (zp > a_z[rows]) & (zp < b_z[rows])
+        if not np.any(good):
+            return
+        rows, zp, curv = rows[good], zp[good], curv[good]
+        eps = np.sqrt(tolerance_mm / curv)
+        eps = np.clip(eps, 1e-12 * hf, 0.25 * np.minimum(zp - a_z[rows], b_z[rows] - zp))
+        _triple(rows, zp, eps)
+
     # nested grids until the bracket cannot hide more than the tolerance
     inner = 4
     first = True
@@ -521,6 +551,9 @@ def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
             break
         if first:
             first = False
+            _local_newton(active)
+            excess = np.maximum(a_v[active], b_v[active]) - best_v[active]
+            active = active[excess > tolerance_mm]
             _corner_step(active)
             excess = np.maximum(a_v[active], b_v[active]) - best_v[active]
             active = active[excess > tolerance_mm]
@@ -556,12 +589,16 @@ def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
         if fin.size:
             out = evaluate(zp, fin)
             take(fin, zp[:, None], *(X[:, None] for X in out))
+    # minima that crept to a face end sit on it: snap (the value moves by slope * 1e-8 hf)
+    near_end = np.isfinite(best_v) & (np.abs(best_z) >= hf * (1.0 - 1e-8))
+    best_z = np.where(near_end, np.sign(best_z) * hf, best_z)
+    exact_val &= ~near_end
     # the reported minimum is evaluated exactly where it lies (the coarse values are
     # upper bounds; a refined value is kept where lower)
     ex = np.flatnonzero(np.isfinite(best_v) & ~exact_val)
     if ex.size:
         ve, te, ke = evaluate(best_z[ex], ex)
-        use = ve <= best_v[ex] + 1e-7 * tolerance_mm
+        use = (ve <= best_v[ex] + 1e-7 * tolerance_mm) | near_end[ex]
         best_v[ex] = np.where(use, ve, best_v[ex])
         best_t[ex] = np.where(use, te, best_t[ex])
         best_k[ex] = np.where(use, ke, best_k[ex])
