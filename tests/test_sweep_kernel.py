@@ -127,7 +127,7 @@ def exact_gap_from_polar(spec, mis, theta, r, a, z, normal=False):
     return (sm.r_base if normal else rq) * d, rq, q[..., 2]
 
 
-@pytest.mark.parametrize("theta_deg", [0.0, 8.0, 133.0, 165.4])
+@pytest.mark.parametrize("theta_deg", [8.0, 165.4])
 @pytest.mark.parametrize("normal", [False, True])
 def test_minimum_matches_brute_force(renzo, theta_deg, normal):
     """Kernel minimum is attained on the exact flank and the brute-force reference (dense
@@ -216,13 +216,13 @@ def test_flank_table_error_measured_small(renzo):
     assert np.max(np.abs(r_ex * a_ex - r_in * a_in)) < 1e-7
 
 
-@pytest.mark.parametrize("name, deg, theta_deg", [
-    ("industrial-m2", 0.75, 12.0),
-    ("industrial-m2", 3.0, 200.0),
-    ("mill-spindle", 1.0, 95.0),
-    ("renzo-1967", 5.0, 40.0),
+@pytest.mark.parametrize("name, deg, theta_deg, normal", [
+    ("industrial-m2", 0.75, 12.0, True),
+    ("industrial-m2", 3.0, 200.0, False),
+    ("mill-spindle", 1.0, 95.0, True),
+    ("renzo-1967", 5.0, 40.0, False),
+    ("renzo-1967", 0.0, 0.0, True),
 ])
-@pytest.mark.parametrize("normal", [False, True])
 def test_other_templates_match_brute_force(name, deg, theta_deg, normal):
     """Same check on other templates, larger angles (the hub end leaves the sleeve face at
     5° on renzo-1967) and a vari-crown path; tolerance 1e-6 mm plus the flank table's
