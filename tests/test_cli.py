@@ -53,3 +53,25 @@ def test_templates_lists_every_template(capsys):
     assert main(["templates"]) == 0
     out = capsys.readouterr().out
     assert all(name in out for name in gc.template_names())
+
+
+def test_atomic_writes_leave_the_old_file_on_failure_and_use_the_usual_mode(tmp_path):
+    import os
+
+    from gearcoupling.atomic import atomic_path, write_text
+
+    target = tmp_path / "a.txt"
+    write_text(target, "old")
+    assert oct(target.stat().st_mode & 0o777) == oct(0o666 & ~_umask())
+    with pytest.raises(RuntimeError), atomic_path(target) as tmp:
+        tmp.write_text("half")
+        raise RuntimeError("writer failed")
+    assert target.read_text() == "old" and os.listdir(tmp_path) == ["a.txt"]
+
+
+def _umask() -> int:
+    import os
+
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
