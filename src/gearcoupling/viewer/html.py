@@ -30,13 +30,8 @@ def scene_html(scene: CouplingScene, *, dark_mode: bool = False) -> str:
 
 
 def save_html(scene: CouplingScene, path: str | os.PathLike) -> Path:
-    """Write the current scene's HTML atomically, readable as the umask allows (it is
-    meant to be shared; the atomic temporary file starts private)."""
-    out = write_text(path, scene_html(scene))
-    mask = os.umask(0)
-    os.umask(mask)
-    out.chmod(0o666 & ~mask)
-    return out
+    """Write the current scene's HTML atomically (usual file mode, to be shared)."""
+    return write_text(path, scene_html(scene))
 
 
 def write_html(spec, path: str | os.PathLike, *, settings: ViewSettings | None = None,
