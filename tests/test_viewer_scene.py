@@ -168,6 +168,17 @@ def test_interference_volume_matches_the_sweep(renzo, meshes):
     assert np.all(np.min(np.abs(d), axis=1) < np.pi / N)
 
 
+def test_interference_pieces_outside_the_sweep_need_more_than_chord_depth(renzo, meshes):
+    """With no flank interfering per the sweep, only pieces thicker than the chordal
+    tolerance (which chord error cannot make) are kept."""
+    none = np.zeros((2, renzo.tooth.teeth), dtype=bool)
+    _, v3 = vs.interference_mesh(meshes, vs.hub_rotation(3.0, 10.0), none)
+    assert v3 == 0.0  # 0.14 mm deep at most: thinner than 0.127 mm on average
+    _, v6 = vs.interference_mesh(meshes, vs.hub_rotation(6.0, 10.0), none)
+    _, v6_all = vs.interference_mesh(meshes, vs.hub_rotation(6.0, 10.0))
+    assert 0 < v6 < v6_all  # 0.49 mm deep: the thick pieces stay, the slivers go
+
+
 @pytest.mark.parametrize(("cutaway", "fraction"), [("none", 1.0), ("half", 0.5),
                                                    ("midplane", 0.5), ("quarter", 0.75)])
 def test_cutaways_remove_their_share_of_the_sleeve(meshes, cutaway, fraction):

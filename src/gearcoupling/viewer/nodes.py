@@ -218,7 +218,9 @@ class CouplingScene:
         colors = clearance_colors(flank_values(state, st.color_mode), self.color_scale_mm)
         patch = None
         volume = 0.0
-        if np.any(state.interfering):
+        # the boolean runs only when some flank comes within the chordal tolerance: farther
+        # apart, the meshes cannot overlap by more than chord error at the flanks
+        if np.min(state.clearance_mm) < self.meshes.tolerance_mm:
             patch, volume = interference_mesh(self.meshes, rot, state.interfering)
         ground = self._ground()
         with self.server.atomic():

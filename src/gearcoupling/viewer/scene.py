@@ -492,12 +492,15 @@ def interference_mesh(meshes: SceneMeshes, rotation: ArrayLike,
     rotation : (3, 3) float
         Hub pose (:func:`hub_rotation`).
     interfering : (2, N) bool, optional
-        Keep only the overlap pieces at these (flank, tooth) pairs, e.g.
-        :attr:`PoseState.interfering` from the exact sweep. The meshes' chords lie inside
-        the convex hub flanks but outside the concave flanks of the internal sleeve teeth,
-        so a coarse mesh shows overlap up to about its chordal tolerance deep where the
-        exact surfaces are still apart; filtering by the exact clearance removes those
-        pieces. Each piece is assigned to the hub tooth and flank nearest its centroid.
+        The (flank, tooth) pairs the exact sweep finds interfering
+        (:attr:`PoseState.interfering`). The meshes' chords lie inside the convex hub
+        flanks but outside the concave flanks of the internal sleeve teeth, so a coarse
+        mesh shows overlap up to about its chordal tolerance deep where the exact
+        surfaces are still apart. Given this mask, a piece is kept when the sweep finds
+        its tooth and flank (nearest its centroid) interfering, or when it is thicker on
+        average (``2 V / A``) than the chordal tolerance, which no chord error makes: an
+        overlap outside the flank pairs the sweep models (e.g. a sleeve chamfer corner in
+        a hub root fillet).
     """
     rot = np.asarray(rotation, dtype=float)
     overlap = meshes.hub_manifold.transform(affine(rot)) ^ meshes.sleeve_manifold
@@ -514,7 +517,8 @@ def interference_mesh(meshes: SceneMeshes, rotation: ArrayLike,
             a = math.atan2(c[1], c[0])
             k = int(np.rint(a / pitch)) % teeth
             rel = math.remainder(a - k * pitch, 2.0 * np.pi)
-            if mask[0 if rel < 0 else 1, k]:
+            thick = 2.0 * piece.volume() / max(piece.surface_area(), 1e-300)
+            if mask[0 if rel < 0 else 1, k] or thick > meshes.tolerance_mm:
                 keep.append(piece)
         overlap = type(overlap).compose(keep) if keep else type(overlap)()
     volume = float(overlap.volume())
