@@ -11,10 +11,13 @@ fillet above it or the tip chamfer below it. Against the involute the gaps are e
 The hub flank (tooth 0, cw) is parametrised by ``(z, t)`` (see :mod:`.flank_table`); at
 turning angle ``theta`` the point maps by ``P(theta)`` (:mod:`.pose`). The minimum over the
 flank is found per plane ``z`` exactly over ``t`` (ends of the active interval, its
-sleeve-edge crossings solved to 1e-12, and the interior stationary point by a parabola and
-a Newton step), then over ``z`` by nested grids that stop when the bracket cannot hide
-more than the tolerance, and a final parabolic step. The active interval in ``t`` is cut
-where the sleeve flank begins (tip chamfer edge) and at the sleeve face ends; the tip
+sleeve-edge crossings solved by secant steps to 1e-11 relative, and an interior minimum,
+where the end slopes point inward, by secant steps on the slope), then over ``z`` from a
+coarse grid of planes: parabolic steps bracketed by +-sqrt(tol / g''), a local parabola
+for minima beside a kink, a corner step where the profile end switches from the form
+circle to the sleeve tip edge, secant intersections for other corners and nested grids,
+until the bracket cannot hide more than the tolerance. The active interval in ``t`` is
+cut where the sleeve flank begins (tip chamfer edge) and at the sleeve face ends; the tip
 chamfer itself recedes at 45° and never holds the minimum.
 
 ``contact_kind`` codes (:data:`KINDS`) name where the minimum lies.
