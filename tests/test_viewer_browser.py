@@ -53,6 +53,7 @@ def test_live_viewer_renders_and_the_rotation_slider_moves_the_hub(browser, renz
         for name in ("/hub", "/sleeve"):
             node = page.locator(f'[aria-label="Edit props for {name}"]')
             node.first.wait_for(state="visible", timeout=10_000)
+        page.wait_for_timeout(1000)  # let the panel finish its transition for the picture
         page.screenshot(path=str(SHOTS / "live-scene-tree.png"))
         page.locator(".mantine-ActionIcon-root").first.click()  # back to the GUI
         page.wait_for_selector("text=rotation ψ (°)", state="visible", timeout=10_000)
