@@ -211,10 +211,12 @@ class _Planes:
         return feasible, (t_lo, k_lo), (t_a, k_a), (t_hi, k_hi)
 
     def minimum_over_t(self, exact: bool = True):
-        """Minima over the active ``t`` interval of both gaps: ``V, T, K`` each ``(2, n)``
-        (circumferential, normal). ``exact=False`` (for the coarse search) solves the
-        sleeve tip edge to 1e-7 only and takes two secant steps toward an interior
-        minimum: values at real points, so never below the exact minimum."""
+        """Minima over the active ``t`` interval of both gaps: ``V, T, K`` each ``(6, n)``:
+        (circumferential, normal) over the interval, then at its lower end and at its
+        upper end alone (branches whose minima over ``z`` are found apart).
+        ``exact=False`` (for the coarse search) solves the sleeve tip edge to 1e-7 only
+        and takes two secant steps toward an interior minimum: values at real points, so
+        never below the exact minimum."""
         n = self.z.shape[0]
         feasible, (t_lo, k_lo), (t_a, k_a), (t_hi, k_hi) = self.active_interval(
             1e-11 if exact else 1e-7)
@@ -231,6 +233,12 @@ class _Planes:
             V.append(np.where(feasible, F[j, cols], np.inf))
             T.append(np.stack([t_lo, t_a, t_hi, TI[mi]])[j, cols])
             K.append(np.where(feasible, np.stack([k_lo, k_a, k_hi, interior])[j, cols], NONE))
+        # the lower and upper ends on their own: smooth in z, one minimum each
+        for t_e, k_e, f_e in ((t_lo, k_lo, fa), (t_hi, k_hi, fh)):
+            for mi in range(2):
+                V.append(np.where(feasible, f_e[mi], np.inf))
+                T.append(t_e)
+                K.append(np.where(feasible, k_e, NONE))
         return np.array(V), np.array(T), np.array(K, dtype=np.int8)
 
     def _f_or(self, t, known_t: float, known):
@@ -298,16 +306,24 @@ class _Planes:
 
 
 def _plane_minima(table, sl, mis, z, theta, R, planes=None, need=(True, True), exact=True):
-    """Minima in the planes ``z`` of the four measures (:data:`MEASURES`): ``V, T, K``
-    ``(4, n)``; ``need`` = (whole flank, pitch line) skips what is not needed (inf)."""
+    """Minima in the planes ``z`` of the four measures (:data:`MEASURES`) and of the two
+    profile-end branches: ``V, T, K`` ``(8, n)``; ``need`` = (whole flank, pitch line)
+    skips what is not needed (inf)."""
     p = _Planes(table, sl, mis, z, theta, planes)
     n = z.shape[0]
-    V, T, K = np.full((4, n), np.inf), np.zeros((4, n)), np.full((4, n), NONE, np.int8)
+    V, T, K = np.full((8, n), np.inf), np.zeros((8, n)), np.full((8, n), NONE, np.int8)
     if need[0]:
-        V[:2], T[:2], K[:2] = p.minimum_over_t(exact)
+        v6, t6, k6 = p.minimum_over_t(exact)
+        V[_WHOLE], T[_WHOLE], K[_WHOLE] = v6, t6, k6
     if need[1]:
-        V[2:], T[2:], K[2:] = p.pitch_line(R)
+        V[2:4], T[2:4], K[2:4] = p.pitch_line(R)
     return V, T, K
+
+
+# rows of the 8 "virtual measures": the four MEASURES, then the circumferential and normal
+# gaps at the lower end of the active interval and at its upper end, minimised apart
+_WHOLE = [0, 1, 4, 5, 6, 7]
+_FOLD = {0: (0, 4, 6), 1: (1, 5, 7), 2: (2,), 3: (3,)}
 
 
 def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
@@ -353,18 +369,19 @@ def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
     planes = (kz_g[tile], lo_g[tile], (hi_g - lo_g)[tile], y_ends)
     V, T, K = _plane_minima(table, sl, misalignment, zg[tile], np.repeat(theta, grid),
                             pitch_radius, planes, exact=False)
-    # rows = (measure, theta) pairs
-    meas = np.repeat(np.arange(4), n)
-    th_of = np.tile(np.arange(n), 4)
-    v, t, k = (X.reshape(4 * n, grid) for X in (V, T, K))
-    rows_all = np.arange(4 * n)
+    # rows = (virtual measure, theta) pairs
+    meas = np.repeat(np.arange(8), n)
+    th_of = np.tile(np.arange(n), 8)
+    v, t, k = (X.reshape(8 * n, grid) for X in (V, T, K))
+    rows_all = np.arange(8 * n)
 
     def evaluate(z, rows):
         """Minima of each row's own measure in the planes ``z`` (whole-flank rows and
         pitch-line rows evaluated apart)."""
         m = meas[rows]
         out = np.empty(rows.size), np.empty(rows.size), np.empty(rows.size, np.int8)
-        for need, sel in (((True, False), m < 2), ((False, True), m >= 2)):
+        pitch = (m == 2) | (m == 3)
+        for need, sel in (((True, False), ~pitch), ((False, True), pitch)):
             idx = np.flatnonzero(sel)
             if idx.size:
                 Vr, Tr, Kr = _plane_minima(table, sl, misalignment, z[idx],
@@ -375,9 +392,27 @@ def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
         return out
 
     j = np.argmin(v, axis=1)
+    # a second coarse local minimum nearly as low as the best is refined too, as an extra
+    # row (two nearly equal minima, e.g. tip edge and form circle on a swing tooth)
+    pad = np.full((8 * n, 1), np.inf)
+    left, right = np.hstack([pad, v[:, :-1]]), np.hstack([v[:, 1:], pad])
+    cols = np.arange(grid)[None, :]
+    local = (v <= left) & (v <= right) & (np.abs(cols - j[:, None]) > 1) & np.isfinite(v)
+    v2 = np.where(local, v, np.inf)
+    j2 = np.argmin(v2, axis=1)
+    vmin = v[rows_all, j]
+    finite_max = np.max(np.where(np.isfinite(v), v, -np.inf), axis=1)
+    second = np.isfinite(v2[rows_all, j2]) & (
+        v2[rows_all, j2] - vmin <= 0.25 * (finite_max - vmin))
+    extra = rows_all[second]
+    origin = np.concatenate([rows_all, extra])
+    meas, th_of = meas[origin], th_of[origin]
+    v, t, k = v[origin], t[origin], k[origin]
+    j = np.concatenate([j, j2[second]])
+    rows_all = np.arange(origin.size)
     best_v, best_z = v[rows_all, j], zg[j]
     best_t, best_k = t[rows_all, j], k[rows_all, j]
-    exact_val = np.zeros(4 * n, dtype=bool)  # coarse values are upper bounds
+    exact_val = np.zeros(origin.size, dtype=bool)  # coarse values are upper bounds
     jl, jr = np.maximum(j - 1, 0), np.minimum(j + 1, grid - 1)
     a_z, a_v = zg[jl], v[rows_all, jl]
     b_z, b_v = zg[jr], v[rows_all, jr]
@@ -475,7 +510,7 @@ def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
         """Corner minima where the active interval's lower end switches from the hub form
         circle to the sleeve tip edge: solve ``rq(z, t=0) = r_form`` in the bracket
         (secant) and bracket the corner by +-eps, eps = tol / (2 slope)."""
-        rows = rows[meas[rows] < 2]
+        rows = rows[(meas[rows] != 2) & (meas[rows] != 3)]
         if rows.size == 0:
             return
         th = theta[th_of[rows]]
@@ -605,6 +640,16 @@ def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
         best_v[ex] = np.where(use, ve, best_v[ex])
         best_t[ex] = np.where(use, te, best_t[ex])
         best_k[ex] = np.where(use, ke, best_k[ex])
+    # each row keeps the better of its own and its extra row's minimum
+    R = 8 * n
+    if origin.size > R:
+        ex_rows = np.arange(R, origin.size)
+        won = best_v[ex_rows] < best_v[origin[ex_rows]]
+        dst, src = origin[ex_rows][won], ex_rows[won]
+        best_v[dst], best_z[dst], best_t[dst], best_k[dst] = (best_v[src], best_z[src],
+                                                              best_t[src], best_k[src])
+        best_v, best_z, best_t, best_k = best_v[:R], best_z[:R], best_t[:R], best_k[:R]
+        th_of = th_of[:R]
     at_end = (np.abs(np.abs(best_z) - hf) <= 1e-12 * hf) & (best_k != NONE)
     best_k = np.where(at_end, FACE_END, best_k).astype(np.int8)
     lo, hi = table.radii(best_z)
@@ -612,8 +657,11 @@ def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
     rate = turning_rate(table, misalignment, best_z, best_t, theta[th_of])
     result = {}
     for mi, name in enumerate(MEASURES):
-        s = slice(mi * n, (mi + 1) * n)
-        result[name] = Minimum(best_v[s], best_z[s], r[s], best_t[s], best_k[s], rate[s])
+        rows = np.array(_FOLD[mi])[:, None] * n + np.arange(n)[None, :]  # (branches, n)
+        jb = np.argmin(best_v[rows], axis=0)
+        sel = rows[jb, np.arange(n)]
+        result[name] = Minimum(best_v[sel], best_z[sel], r[sel], best_t[sel], best_k[sel],
+                               rate[sel])
     return result
 
 
