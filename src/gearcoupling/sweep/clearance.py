@@ -214,16 +214,16 @@ class _Planes:
         """Minima over the active ``t`` interval of both gaps: ``V, T, K`` each ``(6, n)``:
         (circumferential, normal) over the interval, then at its lower end and at its
         upper end alone (branches whose minima over ``z`` are found apart).
-        ``exact=False`` (for the coarse search) solves the sleeve tip edge to 1e-7 only
-        and takes two secant steps toward an interior minimum: values at real points, so
-        never below the exact minimum."""
+        ``exact=False`` (for the coarse search) solves the sleeve tip edge to 1e-7 only:
+        values at real points, so never below the exact minimum. (Cutting the interior
+        search short there misled the bracket: it must converge.)"""
         n = self.z.shape[0]
         feasible, (t_lo, k_lo), (t_a, k_a), (t_hi, k_hi) = self.active_interval(
             1e-11 if exact else 1e-7)
         fa = self._f_or(t_lo, 0.0, self.g0)
         fh = self._f_or(t_hi, 1.0, self.g1)
         fb = np.where(t_a == t_hi, fh, self._f_or(t_a, 1.0, self.g1))
-        TI, FI = self._interior(t_lo, t_a, fa, fb, feasible, iters=12 if exact else 2)
+        TI, FI = self._interior(t_lo, t_a, fa, fb, feasible, iters=12)
         interior = np.full(n, INTERIOR, np.int8)
         cols = np.arange(n)
         V, T, K = [], [], []
