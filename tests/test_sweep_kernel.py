@@ -116,6 +116,8 @@ def test_flank_table_error_measured_small(renzo):
     ("industrial-m2", 3.0, 200.0, False),
     ("mill-spindle", 1.0, 95.0, True),
     ("renzo-1967", 5.0, 40.0, False),
+    ("industrial-m2", 3.0, 357.7894736842106, False),  # interior minimum near a pivot
+    ("industrial-m2", 0.75, 84.0, True),  # swing tooth: tip-edge and form-circle minima
     ("renzo-1967", 0.0, 0.0, True),
 ])
 def test_other_templates_match_brute_force(name, deg, theta_deg, normal):
@@ -135,3 +137,17 @@ def test_other_templates_match_brute_force(name, deg, theta_deg, normal):
     dense = brute_force(spec, mis, th, normal)
     assert value <= dense + 1e-9 + 2 * table.max_error_mm
     assert dense - value < 1e-6 + 2 * table.max_error_mm, dense - value
+
+
+@pytest.mark.parametrize("name, deg", [("industrial-m2", 0.75), ("industrial-m2", 3.0),
+                                       ("renzo-1967", 1.0)])
+def test_map_does_not_depend_on_the_coarse_grid(name, deg):
+    """Maps from 5 and 33 coarse planes agree within the tolerance everywhere: the
+    refinement finds the same (global) minimum, not a local one near its start."""
+    spec = load_spec(name)
+    angles = np.arange(0.0, 360.0, 7.5)
+    a = sweep(spec, deg, angles, tolerance_mm=1e-7, grid=5)
+    b = sweep(spec, deg, angles, tolerance_mm=1e-7, grid=33)
+    for key in ("clearance_mm", "normal_clearance_mm", "pitch_clearance_mm",
+                "pitch_normal_clearance_mm"):
+        assert np.max(np.abs(getattr(a, key) - getattr(b, key))) < 1e-6, key
