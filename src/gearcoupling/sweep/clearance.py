@@ -210,7 +210,7 @@ class _Planes:
             k_hi[idx] = SLEEVE_FILLET
         return feasible, (t_lo, k_lo), (t_a, k_a), (t_hi, k_hi)
 
-    def minimum_over_t(self, exact: bool = True):
+    def minimum_over_t(self, exact: bool = True, interior: bool = True):
         """Minima over the active ``t`` interval of both gaps: ``V, T, K`` each ``(6, n)``:
         (circumferential, normal) over the interval, then at its lower end and at its
         upper end alone (branches whose minima over ``z`` are found apart).
@@ -223,7 +223,10 @@ class _Planes:
         fa = self._f_or(t_lo, 0.0, self.g0)
         fh = self._f_or(t_hi, 1.0, self.g1)
         fb = np.where(t_a == t_hi, fh, self._f_or(t_a, 1.0, self.g1))
-        TI, FI = self._interior(t_lo, t_a, fa, fb, feasible, iters=12)
+        if interior:
+            TI, FI = self._interior(t_lo, t_a, fa, fb, feasible, iters=12)
+        else:  # only the ends are wanted (profile-end branch rows)
+            TI, FI = np.zeros((2, n)), np.full((2, n), np.inf)
         interior = np.full(n, INTERIOR, np.int8)
         cols = np.arange(n)
         V, T, K = [], [], []
@@ -305,7 +308,8 @@ class _Planes:
         return V, np.stack([t, t]), np.stack([K, K])
 
 
-def _plane_minima(table, sl, mis, z, theta, R, planes=None, need=(True, True), exact=True):
+def _plane_minima(table, sl, mis, z, theta, R, planes=None, need=(True, True), exact=True,
+                  interior=True):
     """Minima in the planes ``z`` of the four measures (:data:`MEASURES`) and of the two
     profile-end branches: ``V, T, K`` ``(8, n)``; ``need`` = (whole flank, pitch line)
     skips what is not needed (inf)."""
@@ -313,7 +317,7 @@ def _plane_minima(table, sl, mis, z, theta, R, planes=None, need=(True, True), e
     n = z.shape[0]
     V, T, K = np.full((8, n), np.inf), np.zeros((8, n)), np.full((8, n), NONE, np.int8)
     if need[0]:
-        v6, t6, k6 = p.minimum_over_t(exact)
+        v6, t6, k6 = p.minimum_over_t(exact, interior)
         V[_WHOLE], T[_WHOLE], K[_WHOLE] = v6, t6, k6
     if need[1]:
         V[2:4], T[2:4], K[2:4] = p.pitch_line(R)
@@ -381,11 +385,15 @@ def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
         m = meas[rows]
         out = np.empty(rows.size), np.empty(rows.size), np.empty(rows.size, np.int8)
         pitch = (m == 2) | (m == 3)
-        for need, sel in (((True, False), ~pitch), ((False, True), pitch)):
+        ends = m >= 4
+        for need, interior, sel in (((True, False), True, ~pitch & ~ends),
+                                    ((True, False), False, ends),
+                                    ((False, True), False, pitch)):
             idx = np.flatnonzero(sel)
             if idx.size:
                 Vr, Tr, Kr = _plane_minima(table, sl, misalignment, z[idx],
-                                           theta[th_of[rows[idx]]], pitch_radius, need=need)
+                                           theta[th_of[rows[idx]]], pitch_radius, need=need,
+                                           interior=interior)
                 c = np.arange(idx.size)
                 for o, X in zip(out, (Vr, Tr, Kr), strict=True):
                     o[idx] = X[m[idx], c]
