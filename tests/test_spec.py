@@ -46,7 +46,7 @@ def test_inches_and_diametral_pitch_convert_to_mm():
         "tooth.diametral_pitch": 10, "hub.face_width": 12.7, "hub.backlash": 0.1524,
         "hub.tip.diameter": 132.08, "hub.root.dedendum": 3.175, "hub.root.fillet_radius": 0.762,
         "hub.crowning.radius": 63.5, "hub.body.bore_diameter": 88.9, "hub.body.length": 25.4,
-        "sleeve.face_width": 19.05, "sleeve.minor_diameter": 121.92,
+        "sleeve.face_width": 19.05, "sleeve.minor_diameter": 122.682,
         "sleeve.major_diameter": 133.35, "sleeve.tip_chamfer": 0.254,
         "sleeve.root_fillet_radius": 0.508, "sleeve.outer_diameter": 152.4})
     # same coupling, whatever the file's units (up to the rounding of inch conversions)
@@ -82,6 +82,9 @@ def test_overrides_and_replace():
         ({"hub__root__dedendum": 1.0, "sleeve__minor_diameter": 73.0}, "sleeve.minor_diameter",
          "hub root"),
         ({"sleeve__minor_diameter": 70.0}, "sleeve.minor_diameter", "base diameter"),
+        ({"sleeve__minor_diameter": 72.5}, "sleeve.minor_diameter", "hub root fillets"),
+        ({"hub__tip__diameter": 80.9, "sleeve__major_diameter": 81.0},
+         "hub.tip.diameter", "sleeve root fillets"),
         ({"sleeve__major_diameter": 60.0}, "sleeve.major_diameter", "minor"),
         ({"hub__root__fillet_radius": 3.0}, "hub.root.fillet_radius", "dedendum"),
         ({"hub__body__bore_diameter": 70.0}, "hub.body.bore_diameter", "rim"),

@@ -505,7 +505,11 @@ def spec_from_dict(data: dict[str, Any], name: str = "custom") -> CouplingSpec:
     r_space_pointed = _pointed_radius(tooth, space_width)
     major = s.length("major_diameter", 2 * min(R + 1.25 * m,
                                                tip_default + 0.5 * (r_space_pointed - tip_default)))
-    minor_default = max(R - hub_root.dedendum + 0.25 * m, tooth.base_radius + 0.1 * m)
+    # the sleeve tips stay above the hub's form circle (all contact on the involutes)
+    h_form = hub_root.dedendum - hub_root.fillet_radius * (1 - math.sin(tooth.pressure_angle))
+    r_form_hub = math.hypot(R - h_form, h_form / math.tan(tooth.pressure_angle))
+    minor_default = max(r_form_hub + 0.05 * m, R - hub_root.dedendum + 0.25 * m,
+                        tooth.base_radius + 0.1 * m)
     sleeve = Sleeve(
         face_width=s.length("face_width", face + 4 * m),
         minor_diameter=s.length("minor_diameter", 2 * minor_default),

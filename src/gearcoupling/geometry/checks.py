@@ -112,6 +112,16 @@ def check_spec(spec) -> None:
                         f"undercut at z = {zi:.4g} mm: the hob's straight flank reaches below "
                         "the base circle, which the generator does not model; use more teeth, "
                         "a larger pressure angle, a smaller dedendum or a larger fillet radius")
+    r_form0 = float(form_radius(m, 0.0))
+    if sm.r_minor < r_form0:
+        raise SpecError("sleeve.minor_diameter", sl.minor_diameter,
+                        f"sleeve tips reach into the hub root fillets: must be at least the hub "
+                        f"form diameter {2 * r_form0:.6g} mm, so that all contact is on the "
+                        f"involute flanks")
+    if r_tip0 > sm.r_fillet:
+        raise SpecError("hub.tip.diameter", hub.tip.diameter,
+                        f"hub tips reach into the sleeve root fillets: must be at most "
+                        f"{2 * sm.r_fillet:.6g} mm, where the sleeve fillets start")
     r_form = form_radius(m, z)
     r_tip = tip_radius(m, z)
     if np.any(r_form >= r_tip):
