@@ -125,8 +125,9 @@ def test_aligned_coupling_has_constant_clearance_half_the_backlash(renzo):
         renzo.tooth.pressure_angle), atol=1e-6)
     np.testing.assert_allclose(st.clearance_mm, curve.clearance_mm[0, 0], atol=1e-7)
     # circumferentially r * dalpha: smallest at the lowest active radius, below R
+    # (the sweep's 1e-7 mm clearance tolerance moves r_star by R * 1e-7 / half < 1e-4 mm)
     r_star = curve.clearance_mm[0, 0] / half * renzo.tooth.pitch_radius
-    assert sleeve_model(renzo).r_form - 1e-6 <= r_star < renzo.tooth.pitch_radius
+    assert sleeve_model(renzo).r_form - 1e-4 <= r_star < renzo.tooth.pitch_radius
 
 
 def test_plot_series_marks_every_tooth_at_its_theta(renzo):

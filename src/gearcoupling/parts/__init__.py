@@ -14,6 +14,7 @@ import time
 
 import numpy as np
 
+from ..errors import SpecError
 from ..geometry.section import PARTS
 from .builder import SURFACE_KINDS, MeshBuilder, tooth_runs
 from .hub import build_hub_run, hub_layout
@@ -28,16 +29,16 @@ def default_tolerance(spec) -> float:
 
 
 def check_tolerance(spec, tolerance_mm) -> float:
-    """The tolerance as a float, or ``ValueError`` naming the allowed range."""
+    """The tolerance as a float, or :class:`SpecError` (a ``ValueError``) naming the range."""
     tol = default_tolerance(spec) if tolerance_mm is None else tolerance_mm
     try:
         tol = float(tol)
     except (TypeError, ValueError) as err:
-        raise ValueError(f"tolerance_mm = {tolerance_mm!r}: must be a number (mm)") from err
+        raise SpecError("tolerance_mm", tolerance_mm, "must be a number (mm)") from err
     lo, hi = spec.tooth.module * 1e-5, spec.tooth.module * 0.1
     if not (math.isfinite(tol) and lo <= tol <= hi):
-        raise ValueError(f"tolerance_mm = {tolerance_mm!r}: must be from {lo:.3g} to {hi:.3g} mm "
-                         "(1e-5 to 0.1 module) for this spec")
+        raise SpecError("tolerance_mm", tolerance_mm, f"must be from {lo:.3g} to {hi:.3g} mm "
+                        "(1e-5 to 0.1 module) for this spec")
     return tol
 
 
