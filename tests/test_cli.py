@@ -32,7 +32,16 @@ def test_sections_and_run_write_files(tmp_path, capsys):
     assert main(["run", "industrial-m2", "-o", str(tmp_path / "r")]) == 0
     spec = json.loads((tmp_path / "r" / "spec.json").read_text())
     assert spec["name"] == "industrial-m2" and spec["tooth"]["teeth"] == 38
-    assert not list((tmp_path / "r").glob(".*"))  # no temporary files left behind
+    written = {p.name for p in (tmp_path / "r").iterdir()}
+    assert {"sections.png", "hub.stl", "sleeve.stl", "hub.step", "sleeve.step", "sweep.csv",
+            "sweep_summary.json", "interference.json", "viewer.html"} <= written
+    assert not [n for n in written if n.startswith(".")]  # no temporary files left behind
+
+
+def test_run_only_and_skip_choose_steps(tmp_path):
+    assert main(["run", "renzo-1967", "-o", str(tmp_path), "--only", "spec,sections,parts",
+                 "--skip", "parts"]) == 0
+    assert {p.name for p in tmp_path.iterdir()} == {"spec.json", "sections.png"}
 
 
 @pytest.mark.parametrize("argv, words", [
@@ -40,6 +49,7 @@ def test_sections_and_run_write_files(tmp_path, capsys):
     (["spec", "renzo-1967", "--set", "hub.crowning.radius=0.01"], "hub.crowning.radius"),
     (["spec", "nope"], "templates"),
     (["spec", "renzo-1967", "--set", "oops"], "KEY=VALUE"),
+    (["run", "renzo-1967", "--only", "spec,stl"], "--only = 'stl'"),
 ])
 def test_bad_input_exits_2_with_a_clear_message(argv, words, capsys):
     assert main(argv) == 2

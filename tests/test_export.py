@@ -205,10 +205,9 @@ def test_generate_bad_options_exit_2(tmp_path, capsys, argv, field):
 
 def test_run_has_parts_and_step_steps(tmp_path):
     from gearcoupling.commands.generate import parts_step
-    from gearcoupling.commands.run import STEPS
+    from gearcoupling.commands.run import STEP_KEYS
 
-    labels = [label for label, _ in STEPS]
-    assert "parts" in labels and "STEP" in labels
+    assert "parts" in STEP_KEYS and "step" in STEP_KEYS
     spec = gc.load_spec("industrial-m2")
     written = parts_step(spec, tmp_path)
     assert {p.name for p in written} == {"hub.stl", "sleeve.stl", "parts.json"}

@@ -15,3 +15,10 @@ def test_kernels_import_no_heavy_backend(module):
             f"print(','.join(m for m in {HEAVY!r} if m in sys.modules))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "", f"{module} imported {out.stdout.strip()}"
+
+
+def test_later_stages_are_reachable_lazily_from_the_top_level():
+    code = ("import sys, gearcoupling as gc; assert 'trimesh' not in sys.modules; "
+            "from gearcoupling.parts import build_part; assert gc.build_part is build_part; "
+            "assert callable(gc.export_part) and callable(gc.check_interference)")
+    subprocess.run([sys.executable, "-c", code], check=True)

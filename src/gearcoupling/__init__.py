@@ -18,6 +18,23 @@ from .spec import CouplingSpec, load_spec, spec_from_dict, template_names
 
 __version__ = "0.1.0"
 
+# later stages of the data flow, imported on first use so that ``import gearcoupling``
+# stays free of mesh, CAD and viewer libraries (the sweep is ``gearcoupling.sweep.sweep``)
+_LAZY = {
+    "build_part": "gearcoupling.parts",
+    "export_part": "gearcoupling.export",
+    "check_interference": "gearcoupling.interference",
+}
+
+
+def __getattr__(name: str):
+    if name in _LAZY:
+        import importlib
+
+        return getattr(importlib.import_module(_LAZY[name]), name)
+    raise AttributeError(f"module 'gearcoupling' has no attribute {name!r}")
+
+
 __all__ = [
     "BackendError",
     "CouplingSpec",
@@ -25,6 +42,9 @@ __all__ = [
     "GearCouplingError",
     "GeometryError",
     "SpecError",
+    "build_part",
+    "check_interference",
+    "export_part",
     "feed_path",
     "hub_flank",
     "inv",

@@ -1,95 +1,107 @@
 """``gearcoupling run``: everything the project can make for a spec, into one folder.
 
-Steps are registered in :data:`STEPS` as ``(label, function(spec, out_dir) -> [paths])``;
-later features add theirs (parts, STEP, sweep, viewer) without touching this loop.
+Steps are registered in :data:`STEPS` as ``(key, label, function(spec, out_dir) -> [paths])``;
+each imports its stage only when it runs. ``--only``/``--skip`` take comma-separated keys.
+A step whose optional back-end is missing (STEP, viewer) says so and writes nothing.
 """
 
 from __future__ import annotations
 
+import math
+import sys
 from collections.abc import Callable
 from pathlib import Path
 
-from ..atomic import write_json
+from ..errors import BackendError, SpecError
 from .common import add_spec_arguments, output_dir, progress, spec_from_args
 
 Step = Callable[[object, Path], list[Path]]
 
 
-def _spec_step(spec, out: Path) -> list[Path]:
+def _spec(spec, out: Path) -> list[Path]:
+    from ..atomic import write_json
     from .spec import resolved
 
     return [write_json(out / "spec.json", resolved(spec))]
 
 
-def _sections_step(spec, out: Path) -> list[Path]:
+def _sections(spec, out: Path) -> list[Path]:
     from ..plots import plot_sections
 
     return [plot_sections(spec, out / "sections.png")]
 
 
-def _viewer_step(spec, out: Path) -> list[Path]:
-    import sys
-
-    from ..errors import BackendError
-    from ..viewer.html import write_html
-
-    try:
-        return [write_html(spec, out / "viewer.html")]
-    except BackendError as err:  # viser is an optional extra: the other outputs stand
-        print(f"gearcoupling: viewer.html skipped: {err}", file=sys.stderr)
-        return []
-
-
-def _parts_step(spec, out: Path) -> list[Path]:
+def _parts(spec, out: Path) -> list[Path]:
     from .generate import parts_step
 
     return parts_step(spec, out)
 
 
-def _step_step(spec, out: Path) -> list[Path]:
+def _step_files(spec, out: Path) -> list[Path]:
     from .generate import step_step
 
     return step_step(spec, out)
 
 
-def _sweep_step(spec, out: Path) -> list[Path]:
-    import math
-
+def _sweep(spec, out: Path) -> list[Path]:
     from .sweep import sweep_files
 
     return sweep_files(spec, out, math.degrees(spec.design_misalignment), 360)
 
 
-def _check_step(spec, out: Path) -> list[Path]:
+def _check(spec, out: Path) -> list[Path]:
     from .check import run_step
 
     return run_step(spec, out)
 
 
-STEPS: list[tuple[str, Step]] = [
-    ("resolved spec", _spec_step),
-    ("section plots", _sections_step),
-    ("parts", _parts_step),
-    ("STEP", _step_step),
-    ("static viewer HTML", _viewer_step),
-    ("interference check", _check_step),
-    ("sweep at the design angle", _sweep_step),
+def _viewer(spec, out: Path) -> list[Path]:
+    from ..viewer.html import write_html
+
+    return [write_html(spec, out / "viewer.html")]
+
+
+STEPS: list[tuple[str, str, Step]] = [
+    ("spec", "resolved spec", _spec),
+    ("sections", "section plots", _sections),
+    ("parts", "hub and sleeve STL", _parts),
+    ("step", "hub and sleeve STEP", _step_files),
+    ("sweep", "sweep at the design angle", _sweep),
+    ("check", "interference check at the design angle", _check),
+    ("viewer", "static viewer HTML", _viewer),
 ]
+STEP_KEYS = tuple(key for key, _, _ in STEPS)
 
 
 def register(sub) -> None:
     p = sub.add_parser("run", help="write everything for a spec into outputs/<spec>/")
     add_spec_arguments(p)
+    p.add_argument("--only", metavar="KEYS", default=None,
+                   help=f"comma-separated steps to run, from {','.join(STEP_KEYS)}")
+    p.add_argument("--skip", metavar="KEYS", default="", help="comma-separated steps to skip")
     p.set_defaults(func=run)
 
 
+def _keys(option: str, text: str | None) -> set[str]:
+    keys = {k.strip() for k in (text or "").split(",") if k.strip()}
+    unknown = keys - set(STEP_KEYS)
+    if unknown:
+        raise SpecError(option, ",".join(sorted(unknown)), f"steps are {','.join(STEP_KEYS)}")
+    return keys
+
+
 def run(args) -> int:
+    only = _keys("--only", args.only) if args.only is not None else set(STEP_KEYS)
+    chosen = [s for s in STEPS if s[0] in only - _keys("--skip", args.skip)]
     spec = spec_from_args(args)
     out = output_dir(args, spec)
     written: list[Path] = []
-    with progress(f"{spec.name}", len(STEPS)) as advance:
-        for label, step in STEPS:
-            written.extend(step(spec, out))
+    with progress(spec.name, len(chosen)) as advance:
+        for _, label, step in chosen:
+            try:
+                written.extend(step(spec, out))
+            except BackendError as err:  # optional extra missing: the other outputs stand
+                print(f"gearcoupling: {label} skipped: {err}", file=sys.stderr)
             advance(label)
     for path in written:
         print(path)
