@@ -18,7 +18,14 @@ from pathlib import Path
 import numpy as np
 
 from ..atomic import atomic_path, write_json, write_text
-from .common import add_spec_arguments, output_dir, progress, spec_from_args
+from .common import (
+    add_misalignment_argument,
+    add_spec_arguments,
+    misalignment_deg,
+    output_dir,
+    progress,
+    spec_from_args,
+)
 
 EXIT_INTERFERENCE = 1
 
@@ -51,8 +58,7 @@ def register(sub) -> None:
     p = sub.add_parser("check", help="interference and minimum gap of the posed part meshes "
                        "over rotation (exit status 1 when they overlap)")
     add_spec_arguments(p)
-    p.add_argument("--misalignment", type=float, default=None, metavar="DEG",
-                   help="misalignment in degrees (default: the spec's design angle)")
+    add_misalignment_argument(p)
     p.add_argument("--angles", type=_positive_int, default=72, metavar="N",
                    help="rotation angles evenly spaced over a turn (default 72)")
     p.add_argument("--method", choices=("boolean", "distance"), default="boolean",
@@ -198,8 +204,7 @@ def run(args) -> int:
     from ..interference import check_interference
 
     spec = spec_from_args(args)
-    mis = (math.degrees(spec.design_misalignment) if args.misalignment is None
-           else args.misalignment)
+    mis = misalignment_deg(args, spec)
     angles = 360.0 * np.arange(args.angles) / args.angles
     out = output_dir(args, spec)
     try:

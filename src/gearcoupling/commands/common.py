@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import math
 from contextlib import contextmanager
 from pathlib import Path
 
@@ -19,6 +20,19 @@ def add_spec_arguments(parser: argparse.ArgumentParser, *, output: bool = True) 
     if output:
         parser.add_argument("-o", "--output", metavar="DIR", default=None,
                             help="output folder (default: outputs/<spec name>)")
+
+
+def add_misalignment_argument(parser: argparse.ArgumentParser) -> None:
+    """``--misalignment DEG``, default the spec's design angle (:func:`misalignment_deg`)."""
+    parser.add_argument("--misalignment", type=float, default=None, metavar="DEG",
+                        help="misalignment in degrees (default: the spec's design angle)")
+
+
+def misalignment_deg(args: argparse.Namespace, spec: CouplingSpec) -> float:
+    """The ``--misalignment`` given, else the spec's design misalignment, in degrees."""
+    if args.misalignment is None:
+        return math.degrees(spec.design_misalignment)
+    return args.misalignment
 
 
 def spec_from_args(args: argparse.Namespace) -> CouplingSpec:

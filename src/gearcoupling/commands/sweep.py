@@ -3,22 +3,26 @@
 from __future__ import annotations
 
 import csv
-import math
 from pathlib import Path
 
 import numpy as np
 
 from ..atomic import atomic_path, write_json
 from ..errors import SpecError
-from .common import add_spec_arguments, output_dir, spec_from_args
+from .common import (
+    add_misalignment_argument,
+    add_spec_arguments,
+    misalignment_deg,
+    output_dir,
+    spec_from_args,
+)
 
 
 def register(sub) -> None:
     p = sub.add_parser("sweep", help="clearance, contact and backlash of every tooth over a "
                        "turn at a misalignment (CSV, summary JSON, plots)")
     add_spec_arguments(p)
-    p.add_argument("--misalignment", type=float, default=None, metavar="DEG",
-                   help="misalignment in degrees (default: the spec's design angle)")
+    add_misalignment_argument(p)
     p.add_argument("--angles", type=int, default=360, metavar="N",
                    help="rotations over one turn (default 360)")
     p.add_argument("--tolerance", type=float, default=1e-7, metavar="MM",
@@ -68,8 +72,7 @@ def sweep_files(spec, out: Path, misalignment_deg: float, angles: int, *,
 
 def run(args) -> int:
     spec = spec_from_args(args)
-    mis = (math.degrees(spec.design_misalignment) if args.misalignment is None
-           else args.misalignment)
+    mis = misalignment_deg(args, spec)
     out = output_dir(args, spec)
     for path in sweep_files(spec, out, mis, args.angles, tolerance_mm=args.tolerance,
                             design=not args.no_design, plots=not args.no_plots,

@@ -2,14 +2,19 @@
 
 from __future__ import annotations
 
-import math
 import sys
 import time
 
 from ..errors import SpecError
 from ..viewer.nodes import FRAMES
 from ..viewer.scene import COLOR_MODES, CUTAWAYS, LOD_DIVISORS
-from .common import add_spec_arguments, output_dir, spec_from_args
+from .common import (
+    add_misalignment_argument,
+    add_spec_arguments,
+    misalignment_deg,
+    output_dir,
+    spec_from_args,
+)
 
 
 def register(sub) -> None:
@@ -18,8 +23,7 @@ def register(sub) -> None:
     p.add_argument("--host", default="127.0.0.1", help="address to serve on (default 127.0.0.1)")
     p.add_argument("--port", type=int, default=8080, help="port (default 8080; the next free "
                    "one is used if taken)")
-    p.add_argument("--misalignment", type=float, default=None, metavar="DEG",
-                   help="start misalignment in degrees (default: the spec's design angle)")
+    add_misalignment_argument(p)
     p.add_argument("--angle", type=float, default=0.0, metavar="DEG",
                    help="start rotation psi in degrees (default 0)")
     p.add_argument("--cutaway", choices=CUTAWAYS, default="quarter",
@@ -46,8 +50,7 @@ def run(args) -> int:
     from ..viewer.scene import check_pose, lod_tolerance
 
     spec = spec_from_args(args)
-    mis = math.degrees(spec.design_misalignment) if args.misalignment is None \
-        else args.misalignment
+    mis = misalignment_deg(args, spec)
     mis, psi = check_pose(mis, args.angle)
     if args.port is not None and not 0 < args.port < 65536:
         raise SpecError("--port", args.port, "must be from 1 to 65535")
