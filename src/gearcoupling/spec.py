@@ -43,10 +43,6 @@ def _positive(path: str, value: float, *, finite: bool = True) -> None:
            "must be positive (inf allowed)")
 
 
-def _as_mm(obj) -> str:
-    return f"{obj:.6g} mm"
-
-
 @dataclass(frozen=True)
 class ToothSystem:
     """Tooth system shared by hub and sleeve.
@@ -61,7 +57,6 @@ class ToothSystem:
         Pressure angle ``phi`` in radians, 14.5°-30°.
     """
 
-    PATH: ClassVar[str] = "tooth"
     teeth: int
     module: float
     pressure_angle: float
@@ -180,7 +175,6 @@ class Crowning:
 class HubTip:
     """Hub tip surface: a sphere about O (for centring) or a cylinder, by diameter (mm)."""
 
-    PATH: ClassVar[str] = "hub.tip"
     kind: str
     diameter: float
 
@@ -193,7 +187,6 @@ class HubTip:
 class HubRoot:
     """Hub root as cut by the hob: hob addendum below the feed path and hob tip radius (mm)."""
 
-    PATH: ClassVar[str] = "hub.root"
     dedendum: float
     fillet_radius: float
 
@@ -208,7 +201,6 @@ class HubRoot:
 class HubBody:
     """Hub body below the teeth: bore diameter and axial length centred on the midplane (mm)."""
 
-    PATH: ClassVar[str] = "hub.body"
     bore_diameter: float
     length: float
 
@@ -230,7 +222,6 @@ class Hub:
         Arc tooth thickness ``t`` at the pitch circle in the midplane (mm).
     """
 
-    PATH: ClassVar[str] = "hub"
     face_width: float
     tooth_thickness: float
     tip: HubTip
@@ -269,7 +260,6 @@ class Sleeve:
         Outer diameter of the sleeve ring.
     """
 
-    PATH: ClassVar[str] = "sleeve"
     face_width: float
     minor_diameter: float
     major_diameter: float

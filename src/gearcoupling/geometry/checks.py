@@ -11,6 +11,7 @@ import math
 import numpy as np
 
 from ..errors import GeometryError, SpecError
+from ..spec import MAX_END_TANGENT_DEG
 from .hub import (
     HubModel,
     form_radius,
@@ -63,10 +64,11 @@ def check_spec(spec) -> None:
         e_end = float(np.max(np.abs(m.path.solve_plane(z_end, depths)[2])))
     except GeometryError:
         e_end = math.pi / 2
-    if abs(math.degrees(e_end)) > 45.0:
+    if abs(math.degrees(e_end)) > MAX_END_TANGENT_DEG:
         raise SpecError("hub.crowning.radius", cr.radius,
                         f"too small for the face width {hub.face_width:.6g} mm: the feed path "
-                        f"turns {math.degrees(e_end):.1f}° by the face end, at most 45° allowed")
+                        f"turns {math.degrees(e_end):.1f}° by the face end, at most "
+                        f"{MAX_END_TANGENT_DEG:g}° allowed")
 
     try:
         sm = sleeve_model(spec)
