@@ -33,8 +33,8 @@ from numpy.typing import NDArray
 
 from ..geometry.involute import inv
 from ..geometry.sleeve import SleeveModel
-from .flank_table import FlankTable
-from .pose import map_point, map_polar
+from .flank_table import FlankTable, clenshaw
+from .pose import map_point_cs, map_polar
 
 KINDS = ("interior", "face end", "tip edge", "form edge", "sleeve tip edge",
          "sleeve root fillet", "sleeve face end", "no contact")
@@ -105,12 +105,15 @@ class _Planes:
     def __init__(self, table: FlankTable, sl: _Sleeve, mis: float, z, theta, planes=None):
         self.table, self.sl, self.mis = table, sl, mis
         self.z, self.theta = z, theta
+        self.ci, self.si = math.cos(mis), math.sin(mis)
+        self.ct, self.st = np.cos(theta), np.sin(theta)  # once per batch, not per call
         if planes is None:
-            self.kz = table.z_coefficients(z)
+            # coefficients along the first axis: (nt, n), contiguous rows for Clenshaw
+            self.kz = np.ascontiguousarray(table.z_coefficients(z).T)
             self.lo, hi = table.radii(z)
             self.span = hi - self.lo
             self.y_ends = None
-        else:  # precomputed per plane: coefficients, radii and y at t = 0 and 1
+        else:  # precomputed per plane: coefficients (nt, n), radii and y at t = 0 and 1
             self.kz, self.lo, self.span, self.y_ends = planes
 
     def at_end(self, end: int):
@@ -119,18 +122,19 @@ class _Planes:
             return self.at(np.full(self.z.shape, float(end)))
         r = self.lo + end * self.span
         y = self.y_ends[end]
-        return map_point(np.sqrt(r * r - y * y), y, self.z, self.mis, self.theta)
+        return map_point_cs(np.sqrt(r * r - y * y), y, self.z, self.ci, self.si, self.ct,
+                            self.st)
 
     def at(self, t, idx=None):
         """``(rq, aq, zq)`` at heights ``t`` (for the rows ``idx``, all when None)."""
         if idx is None:
-            z, th, kz, lo, sp = self.z, self.theta, self.kz, self.lo, self.span
+            z, ct, st, kz, lo, sp = self.z, self.ct, self.st, self.kz, self.lo, self.span
         else:
-            z, th, kz = self.z[idx], self.theta[idx], self.kz[idx]
+            z, ct, st, kz = self.z[idx], self.ct[idx], self.st[idx], self.kz[:, idx]
             lo, sp = self.lo[idx], self.span[idx]
         r = lo + t * sp
-        y = self.table.y_at(kz, t)
-        return map_point(np.sqrt(r * r - y * y), y, z, self.mis, th)
+        y = clenshaw(kz, t)
+        return map_point_cs(np.sqrt(r * r - y * y), y, z, self.ci, self.si, ct, st)
 
     def f(self, t, idx=None):
         """``(circumferential, normal)`` gaps at heights ``t``."""
@@ -200,7 +204,10 @@ class _Planes:
                         t_hi[idx[upd]], k_hi[idx[upd]] = tc[upd], SLEEVE_FACE
         feasible &= t_lo <= t_hi
         t_a, k_a = t_hi.copy(), k_hi.copy()
-        rqh = np.where(t_hi == 1.0, rq1, self.at(t_hi)[0])
+        rqh = rq1.copy()
+        cut = np.flatnonzero(t_hi != 1.0)
+        if cut.size:
+            rqh[cut] = self.at(t_hi[cut], cut)[0]
         idx = np.flatnonzero(feasible & (rqh > sl.r_fillet))
         if idx.size:
             rql, _, _ = self.at(t_lo[idx], idx)
@@ -222,7 +229,11 @@ class _Planes:
             1e-11 if exact else 1e-7)
         fa = self._f_or(t_lo, 0.0, self.g0)
         fh = self._f_or(t_hi, 1.0, self.g1)
-        fb = np.where(t_a == t_hi, fh, self._f_or(t_a, 1.0, self.g1))
+        fb = fh.copy()  # the upper end of [t_lo, t_a] (only the interior search uses it)
+        if interior:
+            sub = np.flatnonzero(t_a != t_hi)
+            if sub.size:
+                fb[:, sub] = np.stack(self.f(t_a[sub], sub))
         if interior:
             TI, FI = self._interior(t_lo, t_a, fa, fb, feasible, iters=12)
         else:  # only the ends are wanted (profile-end branch rows)
@@ -264,37 +275,45 @@ class _Planes:
         if idx0.size == 0:
             return T, F
         a0, b0 = t_lo[idx0], t_a[idx0]
-        GA = (np.stack(self.f(a0 + d, idx0)) - fa[:, idx0]) / d
-        GB = (fb[:, idx0] - np.stack(self.f(b0 - d, idx0))) / d
-        for mi in range(2):
-            inner = (GA[mi] < 0) & (GB[mi] > 0)
-            idx, a, b = idx0[inner], a0[inner], b0[inner]
-            if idx.size == 0:
-                continue
-            x0, g0, x1, g1 = a, GA[mi][inner], b, GB[mi][inner]
-            res = np.empty(idx.size)
-            live = np.arange(idx.size)  # rows still iterating (positions in idx)
-            for _ in range(iters):
-                with np.errstate(divide="ignore", invalid="ignore"):
-                    x = x1 - g1 * (x1 - x0) / (g1 - g0)
-                bad = ~np.isfinite(x) | (x <= a) | (x >= b)
-                x = np.where(bad, 0.5 * (a + b), x)
-                xc = np.clip(x, a + d, b - d)
-                rows = idx[live]
-                gx = (self.f(xc + d, rows)[mi] - self.f(xc - d, rows)[mi]) / (2 * d)
-                right = gx > 0
-                a, b = np.where(right, a, xc), np.where(right, xc, b)
-                x0, g0, x1, g1 = x1, g1, xc, gx
-                done = np.abs(x1 - x0) <= 1e-7  # value error ~ f'' dt^2: negligible
-                res[live[done]] = x1[done]
-                keep = ~done
-                live, a, b, x0, g0, x1, g1 = (live[keep], a[keep], b[keep], x0[keep],
-                                              g0[keep], x1[keep], g1[keep])
-                if live.size == 0:
-                    break
-            res[live] = x1
-            x1 = res
-            T[mi, idx], F[mi, idx] = x1, self.f(x1, idx)[mi]
+        m0 = idx0.size
+        fab = np.stack(self.f(np.concatenate([a0 + d, b0 - d]), np.concatenate([idx0, idx0])))
+        GA = (fab[:, :m0] - fa[:, idx0]) / d
+        GB = (fb[:, idx0] - fab[:, m0:]) / d
+        # both gaps' searches in one batch: row j searches gap mis[j] of plane idx[j]
+        inner = (GA < 0) & (GB > 0)  # (2, m0)
+        mis, pos = np.nonzero(inner)
+        if mis.size == 0:
+            return T, F
+        idx, a, b = idx0[pos], a0[pos], b0[pos]
+        x0, g0, x1, g1 = a, GA[mis, pos], b, GB[mis, pos]
+        res = np.empty(idx.size)
+        live = np.arange(idx.size)  # rows still iterating (positions in idx)
+        for _ in range(iters):
+            with np.errstate(divide="ignore", invalid="ignore"):
+                x = x1 - g1 * (x1 - x0) / (g1 - g0)
+            bad = ~np.isfinite(x) | (x <= a) | (x >= b)
+            x = np.where(bad, 0.5 * (a + b), x)
+            xc = np.clip(x, a + d, b - d)
+            rows = idx[live]
+            k = rows.size
+            fx = np.stack(self.f(np.concatenate([xc + d, xc - d]),
+                                 np.concatenate([rows, rows])))
+            sel = np.concatenate([mis[live], mis[live]])
+            fx = fx[sel, np.arange(2 * k)]
+            gx = (fx[:k] - fx[k:]) / (2 * d)
+            right = gx > 0
+            a, b = np.where(right, a, xc), np.where(right, xc, b)
+            x0, g0, x1, g1 = x1, g1, xc, gx
+            done = np.abs(x1 - x0) <= 1e-7  # value error ~ f'' dt^2: negligible
+            res[live[done]] = x1[done]
+            keep = ~done
+            live, a, b, x0, g0, x1, g1 = (live[keep], a[keep], b[keep], x0[keep],
+                                          g0[keep], x1[keep], g1[keep])
+            if live.size == 0:
+                break
+        res[live] = x1
+        T[mis, idx] = res
+        F[mis, idx] = np.stack(self.f(res, idx))[mis, np.arange(idx.size)]
         return T, F
 
     def pitch_line(self, R: float):
@@ -370,7 +389,7 @@ def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
     lo_g, hi_g = table.radii(zg)
     tile = np.tile(np.arange(grid), n)
     y_ends = (table.y_at(kz_g, np.zeros(grid))[tile], table.y_at(kz_g, np.ones(grid))[tile])
-    planes = (kz_g[tile], lo_g[tile], (hi_g - lo_g)[tile], y_ends)
+    planes = (np.ascontiguousarray(kz_g.T)[:, tile], lo_g[tile], (hi_g - lo_g)[tile], y_ends)
     V, T, K = _plane_minima(table, sl, misalignment, zg[tile], np.repeat(theta, grid),
                             pitch_radius, planes, exact=False)
     # rows = (virtual measure, theta) pairs

@@ -8,6 +8,8 @@ hub tooth ``k`` in sleeve space ``k`` this equals ``Rz(2 pi k / N) P(theta_k) p0
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
@@ -62,8 +64,13 @@ def map_polar(r, alpha, z, misalignment: float, theta):
 def map_point(x, y, z, misalignment: float, theta):
     """:func:`map_polar` for points given by ``(x, y, z)`` (closed form of ``P(theta) p``,
     cheaper than matrices in a batch)."""
-    ci, si = np.cos(misalignment), np.sin(misalignment)
-    ct, st = np.cos(theta), np.sin(theta)
+    return map_point_cs(x, y, z, math.cos(misalignment), math.sin(misalignment),
+                        np.cos(theta), np.sin(theta))
+
+
+def map_point_cs(x, y, z, ci: float, si: float, ct, st):
+    """:func:`map_point` with the cosines and sines of ``i`` and ``theta`` given (callers
+    that map many batches at the same turning angles compute them once)."""
     u = x * st + y * ct  # y after Rz(theta)
     v = u * (ci - 1.0) - z * si  # its change by the tilt
     qx = x + v * st
