@@ -73,6 +73,13 @@ class FlankTable:
         """``y`` at heights ``t`` for per-plane coefficients ``kz`` (``(..., nt)``)."""
         return clenshaw(np.moveaxis(kz, -1, 0), t)
 
+    def even_in_z(self, rel: float = 1e-12) -> bool:
+        """Whether the flank is symmetric about the midplane (``y`` and ``r_form`` even in
+        ``z``: odd Chebyshev coefficients below ``rel`` of the even ones)."""
+        return bool(np.max(np.abs(self.y[1::2])) <= rel * np.max(np.abs(self.y[0::2]))
+                    and np.max(np.abs(self.form[1::2]), initial=0.0)
+                    <= rel * np.max(np.abs(self.form[0::2])))
+
     def evaluate(self, z, t):
         """``(r, alpha)`` at ``(z, t)`` (broadcast)."""
         z, t = np.broadcast_arrays(np.asarray(z, float), np.asarray(t, float))

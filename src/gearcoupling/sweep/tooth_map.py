@@ -43,7 +43,11 @@ def flank_minima(spec, misalignment: float, theta, *, tolerance_mm: float,
                  grid: int = DEFAULT_GRID, periodic: bool = True):
     """Minima of tooth 0's cw flank at turning angles ``theta`` (any shape), all measures.
 
-    With ``periodic`` (ideal geometry) equal turning angles are evaluated once.
+    With ``periodic`` (ideal geometry) equal turning angles are evaluated once, and when the
+    hub flank is symmetric about the midplane (:meth:`FlankTable.even_in_z`) so are
+    ``theta`` and ``theta + pi``: mirroring ``z -> -z`` maps ``P(theta)`` to
+    ``P(theta - pi)`` (``Mz Rx(i) Mz = Rz(pi) Rx(i) Rz(-pi)``) and the sleeve onto itself,
+    so the gaps, ``r``, kind and rate are equal and the contact ``z`` changes sign.
 
     Returns
     -------
@@ -55,7 +59,11 @@ def flank_minima(spec, misalignment: float, theta, *, tolerance_mm: float,
     sm = sleeve_model(spec)
     theta = np.asarray(theta, dtype=float)
     flat = np.mod(theta.ravel(), 2.0 * np.pi)
+    mirror = np.zeros(flat.shape, dtype=bool)
     if periodic:
+        if table.even_in_z():
+            mirror = flat >= np.pi
+            flat = np.where(mirror, flat - np.pi, flat)
         _, first, inverse = np.unique(np.round(flat * _KEY_SCALE).astype(np.int64),
                                       return_index=True, return_inverse=True)
         th = flat[first]
@@ -70,7 +78,9 @@ def flank_minima(spec, misalignment: float, theta, *, tolerance_mm: float,
         "pitch_normal": res["pitch_normal"].value_mm,
         "z": full.z_mm, "r": full.r_mm, "kind": full.kind, "rate": full.rate,
     }
-    return {k: v[inverse].reshape(theta.shape) for k, v in out.items()}, table
+    out = {k: v[inverse] for k, v in out.items()}
+    out["z"] = np.where(mirror, -out["z"], out["z"])
+    return {k: v.reshape(theta.shape) for k, v in out.items()}, table
 
 
 def sweep(spec, misalignment_deg: float, angles_deg: ArrayLike, *,
