@@ -126,7 +126,8 @@ class _Planes:
                             self.st)
 
     def at(self, t, idx=None):
-        """``(rq, aq, zq)`` at heights ``t`` (for the rows ``idx``, all when None)."""
+        """``(rq, aq, zq)`` at heights ``t`` (for the rows ``idx``, all when None); ``t``
+        may carry leading axes, e.g. ``(2, len(idx))`` for two heights per row."""
         if idx is None:
             z, ct, st, kz, lo, sp = self.z, self.ct, self.st, self.kz, self.lo, self.span
         else:
@@ -217,10 +218,12 @@ class _Planes:
             k_hi[idx] = SLEEVE_FILLET
         return feasible, (t_lo, k_lo), (t_a, k_a), (t_hi, k_hi)
 
-    def minimum_over_t(self, exact: bool = True, interior: bool = True):
+    def minimum_over_t(self, exact: bool = True, interior=True):
         """Minima over the active ``t`` interval of both gaps: ``V, T, K`` each ``(6, n)``:
         (circumferential, normal) over the interval, then at its lower end and at its
         upper end alone (branches whose minima over ``z`` are found apart).
+        ``interior`` (bool or ``(n,)`` bool) selects the rows searched inside the interval
+        (the others, profile-end branch rows, want only the ends).
         ``exact=False`` (for the coarse search) solves the sleeve tip edge to 1e-7 only:
         values at real points, so never below the exact minimum. (Cutting the interior
         search short there misled the bracket: it must converge.)"""
@@ -229,15 +232,13 @@ class _Planes:
             1e-11 if exact else 1e-7)
         fa = self._f_or(t_lo, 0.0, self.g0)
         fh = self._f_or(t_hi, 1.0, self.g1)
+        want = np.broadcast_to(np.asarray(interior, dtype=bool), (n,))
         fb = fh.copy()  # the upper end of [t_lo, t_a] (only the interior search uses it)
-        if interior:
-            sub = np.flatnonzero(t_a != t_hi)
-            if sub.size:
-                fb[:, sub] = np.stack(self.f(t_a[sub], sub))
-        if interior:
-            TI, FI = self._interior(t_lo, t_a, fa, fb, feasible, iters=12)
-        else:  # only the ends are wanted (profile-end branch rows)
-            TI, FI = np.zeros((2, n)), np.full((2, n), np.inf)
+        sub = np.flatnonzero(want & (t_a != t_hi))
+        if sub.size:
+            fb[:, sub] = np.stack(self.f(t_a[sub], sub))
+        # rows not searched keep t = 0, f = inf: only their ends count
+        TI, FI = self._interior(t_lo, t_a, fa, fb, feasible & want, iters=12)
         interior = np.full(n, INTERIOR, np.int8)
         cols = np.arange(n)
         V, T, K = [], [], []
@@ -275,10 +276,9 @@ class _Planes:
         if idx0.size == 0:
             return T, F
         a0, b0 = t_lo[idx0], t_a[idx0]
-        m0 = idx0.size
-        fab = np.stack(self.f(np.concatenate([a0 + d, b0 - d]), np.concatenate([idx0, idx0])))
-        GA = (fab[:, :m0] - fa[:, idx0]) / d
-        GB = (fb[:, idx0] - fab[:, m0:]) / d
+        fab = np.stack(self.f(np.stack([a0 + d, b0 - d]), idx0))  # (2 gaps, 2 ends, m0)
+        GA = (fab[:, 0] - fa[:, idx0]) / d
+        GB = (fb[:, idx0] - fab[:, 1]) / d
         # both gaps' searches in one batch: row j searches gap mis[j] of plane idx[j]
         inner = (GA < 0) & (GB > 0)  # (2, m0)
         mis, pos = np.nonzero(inner)
@@ -294,13 +294,9 @@ class _Planes:
             bad = ~np.isfinite(x) | (x <= a) | (x >= b)
             x = np.where(bad, 0.5 * (a + b), x)
             xc = np.clip(x, a + d, b - d)
-            rows = idx[live]
-            k = rows.size
-            fx = np.stack(self.f(np.concatenate([xc + d, xc - d]),
-                                 np.concatenate([rows, rows])))
-            sel = np.concatenate([mis[live], mis[live]])
-            fx = fx[sel, np.arange(2 * k)]
-            gx = (fx[:k] - fx[k:]) / (2 * d)
+            fx = np.stack(self.f(np.stack([xc + d, xc - d]), idx[live]))  # (2, 2, k)
+            fx = fx[mis[live], :, np.arange(live.size)]  # (k, 2): this row's gap
+            gx = (fx[:, 0] - fx[:, 1]) / (2 * d)
             right = gx > 0
             a, b = np.where(right, a, xc), np.where(right, xc, b)
             x0, g0, x1, g1 = x1, g1, xc, gx
@@ -404,15 +400,13 @@ def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
         m = meas[rows]
         out = np.empty(rows.size), np.empty(rows.size), np.empty(rows.size, np.int8)
         pitch = (m == 2) | (m == 3)
-        ends = m >= 4
-        for need, interior, sel in (((True, False), True, ~pitch & ~ends),
-                                    ((True, False), False, ends),
-                                    ((False, True), False, pitch)):
+        ends = m >= 4  # profile-end branch rows: no interior search
+        for need, sel in (((True, False), ~pitch), ((False, True), pitch)):
             idx = np.flatnonzero(sel)
             if idx.size:
                 Vr, Tr, Kr = _plane_minima(table, sl, misalignment, z[idx],
                                            theta[th_of[rows[idx]]], pitch_radius, need=need,
-                                           interior=interior)
+                                           interior=~ends[idx])
                 c = np.arange(idx.size)
                 for o, X in zip(out, (Vr, Tr, Kr), strict=True):
                     o[idx] = X[m[idx], c]
