@@ -33,7 +33,7 @@ from numpy.typing import NDArray
 
 from ..geometry.involute import inv
 from ..geometry.sleeve import SleeveModel
-from .flank_table import FlankTable, clenshaw
+from .flank_table import FlankTable
 from .pose import map_point_cs, map_polar
 
 KINDS = ("interior", "face end", "tip edge", "form edge", "sleeve tip edge",
@@ -109,7 +109,7 @@ class _Planes:
         self.ct, self.st = np.cos(theta), np.sin(theta)  # once per batch, not per call
         if planes is None:
             # coefficients along the first axis: (nt, n), contiguous rows for Clenshaw
-            self.kz = np.ascontiguousarray(table.z_coefficients(z).T)
+            self.kz = table.plane_coefficients(z)
             self.lo, hi = table.radii(z)
             self.span = hi - self.lo
             self.y_ends = None
@@ -134,7 +134,7 @@ class _Planes:
             z, ct, st, kz = self.z[idx], self.ct[idx], self.st[idx], self.kz[:, idx]
             lo, sp = self.lo[idx], self.span[idx]
         r = lo + t * sp
-        y = clenshaw(kz, t)
+        y = self.table.plane_y(kz, t)
         return map_point_cs(np.sqrt(r * r - y * y), y, z, self.ci, self.si, ct, st)
 
     def f(self, t, idx=None):
@@ -381,11 +381,11 @@ def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
     sl = _Sleeve(sm)
     hf = table.half_face
     zg = np.linspace(-hf, hf, grid)
-    kz_g = table.z_coefficients(zg)
+    kz_g = table.plane_coefficients(zg)
     lo_g, hi_g = table.radii(zg)
     tile = np.tile(np.arange(grid), n)
-    y_ends = (table.y_at(kz_g, np.zeros(grid))[tile], table.y_at(kz_g, np.ones(grid))[tile])
-    planes = (np.ascontiguousarray(kz_g.T)[:, tile], lo_g[tile], (hi_g - lo_g)[tile], y_ends)
+    y_ends = (table.plane_y(kz_g, np.zeros(grid))[tile], table.plane_y(kz_g, np.ones(grid))[tile])
+    planes = (kz_g[:, tile], lo_g[tile], (hi_g - lo_g)[tile], y_ends)
     V, T, K = _plane_minima(table, sl, misalignment, zg[tile], np.repeat(theta, grid),
                             pitch_radius, planes, exact=False)
     # rows = (virtual measure, theta) pairs

@@ -14,7 +14,7 @@ measured at the cell centres between the nodes (``max_error_mm``, arc length at 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cached_property, lru_cache
 
 import numpy as np
 from numpy.polynomial import chebyshev as C
@@ -72,6 +72,46 @@ class FlankTable:
     def y_at(self, kz: NDArray[np.float64], t: NDArray[np.float64]) -> NDArray[np.float64]:
         """``y`` at heights ``t`` for per-plane coefficients ``kz`` (``(..., nt)``)."""
         return clenshaw(np.moveaxis(kz, -1, 0), t)
+
+    @cached_property
+    def _power(self) -> NDArray[np.float64] | None:
+        """``y``'s coefficients in powers of ``s = 2 t - 1`` (Chebyshev in ``z``), or None
+        where that form could lose more than 1e-12 mm to rounding: Horner's rule
+        ``2 nt eps sum |a|`` plus the conversion ``eps sum |c| |M|`` (``|T_i(x)| <= 1``;
+        about 1e-14 mm on the templates, 1e-15 measured; the (64, 64) table keeps
+        Clenshaw)."""
+        nt = self.y.shape[1]
+        to_power = np.zeros((nt, nt))
+        for j in range(nt):
+            p = C.cheb2poly(np.eye(nt)[j])
+            to_power[: p.size, j] = p
+        yp = self.y @ to_power.T
+        eps = np.finfo(float).eps
+        bound = eps * (2 * nt * float(np.sum(np.abs(yp)))
+                       + float(np.sum(np.abs(self.y) @ np.abs(to_power).T)))
+        return yp if bound <= 1e-12 else None
+
+    def plane_coefficients(self, z: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Coefficients in ``t`` of ``y`` in the planes ``z`` (``(n,)``) for
+        :meth:`plane_y`: ``(nt, n)``, in powers of ``2 t - 1`` where that is safe
+        (:attr:`_power`), else Chebyshev."""
+        vz = C.chebvander(z / self.half_face, self.y.shape[0] - 1)
+        yp = self._power
+        return np.ascontiguousarray((vz @ (self.y if yp is None else yp)).T)
+
+    def plane_y(self, coef: NDArray[np.float64], t: NDArray[np.float64]) -> NDArray[np.float64]:
+        """``y`` at heights ``t`` (``(..., n)``) from :meth:`plane_coefficients` ``(nt, n)``.
+
+        Horner's rule in powers of ``s = 2 t - 1``: 2 operations per coefficient against
+        Clenshaw's 3 (1.4x faster; the values agree to 1e-15 mm on the templates).
+        """
+        if self._power is None:
+            return clenshaw(coef, t)
+        s = 2.0 * t - 1.0
+        b = coef[-1]
+        for k in range(coef.shape[0] - 2, -1, -1):
+            b = b * s + coef[k]
+        return b
 
     def even_in_z(self, rel: float = 1e-12) -> bool:
         """Whether the flank is symmetric about the midplane (``y`` and ``r_form`` even in
