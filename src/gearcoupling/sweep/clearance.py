@@ -109,8 +109,7 @@ class _Planes:
         self.ct, self.st = np.cos(theta), np.sin(theta)  # once per batch, not per call
         if planes is None:
             # coefficients along the first axis: (nt, n), contiguous rows for Clenshaw
-            self.kz = table.plane_coefficients(z)
-            self.lo, hi = table.radii(z)
+            self.kz, self.lo, hi = table.plane_coefficients(z)
             self.span = hi - self.lo
             self.y_ends = None
         else:  # precomputed per plane: coefficients (nt, n), radii and y at t = 0 and 1
@@ -381,8 +380,7 @@ def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
     sl = _Sleeve(sm)
     hf = table.half_face
     zg = np.linspace(-hf, hf, grid)
-    kz_g = table.plane_coefficients(zg)
-    lo_g, hi_g = table.radii(zg)
+    kz_g, lo_g, hi_g = table.plane_coefficients(zg)
     tile = np.tile(np.arange(grid), n)
     y_ends = (table.plane_y(kz_g, np.zeros(grid))[tile], table.plane_y(kz_g, np.ones(grid))[tile])
     planes = (kz_g[:, tile], lo_g[tile], (hi_g - lo_g)[tile], y_ends)

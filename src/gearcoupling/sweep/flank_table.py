@@ -56,13 +56,12 @@ class FlankTable:
 
     def radii(self, z: NDArray[np.float64]):
         """``(r_form(z), r_tip(z))`` in mm."""
-        x = z / self.half_face
-        lo = C.chebval(x, self.form)
+        return C.chebval(z / self.half_face, self.form), self._tip(z)
+
+    def _tip(self, z):
         if self.tip_kind == "cylinder":
-            hi = np.full_like(lo, self.tip_radius)
-        else:
-            hi = np.sqrt(np.maximum(self.tip_radius**2 - z * z, 0.0))
-        return lo, hi
+            return np.full(np.shape(z), self.tip_radius)
+        return np.sqrt(np.maximum(self.tip_radius**2 - z * z, 0.0))
 
     def z_coefficients(self, z: NDArray[np.float64]) -> NDArray[np.float64]:
         """Coefficients in ``t`` of ``y`` in the planes ``z``: ``(..., nt)``."""
@@ -91,13 +90,36 @@ class FlankTable:
                        + float(np.sum(np.abs(self.y) @ np.abs(to_power).T)))
         return yp if bound <= 1e-12 else None
 
-    def plane_coefficients(self, z: NDArray[np.float64]) -> NDArray[np.float64]:
-        """Coefficients in ``t`` of ``y`` in the planes ``z`` (``(n,)``) for
-        :meth:`plane_y`: ``(nt, n)``, in powers of ``2 t - 1`` where that is safe
-        (:attr:`_power`), else Chebyshev."""
-        vz = C.chebvander(z / self.half_face, self.y.shape[0] - 1)
+    @cached_property
+    def _plane_matrix(self) -> NDArray[np.float64]:
+        """``(nt + 1, nz)``: the ``t`` coefficients of ``y`` (:attr:`_power` or Chebyshev)
+        and the form radius, against the Chebyshev polynomials in ``z``."""
         yp = self._power
-        return np.ascontiguousarray((vz @ (self.y if yp is None else yp)).T)
+        return np.ascontiguousarray(
+            np.hstack([self.y if yp is None else yp, self.form[:, None]]).T)
+
+    def plane_coefficients(self, z: NDArray[np.float64]):
+        """The planes ``z`` (``(n,)``) for :meth:`plane_y`, in one matrix product.
+
+        Returns
+        -------
+        coef : (nt, n) float
+            Coefficients in ``t`` of ``y``: in powers of ``2 t - 1`` where that is safe
+            (:attr:`_power`), else Chebyshev.
+        r_form, r_tip : (n,) float
+            As :meth:`radii`.
+        """
+        x = z / self.half_face
+        nz = self.y.shape[0]
+        v = np.empty((nz, *x.shape))  # Chebyshev polynomials T_k(x), k along axis 0
+        v[0] = 1.0
+        v[1] = x
+        x2 = 2.0 * x
+        for k in range(2, nz):
+            np.multiply(x2, v[k - 1], out=v[k])
+            v[k] -= v[k - 2]
+        out = self._plane_matrix @ v
+        return out[:-1], out[-1], self._tip(z)
 
     def plane_y(self, coef: NDArray[np.float64], t: NDArray[np.float64]) -> NDArray[np.float64]:
         """``y`` at heights ``t`` (``(..., n)``) from :meth:`plane_coefficients` ``(nt, n)``.
