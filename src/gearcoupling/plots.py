@@ -12,7 +12,8 @@ from .geometry.hub import hub_flank_model, hub_model, plane_rack
 from .geometry.section import transverse_section
 
 
-def _figure(*args, **kwargs):
+def new_figure(*args, **kwargs):
+    """``plt.subplots`` on the non-interactive Agg back-end (matplotlib imported lazily)."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -21,11 +22,12 @@ def _figure(*args, **kwargs):
     return plt.subplots(*args, **kwargs)
 
 
-def _save(fig, path: str | Path) -> Path:
+def save_figure(fig, path: str | Path, dpi: int = 130) -> Path:
+    """Write ``fig`` as PNG atomically and close it."""
     import matplotlib.pyplot as plt
 
     with atomic_path(path) as tmp:
-        fig.savefig(tmp, format="png", dpi=130)
+        fig.savefig(tmp, format="png", dpi=dpi)
     plt.close(fig)
     return Path(path)
 
@@ -67,7 +69,7 @@ def plot_sections(spec, path: str | Path, tolerance_mm: float | None = None) -> 
     """
     tol = tolerance_mm or 1e-3 * spec.tooth.module
     N = spec.tooth.teeth
-    fig, axes = _figure(2, 2, figsize=(14, 10), gridspec_kw={"height_ratios": [1.1, 1]})
+    fig, axes = new_figure(2, 2, figsize=(14, 10), gridspec_kw={"height_ratios": [1.1, 1]})
     axes[0, 1].remove()
     axes[0, 0].remove()
     ax = fig.add_subplot(2, 1, 1)
@@ -120,4 +122,4 @@ def plot_sections(spec, path: str | Path, tolerance_mm: float | None = None) -> 
     ax.set_title("transverse pressure angle (cf. Renzo Fig. 7)")
     ax.legend(fontsize=8)
     fig.tight_layout()
-    return _save(fig, path)
+    return save_figure(fig, path)

@@ -94,14 +94,11 @@ def write_csv(result, path: Path) -> Path:
 
 def plot(result, reference_mm, path: Path, backlash_mm=None) -> Path:
     """Overlap volume, signed minimum gap and (if measured) backlash against the angle."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from ..plots import new_figure, save_figure
 
     a = result.angles_deg
     rows = 3 if result.backlash_mm is not None else 2
-    fig, axes = plt.subplots(rows, 1, figsize=(9, 3.25 * rows), sharex=True)
+    fig, axes = new_figure(rows, 1, figsize=(9, 3.25 * rows), sharex=True)
     ax1, ax2 = axes[0], axes[1]
     ax1.plot(a, result.overlap_volume_mm3, ".-", color="tab:red")
     ax1.set_ylabel("overlap volume (mm³)")
@@ -129,10 +126,7 @@ def plot(result, reference_mm, path: Path, backlash_mm=None) -> Path:
         ax3.grid(alpha=0.3)
     axes[-1].set_xlabel("rotation ψ (deg)")
     fig.tight_layout()
-    with atomic_path(path) as tmp:
-        fig.savefig(tmp, format="png", dpi=120)
-    plt.close(fig)
-    return path
+    return save_figure(fig, path, dpi=120)
 
 
 def write_meshes(result, index: int, out: Path) -> list[Path]:

@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from ..geometry.sleeve import sleeve_model
-from ..plots import _figure, _save
+from ..plots import new_figure, save_figure
 from .clearance import _Sleeve
 from .design import binding_angle_deg, critical_misalignment_deg, min_backlash_rad
 from .flank_table import flank_table
@@ -29,7 +29,7 @@ from .tooth_map import check_misalignment, flank_minima
 
 def plot_clearance(result: SweepResult, path: str | Path) -> Path:
     """Clearance of every tooth against the coupling rotation, per flank."""
-    fig, axes = _figure(2, 2, figsize=(13, 8), sharex=True)
+    fig, axes = new_figure(2, 2, figsize=(13, 8), sharex=True)
     import matplotlib.pyplot as plt
 
     colours = plt.cm.twilight(np.linspace(0, 1, result.teeth, endpoint=False))
@@ -51,7 +51,7 @@ def plot_clearance(result: SweepResult, path: str | Path) -> Path:
     fig.suptitle(f"{result.spec_name}: clearance of every tooth at i = "
                  f"{result.misalignment_deg:g}°")
     fig.tight_layout()
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
 def plot_contact_path(result: SweepResult, spec, path: str | Path) -> Path:
@@ -61,7 +61,7 @@ def plot_contact_path(result: SweepResult, spec, path: str | Path) -> Path:
     hf = table.half_face
     z = np.linspace(-hf, hf, 201)
     lo, hi = table.radii(z)
-    fig, axes = _figure(1, 2, figsize=(13, 5.5), sharey=True)
+    fig, axes = new_figure(1, 2, figsize=(13, 5.5), sharey=True)
     for f, flank in enumerate(("cw", "ccw")):
         ax = axes[f]
         ax.fill_between(z, lo, hi, color="0.92", label="hub flank")
@@ -82,7 +82,7 @@ def plot_contact_path(result: SweepResult, spec, path: str | Path) -> Path:
     axes[0].set_ylabel("radius on the hub flank (mm)")
     fig.colorbar(sc, ax=axes, shrink=0.8)
     fig.suptitle(f"{result.spec_name}: contact path at i = {result.misalignment_deg:g}°")
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
 def clearance_field(spec, misalignment_deg: float, theta_deg: float, nz: int = 121,
@@ -108,7 +108,7 @@ def clearance_field(spec, misalignment_deg: float, theta_deg: float, nz: int = 1
 def plot_clearance_map(result: SweepResult, spec, path: str | Path) -> Path:
     """Gap over one flank at the contacting tooth's θ and at a swing tooth (θ = 90°)."""
     th = result.contacting_theta_deg("normal")[0]
-    fig, axes = _figure(1, 2, figsize=(13, 5), sharey=True)
+    fig, axes = new_figure(1, 2, figsize=(13, 5), sharey=True)
     for ax, theta in zip(axes, (th, 90.0), strict=True):
         z, r, c = clearance_field(spec, result.misalignment_deg, theta)
         cs = ax.contourf(z, r, c * 1e3, levels=24, cmap="viridis")
@@ -121,7 +121,7 @@ def plot_clearance_map(result: SweepResult, spec, path: str | Path) -> Path:
     axes[0].set_ylabel("r (mm)")
     fig.suptitle(f"{result.spec_name}: clearance map at i = {result.misalignment_deg:g}° "
                  "(blank: facing the sleeve tip chamfer)")
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
 def backlash_curve(spec, misalignment_deg, *, steps: int = 8):
@@ -136,7 +136,7 @@ def plot_backlash(spec, path: str | Path, *, max_deg: float = 6.0, count: int = 
     """Smallest backlash over a turn against misalignment, with the binding angle."""
     a = np.linspace(0.0, max_deg, count)
     b = backlash_curve(spec, a)
-    fig, ax = _figure(figsize=(8, 5))
+    fig, ax = new_figure(figsize=(8, 5))
     ax.plot(a, b * 1e3, "o-", ms=3, label="smallest backlash over a turn")
     ax.axhline(0.0, color="k", lw=0.8)
     ax.axvline(math.degrees(spec.design_misalignment), color="g", ls="--",
@@ -147,7 +147,7 @@ def plot_backlash(spec, path: str | Path, *, max_deg: float = 6.0, count: int = 
     ax.set_ylabel("backlash at the pitch circle (µm)")
     ax.set_title(f"{spec.name}: backlash against misalignment")
     ax.legend(fontsize=8)
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
 def critical_curve(spec, radius_ratios, *, tolerance_deg: float = 1e-3):
@@ -171,14 +171,14 @@ def plot_critical_vs_radius(spec, path: str | Path, *,
     hf = 0.5 * spec.hub.face_width
     q = np.linspace(ratios.min(), ratios.max(), 100)
     est = np.degrees(hf / (q * R / math.tan(spec.tooth.pressure_angle)))
-    fig, ax = _figure(figsize=(8, 5))
+    fig, ax = new_figure(figsize=(8, 5))
     ax.plot(ratios, crit, "o-", label="sweep (contact reaches the face end)")
     ax.plot(q, est, "--", color="0.4", label="b/2 = R_c cot φ · i (Renzo)")
     ax.set_xlabel("crowning radius R_c / R")
     ax.set_ylabel("critical misalignment (deg)")
     ax.set_title(f"{spec.name}: critical misalignment against crowning radius")
     ax.legend(fontsize=8)
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
 def plot_generation(spec, misalignment_deg: float, path: str | Path, *,
@@ -186,7 +186,7 @@ def plot_generation(spec, misalignment_deg: float, path: str | Path, *,
     """Pitch-line clearance over θ for both generation methods and their difference."""
     i = check_misalignment(misalignment_deg)
     theta = np.linspace(0.0, 2 * np.pi, count)
-    fig, axes = _figure(2, 1, figsize=(9, 7), sharex=True)
+    fig, axes = new_figure(2, 1, figsize=(9, 7), sharex=True)
     curves = {}
     for gen in ("enveloped", "revolved"):
         s = spec.replace(**{"hub.crowning.generation": gen})
@@ -205,7 +205,7 @@ def plot_generation(spec, misalignment_deg: float, path: str | Path, *,
     axes[1].legend(fontsize=8)
     axes[1].set_ylabel("revolved - enveloped (µm)")
     axes[1].set_xlabel("turning angle θ (deg)")
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
 def plot_all(result: SweepResult, spec, out_dir: str | Path, *, design: dict | None = None,
