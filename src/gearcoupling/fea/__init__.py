@@ -1,0 +1,13 @@
+"""Finite elements: quadratic tetrahedral meshes of hub and sleeve sectors (gmsh) and tooth
+stiffness from the CalculiX solver ``ccx``.
+
+gmsh (``fea`` extra) and ``ccx`` (Debian ``calculix-ccx``) are imported or looked up only
+when called; a missing one raises :class:`gearcoupling.errors.BackendError` naming it.
+"""
+
+from .mesh import DEFAULT_SECTOR_TEETH, check_size, default_size, mesh_part, sector_teeth
+from .volume import VolumeMesh
+from .write import FORMATS, region_ids, write_inp, write_mesh
+
+__all__ = ["DEFAULT_SECTOR_TEETH", "FORMATS", "VolumeMesh", "check_size", "default_size",
+           "mesh_part", "region_ids", "sector_teeth", "write_inp", "write_mesh"]
