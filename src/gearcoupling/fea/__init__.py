@@ -6,8 +6,10 @@ when called; a missing one raises :class:`gearcoupling.errors.BackendError` nami
 """
 
 from .mesh import DEFAULT_SECTOR_TEETH, check_size, default_size, mesh_part, sector_teeth
+from .stiffness import ComplianceTable, compute_compliance_table, tooth_compliance_table
 from .volume import VolumeMesh
 from .write import FORMATS, region_ids, write_inp, write_mesh
 
-__all__ = ["DEFAULT_SECTOR_TEETH", "FORMATS", "VolumeMesh", "check_size", "default_size",
-           "mesh_part", "region_ids", "sector_teeth", "write_inp", "write_mesh"]
+__all__ = ["DEFAULT_SECTOR_TEETH", "FORMATS", "ComplianceTable", "VolumeMesh", "check_size",
+           "compute_compliance_table", "default_size", "mesh_part", "region_ids",
+           "sector_teeth", "tooth_compliance_table", "write_inp", "write_mesh"]
