@@ -53,7 +53,7 @@ def static_deck(vm: VolumeMesh, *, youngs_modulus_MPa: float, poisson_ratio: flo
 def principal_max(stress: NDArray) -> NDArray[np.float64]:
     """Largest principal stress ``(k,)`` of rows ``(sxx, syy, szz, sxy, sxz, syz)``."""
     s = np.asarray(stress)
-    t = np.empty(s.shape[:-1] + (3, 3))
+    t = np.empty((*s.shape[:-1], 3, 3))
     t[..., 0, 0], t[..., 1, 1], t[..., 2, 2] = s[..., 0], s[..., 1], s[..., 2]
     t[..., 0, 1] = t[..., 1, 0] = s[..., 3]
     t[..., 0, 2] = t[..., 2, 0] = s[..., 4]
