@@ -9,5 +9,11 @@ if [ ! -x /usr/bin/chromium ]; then
     $sudo apt-get update -qq
     DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq chromium >/dev/null
 fi
+# the FE tests run the real CalculiX solver (Debian calculix-ccx)  [fea branch]
+if ! command -v ccx >/dev/null; then
+    if [ "$(id -u)" -eq 0 ]; then sudo=""; else sudo="sudo"; fi
+    $sudo apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq calculix-ccx >/dev/null
+fi
 python3 -m ruff check src tests benchmarks
 python3 -m pytest "$@"

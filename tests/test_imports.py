@@ -5,7 +5,7 @@ import sys
 
 import pytest
 
-HEAVY = ("trimesh", "manifold3d", "viser", "OCP", "meshio", "matplotlib", "dask")
+HEAVY = ("trimesh", "manifold3d", "viser", "OCP", "meshio", "matplotlib", "dask", "gmsh")
 
 
 @pytest.mark.parametrize("module", ["gearcoupling", "gearcoupling.geometry", "gearcoupling.spec",

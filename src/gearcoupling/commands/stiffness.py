@@ -1,0 +1,80 @@
+"""``gearcoupling stiffness``: tooth compliance and mesh stiffness from CalculiX.
+
+Writes ``stiffness.csv`` (one row per load point: hub, sleeve and pair compliance, pair
+stiffness, fillet stress per N) and ``stiffness.json`` (the table, the pitch-point figures
+and the set-up: supports, sizes, times). The table is cached per spec hash (see
+:func:`gearcoupling.fea.tooth_compliance_table`).
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import sys
+from pathlib import Path
+
+from ..atomic import write_json, write_text
+from .common import add_spec_arguments, output_dir, progress, spec_from_args
+
+
+def register(sub) -> None:
+    p = sub.add_parser("stiffness", help="FE tooth compliance and mesh stiffness (CalculiX)")
+    add_spec_arguments(p)
+    p.add_argument("--size", type=float, default=None, metavar="MM",
+                   help="element size on the teeth in mm (default module / 4)")
+    p.add_argument("--sector", type=int, default=3, metavar="K",
+                   help="teeth per sector, odd; the middle one is loaded (default 3)")
+    p.add_argument("--nz", type=int, default=3, help="axial load positions (default 3)")
+    p.add_argument("--nr", type=int, default=3, help="load radii (default 3)")
+    p.add_argument("--cache", default=None, metavar="DIR",
+                   help="cache folder (default ~/.cache/gearcoupling/fea)")
+    p.add_argument("--refresh", action="store_true", help="recompute, ignoring the cache")
+    p.set_defaults(func=run)
+
+
+def write_table(table, out: Path) -> list[Path]:
+    """``stiffness.csv`` and ``stiffness.json`` of a compliance table."""
+    from ..fea.stiffness import pitch_point_compliance
+
+    rows = table.rows()
+    buf = io.StringIO()
+    writer = csv.DictWriter(buf, fieldnames=list(rows[0]))
+    writer.writeheader()
+    writer.writerows({k: f"{v:.6g}" for k, v in row.items()} for row in rows)
+    csv_path = write_text(out / "stiffness.csv", buf.getvalue())
+    summary = pitch_point_compliance(table)
+    summary.pop("math_check")
+    json_path = write_json(out / "stiffness.json", {"pitch_point": summary, **table.to_dict()})
+    return [csv_path, json_path]
+
+
+def run(args) -> int:
+    from ..errors import SpecError
+    from ..fea import check_size, tooth_compliance_table
+    from ..fea.backends import ccx_path, gmsh_module
+
+    spec = spec_from_args(args)
+    for part in ("hub", "sleeve"):
+        check_size(spec, part, args.size)
+    if args.sector < 1 or args.sector % 2 == 0 or args.sector > spec.tooth.teeth:
+        raise SpecError("--sector", args.sector, f"an odd number of teeth from 1 to "
+                        f"{spec.tooth.teeth} (the middle tooth is loaded)")
+    for n, name in ((args.nz, "--nz"), (args.nr, "--nr")):
+        if not 2 <= n <= 9:
+            raise SpecError(name, n, "from 2 to 9 load positions")
+    gmsh_module()
+    ccx_path()
+    out = output_dir(args, spec)
+    with progress(f"{spec.name} FE stiffness", 4) as advance:
+        table = tooth_compliance_table(spec, size_mm=args.size, sector=args.sector,
+                                       nz=args.nz, nr=args.nr, cache=args.cache,
+                                       refresh=args.refresh, advance=advance)
+    written = write_table(table, out)
+    pp = table.rows()
+    c = table.mesh_stiffness_N_per_mm
+    print(f"{spec.name}: mesh stiffness C = {c:.4g} N/mm per tooth pair "
+          f"({c / spec.hub.face_width / 1e3:.3g} N/(mm·µm) per hub face width); "
+          f"{len(pp)} load points", file=sys.stderr)
+    for path in written:
+        print(path)
+    return 0

@@ -1,0 +1,15 @@
+"""Finite elements: quadratic tetrahedral meshes of hub and sleeve sectors (gmsh) and tooth
+stiffness from the CalculiX solver ``ccx``.
+
+gmsh (``fea`` extra) and ``ccx`` (Debian ``calculix-ccx``) are imported or looked up only
+when called; a missing one raises :class:`gearcoupling.errors.BackendError` naming it.
+"""
+
+from .mesh import DEFAULT_SECTOR_TEETH, check_size, default_size, mesh_part, sector_teeth
+from .stiffness import ComplianceTable, compute_compliance_table, tooth_compliance_table
+from .volume import VolumeMesh
+from .write import FORMATS, region_ids, write_inp, write_mesh
+
+__all__ = ["DEFAULT_SECTOR_TEETH", "FORMATS", "ComplianceTable", "VolumeMesh", "check_size",
+           "compute_compliance_table", "default_size", "mesh_part", "region_ids",
+           "sector_teeth", "tooth_compliance_table", "write_inp", "write_mesh"]

@@ -1,0 +1,94 @@
+"""Run CalculiX ``ccx`` on a deck and read its ``.dat`` printout."""
+
+from __future__ import annotations
+
+import os
+import re
+import subprocess
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..errors import BackendError
+from .backends import ccx_path
+
+
+@dataclass(frozen=True)
+class CcxResult:
+    """Printout of a ccx run: ``blocks`` in file order, each ``(kind, set, time, rows)``
+    with ``kind`` e.g. ``"displacements"`` or ``"stresses"`` and ``rows (k, c)`` float
+    (first column the node or element number)."""
+
+    job: Path
+    blocks: list[tuple[str, str, float, NDArray[np.float64]]]
+    seconds: float
+
+    def get(self, kind: str, name: str) -> list[NDArray[np.float64]]:
+        """Rows of every block of a kind and set, one per step, in order."""
+        return [rows for k, s, _, rows in self.blocks if k == kind and s == name.upper()]
+
+
+def run_ccx(deck: str, workdir: str | Path, job: str = "job", *,
+            timeout_s: float = 3600.0, threads: int = 2) -> CcxResult:
+    """Write ``<workdir>/<job>.inp`` and run ``ccx`` on it.
+
+    The solver's output is kept in ``<job>.log`` beside the deck; a failed run raises
+    :class:`BackendError` naming that log.
+    """
+    exe = ccx_path()
+    work = Path(workdir)
+    work.mkdir(parents=True, exist_ok=True)
+    (work / f"{job}.inp").write_text(deck)
+    log = work / f"{job}.log"
+    env = dict(os.environ, OMP_NUM_THREADS=str(threads),
+               CCX_NPROC_EQUATION_SOLVER=str(threads))
+    t0 = time.perf_counter()
+    try:
+        proc = subprocess.run([exe, "-i", job], cwd=work, capture_output=True, text=True,
+                              timeout=timeout_s, env=env, check=False)
+    except subprocess.TimeoutExpired as err:
+        log.write_text(f"{err.stdout or ''}\n{err.stderr or ''}\ntimed out after {timeout_s} s\n")
+        raise BackendError(f"ccx timed out after {timeout_s:.0f} s; its log is {log}") from err
+    log.write_text(proc.stdout + "\n" + proc.stderr)
+    seconds = time.perf_counter() - t0
+    dat = work / f"{job}.dat"
+    failed = proc.returncode != 0 or "*ERROR" in proc.stdout or not dat.exists()
+    if failed:
+        first = next((ln.strip() for ln in proc.stdout.splitlines() if "*ERROR" in ln), "")
+        raise BackendError(f"ccx failed (exit {proc.returncode}) {first}; its log is {log} "
+                           f"and the deck {work / f'{job}.inp'}")
+    return CcxResult(work / job, parse_dat(dat.read_text()), seconds)
+
+
+_HEADER = re.compile(r"^\s*(\w[\w ]*?)\s*\(.*\)\s*for set\s+(\S+)\s+and time\s+(\S+)", re.I)
+
+
+def parse_dat(text: str) -> list[tuple[str, str, float, NDArray[np.float64]]]:
+    """Blocks of a ccx ``.dat`` file (see :class:`CcxResult`)."""
+    blocks = []
+    current = None
+    rows: list[list[float]] = []
+
+    def close():
+        if current is not None:
+            blocks.append((*current, np.array(rows, dtype=float).reshape(len(rows), -1)))
+
+    for line in text.splitlines():
+        head = _HEADER.match(line)
+        if head:
+            close()
+            current = (head.group(1).strip().lower(), head.group(2).upper(),
+                       float(head.group(3)))
+            rows = []
+            continue
+        parts = line.split()
+        if current is not None and parts:
+            try:
+                rows.append([float(x) for x in parts])
+            except ValueError:
+                continue
+    close()
+    return blocks

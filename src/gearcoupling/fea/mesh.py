@@ -1,0 +1,280 @@
+"""Quadratic tetrahedral meshes of hub and sleeve sectors, by gmsh from the STEP solids.
+
+The exact OpenCASCADE solid of a sector (:func:`gearcoupling.export.step.part_solid`) is
+written to a temporary STEP file and imported into gmsh. Every B-rep face is then named by
+geometry: the nodes of a coarse surface mesh of the face vote for the surface kind and
+tooth of the nearest point of the labelled triangle mesh of the same sector
+(:func:`gearcoupling.parts.build_part`, its ``kind`` and ``tooth`` face attributes). The
+teeth get the element size ``size_mm``; the size grows to ``body_size_mm`` away from them.
+"""
+
+from __future__ import annotations
+
+import math
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..errors import GeometryError, SpecError
+from .backends import gmsh_session
+from .volume import VolumeMesh, aspect_ratios, match_faces, tet_volumes
+
+TOOTH_KINDS = ("flank_cw", "flank_ccw", "fillet_cw", "fillet_ccw", "root", "tip",
+               "chamfer_cw", "chamfer_ccw")
+DEFAULT_SECTOR_TEETH = 3
+
+
+def default_size(spec) -> float:
+    """Default element size on the teeth: module / 4 (0.5 mm for industrial-m2), in mm."""
+    return spec.tooth.module / 4.0
+
+
+def fillet_radius(spec, part: str) -> float:
+    """Root fillet radius of a part (mm)."""
+    return spec.hub.root.fillet_radius if part == "hub" else spec.sleeve.root_fillet_radius
+
+
+def check_size(spec, part: str, size_mm) -> float:
+    """The element size as a float, or :class:`SpecError` naming the allowed range.
+
+    Allowed: from module / 40 to the smaller of module / 2 and twice the part's root
+    fillet radius (a coarser size cannot follow the fillet, where the root stress is).
+    """
+    size = default_size(spec) if size_mm is None else size_mm
+    try:
+        size = float(size)
+    except (TypeError, ValueError) as err:
+        raise SpecError("size_mm", size_mm, "must be a number (mm)") from err
+    m = spec.tooth.module
+    lo, hi = m / 40.0, min(m / 2.0, 2.0 * fillet_radius(spec, part))
+    if not (math.isfinite(size) and lo <= size <= hi):
+        why = ("twice the root fillet radius: a coarser mesh cannot follow the fillet"
+               if hi < m / 2.0 else "module / 2: two elements across the tooth at least")
+        raise SpecError("size_mm", size_mm, f"must be from {lo:.3g} to {hi:.3g} mm for the "
+                        f"{part} of this spec (module / 40 to {why}); choose a smaller size")
+    return size
+
+
+def sector_teeth(spec, count) -> list[int] | None:
+    """Teeth ``0 .. count - 1`` of a sector, ``None`` for the whole part (count = N or None),
+    or :class:`SpecError` when the count does not fit the teeth."""
+    n = spec.tooth.teeth
+    if count is None:
+        return None
+    try:
+        k = int(count)
+    except (TypeError, ValueError) as err:
+        raise SpecError("sector_teeth", count, f"an integer from 1 to {n}") from err
+    if k != count or not 1 <= k <= n:
+        raise SpecError("sector_teeth", count, f"an integer from 1 to {n} (the spec has {n} "
+                        f"teeth; {n} meshes the whole part)")
+    return None if k == n else list(range(k))
+
+
+def mesh_part(spec, part: str, *, sector: int | None = DEFAULT_SECTOR_TEETH,
+              size_mm: float | None = None, body_size_mm: float | None = None,
+              tolerance_mm: float | None = None, order: int = 2) -> VolumeMesh:
+    """Quadratic tetrahedral mesh of a sector of ``sector`` teeth (``None``: the whole part).
+
+    Parameters
+    ----------
+    spec : CouplingSpec
+    part : {"hub", "sleeve"}
+    sector : int or None
+        Teeth ``0 .. sector - 1``; the cut planes pass through the middle of the spaces
+        (hub) or teeth (sleeve) beside them. ``None`` or N: the whole part.
+    size_mm : float, optional
+        Element size on the teeth (:func:`check_size`; default module / 4).
+    body_size_mm : float, optional
+        Element size far from the teeth (default ``max(3 size, module)``).
+    tolerance_mm : float, optional
+        Chordal tolerance of the STEP solid (default module / 200).
+    order : {1, 2}
+        Element order (2: C3D10; 1 only for tests of the pipeline).
+
+    Returns
+    -------
+    VolumeMesh
+    """
+    from ..export.step import part_solid, write_step
+    from ..parts import build_part, check_tolerance
+
+    if part not in ("hub", "sleeve"):
+        raise SpecError("part", part, "hub or sleeve")
+    teeth = sector_teeth(spec, sector)
+    size = check_size(spec, part, size_mm)
+    body = max(3.0 * size, spec.tooth.module) if body_size_mm is None else float(body_size_mm)
+    if not (math.isfinite(body) and body >= size):
+        raise SpecError("body_size_mm", body_size_mm, f"a size (mm) of at least {size:.3g}")
+    tol = check_tolerance(spec, tolerance_mm)
+    t0 = time.perf_counter()
+    labelled = build_part(spec, part, tol, teeth)
+    shape = part_solid(spec, part, tol, teeth)
+    with tempfile.TemporaryDirectory(prefix="gearcoupling-fea-") as tmp:
+        step = write_step(shape, Path(tmp) / f"{part}.step", name=f"{spec.name}-{part}")
+        t_cad = time.perf_counter() - t0
+        with gmsh_session() as gmsh:
+            vm = _mesh_in_gmsh(gmsh, spec, part, step, labelled, teeth, size, body, order)
+    vm.quality["cad_seconds"] = t_cad
+    return vm
+
+
+def _mesh_in_gmsh(gmsh, spec, part, step, labelled, teeth, size, body, order) -> VolumeMesh:
+    occ = gmsh.model.occ
+    vols = occ.importShapes(str(step))
+    occ.synchronize()
+    if [d for d, _ in vols] != [3]:
+        raise GeometryError(f"the {part} STEP gave {len(vols)} entities, expected one solid")
+    surfaces = [t for _, t in gmsh.model.getEntities(2)]
+    gmsh.option.setNumber("Mesh.MeshSizeMax", body)
+    gmsh.option.setNumber("Mesh.MeshSizeMin", size / 4.0)
+    t0 = time.perf_counter()
+    gmsh.model.mesh.generate(2)  # coarse surface mesh, only to sample every face
+    names = classify_surfaces(gmsh, spec, part, labelled, surfaces)
+    gmsh.model.mesh.clear()
+    teeth_faces = [s for s in surfaces if names[s][0].startswith("T")]
+    _size_field(gmsh, teeth_faces, size, body, spec.tooth.module)
+    gmsh.option.setNumber("Mesh.ElementOrder", order)
+    gmsh.option.setNumber("Mesh.SecondOrderLinear", 0)
+    gmsh.option.setNumber("Mesh.Optimize", 1)
+    gmsh.option.setNumber("Mesh.HighOrderOptimize", 2)  # untangle curved quadratic edges
+    gmsh.model.mesh.generate(3)
+    t_mesh = time.perf_counter() - t0
+    return _extract(gmsh, part, names, teeth, size, order, t_mesh)
+
+
+def _size_field(gmsh, faces, size, body, module) -> None:
+    f = gmsh.model.mesh.field
+    dist = f.add("Distance")
+    f.setNumbers(dist, "SurfacesList", faces)
+    f.setNumber(dist, "Sampling", 20)
+    thr = f.add("Threshold")
+    f.setNumber(thr, "InField", dist)
+    f.setNumber(thr, "SizeMin", size)
+    f.setNumber(thr, "SizeMax", body)
+    f.setNumber(thr, "DistMin", 0.25 * module)
+    f.setNumber(thr, "DistMax", 0.25 * module + 2.0 * (body - size))
+    f.setAsBackgroundMesh(thr)
+    for key in ("MeshSizeExtendFromBoundary", "MeshSizeFromPoints", "MeshSizeFromCurvature"):
+        gmsh.option.setNumber(f"Mesh.{key}", 0)
+
+
+def classify_surfaces(gmsh, spec, part, labelled, surfaces) -> dict[int, tuple[str, float]]:
+    """Region name and vote share of every gmsh surface (see the module docstring)."""
+    from ..parts import SURFACE_KINDS
+
+    kind, tooth = labelled.face_attributes["kind"], labelled.face_attributes["tooth"]
+    r_outer = 0.5 * spec.sleeve.outer_diameter
+    n = spec.tooth.teeth
+    out = {}
+    for s in surfaces:
+        p = surface_samples(gmsh, s)
+        tri = nearest_triangle(labelled, p)
+        code, share = _majority(kind[tri])
+        name = SURFACE_KINDS[code]
+        if name in TOOTH_KINDS:
+            region = f"T{_majority(tooth[tri][kind[tri] == code])[0]}_{name.upper()}"
+        elif name == "side":
+            region = "CUT_CW" if _cut_is_cw(p.mean(axis=0), labelled.metadata["teeth"], n) \
+                else "CUT_CCW"
+        elif name == "body" and part == "sleeve":
+            r = np.hypot(p[:, 0], p[:, 1])
+            region = "OUTER" if np.allclose(r, r_outer, rtol=1e-3) else "BODY"
+        else:
+            region = name.upper()
+        out[s] = (region, float(share))
+    return out
+
+
+def _majority(values: NDArray) -> tuple[int, float]:
+    """Most frequent value and its share."""
+    vals, counts = np.unique(values, return_counts=True)
+    return int(vals[np.argmax(counts)]), float(counts.max() / counts.sum())
+
+
+def surface_samples(gmsh, surface: int) -> NDArray[np.float64]:
+    """Points on a meshed gmsh surface ``(k, 3)``: the centroids of its triangles."""
+    tags, xyz, _ = gmsh.model.mesh.getNodes(2, surface, includeBoundary=True)
+    tags = np.asarray(tags, dtype=np.int64)
+    coords = np.asarray(xyz).reshape(-1, 3)
+    lookup = dict(zip(tags.tolist(), range(len(tags)), strict=True))
+    types, _, enodes = gmsh.model.mesh.getElements(2, surface)
+    if len(types) == 0:
+        raise GeometryError(f"gmsh surface {surface} has no triangles to classify")
+    tri = np.array([lookup[t] for t in enodes[0]]).reshape(-1, 3)
+    return coords[tri].mean(axis=1)
+
+
+def nearest_triangle(mesh, points: NDArray, candidates: int = 24) -> NDArray[np.int64]:
+    """Index ``(k,)`` of the triangle of ``mesh`` nearest to each point (exact distance to
+    the ``candidates`` triangles with the nearest centroids)."""
+    from scipy.spatial import cKDTree
+    from trimesh.triangles import closest_point
+
+    k = min(candidates, len(mesh.faces))
+    _, cand = cKDTree(mesh.triangles_center).query(points, k=k)
+    cand = cand.reshape(len(points), k)
+    tris = mesh.triangles[cand.ravel()]
+    q = closest_point(tris, np.repeat(points, k, axis=0))
+    d = np.linalg.norm(q - np.repeat(points, k, axis=0), axis=1).reshape(-1, k)
+    return cand[np.arange(len(points)), np.argmin(d, axis=1)]
+
+
+def _cut_is_cw(point, teeth, n: int) -> bool:
+    """Is a point of a cut face on the cut plane at the smaller polar angle of the sector?"""
+    a = math.atan2(point[1], point[0])
+    a0 = 2 * math.pi * (min(teeth) - 0.5) / n
+    return abs(math.remainder(a - a0, 2 * math.pi)) < math.pi / n
+
+
+def _extract(gmsh, part, names, teeth, size, order, t_mesh) -> VolumeMesh:
+    tags, xyz, _ = gmsh.model.mesh.getNodes()
+    tags = np.asarray(tags, dtype=np.int64)
+    nodes = np.asarray(xyz).reshape(-1, 3)
+    index = np.zeros(tags.max() + 1, dtype=np.int64)
+    index[tags] = np.arange(len(tags))
+    etype = 11 if order == 2 else 4
+    types, etags, enodes = gmsh.model.mesh.getElements(3)
+    if list(types) != [etype]:
+        raise GeometryError(f"gmsh gave element types {list(types)}, expected [{etype}]")
+    tets = index[np.asarray(enodes[0], dtype=np.int64)].reshape(-1, 10 if order == 2 else 4)
+    if order == 2:
+        tets[:, [8, 9]] = tets[:, [9, 8]]  # gmsh (.., 3-4, 2-4) -> C3D10 (.., 2-4, 3-4)
+    qual = gmsh.model.mesh.getElementQualities(np.asarray(etags[0]), "minSJ")
+    regions: dict[str, list] = {}
+    for s, (name, _) in sorted(names.items()):
+        _, _, tn = gmsh.model.mesh.getElements(2, s)
+        tri = index[np.asarray(tn[0], dtype=np.int64)].reshape(-1, 6 if order == 2 else 3)
+        regions.setdefault(name, []).append(tri)
+    regions_arr = {k: np.concatenate(v) for k, v in sorted(regions.items(), key=_region_order)}
+    faces = {k: match_faces(tets, v) for k, v in regions_arr.items()}
+    vol = tet_volumes(nodes, tets)
+    ar = aspect_ratios(nodes, tets)
+    quality = {
+        "nodes": len(nodes), "elements": len(tets),
+        "min_scaled_jacobian": float(np.min(qual)), "p01_scaled_jacobian":
+            float(np.percentile(qual, 1)), "inverted": int(np.sum((qual <= 0) | (vol <= 0))),
+        "max_aspect_ratio": float(ar.max()), "p99_aspect_ratio": float(np.percentile(ar, 99)),
+        "volume_mm3": float(vol.sum()), "mesh_seconds": t_mesh,
+        "min_face_vote": min(share for _, share in names.values()),
+    }
+    if quality["inverted"]:
+        raise GeometryError(f"{quality['inverted']} inverted {part} elements (minimum scaled "
+                            f"Jacobian {quality['min_scaled_jacobian']:.3g}); choose a "
+                            "smaller size_mm")
+    return VolumeMesh(part, nodes, tets, regions_arr, faces, teeth, size, quality)
+
+
+def _region_order(item) -> tuple:
+    name = item[0]
+    if name.startswith("T") and "_" in name and name[1:name.index("_")].isdigit():
+        return (0, int(name[1:name.index("_")]), name)
+    return (1, 0, name)
+
+
+def node_ids(vm: VolumeMesh, name: str) -> NDArray[np.int64]:
+    """1-based node numbers of a region/aggregate (as written to the INP)."""
+    return vm.node_set(name) + 1

@@ -1,0 +1,99 @@
+"""The real CalculiX solver on gmsh meshes: a cantilever against Timoshenko, the tooth
+compliance table (physical trends, cache, protocol), solver errors with their log."""
+
+import numpy as np
+import pytest
+
+from gearcoupling import load_spec
+from gearcoupling.cli import main
+from gearcoupling.errors import BackendError, SpecError
+
+pytest.importorskip("gmsh")
+pytest.importorskip("OCP")
+if __import__("shutil").which("ccx") is None:
+    pytest.skip("CalculiX ccx not installed (scripts/test.sh installs calculix-ccx)",
+                allow_module_level=True)
+
+
+@pytest.mark.parametrize("size", [5.0, 3.0])
+def test_cantilever_tip_deflection_within_2_percent_of_timoshenko(size):
+    from gearcoupling.fea.validation import cantilever_tip_deflection
+
+    res = cantilever_tip_deflection(size)
+    assert abs(res["ratio"] - 1.0) < 0.02, res
+
+
+@pytest.fixture(scope="module")
+def table(tmp_path_factory):
+    from gearcoupling.fea import tooth_compliance_table
+
+    cache = tmp_path_factory.mktemp("cache")
+    spec = load_spec("industrial-m2")
+    return tooth_compliance_table(spec, size_mm=1.0, sector=1, nz=2, nr=2, cache=cache), cache
+
+
+def test_compliance_grows_with_load_height_and_toward_the_face_end(table):
+    t, _ = table
+    assert np.all(t.hub_mm_per_N > 0) and np.all(t.sleeve_mm_per_N > 0)
+    # hub: higher load (larger r) bends the tooth more; nearer the face end less support
+    assert np.all(t.hub_mm_per_N[:, 1] > 1.2 * t.hub_mm_per_N[:, 0])
+    assert np.all(t.hub_mm_per_N[1] > t.hub_mm_per_N[0])
+    # sleeve: internal teeth point inward, so a load at smaller r is farther from its root
+    assert np.all(t.sleeve_mm_per_N[:, 0] > t.sleeve_mm_per_N[:, 1])
+
+
+def test_mesh_stiffness_is_of_the_order_of_iso_6336(table):
+    """ISO 6336 single-pair stiffness c' ~ 14 N/(mm µm) of face width for external spur
+    gears; coupling teeth are shorter (addendum m) but the sleeve tooth is internal: the FE
+    value per hub face width must lie within a factor 2.5 of it (coarse mesh)."""
+    t, _ = table
+    per_width = t.mesh_stiffness_N_per_mm / 16.0 / 1e3
+    assert 14 / 2.5 < per_width < 14 * 2.5, per_width
+
+
+def test_table_is_cached_and_implements_the_protocol(table):
+    from gearcoupling.fea import tooth_compliance_table
+
+    t, cache = table
+    files = list(cache.glob("industrial-m2-*.json"))
+    assert len(files) == 1
+    again = tooth_compliance_table(load_spec("industrial-m2"), size_mm=1.0, sector=1, nz=2,
+                                   nr=2, cache=cache)
+    np.testing.assert_array_equal(again.hub_mm_per_N, t.hub_mm_per_N)
+    grid = t.pair_compliance_mm_per_N(t.z_mm[:, None], t.r_mm[None, :])
+    np.testing.assert_allclose(grid, t.hub_mm_per_N + t.sleeve_mm_per_N, rtol=1e-12)
+    mid = t.pair_compliance_mm_per_N(-t.z_mm.mean(), t.r_mm.mean())  # even in z, bilinear
+    assert mid == pytest.approx((t.hub_mm_per_N + t.sleeve_mm_per_N).mean(), rel=1e-12)
+    assert t.pair_compliance_mm_per_N(np.zeros((4, 1)), np.full(3, 38.0)).shape == (4, 3)
+
+
+def test_root_stress_is_positive_and_finite(table):
+    t, _ = table
+    assert np.all(np.isfinite(t.root_stress_MPa_per_N)) and np.all(t.root_stress_MPa_per_N > 0)
+
+
+def test_failed_solver_run_keeps_its_log(tmp_path):
+    from gearcoupling.fea.ccx import run_ccx
+
+    with pytest.raises(BackendError, match=r"its log is .*bad\.log") as err:
+        run_ccx("*NODE\n1, 0, 0, 0\n*STEP\n*STATIC\n*BOGUS CARD\n*END STEP\n", tmp_path, "bad")
+    assert (tmp_path / "bad.log").read_text().strip()
+    assert str(tmp_path / "bad.inp") in str(err.value)
+
+
+def test_missing_solver_names_the_package(monkeypatch, tmp_path):
+    from gearcoupling.fea.backends import CCX_ENV, ccx_path
+
+    monkeypatch.setenv(CCX_ENV, str(tmp_path / "no-ccx-here"))
+    with pytest.raises(BackendError, match="calculix-ccx"):
+        ccx_path()
+    assert main(["stiffness", "industrial-m2", "-o", str(tmp_path)]) == 2
+
+
+def test_stiffness_cli_refuses_an_even_sector(tmp_path, capsys):
+    assert main(["stiffness", "industrial-m2", "--sector", "2", "-o", str(tmp_path)]) == 2
+    assert "odd number of teeth" in capsys.readouterr().err
+    with pytest.raises(SpecError):
+        from gearcoupling.fea import compute_compliance_table
+
+        compute_compliance_table(load_spec("industrial-m2"), sector=4)
