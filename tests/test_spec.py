@@ -2,6 +2,7 @@
 
 import math
 
+import numpy as np
 import pytest
 
 import gearcoupling as gc
@@ -73,7 +74,7 @@ def test_overrides_and_replace():
         ({"tooth__module": 0.1}, "tooth.module", "0.2-60"),
         ({"tooth__pressure_angle_deg": 35}, "tooth.pressure_angle_deg", "14.5-30"),
         ({"hub__face_width": -3.0}, "hub.face_width", "positive"),
-        ({"hub__backlash": -0.1}, "hub.tooth_thickness", "interfere"),
+        ({"hub__backlash": -0.1}, "hub.backlash", ">= 0"),
         ({"hub__crowning__kind": "parabolic"}, "hub.crowning.kind", "one of"),
         ({"hub__crowning__radius": 4.0}, "hub.crowning.radius", "dedendum"),
         ({"hub__crowning__radius": 10.0}, "hub.crowning.radius", "face width"),
@@ -89,7 +90,7 @@ def test_overrides_and_replace():
         ({"hub__root__fillet_radius": 3.0}, "hub.root.fillet_radius", "dedendum"),
         ({"hub__body__bore_diameter": 70.0}, "hub.body.bore_diameter", "rim"),
         ({"sleeve__face_width": 10.0}, "sleeve.face_width", "cover the hub"),
-        ({"design_misalignment_deg": 7.0}, "design_misalignment_deg", "0.0-6.0"),
+        ({"design_misalignment_deg": 7.0}, "design_misalignment_deg", "from 0.0 to 6.0"),
         ({"units": "cm"}, "units", "one of"),
         ({"hub__colour": "red"}, "hub.colour", "unknown key"),
         ({"hub__crowning__generation": "milled"}, "hub.crowning.generation", "one of"),
@@ -149,3 +150,135 @@ def test_spec_dict_is_json_ready():
     data = gc.load_spec("renzo-1967", **{"hub.crowning.kind": "none"}).to_dict()
     text = json.dumps(data, allow_nan=False)
     assert '"inf"' in text and data["tooth"]["pressure_angle_deg"] == pytest.approx(20)
+
+
+def _draw_valid_range(rng):
+    """A spec inside the documented ranges that leaves every proportion to the defaults."""
+    teeth = int(rng.integers(6, 301))
+    module = float(np.exp(rng.uniform(np.log(0.2), np.log(60.0))))
+    R = 0.5 * module * teeth
+    return {"tooth": {"teeth": teeth, "module": module,
+                      "pressure_angle_deg": float(rng.uniform(14.5, 30.0))},
+            "hub": {"face_width": float(rng.uniform(0.05, 0.3)) * R,
+                    "backlash": float(rng.uniform(0.0, 0.3)) * module,
+                    "tip": {"kind": str(rng.choice(["sphere", "cylinder"]))},
+                    "crowning": {"kind": "circular", "radius": float(rng.uniform(1.0, 3.0)) * R,
+                                 "generation": str(rng.choice(["enveloped", "revolved"]))}}}
+
+
+def test_defaults_always_validate_over_the_documented_range():
+    # issue 14 item 2: 18 % of such specs were refused for the default hob tip radius, and
+    # item 10: every spec of 12 or fewer teeth for undercut with default proportions
+    rng = np.random.default_rng(14)
+    refused = []
+    for _ in range(150):
+        data = _draw_valid_range(rng)
+        try:
+            spec_from_dict(data)
+        except gc.SpecError as err:
+            refused.append(str(err))
+    assert refused == []
+
+
+@pytest.mark.parametrize("teeth", [6, 7, 9, 12])
+@pytest.mark.parametrize("phi", [14.5, 20.0, 30.0])
+def test_few_teeth_build_with_default_proportions_and_no_undercut(teeth, phi):
+    from gearcoupling.geometry.hub import hub_model, radius_squared
+
+    data = {"tooth": {"teeth": teeth, "module": 3.0, "pressure_angle_deg": phi},
+            "hub": {"face_width": 0.2 * 1.5 * teeth, "crowning": {"kind": "none"}}}
+    spec = spec_from_dict(data)
+    m = hub_model(spec)
+    # independent spur relation: no undercut while the form depth stays above R sin^2 phi
+    assert m.h_form < m.R * math.sin(m.phi) ** 2
+    assert radius_squared(m, 0.0, m.h_form, m.phi)[1] < 0
+
+
+def test_a_refused_derived_value_says_it_was_derived_and_what_to_set():
+    with pytest.raises(gc.SpecError) as info:
+        build(hub__face_width=60.0, hub__crowning={"kind": "circular", "radius": 300.0})
+    err = info.value
+    assert err.field == "hub.tip.diameter"
+    assert "not in the spec: derived" in str(err) and "set hub.tip.diameter" in str(err)
+    with pytest.raises(gc.SpecError) as info:  # given explicitly: no such note
+        build(hub__face_width=60.0, hub__crowning={"kind": "circular", "radius": 300.0},
+              hub__tip={"diameter": 80.0})
+    assert "derived" not in str(info.value)
+
+
+@pytest.mark.parametrize("changes, field, words", [
+    ({"tooth__teth": 38}, "tooth.teth", "did you mean 'teeth'"),
+    ({"hub__crowing": {"kind": "none"}}, "hub.crowing", "did you mean 'crowning'"),
+    ({"toth": {"teeth": 3}}, "toth", "did you mean 'tooth'"),
+])
+def test_a_misspelt_key_is_reported_before_missing_ones(changes, field, words):
+    data = {"tooth": {"module": 2.0}, "hub": {}}  # teeth and face width missing
+    for key, value in changes.items():
+        head, _, tail = key.partition("__")
+        if tail:
+            data[head][tail] = value
+        else:
+            data[head] = value
+    with pytest.raises(gc.SpecError) as info:
+        spec_from_dict(data)
+    assert info.value.field == field and words in str(info.value)
+
+
+@pytest.mark.parametrize("kind", ["none", "table", "circular"])
+@pytest.mark.parametrize("key", ["radius", "end_radius", "start_z"])
+def test_negative_crown_values_are_refused_even_where_the_kind_ignores_them(kind, key):
+    crown = {"kind": kind, key: -5.0}
+    if kind == "table":
+        crown.update(z=[0, 4, 8], drop=[0, 0.1, 0.4])
+    if kind == "circular" and key != "radius":
+        crown["radius"] = 38.0
+    with pytest.raises(gc.SpecError) as info:
+        build(hub__crowning=crown)
+    assert info.value.field == f"hub.crowning.{key}"
+
+
+def test_design_misalignment_of_6_survives_the_degree_round_trip():
+    s = build(design_misalignment_deg=6)
+    assert math.degrees(s.design_misalignment) > 6.0  # the radian round trip overshoots
+    assert s.design_misalignment_deg == 6.0 and s.to_dict()["design_misalignment_deg"] == 6.0
+    from gearcoupling.spec import check_misalignment_deg
+
+    assert check_misalignment_deg(6.000000000000001) == 6.0
+    for bad in (6.001, -0.001, math.nan, math.inf, "6", True):
+        with pytest.raises(gc.SpecError):
+            check_misalignment_deg(bad)
+
+
+@pytest.mark.parametrize("key, value", [("hub__backlash", math.nan), ("hub__backlash", math.inf),
+                                        ("tooth__module", math.nan),
+                                        ("hub__crowning__radius", math.nan)])
+def test_nan_and_inf_values_are_spec_errors(key, value):
+    with pytest.raises(gc.SpecError) as info:
+        build(**{key: value})
+    assert info.value.field == key.replace("__", ".")
+
+
+def test_a_spec_file_that_is_not_utf8_is_a_spec_error(tmp_path):
+    path = tmp_path / "latin1.toml"
+    path.write_bytes("# Kupplung für Walzwerk\n[tooth]\nteeth = 38\n".encode("latin-1"))
+    with pytest.raises(gc.SpecError, match="UTF-8"):
+        gc.load_spec(path)
+
+
+def test_a_table_crown_is_checked_along_its_spline_not_only_at_its_samples():
+    from gearcoupling.geometry.feedpath import feed_path
+
+    # issue 14 item 10: the samples are all >= 0 but the spline between them dips below 0
+    bad = {"kind": "table", "z": [0, 2, 4, 6], "drop": [0, 0, 0, 0.2]}
+    s = gc.spec_from_dict({"tooth": {"teeth": 38, "module": 2.0},
+                           "hub": {"face_width": 12.0, "crowning": {"kind": "none"}}})
+    path = feed_path(s.hub.crowning.__class__(kind="table", table_z=(0, 2, 4, 6),
+                                              table_drop=(0, 0, 0, 0.2)), 38.0, 12.0)
+    assert np.min(path.drop(np.linspace(0, 6, 61))) < -1e-3  # the dip is real
+    with pytest.raises(gc.SpecError, match="rises above the midplane") as info:
+        build(hub__face_width=12.0, hub__crowning=bad)
+    assert info.value.field == "hub.crowning.drop"
+    with pytest.raises(gc.SpecError, match="reach the face end") as info:  # no extrapolation
+        build(hub__face_width=16.0, hub__crowning={"kind": "table", "z": [0, 3, 6],
+                                                   "drop": [0, 0.05, 0.2]})
+    assert info.value.field == "hub.crowning.z"

@@ -47,7 +47,7 @@ def test_sweep_command_defaults_to_the_design_angle(tmp_path):
 
 
 @pytest.mark.parametrize("argv, needle", [
-    (["--misalignment", "7"], "misalignment_deg"),
+    (["--misalignment", "7"], "--misalignment"),
     (["--angles", "0"], "--angles"),
 ])
 def test_sweep_command_bad_input_exits_2(tmp_path, capsys, argv, needle):

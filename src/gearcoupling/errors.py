@@ -23,3 +23,8 @@ class GeometryError(GearCouplingError, ValueError):
 
 class BackendError(GearCouplingError, RuntimeError):
     """An optional back-end is missing or failed; the message says what to install or change."""
+
+
+class ArgumentError(GearCouplingError, ValueError):
+    """An invalid argument of a library call (not a spec value): the message names the
+    argument, its value and what is allowed. The CLI maps it to exit status 2."""

@@ -67,7 +67,7 @@ def plot_sections(spec, path: str | Path, tolerance_mm: float | None = None) -> 
     along the face for the enveloped (hob-generated) and revolved constructions, with
     Renzo's eq. (1) ``tan phi' = tan phi cos e`` for comparison.
     """
-    tol = tolerance_mm or 1e-3 * spec.tooth.module
+    tol = 1e-3 * spec.tooth.module if tolerance_mm is None else tolerance_mm
     N = spec.tooth.teeth
     fig, axes = new_figure(2, 2, figsize=(14, 10), gridspec_kw={"height_ratios": [1.1, 1]})
     axes[0, 1].remove()

@@ -18,7 +18,11 @@ from itertools import pairwise
 from pathlib import Path
 from typing import Any, ClassVar
 
-from .errors import SpecError
+import numpy as np
+
+from .errors import GeometryError, SpecError
+from .geometry.checks import MAX_END_TANGENT_DEG, check_spec, derived_values
+from .geometry.involute import inv_inverse
 from .loadspec import LoadSpec, Materials, parse_load, parse_material
 
 MM_PER_INCH = 25.4
@@ -30,7 +34,20 @@ MISALIGNMENT_RANGE_DEG = (0.0, 6.0)
 CROWNING_KINDS = ("none", "circular", "vari_crown", "end_round", "table")
 GENERATIONS = ("enveloped", "revolved")
 TIP_KINDS = ("sphere", "cylinder")
-MAX_END_TANGENT_DEG = 45.0  # steepest feed-path tangent allowed at the face ends
+_ROUNDING_DEG = 1e-9  # slack for degree <-> radian round trips (6° -> 6.000000000000001)
+
+
+def check_misalignment_deg(value: object, field_name: str = "misalignment_deg") -> float:
+    """A misalignment in degrees, validated once for every caller (0-6°).
+
+    Values within ``1e-9°`` outside the range (a degree-radian round trip) are clamped
+    onto it; anything else outside, non-numeric or non-finite raises :class:`SpecError`.
+    """
+    lo, hi = MISALIGNMENT_RANGE_DEG
+    ok = isinstance(value, int | float) and not isinstance(value, bool) and math.isfinite(value)
+    _check(ok and lo - _ROUNDING_DEG <= value <= hi + _ROUNDING_DEG, field_name, value,
+           f"must be a finite angle from {lo} to {hi} degrees")
+    return min(max(float(value), lo), hi)  # type: ignore[arg-type]
 
 
 def _check(ok: bool, field_name: str, value: object, allowed: str) -> None:
@@ -133,6 +150,10 @@ class Crowning:
         _check(self.kind in CROWNING_KINDS, f"{p}.kind", self.kind, f"one of {CROWNING_KINDS}")
         _check(self.generation in GENERATIONS, f"{p}.generation", self.generation,
                f"one of {GENERATIONS}")
+        for name in ("radius", "end_radius"):  # checked even where the kind ignores them
+            _positive(f"{p}.{name}", getattr(self, name), finite=False)
+        _check(math.isfinite(self.start_z) and self.start_z >= 0, f"{p}.start_z", self.start_z,
+               "must be a length >= 0 mm")
         if self.kind in ("circular", "vari_crown", "end_round"):
             _positive(f"{p}.radius", self.radius, finite=self.kind == "vari_crown")
         if self.kind == "vari_crown":
@@ -296,13 +317,14 @@ class CouplingSpec:
     units: str = field(default="mm", compare=False)
 
     def __post_init__(self):
-        lo, hi = MISALIGNMENT_RANGE_DEG
-        deg = math.degrees(self.design_misalignment)
-        _check(math.isfinite(deg) and lo <= deg <= hi + 1e-9, "design_misalignment_deg", deg,
-               f"must be {lo}-{hi} degrees")
-        from .geometry.checks import check_spec  # geometry kernels check what needs them
+        check_misalignment_deg(math.degrees(self.design_misalignment), "design_misalignment_deg")
+        check_spec(self)  # geometry kernels check what needs them (one-way: spec -> geometry)
 
-        check_spec(self)
+    @property
+    def design_misalignment_deg(self) -> float:
+        """The design misalignment in degrees, exactly inside 0-6° (no round-trip excess)."""
+        return check_misalignment_deg(math.degrees(self.design_misalignment),
+                                      "design_misalignment_deg")
 
     def replace(self, **changes: Any) -> CouplingSpec:
         """A copy with dotted-path changes in mm/radians, re-validated."""
@@ -311,14 +333,12 @@ class CouplingSpec:
     @cached_property
     def derived(self) -> dict[str, float]:
         """Derived values in mm and degrees (see :func:`derived_values`)."""
-        from .geometry.checks import derived_values
-
         return derived_values(self)
 
     def to_dict(self) -> dict[str, Any]:
         """The resolved spec as plain data in mm and degrees (keys say their unit)."""
         out = {"name": self.name, "units": "mm",
-               "design_misalignment_deg": math.degrees(self.design_misalignment)}
+               "design_misalignment_deg": self.design_misalignment_deg}
         d = asdict(self)
         tooth = d["tooth"]
         tooth["pressure_angle_deg"] = math.degrees(tooth.pop("pressure_angle"))
@@ -368,21 +388,56 @@ def _replace_dotted(obj, changes: dict[str, Any]):
 # --------------------------------------------------------------------------- loading
 
 
+# every key a spec file may hold, per table (unknown keys are reported before anything else)
+SPEC_KEYS: dict[str, tuple[str, ...]] = {
+    "": ("units", "name", "design_misalignment_deg", "tooth", "hub", "sleeve", "load",
+         "material"),
+    "tooth": ("teeth", "module", "diametral_pitch", "pressure_angle_deg"),
+    "hub": ("face_width", "tooth_thickness", "backlash", "tip", "root", "crowning", "body"),
+    "hub.tip": ("kind", "diameter"),
+    "hub.root": ("dedendum", "fillet_radius"),
+    "hub.crowning": ("kind", "radius", "end_radius", "start_z", "s", "kappa", "z", "drop",
+                     "generation"),
+    "hub.body": ("bore_diameter", "length"),
+    "sleeve": ("face_width", "minor_diameter", "major_diameter", "space_width", "tip_chamfer",
+               "root_fillet_radius", "outer_diameter"),
+}
+
+# how each derived default is chosen (quoted when a derived value is refused)
+DEFAULT_RULES: dict[str, str] = {
+    "hub.backlash": "0.04 m",
+    "hub.tip.diameter": "2 (R + m), lowered for few teeth so that the tips are not pointed",
+    "hub.root.dedendum": "1.25 m, reduced for few teeth so that the hob does not undercut",
+    "hub.root.fillet_radius": "0.3 m, reduced so that the hob tip rounds of adjacent flanks "
+                              "fit in the tooth space",
+    "hub.body.bore_diameter": "root diameter minus max(6 m, 0.3 R)",
+    "hub.body.length": "the face width",
+    "sleeve.space_width": "pi m / 2",
+    "sleeve.face_width": "hub face width + 4 m",
+    "sleeve.minor_diameter": "just above the hub form diameter",
+    "sleeve.major_diameter": "2 (R + 1.25 m), lowered for few teeth",
+    "sleeve.tip_chamfer": "0.1 m",
+    "sleeve.root_fillet_radius": "0.25 m, reduced to fit the space",
+    "sleeve.outer_diameter": "major diameter + 2 max(3 m, 0.1 R)",
+}
+
+
 class _Table:
     """Reads one TOML table with unit conversion and reports unknown keys."""
 
-    def __init__(self, data: Any, path: str, scale: float):
+    def __init__(self, data: Any, path: str, scale: float, defaulted: set[str] | None = None):
         _check(isinstance(data, dict), path or "spec", data, "must be a TOML table")
         self.data, self.path, self.scale = dict(data), path, scale
+        self.defaulted = set() if defaulted is None else defaulted
 
     def _name(self, key: str) -> str:
         return f"{self.path}.{key}" if self.path else key
 
     def table(self, key: str) -> _Table:
-        return _Table(self.data.pop(key, {}), self._name(key), self.scale)
+        return _Table(self.data.pop(key, {}), self._name(key), self.scale, self.defaulted)
 
     def _number(self, key: str, value: Any) -> float:
-        if isinstance(value, bool) or not isinstance(value, int | float):
+        if isinstance(value, bool) or not isinstance(value, int | float) or math.isnan(value):
             raise SpecError(self._name(key), value, "must be a number")
         return float(value)
 
@@ -393,6 +448,7 @@ class _Table:
         if key not in self.data:
             if default is None:
                 raise SpecError(self._name(key), None, "is required (a length)")
+            self.defaulted.add(self._name(key))
             return default
         return self._number(key, self.data.pop(key)) * self.scale
 
@@ -425,18 +481,106 @@ class _Table:
     def done(self) -> None:
         if self.data:
             key = sorted(self.data)[0]
-            raise SpecError(self._name(key), self.data[key], "unknown key (check the spelling; "
-                            "see templates/ for every key)")
+            _unknown_key(self._name(key), self.data[key], SPEC_KEYS.get(self.path, ()))
+
+
+def _unknown_key(name: str, value: Any, known: tuple[str, ...]) -> None:
+    import difflib
+
+    close = difflib.get_close_matches(name.rpartition(".")[2], known, n=1)
+    hint = f"did you mean {close[0]!r}? " if close else ""
+    raise SpecError(name, value, f"unknown key ({hint}allowed here: {', '.join(known)}; "
+                    "see templates/ for every key)")
+
+
+def check_keys(data: Any, path: str = "") -> None:
+    """Refuse the first unknown key of a spec file (depth-first), before anything else is
+    read, so that a misspelt key is named rather than reported as a missing one."""
+    known = SPEC_KEYS.get(path)
+    if known is None or not isinstance(data, dict):
+        return
+    for key in sorted(data):
+        name = f"{path}.{key}" if path else key
+        if key not in known:
+            _unknown_key(name, data[key], known)
+        check_keys(data[key], name)
 
 
 def spec_from_dict(data: dict[str, Any], name: str = "custom") -> CouplingSpec:
-    """Build a :class:`CouplingSpec` from parsed TOML data (file units, angles in degrees)."""
-    root = _Table(copy.deepcopy(data), "", 1.0)
+    """Build a :class:`CouplingSpec` from parsed TOML data (file units, angles in degrees).
+
+    Keys left out get the defaults of :data:`DEFAULT_RULES`, chosen so that they always
+    fit; if a derived value is refused anyway, the error says so and names the key to set.
+    """
+    check_keys(data)
+    defaulted: set[str] = set()
+    try:
+        return _build(_Table(copy.deepcopy(data), "", 1.0, defaulted), name)
+    except SpecError as err:
+        if err.field not in defaulted:
+            raise
+        raise SpecError(err.field, err.value, f"{err.allowed} [not in the spec: derived as "
+                        f"{DEFAULT_RULES.get(err.field, 'a default')}; set {err.field} "
+                        "explicitly]") from None
+
+
+def default_fillet_radius(tooth: ToothSystem, thickness: float, dedendum: float) -> float:
+    """Hob tip radius: 0.3 m, or 80 % of the largest that fits between adjacent flanks
+    (and at most half the dedendum).
+
+    The round centre ``u_c = t/2 + (d - f) tan phi + f / cos phi`` must stay within half a
+    circular pitch of the tooth centre (:class:`HubModel.round_centre`).
+    """
+    phi = tooth.pressure_angle
+    room = 0.5 * (tooth.circular_pitch - thickness) - dedendum * math.tan(phi)
+    largest = room / (1.0 / math.cos(phi) - math.tan(phi))
+    return max(0.0, min(0.3 * tooth.module, 0.8 * largest, 0.5 * dedendum))
+
+
+def default_dedendum(tooth: ToothSystem, thickness: float, crowning: Crowning,
+                     face_width: float) -> float:
+    """Hob addendum: 1.25 m, or 90 % of the deepest form depth free of undercut in every
+    plane of the face (few teeth, small pressure angles), found by bisection."""
+    from .geometry.feedpath import feed_path
+    from .geometry.hub import HubModel, radius_squared
+
+    m, phi, R = tooth.module, tooth.pressure_angle, tooth.pitch_radius
+    d = 1.25 * m
+    f = default_fillet_radius(tooth, thickness, d)
+    model = HubModel(R, phi, tooth.teeth, thickness, d, f, "cylinder", R, 0.5 * face_width,
+                     crowning.generation == "revolved", feed_path(crowning, R, face_width))
+    z = np.linspace(0.0, 0.5 * face_width, 17)
+
+    def undercut(h: float) -> bool:
+        try:
+            with np.errstate(all="ignore"):
+                d_r2 = radius_squared(model, z, h, phi)[1]
+        except GeometryError:
+            return True
+        return not bool(np.all(d_r2 < 0))
+
+    lift = 1.0 - math.sin(phi)  # form depth = dedendum - fillet * lift
+    lo, hi = 0.0, d - f * lift
+    if not undercut(hi):
+        return d
+    for _ in range(40):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if not undercut(mid) else (lo, mid)
+    if lo < 0.5 * R * math.sin(phi) ** 2:  # far below the spur limit: the crown is to blame
+        return 1.25 * m
+    for _ in range(8):  # the default fillet depends on the dedendum: fixed point
+        d = 0.9 * lo + default_fillet_radius(tooth, thickness, d) * lift
+    return d
+
+
+def _build(root: _Table, name: str) -> CouplingSpec:
     units = root.string("units", "mm")
     _check(units in UNITS, "units", units, f"one of {tuple(UNITS)}")
     root.scale = UNITS[units]
     name = root.string("name", name)
-    misalignment = root.angle("design_misalignment_deg", 0.0)
+    misalignment = math.radians(check_misalignment_deg(root.number("design_misalignment_deg",
+                                                                   0.0),
+                                                       "design_misalignment_deg"))
 
     t = root.table("tooth")
     teeth = t.integer("teeth")
@@ -455,6 +599,7 @@ def spec_from_dict(data: dict[str, Any], name: str = "custom") -> CouplingSpec:
 
     s = root.table("sleeve")
     space_width = s.length("space_width", 0.5 * math.pi * m)
+    _positive("sleeve.space_width", space_width)
     h = root.table("hub")
     face = h.length("face_width")
     _positive("hub.face_width", face)
@@ -463,18 +608,14 @@ def spec_from_dict(data: dict[str, Any], name: str = "custom") -> CouplingSpec:
                "give tooth_thickness or backlash, not both")
         thickness = h.length("tooth_thickness")
     else:
-        thickness = space_width - h.length("backlash", 0.04 * m)
+        backlash = h.length("backlash", 0.04 * m)
+        _check(math.isfinite(backlash) and 0 <= backlash < space_width, "hub.backlash",
+               backlash, f"must be >= 0 and below the sleeve space width {space_width:.6g} mm")
+        thickness = space_width - backlash
+    _positive("hub.tooth_thickness", thickness)
 
     # defaults: standard proportions, kept below where hub teeth or sleeve spaces turn
     # pointed (which matters for few teeth)
-    r_hub_pointed = _pointed_radius(tooth, thickness)
-    tip_default = min(R + m, R + 0.75 * (r_hub_pointed - R))
-    tip_t = h.table("tip")
-    tip = HubTip(tip_t.string("kind", "sphere"), tip_t.length("diameter", 2 * tip_default))
-    tip_t.done()
-    root_t = h.table("root")
-    hub_root = HubRoot(root_t.length("dedendum", 1.25 * m), root_t.length("fillet_radius", 0.3 * m))
-    root_t.done()
     c = h.table("crowning")
     kind = c.string("kind", "circular")
     needs_radius = kind in ("circular", "vari_crown", "end_round")
@@ -490,6 +631,27 @@ def spec_from_dict(data: dict[str, Any], name: str = "custom") -> CouplingSpec:
         generation=c.string("generation", "enveloped"),
     )
     c.done()
+    # the crown drop thins the teeth toward the face ends: keep the tip below where they
+    # would be pointed there too (a sphere tip falls with z by itself)
+    r_hub_pointed = _pointed_radius(tooth, thickness)
+    tip_t = h.table("tip")
+    tip_kind = tip_t.string("kind", "sphere")
+    tip_default = min(R + m, R + 0.75 * (r_hub_pointed - R))
+    z_end = 0.5 * face
+    drop_end = _crown_drop(crowning, R, face, z_end)
+    if tip_kind == "sphere":
+        drop_end -= tip_default - math.sqrt(max(tip_default**2 - z_end**2, 0.0))
+    tip_default = min(tip_default, r_hub_pointed - max(drop_end, 0.0)
+                      - 0.25 * (r_hub_pointed - R))
+    tip = HubTip(tip_kind, tip_t.length("diameter", 2 * tip_default))
+    tip_t.done()
+    root_t = h.table("root")
+    dedendum = root_t.length("dedendum") if root_t.has("dedendum") else root_t.length(
+        "dedendum", default_dedendum(tooth, thickness, crowning, face))
+    _positive("hub.root.dedendum", dedendum)
+    hub_root = HubRoot(dedendum, root_t.length("fillet_radius",
+                                               default_fillet_radius(tooth, thickness, dedendum)))
+    root_t.done()
     root_dia = 2 * (R - hub_root.dedendum)
     b = h.table("body")
     body = HubBody(b.length("bore_diameter", max(0.0, root_dia - 2 * max(3 * m, 0.15 * R))),
@@ -524,10 +686,21 @@ def spec_from_dict(data: dict[str, Any], name: str = "custom") -> CouplingSpec:
                         material=material)
 
 
+def _crown_drop(crowning: Crowning, R: float, face: float, z: float) -> float:
+    """Feed-path crown drop at ``z`` for a default; 0 where the path does not reach ``z``
+    (the checks then refuse the crown itself, with a better reason)."""
+    from .geometry.feedpath import feed_path
+
+    try:
+        with np.errstate(all="ignore"):
+            drop = float(feed_path(crowning, R, face).drop(z))
+    except GeometryError:
+        return 0.0
+    return drop if math.isfinite(drop) else 0.0
+
+
 def _pointed_radius(tooth: ToothSystem, arc_width: float) -> float:
     """Radius where a spur tooth (or space) of ``arc_width`` at the pitch circle is pointed."""
-    from .geometry.involute import inv_inverse
-
     phi = tooth.pressure_angle
     alpha = float(inv_inverse(0.5 * arc_width / tooth.pitch_radius + math.tan(phi) - phi))
     return tooth.base_radius / math.cos(alpha)
@@ -587,9 +760,14 @@ def load_spec(name_or_path: str | Path, **overrides: Any) -> CouplingSpec:
     """
     path = resolve_spec_path(name_or_path)
     try:
-        data = tomllib.loads(path.read_text())
+        data = tomllib.loads(path.read_text(encoding="utf-8"))
     except tomllib.TOMLDecodeError as err:
         raise SpecError(str(path), None, f"is not valid TOML: {err}") from err
+    except UnicodeDecodeError as err:
+        raise SpecError(str(path), None, f"is not UTF-8 text (byte {err.start}): save the "
+                        "spec file as UTF-8") from err
+    except OSError as err:
+        raise SpecError(str(path), None, f"cannot be read: {err.strerror}") from err
     for key, value in overrides.items():
         _set_dotted(data, key, value)
     return spec_from_dict(data, name=path.stem)

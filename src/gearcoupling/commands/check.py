@@ -23,6 +23,7 @@ from .common import (
     add_spec_arguments,
     misalignment_deg,
     output_dir,
+    positive_length,
     progress,
     spec_from_args,
 )
@@ -64,7 +65,7 @@ def register(sub) -> None:
     p.add_argument("--method", choices=("boolean", "distance"), default="boolean",
                    help="overlap by manifold3d booleans (exact volume, default) or by "
                         "signed distances (faster, estimated volume)")
-    p.add_argument("--tolerance", type=float, default=None, metavar="MM",
+    p.add_argument("--tolerance", type=positive_length, default=None, metavar="MM",
                    help="chordal tolerance of the meshes (default: module / 200)")
     p.add_argument("--teeth", type=_teeth, default="sweep", metavar="sweep|all|K",
                    help="model: tooth pairs chosen by the sweep (default), windows of 2K+1 "

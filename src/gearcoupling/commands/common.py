@@ -4,10 +4,52 @@ from __future__ import annotations
 
 import argparse
 import math
+from collections.abc import Callable
 from contextlib import contextmanager
 from pathlib import Path
 
-from ..spec import CouplingSpec, load_spec, parse_override
+from ..atomic import default_output_dir
+from ..errors import SpecError
+from ..spec import CouplingSpec, check_misalignment_deg, load_spec, parse_override
+
+MAX_ANGLES = 100_000  # rotation angles per turn a command accepts (memory grows with it)
+
+
+def positive_length(text: str) -> float:
+    """argparse type: a finite length > 0 in mm (``0``, negatives, ``nan`` and ``inf`` refused)."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number (mm)") from None
+    if not (math.isfinite(value) and value > 0):
+        raise argparse.ArgumentTypeError(f"{text!r}: must be a finite length > 0 (mm)")
+    return value
+
+
+def finite_float(text: str) -> float:
+    """argparse type: a finite number (``nan`` and ``inf`` refused)."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"{text!r}: must be finite")
+    return value
+
+
+def count(lo: int, hi: int) -> Callable[[str], int]:
+    """argparse type: a whole number from ``lo`` to ``hi``."""
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{text!r} is not a whole number") from None
+        if not lo <= value <= hi:
+            raise argparse.ArgumentTypeError(f"{value}: must be from {lo} to {hi}")
+        return value
+
+    parse.__name__ = "count"
+    return parse
 
 
 def add_spec_arguments(parser: argparse.ArgumentParser, *, output: bool = True) -> None:
@@ -24,15 +66,16 @@ def add_spec_arguments(parser: argparse.ArgumentParser, *, output: bool = True) 
 
 def add_misalignment_argument(parser: argparse.ArgumentParser) -> None:
     """``--misalignment DEG``, default the spec's design angle (:func:`misalignment_deg`)."""
-    parser.add_argument("--misalignment", type=float, default=None, metavar="DEG",
-                        help="misalignment in degrees (default: the spec's design angle)")
+    parser.add_argument("--misalignment", type=finite_float, default=None, metavar="DEG",
+                        help="misalignment in degrees, 0-6 (default: the spec's design angle)")
 
 
 def misalignment_deg(args: argparse.Namespace, spec: CouplingSpec) -> float:
-    """The ``--misalignment`` given, else the spec's design misalignment, in degrees."""
+    """The ``--misalignment`` given, else the spec's design misalignment, in degrees (0-6°,
+    checked once by :func:`~gearcoupling.spec.check_misalignment_deg`)."""
     if args.misalignment is None:
-        return math.degrees(spec.design_misalignment)
-    return args.misalignment
+        return spec.design_misalignment_deg
+    return check_misalignment_deg(args.misalignment, "--misalignment")
 
 
 def spec_from_args(args: argparse.Namespace) -> CouplingSpec:
@@ -41,8 +84,19 @@ def spec_from_args(args: argparse.Namespace) -> CouplingSpec:
 
 
 def output_dir(args: argparse.Namespace, spec: CouplingSpec) -> Path:
-    out = Path(args.output) if getattr(args, "output", None) else Path("outputs") / spec.name
-    out.mkdir(parents=True, exist_ok=True)
+    """``-o DIR`` if given, else ``outputs/<sanitised spec name>``: a spec's ``name`` never
+    chooses where files go (see :func:`~gearcoupling.atomic.default_output_dir`)."""
+    given = getattr(args, "output", None)
+    out = Path(given) if given else default_output_dir(spec.name)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except FileExistsError:
+        raise SpecError("-o", str(out), "names an existing file: give a folder") from None
+    except OSError as err:
+        raise SpecError("-o", str(out), f"cannot create the output folder: {err.strerror}") \
+            from None
+    if not out.is_dir():
+        raise SpecError("-o", str(out), "names an existing file: give a folder")
     return out
 
 

@@ -49,7 +49,11 @@ def parse_teeth(text: str | None, teeth: int) -> list[int] | None:
     try:
         for item in text.split(","):
             lo, _, hi = item.strip().partition("-")
-            out.extend(range(int(lo), int(hi or lo) + 1))
+            first, last = int(lo), int(hi or lo)
+            if not 0 <= first <= last < teeth:  # before building a range (no MemoryError)
+                raise SpecError("--teeth", text, f"tooth indices or ascending ranges from 0 "
+                                f"to {teeth - 1}")
+            out.extend(range(first, last + 1))
     except ValueError as err:
         raise SpecError("--teeth", text, "tooth indices or ranges, e.g. 0,1,2,49 or 0-2,49") \
             from err

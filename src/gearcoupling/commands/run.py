@@ -7,7 +7,6 @@ A step whose optional back-end is missing (STEP, viewer) says so and writes noth
 
 from __future__ import annotations
 
-import math
 import sys
 from collections.abc import Callable
 from pathlib import Path
@@ -46,7 +45,7 @@ def _step_files(spec, out: Path) -> list[Path]:
 def _sweep(spec, out: Path) -> list[Path]:
     from .sweep import sweep_files
 
-    return sweep_files(spec, out, math.degrees(spec.design_misalignment), 360)
+    return sweep_files(spec, out, spec.design_misalignment_deg, 360)
 
 
 def _check(spec, out: Path) -> list[Path]:

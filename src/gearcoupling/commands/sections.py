@@ -2,13 +2,13 @@
 
 from __future__ import annotations
 
-from .common import add_spec_arguments, output_dir, spec_from_args
+from .common import add_spec_arguments, output_dir, positive_length, spec_from_args
 
 
 def register(sub) -> None:
     p = sub.add_parser("sections", help="plot transverse sections and the axial crown view")
     add_spec_arguments(p)
-    p.add_argument("--tolerance", type=float, default=None, metavar="MM",
+    p.add_argument("--tolerance", type=positive_length, default=None, metavar="MM",
                    help="chordal tolerance of the plotted sections (default: module / 1000)")
     p.set_defaults(func=run)
 

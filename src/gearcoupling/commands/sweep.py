@@ -10,10 +10,13 @@ import numpy as np
 from ..atomic import atomic_path, write_json
 from ..errors import SpecError
 from .common import (
+    MAX_ANGLES,
     add_misalignment_argument,
     add_spec_arguments,
+    count,
     misalignment_deg,
     output_dir,
+    positive_length,
     spec_from_args,
 )
 
@@ -23,9 +26,9 @@ def register(sub) -> None:
                        "turn at a misalignment (CSV, summary JSON, plots)")
     add_spec_arguments(p)
     add_misalignment_argument(p)
-    p.add_argument("--angles", type=int, default=360, metavar="N",
-                   help="rotations over one turn (default 360)")
-    p.add_argument("--tolerance", type=float, default=1e-7, metavar="MM",
+    p.add_argument("--angles", type=count(1, MAX_ANGLES), default=360, metavar="N",
+                   help=f"rotations over one turn, 1-{MAX_ANGLES} (default 360)")
+    p.add_argument("--tolerance", type=positive_length, default=1e-7, metavar="MM",
                    help="accuracy of every minimum in mm (default 1e-7)")
     p.add_argument("--no-design", action="store_true",
                    help="skip the critical and binding angles (root finding, a few seconds)")

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import sys
 import time
+from pathlib import Path
 
 from ..errors import SpecError
 from ..viewer.nodes import FRAMES
@@ -11,8 +12,11 @@ from ..viewer.scene import COLOR_MODES, CUTAWAYS, LOD_DIVISORS
 from .common import (
     add_misalignment_argument,
     add_spec_arguments,
+    count,
+    finite_float,
     misalignment_deg,
     output_dir,
+    positive_length,
     spec_from_args,
 )
 
@@ -20,11 +24,14 @@ from .common import (
 def register(sub) -> None:
     p = sub.add_parser("view", help="3D viewer in the browser (viser) or a static HTML scene")
     add_spec_arguments(p)
-    p.add_argument("--host", default="127.0.0.1", help="address to serve on (default 127.0.0.1)")
-    p.add_argument("--port", type=int, default=8080, help="port (default 8080; the next free "
-                   "one is used if taken)")
+    p.add_argument("--host", default="127.0.0.1",
+                   help="address to serve on (default 127.0.0.1, this machine only; another "
+                        "address exposes the viewer and its save button to the network)")
+    p.add_argument("--port", type=count(1, 65535), default=8080,
+                   help="port (default 8080; if taken, the next free one of the following "
+                        "few is used)")
     add_misalignment_argument(p)
-    p.add_argument("--angle", type=float, default=0.0, metavar="DEG",
+    p.add_argument("--angle", type=finite_float, default=0.0, metavar="DEG",
                    help="start rotation psi in degrees (default 0)")
     p.add_argument("--cutaway", choices=CUTAWAYS, default="quarter",
                    help="part of the sleeve removed to show the teeth (default quarter)")
@@ -36,11 +43,11 @@ def register(sub) -> None:
                         "flank's smallest: 0 where torque makes first contact)")
     p.add_argument("--lod", choices=tuple(LOD_DIVISORS), default="coarse",
                    help="mesh level of detail: chordal tolerance module/20, /100, /400")
-    p.add_argument("--tolerance", type=float, default=None, metavar="MM",
+    p.add_argument("--tolerance", type=positive_length, default=None, metavar="MM",
                    help="chordal tolerance of the meshes in mm (overrides --lod)")
     p.add_argument("--html", metavar="FILE", default=None,
                    help="write a self-contained HTML of the scene to FILE and exit")
-    p.add_argument("--serve-seconds", type=float, default=None, metavar="S",
+    p.add_argument("--serve-seconds", type=positive_length, default=None, metavar="S",
                    help="stop the server after S seconds (default: until Ctrl-C)")
     p.set_defaults(func=run)
 
@@ -52,8 +59,8 @@ def run(args) -> int:
     spec = spec_from_args(args)
     mis = misalignment_deg(args, spec)
     mis, psi = check_pose(mis, args.angle)
-    if args.port is not None and not 0 < args.port < 65536:
-        raise SpecError("--port", args.port, "must be from 1 to 65535")
+    if args.html and Path(args.html).is_dir():
+        raise SpecError("--html", args.html, "names a folder: give a file, e.g. viewer.html")
     settings = ViewSettings(misalignment_deg=mis, psi_deg=psi, cutaway=args.cutaway,
                             color_mode=args.color_by, frame=args.frame)
     tol = lod_tolerance(spec, args.lod) if args.tolerance is None else args.tolerance
@@ -65,8 +72,11 @@ def run(args) -> int:
         print(f"{path} ({path.stat().st_size / 1e6:.2f} MB, "
               f"{time.perf_counter() - t0:.1f} s)")
         return 0
-    from ..viewer.server import serve
+    from ..viewer.server import exposure_warning, serve
 
+    warning = exposure_warning(args.host)
+    if warning:
+        print(f"gearcoupling: warning: {warning}", file=sys.stderr)
     t0 = time.perf_counter()
     app = serve(spec, host=args.host, port=args.port, settings=settings, lod=args.lod,
                 tolerance_mm=args.tolerance,
@@ -75,7 +85,7 @@ def run(args) -> int:
           f"{time.perf_counter() - t0:.2f} s; Ctrl-C to stop)", flush=True)
     try:
         if args.serve_seconds is not None:
-            time.sleep(max(args.serve_seconds, 0.0))
+            time.sleep(args.serve_seconds)
         else:
             while True:
                 time.sleep(3600)

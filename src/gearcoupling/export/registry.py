@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..atomic import atomic_path
+from ..errors import ArgumentError
 
 EXPORTERS: dict[str, Callable[[PartJob, Path], None]] = {}
 """File extension (lower case, no dot) -> writer."""
@@ -58,7 +59,7 @@ def extension(path: str | Path) -> str:
     """Lower-case extension of ``path``, or ``ValueError`` naming the allowed ones."""
     ext = Path(path).suffix.lower().lstrip(".")
     if ext not in formats():
-        raise ValueError(f"file {str(path)!r}: extension {ext!r} is not a supported format; "
+        raise ArgumentError(f"file {str(path)!r}: extension {ext!r} is not a supported format; "
                          f"allowed: {', '.join(formats())}")
     return ext
 

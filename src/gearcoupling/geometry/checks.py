@@ -11,7 +11,6 @@ import math
 import numpy as np
 
 from ..errors import GeometryError, SpecError
-from ..spec import MAX_END_TANGENT_DEG
 from .hub import (
     HubModel,
     form_radius,
@@ -24,6 +23,10 @@ from .hub import (
 from .sleeve import sleeve_model
 
 _Z_SAMPLES = 17  # planes from the midplane to the face end checked for undercut and points
+_PATH_SAMPLES = 401  # points of a table crown's splined path checked between its samples
+# steepest feed-path tangent allowed at the face ends (kept here, not imported from spec,
+# so that spec -> geometry stays one-way)
+MAX_END_TANGENT_DEG = 45.0
 
 
 def _max_curvature(m: HubModel, crowning) -> float:
@@ -32,6 +35,28 @@ def _max_curvature(m: HubModel, crowning) -> float:
         return float(np.max(np.abs(m.path.evaluate(s)[0])))
     radii = [crowning.radius] + ([crowning.end_radius] if crowning.kind == "end_round" else [])
     return max(0.0 if math.isinf(r) else 1.0 / r for r in radii)
+
+
+def _check_table_path(m: HubModel, crowning) -> None:
+    """A table crown is validated along its splined path, not only at its samples: the
+    samples must reach the face end and the drop must stay >= 0 between them."""
+    key = "kappa" if crowning.table_s else "drop"
+    if crowning.table_s:
+        reach = float(m.path.evaluate(crowning.table_s[-1])[3])
+    else:
+        reach = crowning.table_z[-1]
+    if reach < m.half_face * (1.0 - 1e-9):
+        raise SpecError(f"hub.crowning.{'s' if crowning.table_s else 'z'}", reach,
+                        f"the samples must reach the face end z = {m.half_face:.6g} mm "
+                        "(the path is not extrapolated)")
+    z = np.linspace(0.0, m.half_face, _PATH_SAMPLES)
+    drop = m.path.drop(z)
+    if np.min(drop) < -1e-9 * m.R:
+        zi = float(z[np.argmin(drop)])
+        raise SpecError(f"hub.crowning.{key}", getattr(crowning, f"table_{key}"),
+                        f"the splined crown rises above the midplane (drop "
+                        f"{float(np.min(drop)):.3g} mm at z = {zi:.4g} mm): the tooth would "
+                        "be thicker than at the midplane; add samples or smooth the table")
 
 
 def check_spec(spec) -> None:
@@ -50,12 +75,20 @@ def check_spec(spec) -> None:
     m = hub_model(spec)
     u_c, _ = m.round_centre
     if u_c > 0.5 * t.circular_pitch:
+        if 0.5 * hub.tooth_thickness + hub.root.dedendum * math.tan(t.pressure_angle) \
+                > 0.5 * t.circular_pitch:
+            raise SpecError("hub.root.dedendum", hub.root.dedendum,
+                            "too deep for the tooth space: the hob tooth is pointed before "
+                            "this depth; use a smaller dedendum or a thinner hub tooth")
         raise SpecError("hub.root.fillet_radius", hub.root.fillet_radius,
                         "too large: the hob tip rounds of adjacent flanks overlap; use a "
                         "smaller radius or a thinner hub tooth")
+    if cr.kind == "table":
+        _check_table_path(m, cr)
     kmax = _max_curvature(m, cr)
     if kmax * hub.root.dedendum > 0.5:
-        raise SpecError(f"hub.crowning.{'end_radius' if cr.kind == 'end_round' else 'radius'}",
+        key = {"end_round": "end_radius", "table": "kappa" if cr.table_s else "drop"}
+        raise SpecError(f"hub.crowning.{key.get(cr.kind, 'radius')}",
                         1.0 / kmax, f"crowning radius must be at least twice the hub dedendum "
                         f"({2 * hub.root.dedendum:.6g} mm)")
     z_end = m.half_face
@@ -65,7 +98,9 @@ def check_spec(spec) -> None:
     except GeometryError:
         e_end = math.pi / 2
     if abs(math.degrees(e_end)) > MAX_END_TANGENT_DEG:
-        raise SpecError("hub.crowning.radius", cr.radius,
+        key = "radius" if cr.kind != "table" else "kappa" if cr.table_s else "drop"
+        raise SpecError(f"hub.crowning.{key}",
+                        cr.radius if key == "radius" else getattr(cr, f"table_{key}"),
                         f"too small for the face width {hub.face_width:.6g} mm: the feed path "
                         f"turns {math.degrees(e_end):.1f}° by the face end, at most "
                         f"{MAX_END_TANGENT_DEG:g}° allowed")
@@ -113,7 +148,9 @@ def check_spec(spec) -> None:
         raise SpecError("hub.root.dedendum", hub.root.dedendum,
                         f"undercut at z = {zi:.4g} mm: the hob's straight flank reaches below "
                         "the base circle, which the generator does not model; use more teeth, "
-                        "a larger pressure angle, a smaller dedendum or a larger fillet radius")
+                        "a larger pressure angle, a smaller dedendum or a larger fillet radius"
+                        + (" (or a flatter crown: the undercut is off the midplane)"
+                           if zi > 0 else ""))
     r_form0 = float(form_radius(m, 0.0))
     if sm.r_minor < r_form0:
         raise SpecError("sleeve.minor_diameter", sl.minor_diameter,
@@ -130,7 +167,10 @@ def check_spec(spec) -> None:
         zi = float(z[np.argmax(r_form >= r_tip)])
         raise SpecError("hub.tip.diameter", hub.tip.diameter,
                         f"no flank left at z = {zi:.4g} mm: the tip falls below the form "
-                        "radius (crown drop too large for the tooth depth)")
+                        "radius (crown drop too large for the tooth depth"
+                        + ("; a spherical tip drops faster than a crown of radius above R: "
+                           "use a larger tip diameter, tip kind cylinder or a smaller face "
+                           "width)" if hub.tip.kind == "sphere" else ")"))
     try:
         pts, _, _ = hub_flank_model(m, "cw", z, r_tip, check=False)
     except GeometryError as err:

@@ -21,7 +21,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.interpolate import CubicSpline
 
-from ..errors import GeometryError
+from ..errors import ArgumentError, GeometryError
 
 SmoothFn = Callable[[NDArray[np.float64]], tuple[NDArray[np.float64], NDArray[np.float64]]]
 
@@ -213,4 +213,4 @@ def feed_path(crowning, pitch_radius: float, face_width: float) -> FeedPath:
             return _spline_path(R, np.array(crowning.table_s), np.array(crowning.table_kappa), kind)
         s, kap = drop_table_to_curvature(np.array(crowning.table_z), np.array(crowning.table_drop))
         return _spline_path(R, s, kap, kind)
-    raise ValueError(f"unknown crowning kind {kind!r}")
+    raise ArgumentError(f"unknown crowning kind {kind!r}")

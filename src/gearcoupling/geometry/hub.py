@@ -26,7 +26,7 @@ from functools import lru_cache
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..errors import GeometryError
+from ..errors import ArgumentError, GeometryError
 from .feedpath import FeedPath, feed_path
 
 FLANKS = ("cw", "ccw")
@@ -215,7 +215,7 @@ def hub_flank_model(m: HubModel, flank: str, z_mm: ArrayLike, r_mm: ArrayLike, *
                     check: bool = True):
     """:func:`hub_flank` on a :class:`HubModel`; also returns the rack depth ``h``."""
     if flank not in FLANKS:
-        raise ValueError(f"flank must be one of {FLANKS}, got {flank!r}")
+        raise ArgumentError(f"flank must be one of {FLANKS}, got {flank!r}")
     z, r = np.broadcast_arrays(np.asarray(z_mm, dtype=float), np.asarray(r_mm, dtype=float))
     if check:
         eps = 1e-9 * (m.R + 1.0)

@@ -8,6 +8,8 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ..errors import GeometryError
+
 _SERIES_LIMIT = 1e-2  # below this |a| the series avoids the cancellation in tan(a) - a
 
 
@@ -43,7 +45,7 @@ def inv_inverse(y: ArrayLike, *, rtol: float = 1e-15,
     """
     y = np.asarray(y, dtype=float)
     if not np.all(np.isfinite(y)):
-        raise ValueError("inv_inverse: y must be finite")
+        raise GeometryError("inv_inverse: y must be finite")
     sign = np.sign(y)
     ay = np.abs(y)
     a = np.where(ay < 0.5, np.cbrt(3.0 * ay), np.pi / 2 - 1.0 / (ay + np.pi / 2))

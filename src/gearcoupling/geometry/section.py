@@ -14,7 +14,7 @@ from collections.abc import Callable
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import GeometryError
+from ..errors import ArgumentError, GeometryError
 from .hub import HubModel, envelope, flank_depth, flank_u, hub_model, root_radius, round_point
 from .hub import tip_radius as hub_tip_radius
 from .sleeve import SleeveModel, flank_point, sleeve_model
@@ -161,10 +161,10 @@ def transverse_section(spec, part: str, z_mm: float, tolerance_mm: float) -> NDA
         Vertices counter-clockwise, first vertex not repeated at the end.
     """
     if part not in PARTS:
-        raise ValueError(f"part must be one of {PARTS}, got {part!r}")
+        raise ArgumentError(f"part must be one of {PARTS}, got {part!r}")
     tol = float(tolerance_mm)
     if not (math.isfinite(tol) and tol > 0):
-        raise ValueError(f"tolerance_mm = {tolerance_mm!r}: must be a positive length in mm")
+        raise ArgumentError(f"tolerance_mm = {tolerance_mm!r}: must be a positive length in mm")
     z = float(z_mm)
     if part == "hub":
         m = hub_model(spec)

@@ -16,7 +16,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.optimize import brentq
 
-from ..errors import GeometryError
+from ..errors import ArgumentError, GeometryError
 from .hub import FLANKS
 from .involute import inv, roll_angle
 
@@ -126,7 +126,7 @@ def sleeve_flank(spec, flank: str, z_mm: ArrayLike, r_mm: ArrayLike):
         Normals point out of the sleeve material, into the space.
     """
     if flank not in FLANKS:
-        raise ValueError(f"flank must be one of {FLANKS}, got {flank!r}")
+        raise ArgumentError(f"flank must be one of {FLANKS}, got {flank!r}")
     m = sleeve_model(spec)
     z, r = np.broadcast_arrays(np.asarray(z_mm, dtype=float), np.asarray(r_mm, dtype=float))
     eps = 1e-9 * (m.R + 1.0)

@@ -33,7 +33,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..errors import SpecError
+from ..errors import ArgumentError, SpecError
 from . import distance as dist
 from .posed import hub_pose, window_pose, window_to_sleeve
 from .submodel import (
@@ -204,7 +204,7 @@ class InterferenceResult:
 
 def _check_method(method: str) -> str:
     if method not in METHODS:
-        raise ValueError(f"method = {method!r}: must be one of {METHODS}")
+        raise ArgumentError(f"method = {method!r}: must be one of {METHODS}")
     return method
 
 
@@ -217,7 +217,7 @@ def _check_teeth(teeth, N: int) -> int | str | None:
     if isinstance(teeth, int | np.integer) and not isinstance(teeth, bool) \
             and 0 <= teeth and 2 * teeth + 1 < N:
         return int(teeth)
-    raise ValueError(f"teeth = {teeth!r}: must be 'sweep', 'all' or a half window k from 0 "
+    raise ArgumentError(f"teeth = {teeth!r}: must be 'sweep', 'all' or a half window k from 0 "
                      f"to {(N - 2) // 2} (sectors of 2k + 1 teeth)")
 
 
@@ -393,13 +393,13 @@ def check_interference(spec, misalignment_deg: float, angles_deg: ArrayLike, *,
     k = _check_teeth(teeth, N)
     margin = tol if margin_mm is None else float(margin_mm)
     if not (math.isfinite(margin) and margin >= 0):
-        raise ValueError(f"margin_mm = {margin_mm!r}: must be a length >= 0 (mm)")
+        raise ArgumentError(f"margin_mm = {margin_mm!r}: must be a length >= 0 (mm)")
 
     t0 = time.perf_counter()
     if model is None:
         model = build_model(spec, tol, k)
     elif model.half_window != k or abs(model.hub.tolerance_mm - tol) > 1e-12 * tol:
-        raise ValueError(f"the given model ({model.label}, tolerance {model.hub.tolerance_mm}"
+        raise ArgumentError(f"the given model ({model.label}, tolerance {model.hub.tolerance_mm}"
                          f" mm) does not match teeth = {teeth!r}, tolerance_mm = {tol}")
     if model.full:
         every = frozenset(range(N))
@@ -562,7 +562,7 @@ def posed_meshes(result: InterferenceResult, index: int) -> dict[str, Any]:
 
     model = result.prepared
     if model is None:
-        raise ValueError("the result holds no prepared model to pose")
+        raise ArgumentError("the result holds no prepared model to pose")
     N = result.teeth
     mis = math.radians(result.misalignment_deg)
     p = math.radians(float(result.angles_deg[index]))

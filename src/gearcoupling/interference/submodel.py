@@ -20,6 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from ..errors import ArgumentError
 from .posed import PreparedPart
 
 NOT_SHELL = ("body", "bore", "side")  # left out of the flank-only shells
@@ -79,7 +80,7 @@ def build_model(spec, tolerance_mm: float, half_window: int | None) -> Model:
     if half_window is not None:
         k = int(half_window)
         if k != half_window or k < 0 or 2 * k + 1 >= N:
-            raise ValueError(f"half_window = {half_window!r}: must be a whole number from 0 "
+            raise ArgumentError(f"half_window = {half_window!r}: must be a whole number from 0 "
                              f"to {(N - 2) // 2} for {N} teeth (or None for the full parts)")
         teeth = [t % N for t in range(-k, k + 1)]
     else:

@@ -14,7 +14,7 @@ import time
 
 import numpy as np
 
-from ..errors import SpecError
+from ..errors import ArgumentError, GeometryError, SpecError
 from ..geometry.section import PARTS
 from .builder import SURFACE_KINDS, MeshBuilder, tooth_runs
 from .hub import build_hub_run, hub_layout
@@ -68,7 +68,7 @@ def build_part(spec, part: str, tolerance_mm: float | None = None, teeth=None):
     import trimesh
 
     if part not in PARTS:
-        raise ValueError(f"part = {part!r}: must be one of {PARTS}")
+        raise ArgumentError(f"part = {part!r}: must be one of {PARTS}")
     tol = check_tolerance(spec, tolerance_mm)
     runs = tooth_runs(spec.tooth.teeth, teeth)
     t0 = time.perf_counter()
@@ -79,7 +79,7 @@ def build_part(spec, part: str, tolerance_mm: float | None = None, teeth=None):
         add_run(builder, lay, run)
     verts, faces, kind, tooth = builder.arrays()
     if not np.all(np.isfinite(verts)):
-        raise ValueError(f"{part} mesh of spec {spec.name!r} has non-finite vertices")
+        raise GeometryError(f"{part} mesh of spec {spec.name!r} has non-finite vertices")
     mesh = trimesh.Trimesh(verts, faces, face_attributes={"kind": kind, "tooth": tooth},
                            process=False, validate=False)
     mesh.units = "mm"

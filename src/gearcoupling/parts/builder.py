@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import GeometryError
+from ..errors import ArgumentError, GeometryError
 
 SURFACE_KINDS = ("flank_cw", "flank_ccw", "fillet_cw", "fillet_ccw", "root", "tip",
                  "chamfer_cw", "chamfer_ccw", "end", "body", "bore", "side")
@@ -47,9 +47,9 @@ def tooth_runs(teeth: int, selection) -> list[Run]:
     try:
         sel = sorted({int(k) for k in selection})
     except (TypeError, ValueError) as err:
-        raise ValueError(f"teeth = {selection!r}: must be tooth indices 0..{teeth - 1}") from err
+        raise ArgumentError(f"teeth = {selection!r}: must be tooth indices 0..{teeth - 1}") from err
     if not sel or sel[0] < 0 or sel[-1] >= teeth:
-        raise ValueError(f"teeth = {list(selection)!r}: must be a non-empty selection of tooth "
+        raise ArgumentError(f"teeth = {list(selection)!r}: must be a non-empty selection of tooth "
                          f"indices from 0 to {teeth - 1}")
     if len(sel) == teeth:
         return [Run(0, teeth, teeth)]

@@ -31,6 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from ..errors import ArgumentError
 from ..geometry.involute import inv
 from ..geometry.sleeve import SleeveModel
 from .flank_table import FlankTable
@@ -372,9 +373,9 @@ def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
         For each of :data:`MEASURES`.
     """
     if grid < 3:
-        raise ValueError(f"grid must be at least 3 planes, got {grid}")
+        raise ArgumentError(f"grid must be at least 3 planes, got {grid}")
     if not tolerance_mm > 0:
-        raise ValueError(f"tolerance_mm must be > 0, got {tolerance_mm!r}")
+        raise ArgumentError(f"tolerance_mm must be > 0, got {tolerance_mm!r}")
     theta = np.asarray(theta, dtype=float).ravel()
     n = theta.size
     sl = _Sleeve(sm)

@@ -20,7 +20,7 @@ import numpy as np
 from numpy.polynomial import chebyshev as C
 from numpy.typing import NDArray
 
-from ..errors import GeometryError
+from ..errors import ArgumentError, GeometryError
 from ..geometry.hub import HubModel, form_radius, hub_flank_model, hub_model, tip_radius
 
 DEFAULT_NODES = (24, 12)  # (nz, nt): interpolation error ~1e-8 mm on renzo-1967
@@ -182,7 +182,7 @@ def build_flank_table(m: HubModel, nodes: tuple[int, int] = DEFAULT_NODES) -> Fl
     """Fit the Chebyshev tables of ``m``'s flank on ``nodes = (nz, nt)`` nodes."""
     nz, nt = nodes
     if nz < 4 or nt < 3:
-        raise ValueError(f"flank table nodes must be at least (4, 3), got {nodes}")
+        raise ArgumentError(f"flank table nodes must be at least (4, 3), got {nodes}")
     xz, yt = _nodes(nz), _nodes(nt)
     hf = m.half_face
     z = hf * xz
@@ -212,7 +212,7 @@ def adaptive_flank_table(m: HubModel, tolerance_mm: float = DEFAULT_TABLE_TOLERA
     the largest table: read ``max_error_mm``.
     """
     if not (tolerance_mm > 0):
-        raise ValueError(f"table tolerance must be > 0 mm, got {tolerance_mm!r}")
+        raise ArgumentError(f"table tolerance must be > 0 mm, got {tolerance_mm!r}")
     table = None
     for nodes in NODE_LADDER:
         table = build_flank_table(m, nodes)

@@ -9,6 +9,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from ..errors import ArgumentError
 from ..geometry.hub import FLANKS
 from .clearance import KINDS
 
@@ -81,7 +82,7 @@ class SweepResult:
         table = {"clearance": self.clearance_mm, "normal": self.normal_clearance_mm,
                  "pitch": self.pitch_clearance_mm, "pitch_normal": self.pitch_normal_clearance_mm}
         if which not in table:
-            raise ValueError(f"measure must be one of {sorted(table)}, got {which!r}")
+            raise ArgumentError(f"measure must be one of {sorted(table)}, got {which!r}")
         return table[which]
 
     def peak_to_peak(self, which: str) -> NDArray[np.float64]:

@@ -23,7 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import BackendError
+from ..errors import ArgumentError, BackendError
 from ..geometry.hub import FLANKS
 from ..sweep.pose import rot_z
 from .scene import (
@@ -81,16 +81,16 @@ class ViewSettings:
 
     def __post_init__(self):
         if self.cutaway not in CUTAWAYS:
-            raise ValueError(f"cutaway = {self.cutaway!r}: must be one of {CUTAWAYS}")
+            raise ArgumentError(f"cutaway = {self.cutaway!r}: must be one of {CUTAWAYS}")
         if self.frame not in FRAMES:
-            raise ValueError(f"frame = {self.frame!r}: must be one of {FRAMES}")
+            raise ArgumentError(f"frame = {self.frame!r}: must be one of {FRAMES}")
         if self.color_mode not in COLOR_MODES:
-            raise ValueError(f"color_mode = {self.color_mode!r}: must be one of "
+            raise ArgumentError(f"color_mode = {self.color_mode!r}: must be one of "
                              f"{COLOR_MODES}")
         for name in ("hub_opacity", "sleeve_opacity"):
             v = getattr(self, name)
             if not 0.0 <= v <= 1.0:
-                raise ValueError(f"{name} = {v!r}: must be from 0 to 1")
+                raise ArgumentError(f"{name} = {v!r}: must be from 0 to 1")
 
 
 class CouplingScene:
@@ -173,7 +173,7 @@ class CouplingScene:
     def set_cutaway(self, cutaway: str) -> None:
         """Show the sleeve with another cutaway (the cut meshes are cached)."""
         if cutaway not in CUTAWAYS:
-            raise ValueError(f"cutaway = {cutaway!r}: must be one of {CUTAWAYS}")
+            raise ArgumentError(f"cutaway = {cutaway!r}: must be one of {CUTAWAYS}")
         self.settings.cutaway = cutaway
         cut = self.meshes.sleeve_cut(cutaway)
         st = self.settings

@@ -23,7 +23,7 @@ from functools import cached_property
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..errors import SpecError
+from ..errors import ArgumentError, SpecError
 from ..geometry.hub import FLANKS, hub_flank_model, hub_model
 from ..interference.posed import PreparedPart, affine
 from ..parts import SURFACE_KINDS, build_part, check_tolerance
@@ -107,7 +107,7 @@ def split_hub(mesh) -> HubPieces:
 def lod_tolerance(spec, lod: str) -> float:
     """Chordal tolerance (mm) of a level of detail (:data:`LOD_DIVISORS`)."""
     if lod not in LOD_DIVISORS:
-        raise ValueError(f"lod = {lod!r}: must be one of {tuple(LOD_DIVISORS)}")
+        raise ArgumentError(f"lod = {lod!r}: must be one of {tuple(LOD_DIVISORS)}")
     return spec.tooth.module / LOD_DIVISORS[lod]
 
 
@@ -191,7 +191,7 @@ def cut_sleeve(sleeve_manifold, cutaway: str) -> Patch:
     cutaway : {"none", "quarter", "half", "midplane"}
     """
     if cutaway not in CUTAWAYS:
-        raise ValueError(f"cutaway = {cutaway!r}: must be one of {CUTAWAYS}")
+        raise ArgumentError(f"cutaway = {cutaway!r}: must be one of {CUTAWAYS}")
     man = sleeve_manifold
     if cutaway == "quarter":  # keep x >= 0 or y >= 0
         man = man.trim_by_plane((1.0, 0.0, 0.0), 0.0) + man.trim_by_plane((0.0, 1.0, 0.0), 0.0)
@@ -335,7 +335,7 @@ def flank_values(state: PoseState, mode: str = "clearance") -> NDArray[np.float6
     or the separation ``clearance - max(0, smallest clearance of the flank)``;
     interfering flanks stay negative (red) and unfaced ones infinite (grey) in both."""
     if mode not in COLOR_MODES:
-        raise ValueError(f"color mode = {mode!r}: must be one of {COLOR_MODES}")
+        raise ArgumentError(f"color mode = {mode!r}: must be one of {COLOR_MODES}")
     c = state.clearance_mm
     if mode == "clearance":
         return c

@@ -13,13 +13,17 @@ poses instead of queueing them. Meshes are rebuilt only for a new level of detai
 
 from __future__ import annotations
 
+import errno
+import ipaddress
 import math
+import socket
 import threading
 import time
 from pathlib import Path
 
 import numpy as np
 
+from ..atomic import default_output_dir
 from .nodes import FRAMES, CouplingScene, ViewSettings, import_viser
 from .scene import (
     COLOR_MODES,
@@ -35,6 +39,53 @@ from .scene import (
 )
 
 PLAY_INTERVAL_S = 0.1
+PORT_TRIES = 10  # ports tried from the one asked for before giving up
+
+
+def exposure_warning(host: str) -> str | None:
+    """A warning if ``host`` serves beyond this machine, else ``None``.
+
+    Anyone who can reach the address sees the coupling and can use every control,
+    including "Save static HTML", which writes a file on this machine.
+    """
+    try:
+        loopback = all(ipaddress.ip_address(info[4][0]).is_loopback
+                       for info in socket.getaddrinfo(host, None))
+    except (OSError, UnicodeError):
+        return None  # not resolvable: serving fails with its own error
+    if loopback:
+        return None
+    return (f"--host {host} serves the viewer to the network: anyone who reaches it sees "
+            "the coupling and can use every control, including 'Save static HTML', which "
+            "writes a file on this machine. Use 127.0.0.1 (the default) unless you mean it.")
+
+
+def free_port(host: str, port: int, tries: int = PORT_TRIES) -> int:
+    """The first port from ``port`` (at most ``tries`` of them, up to 65535) that ``host``
+    can bind, or :class:`~gearcoupling.errors.SpecError` naming the host or the ports."""
+    from ..errors import SpecError
+
+    if not 1 <= port <= 65535:
+        raise SpecError("port", port, "must be from 1 to 65535")
+    try:
+        infos = socket.getaddrinfo(host, None, type=socket.SOCK_STREAM)
+    except (OSError, UnicodeError) as err:
+        raise SpecError("host", host, f"cannot be resolved ({err}): give an address of this "
+                        "machine, e.g. 127.0.0.1") from None
+    family = infos[0][0]
+    last = min(port + tries - 1, 65535)
+    for candidate in range(port, last + 1):
+        with socket.socket(family, socket.SOCK_STREAM) as probe:
+            try:
+                probe.bind((infos[0][4][0], candidate))
+            except OSError as err:
+                if err.errno == errno.EADDRNOTAVAIL:  # not an address of this machine
+                    raise SpecError("host", host, "is not an address of this machine") \
+                        from None
+                continue
+        return candidate
+    raise SpecError("port", port, f"ports {port}-{last} are all taken on {host}: choose "
+                    "another with --port")
 
 
 class ViewerApp:
@@ -44,7 +95,10 @@ class ViewerApp:
     ----------
     spec : CouplingSpec
     host, port : str, int
-        Where to serve (viser picks the next free port if ``port`` is taken).
+        Where to serve: the first free port of ``port`` and the next
+        :data:`PORT_TRIES` - 1; an unresolvable host or all ports taken raise
+        :class:`~gearcoupling.errors.SpecError`. A host other than loopback exposes the
+        viewer, including its save button (:func:`exposure_warning`).
     settings : ViewSettings, optional
         Start values (default: design misalignment, rotation 0).
     lod : str
@@ -65,10 +119,11 @@ class ViewerApp:
             settings = ViewSettings(misalignment_deg=math.degrees(spec.design_misalignment))
         tol = view_tolerance(spec, lod_tolerance(spec, lod) if tolerance_mm is None
                              else tolerance_mm)
+        port = free_port(host, port)  # viser itself would retry without end
         self.server = viser.ViserServer(host=host, port=port, verbose=False)
         self.server.gui.configure_theme(control_width="large", show_share_button=False)
-        self.html_path = Path(html_path) if html_path else Path("outputs") / spec.name / \
-            "viewer.html"
+        self.html_path = Path(html_path) if html_path else \
+            default_output_dir(spec.name) / "viewer.html"
         self._lock = threading.Lock()
         self._apply_lock = threading.Lock()
         self._wake = threading.Event()

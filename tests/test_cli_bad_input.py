@@ -1,0 +1,191 @@
+"""Bad command lines exit with status 2 and one line naming what is wrong (issue 14 items
+3 and 10): a table of bad inputs, plus the output-folder, pipe, temporary-file and viewer
+address cases that need more than one call."""
+
+import os
+import signal
+import socket
+import subprocess
+import sys
+import time
+
+import pytest
+
+import gearcoupling as gc
+from gearcoupling.cli import main
+
+T = "renzo-1967"
+
+
+@pytest.fixture(scope="module")
+def files(tmp_path_factory):
+    d = tmp_path_factory.mktemp("bad")
+    (d / "latin1.toml").write_bytes("# Kupplung für Walzwerk\n[tooth]\nteeth = 38\n"
+                                    .encode("latin-1"))
+    (d / "broken.toml").write_text("[tooth\nteeth = 38\n")
+    (d / "misspelt.toml").write_text("[tooth]\nteth = 38\nmodule = 2.0\n"
+                                     "[hub]\nface_width = 16.0\n")
+    (d / "crowing.toml").write_text("[tooth]\nteeth = 38\nmodule = 2.0\n"
+                                    "[hub]\nface_width = 16.0\n[hub.crowing]\nkind = 'none'\n")
+    (d / "a_file").write_text("not a folder")
+    (d / "folder.toml").mkdir()
+    (d / "html_folder").mkdir()
+    return d
+
+
+# (argv with {d} for the fixture folder, words the one-line message must contain)
+BAD = [
+    (["spec", "nope"], "templates"),
+    (["spec", "{d}/missing.toml"], "no such spec file"),
+    (["spec", "{d}/folder.toml"], "no such spec file"),
+    (["spec", "{d}/latin1.toml"], "UTF-8"),
+    (["spec", "{d}/broken.toml"], "not valid TOML"),
+    (["spec", "{d}/misspelt.toml"], "tooth.teth"),
+    (["spec", "{d}/crowing.toml"], "hub.crowing"),
+    (["spec", T, "--set", "oops"], "KEY=VALUE"),
+    (["spec", T, "--set", "hub.face_width=-1"], "hub.face_width"),
+    (["spec", T, "--set", "hub.backlash=nan"], "hub.backlash"),
+    (["spec", T, "--set", "hub.backlash=inf"], "hub.backlash"),
+    (["spec", T, "--set", "tooth.teeth=5"], "tooth.teeth"),
+    (["spec", T, "--set", "tooth.teeth=12.5"], "tooth.teeth"),
+    (["spec", T, "--set", "tooth.teth=40"], "did you mean 'teeth'"),
+    (["spec", T, "--set", "hub.crowing.kind=none"], "did you mean 'crowning'"),
+    (["spec", T, "--set", "design_misalignment_deg=6.001"], "design_misalignment_deg"),
+    (["spec", T, "--set", "units=cm"], "units"),
+    (["spec", "industrial-m2", "--set", "tooth.module=two"], "tooth.module"),
+    (["spec", T, "--set", "hub.crowning.kind=none", "--set", "hub.crowning.radius=-3"],
+     "hub.crowning.radius"),
+    (["spec", T, "--set", "hub.crowning.kind=table"], "hub.crowning"),
+    (["spec", T, "--set", "hub.crowning.radius=0.01"], "hub.crowning.radius"),
+    (["sections", T, "--tolerance", "-1"], "--tolerance"),
+    (["sections", T, "--tolerance", "0"], "--tolerance"),
+    (["sections", T, "--tolerance", "nan"], "--tolerance"),
+    (["sections", T, "-o", "{d}/a_file"], "-o"),
+    (["sections", T, "-o", "{d}/a_file/sub"], "-o"),
+    (["sections", T, "-o", "/proc/gearcoupling-cannot-write-here"], "-o"),
+    (["sweep", T, "--tolerance", "0"], "--tolerance"),
+    (["sweep", T, "--tolerance", "-1"], "--tolerance"),
+    (["sweep", T, "--tolerance", "nan"], "--tolerance"),
+    (["sweep", T, "--angles", "0"], "--angles"),
+    (["sweep", T, "--angles", "3000000"], "--angles"),
+    (["sweep", T, "--angles", "ten"], "--angles"),
+    (["sweep", T, "--misalignment", "7"], "--misalignment"),
+    (["sweep", T, "--misalignment", "-0.5"], "--misalignment"),
+    (["sweep", T, "--misalignment", "nan"], "--misalignment"),
+    (["view", T, "--html", "{d}/html_folder"], "--html"),
+    (["view", T, "--port", "0"], "--port"),
+    (["view", T, "--port", "70000"], "--port"),
+    (["view", T, "--tolerance", "0"], "--tolerance"),
+    (["view", T, "--angle", "nan"], "--angle"),
+    (["view", T, "--cutaway", "most"], "--cutaway"),
+    (["view", T, "--host", "no.such.host.invalid"], "host"),
+    (["generate", T, "--teeth", "0-99999999999"], "--teeth"),
+    (["generate", T, "--teeth", "x"], "--teeth"),
+    (["generate", T, "--format", "xyz"], "--format"),
+    (["generate", T, "--parts", "wheel"], "--parts"),
+    (["run", T, "--only", "spec,stl"], "--only"),
+    (["run", T, "--skip", "nope"], "--skip"),
+    (["check", T, "--angles", "0"], "--angles"),
+    (["check", T, "--tolerance", "nan"], "--tolerance"),
+    (["check", T, "--teeth", "foo"], "--teeth"),
+    (["templates", "extra"], "unrecognized arguments"),
+    ([], "required"),
+    (["frobnicate", T], "invalid choice"),
+]
+
+
+@pytest.mark.parametrize("argv, words", BAD, ids=[" ".join(a) or "(none)" for a, _ in BAD])
+def test_bad_input_exits_2_with_one_line_naming_the_field(argv, words, files, capsys,
+                                                          tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)  # anything written by mistake lands here
+    code = main([a.replace("{d}", str(files)) for a in argv])
+    err = capsys.readouterr().err
+    assert code == 2, err
+    lines = err.strip().splitlines()
+    assert len(lines) == 1, err
+    assert lines[0].startswith("gearcoupling: error:") and words in lines[0], err
+    assert not (tmp_path / "outputs").exists() or not any((tmp_path / "outputs").rglob("*.*"))
+
+
+def test_there_are_at_least_40_bad_inputs():
+    assert len(BAD) >= 40
+
+
+@pytest.mark.parametrize("name", ["../../escape", "/tmp/absolute-escape", "..", "a/b\\c", ""])
+def test_a_spec_name_never_chooses_where_files_go(name, tmp_path, monkeypatch, capsys):
+    work = tmp_path / "work"
+    work.mkdir()
+    monkeypatch.chdir(work)
+    assert main(["run", T, "--only", "spec", "--set", f"name={name!r}".replace("'", '"')]) == 0
+    written = [p for p in tmp_path.rglob("spec.json")]
+    assert len(written) == 1
+    out = written[0].parent
+    assert out.parent == work / "outputs" and not out.name.startswith(".")
+    assert not os.path.exists("/tmp/absolute-escape")
+
+
+def test_spec_json_into_a_closed_pipe_is_quiet():
+    # `gearcoupling spec --json | head` with the reader gone before the write
+    proc = subprocess.Popen([sys.executable, "-m", "gearcoupling", "spec", T, "--json"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    proc.stdout.close()
+    _, err = proc.communicate(timeout=120)
+    assert b"Traceback" not in err and b"BrokenPipe" not in err, err.decode()
+    assert proc.returncode == 0
+
+
+def test_a_killed_writer_leaves_a_temporary_that_the_next_write_removes(tmp_path):
+    from gearcoupling.atomic import write_text
+
+    code = ("import sys, time\nfrom gearcoupling.atomic import atomic_path\n"
+            "with atomic_path(sys.argv[1]) as tmp:\n    tmp.write_text('half')\n"
+            "    print('ready', flush=True)\n    time.sleep(60)\n")
+    proc = subprocess.Popen([sys.executable, "-c", code, str(tmp_path / "hub.stl")],
+                            stdout=subprocess.PIPE, env={**os.environ,
+                                                         "PYTHONPATH": os.pathsep.join(sys.path)})
+    assert proc.stdout.readline().strip() == b"ready"
+    proc.send_signal(signal.SIGKILL)
+    proc.wait(timeout=30)
+    proc.stdout.close()
+    stale = [p.name for p in tmp_path.iterdir()]
+    assert len(stale) == 1 and stale[0].startswith(".hub.stl.")  # what kill -9 strands
+    live = tmp_path / f".sleeve.stl.{os.getpid()}.abcdefgh.stl"  # a live writer's: kept
+    live.write_text("in progress")
+    write_text(tmp_path / "other.txt", "next run")
+    assert sorted(p.name for p in tmp_path.iterdir()) == [live.name, "other.txt"]
+
+
+def test_viewer_ports_are_tried_a_bounded_number_of_times():
+    from gearcoupling.viewer.server import free_port
+
+    with socket.socket() as taken:
+        taken.bind(("127.0.0.1", 0))
+        taken.listen()
+        port = taken.getsockname()[1]
+        t0 = time.perf_counter()
+        with pytest.raises(gc.SpecError, match="taken") as info:
+            free_port("127.0.0.1", port, tries=1)
+        assert info.value.field == "port" and time.perf_counter() - t0 < 5
+        assert free_port("127.0.0.1", port, tries=50) > port
+    with pytest.raises(gc.SpecError, match="cannot be resolved"):
+        free_port("no.such.host.invalid", 8080)
+
+
+def test_the_last_port_is_not_exceeded():
+    from gearcoupling.viewer.server import free_port
+
+    with socket.socket() as taken:
+        try:
+            taken.bind(("127.0.0.1", 65535))
+        except OSError:
+            pytest.skip("port 65535 is in use on this machine")
+        taken.listen()
+        with pytest.raises(gc.SpecError, match="65535-65535"):
+            free_port("127.0.0.1", 65535)
+
+
+def test_serving_beyond_this_machine_warns():
+    from gearcoupling.viewer.server import exposure_warning
+
+    assert exposure_warning("127.0.0.1") is None and exposure_warning("localhost") is None
+    assert "Save static HTML" in exposure_warning("0.0.0.0")
