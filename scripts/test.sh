@@ -9,11 +9,20 @@ if [ ! -x /usr/bin/chromium ]; then
     $sudo apt-get update -qq
     DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq chromium >/dev/null
 fi
-# the FE tests run the real CalculiX solver (Debian calculix-ccx)  [fea branch]
+# CalculiX runs the FE tests and the exported INP deck; the Khronos glTF validator checks
+# the GLB (project-local, not committed)
 if ! command -v ccx >/dev/null; then
     if [ "$(id -u)" -eq 0 ]; then sudo=""; else sudo="sudo"; fi
     $sudo apt-get update -qq
-    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq calculix-ccx >/dev/null
+    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq calculix-ccx
+fi
+if [ ! -d .cache/npm/node_modules/gltf-validator ]; then
+    if ! command -v npm >/dev/null; then
+        if [ "$(id -u)" -eq 0 ]; then sudo=""; else sudo="sudo"; fi
+        $sudo apt-get update -qq
+        DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq npm >/dev/null
+    fi
+    npm install --silent --prefix .cache/npm gltf-validator
 fi
 python3 -m ruff check src tests benchmarks
 python3 -m pytest "$@"

@@ -12,10 +12,12 @@ import trimesh
 
 import gearcoupling as gc
 from gearcoupling.cli import main
-from gearcoupling.errors import BackendError
+from gearcoupling.errors import BackendError, SpecError
 from gearcoupling.export import EXPORTERS, export_part, formats
 from gearcoupling.export.meshes import read_mesh
 from gearcoupling.parts import SURFACE_KINDS, build_part
+
+import clients
 
 MESH_FORMATS = ["stl", "ply", "obj", "glb", "3mf", "vtu", "vtk", "msh", "inp"]
 CELL_DATA_FORMATS = ["vtu", "vtk", "msh"]
@@ -49,9 +51,15 @@ def test_mesh_round_trip(tmp_path, hub_sector, ext):
     assert np.abs(np.sort(back.vertices, axis=0) - np.sort(mesh.vertices, axis=0)).max() \
         < 1e-6 * scale
     if ext in CELL_DATA_FORMATS:
-        assert np.array_equal(data["kind"].ravel(), mesh.face_attributes["kind"])
-        assert np.array_equal(data["tooth"].ravel(), mesh.face_attributes["tooth"])
-        assert np.array_equal(f, mesh.faces)
+        # MSH lists nodes and triangles by entity (kind, tooth): match exact coordinates,
+        # then compare the triangles as sorted rows
+        index = {tuple(p): i for i, p in enumerate(mesh.vertices.tolist())}
+        f = np.array([index[tuple(p)] for p in v.tolist()])[f]
+        order = np.lexsort(f.T[::-1])
+        ref = np.lexsort(mesh.faces.T[::-1])
+        assert np.array_equal(f[order], mesh.faces[ref])
+        for name in ("kind", "tooth"):
+            assert np.array_equal(data[name].ravel()[order], mesh.face_attributes[name][ref])
     if ext == "inp":
         kind = mesh.face_attributes["kind"]
         for code, name in enumerate(SURFACE_KINDS):
@@ -86,7 +94,7 @@ def test_a_failing_writer_leaves_no_file(tmp_path, hub_sector, monkeypatch):
 
 def test_unknown_extension_names_the_allowed_ones(tmp_path, hub_sector):
     spec, mesh = hub_sector
-    with pytest.raises(ValueError, match=r"'dxf'.*allowed: .*stl"):
+    with pytest.raises(SpecError, match=r"hub\.dxf.*stl.*'dxf' is not a supported format"):
         export_part(spec, "hub", tmp_path / "hub.dxf", mesh=mesh)
 
 
@@ -99,9 +107,6 @@ def test_missing_opencascade_is_a_backend_error(tmp_path, monkeypatch):
 
 
 # ---------------------------------------------------------------------------- STEP
-
-ocp = pytest.importorskip("OCP", reason="STEP needs the step extra")
-
 
 def _step_distance(shape, points):
     from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeVertex
@@ -133,6 +138,7 @@ def _face_types(shape):
 @pytest.mark.parametrize("name, part", [("renzo-1967", "sleeve"), ("renzo-1967", "hub"),
                                         ("renzo-1967-end-round", "hub")])
 def test_step_solid_is_exact_geometry_and_round_trips(tmp_path, name, part):
+    clients.ocp()
     from gearcoupling.export.step import part_solid, read_step_volume, shape_volume
     from gearcoupling.parts.deviation import hub_samples, sleeve_samples
 
@@ -158,6 +164,7 @@ def test_step_solid_is_exact_geometry_and_round_trips(tmp_path, name, part):
 
 
 def test_step_sector_matches_the_mesh_sector(tmp_path):
+    clients.ocp()
     from gearcoupling.export.step import read_step_volume
 
     spec = gc.load_spec("renzo-1967")
@@ -229,6 +236,7 @@ def test_run_has_parts_and_step_steps(tmp_path):
                                                "generation": "revolved"}}},
 ], ids=["6-teeth-m60", "straight-solid", "table-revolved"])
 def test_step_of_unusual_specs_matches_the_mesh(data):
+    clients.ocp()
     from gearcoupling.export.step import part_solid, shape_volume
 
     spec = gc.spec_from_dict(data)
@@ -254,3 +262,18 @@ def test_export_package_imports_no_opencascade():
     code = ("import sys, gearcoupling.export, gearcoupling.parts; "
             "assert 'OCP' not in sys.modules, 'OCP imported eagerly'")
     subprocess.run([sys.executable, "-c", code], check=True)
+
+
+def test_run_lists_the_step_files_in_parts_json(tmp_path, capsys):
+    clients.ocp()
+    rc = main(["run", "renzo-1967", "--only", "parts,step", "-o", str(tmp_path)])
+    assert rc == 0
+    report = json.loads((tmp_path / "parts.json").read_text())
+    for part in ("hub", "sleeve"):
+        files = report["parts"][part]["files"]
+        assert files == [f"{part}.stl", f"{part}.step"]
+        assert all((tmp_path / name).is_file() for name in files)
+    printed = capsys.readouterr().out.split()
+    assert sorted(printed) == sorted(str(tmp_path / n) for n in
+                                     ("hub.stl", "sleeve.stl", "parts.json", "hub.step",
+                                      "sleeve.step"))

@@ -3,7 +3,9 @@ convergence, sectors, labels, bad input and seeded random specs."""
 
 from __future__ import annotations
 
+import json
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -216,3 +218,21 @@ def test_the_extremes_of_the_range_build_valid_parts(tooth, hub):
         check = check_part(mesh)
         assert check.ok, (part, check.problems())
         assert measure_deviation(spec, mesh, samples=300)["max"] <= tol
+
+
+GOLDEN_PARTS = json.loads((Path(__file__).parent / "golden" / "parts.json").read_text())
+
+
+@pytest.mark.parametrize("name", sorted(GOLDEN_PARTS))
+@pytest.mark.parametrize("part", ["hub", "sleeve"])
+def test_mesh_volume_is_pinned_per_template(name, part):
+    """Mesh at the default tolerance against ``golden/parts.json`` (source and regeneration:
+    ``tests/golden_parts.py``): triangles exact, volume to 1e-9; and the golden volume
+    against the STEP solid of the exact geometry (within tolerance x area)."""
+    gold = GOLDEN_PARTS[name][part]
+    spec = gc.load_spec(name)
+    mesh = build_part(spec, part, None)
+    assert len(mesh.faces) == gold["triangles"]
+    assert mesh.volume == pytest.approx(gold["volume_mm3"], rel=1e-9)
+    assert abs(gold["volume_mm3"] - gold["step_volume_mm3"]) <= \
+        (gold["tolerance_mm"] + gold["step_tolerance_mm"]) * gold["area_mm2"]

@@ -104,19 +104,23 @@ def test_ground_frame_turns_both_members(app):
 
 
 def test_play_turns_the_coupling_and_pause_stops_it(app):
+    """Event-driven: wait for worker iterations, not for wall-clock sleeps."""
     app.speed.value = 60.0
-    updates = app.pose_updates
+    psi0, updates = app.rotation.value, app.pose_updates
+    start = time.monotonic()
     app._toggle_play()
     assert app.play.label == "Pause"
-    time.sleep(1.5)
+    assert app.wait_ticks(4)
     app._toggle_play()
     assert app.play.label == "Play"
-    time.sleep(0.3)
+    assert app.wait_ticks(2)  # the iteration running at the pause, then one that sees it
+    elapsed = time.monotonic() - start
     psi = app.rotation.value
-    assert 20.0 < psi < 180.0  # about 60°/s for 1.5 s on a busy machine
-    assert app.pose_updates > updates
-    time.sleep(0.6)
-    assert app.rotation.value == psi  # paused
+    assert app.pose_updates >= updates + 3
+    turned = (psi - psi0) % 360.0
+    assert 0.0 < turned <= 60.0 * elapsed + 1e-9  # at most the speed times the time played
+    assert app.wait_ticks(3)
+    assert app.rotation.value == psi  # paused: further iterations leave it
 
 
 def test_save_button_writes_a_shareable_html(app):

@@ -129,7 +129,9 @@ def parts_step(spec, out: Path) -> list[Path]:
 
 
 def step_step(spec, out: Path) -> list[Path]:
-    """``gearcoupling run`` step: hub and sleeve STEP, when OpenCASCADE is installed."""
+    """``gearcoupling run`` step: hub and sleeve STEP, when OpenCASCADE is installed; adds
+    them to the files of each part in ``parts.json`` when the parts step wrote it."""
+    import json
     from importlib.util import find_spec
 
     from ..export import export_part
@@ -138,4 +140,13 @@ def step_step(spec, out: Path) -> list[Path]:
         print("gearcoupling: STEP skipped: pip install 'gearcoupling[step]' for STEP files",
               file=sys.stderr)
         return []
-    return [export_part(spec, part, out / f"{part}.step") for part in PART_NAMES]
+    written = [export_part(spec, part, out / f"{part}.step") for part in PART_NAMES]
+    listing = out / "parts.json"
+    if listing.is_file():
+        report = json.loads(listing.read_text())
+        for part, path in zip(PART_NAMES, written, strict=True):
+            files = report["parts"].setdefault(part, {}).setdefault("files", [])
+            if path.name not in files:
+                files.append(path.name)
+        write_json(listing, report)  # already listed by the parts step
+    return written

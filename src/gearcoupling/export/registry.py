@@ -1,66 +1,47 @@
-"""Part exporters registered by file extension.
+"""Part writers by file extension: one explicit table, no registration on import.
 
-A writer is ``writer(job, path)``; it receives a :class:`PartJob` (spec, part, tolerance,
-teeth and the mesh, built on first use) and a temporary path with the right suffix,
-which :func:`export_part` renames onto the target only when the writer succeeded.
+A writer is ``writer(job, path)``; it receives a :class:`~.job.PartJob` and a temporary
+path with the right suffix, which :func:`export_part` renames onto the target only when
+the writer succeeded. Add a format by adding it to :data:`EXPORTERS`.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..atomic import atomic_path
-from ..errors import ArgumentError
+from ..errors import SpecError
+from . import meshes, step
+from .job import PartJob
 
-EXPORTERS: dict[str, Callable[[PartJob, Path], None]] = {}
+EXPORTERS: dict[str, Callable[[PartJob, Path], None]] = {
+    "stl": meshes.write_stl,
+    "ply": meshes.write_ply,
+    "obj": meshes.write_obj,
+    "glb": meshes.write_glb,
+    "3mf": meshes.write_3mf,
+    "vtu": meshes.write_vtu,
+    "vtk": meshes.write_vtk,
+    "msh": meshes.write_msh,
+    "inp": meshes.write_inp,
+    "step": step.write_step_job,
+    "stp": step.write_step_job,
+}
 """File extension (lower case, no dot) -> writer."""
 
 
-def exporter(*extensions: str):
-    """Decorator registering a writer for the given file extensions."""
-
-    def register(fn):
-        for ext in extensions:
-            EXPORTERS[ext.lower().lstrip(".")] = fn
-        return fn
-
-    return register
-
-
-@dataclass
-class PartJob:
-    """What a writer may need: the spec and the part, and its mesh (built lazily)."""
-
-    spec: object
-    part: str
-    tolerance_mm: float | None = None
-    teeth: object = None
-    _mesh: object = field(default=None, repr=False)
-
-    @property
-    def mesh(self):
-        if self._mesh is None:
-            from ..parts import build_part
-
-            self._mesh = build_part(self.spec, self.part, self.tolerance_mm, self.teeth)
-        return self._mesh
-
-
 def formats() -> list[str]:
-    """Registered file extensions."""
-    from . import meshes, step  # noqa: F401  (registration side effect)
-
+    """Supported file extensions."""
     return sorted(EXPORTERS)
 
 
 def extension(path: str | Path) -> str:
-    """Lower-case extension of ``path``, or ``ValueError`` naming the allowed ones."""
+    """Lower-case extension of ``path``; :class:`SpecError` naming the allowed ones."""
     ext = Path(path).suffix.lower().lstrip(".")
-    if ext not in formats():
-        raise ArgumentError(f"file {str(path)!r}: extension {ext!r} is not a supported format; "
-                         f"allowed: {', '.join(formats())}")
+    if ext not in EXPORTERS:
+        raise SpecError("file", str(path), f"an extension from {', '.join(formats())} "
+                        f"({ext!r} is not a supported format)")
     return ext
 
 
@@ -75,7 +56,7 @@ def export_part(spec, part: str, path: str | Path, *, tolerance_mm: float | None
     path : str or Path
         Target file; its extension picks the writer (see :func:`formats`).
     tolerance_mm : float, optional
-        Chordal tolerance of the mesh and of the STEP B-spline sampling.
+        Chordal tolerance of the mesh and of the STEP surfaces.
     teeth : iterable of int, optional
         Tooth selection (sectors).
     mesh : trimesh.Trimesh, optional

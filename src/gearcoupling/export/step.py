@@ -23,7 +23,6 @@ from numpy.typing import NDArray
 
 from ..errors import BackendError, GeometryError
 from ..parts.builder import SURFACE_KINDS, Run, tooth_runs
-from .registry import exporter as exporter_step
 
 _CIRCLES = {"root", "tip", "fillet_cw", "fillet_ccw"}  # exact arcs (hub fillets excepted)
 _LINES = {"chamfer_cw", "chamfer_ccw"}
@@ -374,11 +373,10 @@ __all__ = ["hub_solid", "part_solid", "read_step_volume", "shape_volume",
            "sleeve_solid", "write_step", "write_step_job"]
 
 
-@exporter_step("step", "stp")
 def write_step_job(job, path: Path) -> None:
     """STEP AP214 B-spline solid of the part (``step`` extra)."""
     from ..parts import check_tolerance
 
     tol = check_tolerance(job.spec, job.tolerance_mm)
     shape = part_solid(job.spec, job.part, tol, job.teeth)
-    write_step(shape, path, name=f"{job.spec.name}-{job.part}")
+    write_step(shape, path, name=job.title)

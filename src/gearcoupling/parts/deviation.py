@@ -159,6 +159,30 @@ def circle_samples(radius: float, z0: float, z1: float, n: int, rng) -> NDArray[
     return np.stack([radius * np.cos(a), radius * np.sin(a), rng.uniform(z0, z1, n)], -1)
 
 
+def exact_samples(spec, part: str, samples: int, teeth=None, *,
+                  seed: int = 0) -> dict[str, NDArray[np.float64]]:
+    """Exact surface points ``{kind: (samples, 3)}`` of a part, each tooth-surface point on
+    a random tooth of ``teeth`` (all by default); the bore and the sleeve's outer cylinder
+    are included for whole parts. Hub flank samples include the crown ends (1/8 of them).
+    """
+    rng = np.random.default_rng(seed)
+    n_teeth = spec.tooth.teeth
+    chosen = np.array(range(n_teeth) if teeth is None else list(teeth))
+    pts = hub_samples(spec, samples, rng) if part == "hub" else sleeve_samples(spec, samples, rng)
+    for kind in pts:
+        pts[kind] = _rotate(pts[kind], 2 * math.pi * rng.choice(chosen, samples) / n_teeth)
+    if teeth is None:
+        if part == "hub":
+            hl = 0.5 * spec.hub.body.length
+            if spec.hub.body.bore_diameter > 0:
+                pts["bore"] = circle_samples(0.5 * spec.hub.body.bore_diameter, -hl, hl,
+                                             samples, rng)
+        else:
+            hf = 0.5 * spec.sleeve.face_width
+            pts["body"] = circle_samples(0.5 * spec.sleeve.outer_diameter, -hf, hf, samples, rng)
+    return pts
+
+
 def measure_deviation(spec, mesh, *, samples: int = 2000, seed: int = 0) -> dict[str, float]:
     """Largest distance (mm) from exact surface points to the mesh, per surface kind.
 
@@ -168,30 +192,15 @@ def measure_deviation(spec, mesh, *, samples: int = 2000, seed: int = 0) -> dict
     mesh : trimesh.Trimesh
         From :func:`~gearcoupling.parts.build_part` (its metadata give part and teeth).
     samples : int
-        Exact points per surface kind; each tooth-surface point is placed on a random
-        tooth of the mesh.
+        Exact points per surface kind (:func:`exact_samples`).
 
     Returns
     -------
     dict
         ``{kind: max distance}`` plus ``"max"`` over all kinds.
     """
-    rng = np.random.default_rng(seed)
-    part = mesh.metadata["part"]
-    n_teeth = spec.tooth.teeth
-    teeth = np.array(mesh.metadata.get("teeth") or range(n_teeth))
-    pts = hub_samples(spec, samples, rng) if part == "hub" else sleeve_samples(spec, samples, rng)
-    for kind in pts:
-        pts[kind] = _rotate(pts[kind], 2 * math.pi * rng.choice(teeth, samples) / n_teeth)
-    if mesh.metadata.get("teeth") is None:
-        if part == "hub":
-            hl = 0.5 * spec.hub.body.length
-            if spec.hub.body.bore_diameter > 0:
-                pts["bore"] = circle_samples(0.5 * spec.hub.body.bore_diameter, -hl, hl,
-                                             samples, rng)
-        else:
-            hf = 0.5 * spec.sleeve.face_width
-            pts["body"] = circle_samples(0.5 * spec.sleeve.outer_diameter, -hf, hf, samples, rng)
+    pts = exact_samples(spec, mesh.metadata["part"], samples, mesh.metadata.get("teeth"),
+                        seed=seed)
     out = {kind: float(distance_to_mesh(p, mesh.vertices, mesh.faces).max())
            for kind, p in pts.items()}
     out["max"] = max(out.values())

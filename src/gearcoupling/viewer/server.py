@@ -138,6 +138,9 @@ class ViewerApp:
             self.server.stop()  # bad input: leave no server behind
             raise
         self.pose_updates = 0
+        self.ticks = 0
+        """Worker iterations completed (each applies the changes pending at its start)."""
+        self._ticked = threading.Condition()
         self._worker = threading.Thread(target=self._run, name="gearcoupling-viewer",
                                         daemon=True)
         self._worker.start()
@@ -274,6 +277,17 @@ class ViewerApp:
                     self.apply(dirty)
                 except Exception as err:  # keep serving; show what went wrong
                     self.status.content = f"**error:** {err}"
+            with self._ticked:
+                self.ticks += 1
+                self._ticked.notify_all()
+
+    def wait_ticks(self, count: int = 1, timeout_s: float = 60.0) -> bool:
+        """Wake the worker and wait until it has completed ``count`` more iterations (the
+        first may have started before the call); ``False`` on timeout."""
+        with self._ticked:
+            target = self.ticks + count
+            self._wake.set()
+            return self._ticked.wait_for(lambda: self.ticks >= target, timeout_s)
 
     def apply(self, dirty: set[str]) -> None:
         """Apply the GUI's current values for the kinds of change in ``dirty`` (any of
