@@ -24,6 +24,9 @@ _LAZY = {
     "build_part": "gearcoupling.parts",
     "export_part": "gearcoupling.export",
     "check_interference": "gearcoupling.interference",
+    # manufacturing and inspection (issue 13)
+    "hob_program": "gearcoupling.hob",
+    "measuring_charts": "gearcoupling.hob",
 }
 
 
@@ -46,10 +49,12 @@ __all__ = [
     "check_interference",
     "export_part",
     "feed_path",
+    "hob_program",
     "hub_flank",
     "inv",
     "inv_inverse",
     "load_spec",
+    "measuring_charts",
     "sleeve_flank",
     "spec_from_dict",
     "template_names",

@@ -1,8 +1,9 @@
 """CLI commands; each module has ``register(subparsers)``. Add new commands to COMMANDS."""
 
 from . import check, generate, run, sections, spec, sweep, templates, view
+
 # manufacturing and inspection (issue 13)
-from . import hob
+from . import charts, hob  # isort: skip
 
 COMMANDS = [spec, sections, run, templates, check, view, generate, sweep]
-COMMANDS += [hob]  # issue 13
+COMMANDS += [hob, charts]  # issue 13
