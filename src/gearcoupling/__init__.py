@@ -27,6 +27,7 @@ _LAZY = {
     # manufacturing and inspection (issue 13)
     "hob_program": "gearcoupling.hob",
     "measuring_charts": "gearcoupling.hob",
+    "compare_part": "gearcoupling.inspection",
 }
 
 
@@ -47,6 +48,7 @@ __all__ = [
     "SpecError",
     "build_part",
     "check_interference",
+    "compare_part",
     "export_part",
     "feed_path",
     "hob_program",

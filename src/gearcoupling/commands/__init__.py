@@ -3,7 +3,7 @@
 from . import check, generate, run, sections, spec, sweep, templates, view
 
 # manufacturing and inspection (issue 13)
-from . import charts, hob  # isort: skip
+from . import charts, compare, hob  # isort: skip
 
 COMMANDS = [spec, sections, run, templates, check, view, generate, sweep]
-COMMANDS += [hob, charts]  # issue 13
+COMMANDS += [hob, charts, compare]  # issue 13
