@@ -86,6 +86,11 @@ def pattern(alpha, r, R: float, N: int) -> complex:
     return complex(np.sum(w * np.exp(1j * N * alpha)) / den)
 
 
+def _spectrum(alpha, r, R: float, N: int) -> dict[int, float]:
+    """Pattern strength for tooth counts ``M`` from ``N/2`` to ``2N``."""
+    return {M: abs(pattern(alpha, r, R, M)) for M in range(max(3, N // 2), 2 * N + 1)}
+
+
 def check_scale(points, tip_radius: float) -> None:
     """Refuse a scan whose size does not match the spec, naming inch/metre files."""
     r_max = float(np.max(np.hypot(points[:, 0], points[:, 1])))
@@ -120,12 +125,13 @@ def coarse_place(points, table: FlankTable, mode: str = "auto", sample: int = 10
         q = sub - c
         _, vecs = np.linalg.eigh(q.T @ q)
         best = None
-        for k in range(3):
+        for k in range(3):  # the axis about which some tooth pattern is strongest
             F = _frame(vecs[:, k])
-            p = q @ F.T
+            p = q[:: max(1, len(q) // 20_000)] @ F.T
             r = np.hypot(p[:, 0], p[:, 1])
             band = (r > m.R - m.dedendum) & (r < 1.05 * tip)
-            s = abs(pattern(np.arctan2(p[band, 1], p[band, 0]), r[band], m.R, N))
+            s = max(_spectrum(np.arctan2(p[band, 1], p[band, 0]), r[band], m.R, N).values(),
+                    default=0.0)
             if best is None or s > best[0]:
                 best = (s, F)
         Rm, t = best[1], -best[1] @ c
@@ -152,8 +158,7 @@ def coarse_place(points, table: FlankTable, mode: str = "auto", sample: int = 10
     z_n = pattern(alpha, rr, m.R, N)
     strength = abs(z_n)
     step = max(1, len(alpha) // 20_000)
-    counts = {M: abs(pattern(alpha[::step], rr[::step], m.R, M))
-              for M in range(max(3, N // 2), 2 * N + 1)}
+    counts = _spectrum(alpha[::step], rr[::step], m.R, N)
     best_M = max(counts, key=counts.get)
     if best_M != N and strength < 0.5 * counts[best_M]:
         raise RegistrationError(f"scan does not match the spec: its angular tooth pattern "
