@@ -9,7 +9,8 @@ HEAVY = ("trimesh", "manifold3d", "viser", "OCP", "meshio", "matplotlib", "dask"
 
 
 @pytest.mark.parametrize("module", ["gearcoupling", "gearcoupling.geometry", "gearcoupling.spec",
-                                    "gearcoupling.cli"])
+                                    "gearcoupling.cli", "gearcoupling.hob",
+                                    "gearcoupling.inspection"])
 def test_kernels_import_no_heavy_backend(module):
     code = (f"import sys, {module}; "
             f"print(','.join(m for m in {HEAVY!r} if m in sys.modules))")

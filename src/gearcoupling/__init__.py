@@ -28,6 +28,10 @@ _LAZY = {
     "load": "gearcoupling.load",
     "load_from_sweep": "gearcoupling.load",
     "LoadResult": "gearcoupling.load",
+    # manufacturing and inspection (issue 13)
+    "hob_program": "gearcoupling.hob",
+    "measuring_charts": "gearcoupling.hob",
+    "compare_part": "gearcoupling.inspection",
 }
 
 
@@ -49,14 +53,17 @@ __all__ = [
     "SpecError",
     "build_part",
     "check_interference",
+    "compare_part",
     "export_part",
     "feed_path",
+    "hob_program",
     "hub_flank",
     "inv",
     "inv_inverse",
     "load",
     "load_from_sweep",
     "load_spec",
+    "measuring_charts",
     "sleeve_flank",
     "spec_from_dict",
     "template_names",

@@ -1,0 +1,42 @@
+"""``gearcoupling charts``: nominal measuring-machine charts of the hub flanks.
+
+Writes ``charts.png`` (profile and lead traces per flank with the evaluation ranges),
+``nominal_traces.csv`` (points with normals, for a gear measuring machine) and
+``charts.json`` (evaluation ranges, C_beta, f_Hbeta, f_Halpha per flank).
+"""
+
+from __future__ import annotations
+
+from ..atomic import write_json
+from .common import add_spec_arguments, output_dir, spec_from_args
+
+
+def register(sub) -> None:
+    p = sub.add_parser("charts", help="nominal profile/lead measuring charts and trace CSV")
+    add_spec_arguments(p)
+    p.add_argument("--points", type=int, default=101, metavar="N",
+                   help="points per trace (default 101)")
+    p.add_argument("--tip-exclusion", type=float, default=0.08, metavar="SHARE",
+                   help="share of the profile length left out of L_alpha at the tip "
+                        "(default 0.08)")
+    p.set_defaults(func=run)
+
+
+def run(args) -> int:
+    from ..hob import measuring_charts, plot_measuring_charts, write_nominal_csv
+    from ..plots import save_figure
+
+    spec = spec_from_args(args)
+    charts = measuring_charts(spec, args.points, args.tip_exclusion)
+    out = output_dir(args, spec)
+    files = [save_figure(plot_measuring_charts(charts), out / "charts.png"),
+             write_nominal_csv(charts, out / "nominal_traces.csv")]
+    files.append(write_json(out / "charts.json", {**charts.summary(),
+                                                  "files": [str(f) for f in files]}))
+    for flank, v in charts.values.items():
+        print(f"{flank}: C_beta {1e3 * v['C_beta_mm']:.2f} um, f_Hbeta "
+              f"{1e3 * v['f_Hbeta_mm']:.2f} um, f_Halpha mid/ends "
+              f"{1e3 * v['f_Halpha_mid_mm']:.2f} / {1e3 * v['f_Halpha_z_plus_mm']:.2f} um")
+    for f in files:
+        print(f)
+    return 0

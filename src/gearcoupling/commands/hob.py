@@ -1,0 +1,51 @@
+"""``gearcoupling hob``: hob centre path and a two-axis feed program for the spec's hub.
+
+Writes ``hob_path.csv`` (exact path samples), ``hob_program.nc`` (G-code: X infeed,
+Z feed, G2/G3 arcs where the path is circular) and ``hob.json`` (settings, measured
+chordal deviation, start/end positions, crown drop at the tooth ends).
+"""
+
+from __future__ import annotations
+
+from ..atomic import write_json, write_text
+from .common import add_spec_arguments, output_dir, spec_from_args
+
+
+def register(sub) -> None:
+    p = sub.add_parser("hob", help="hob centre path and feed program (CSV, G-code)")
+    add_spec_arguments(p)
+    p.add_argument("--hob-diameter", type=float, required=True, metavar="MM",
+                   help="hob outside diameter in mm")
+    p.add_argument("--tolerance", type=float, default=None, metavar="MM",
+                   help="largest chordal deviation of the program (default: module / 1000)")
+    p.add_argument("--feed", type=float, default=1.0, metavar="MM_PER_REV",
+                   help="axial feed per workpiece revolution written as F (default 1)")
+    p.set_defaults(func=run)
+
+
+def run(args) -> int:
+    from ..errors import SpecError
+    from ..hob import hob_program
+    from ..hob.writers import write_csv
+
+    spec = spec_from_args(args)
+    if not args.feed > 0:
+        raise SpecError("--feed", args.feed, "a positive feed in mm per revolution")
+    prog = hob_program(spec, args.hob_diameter, args.tolerance)
+    out = output_dir(args, spec)
+    files = [
+        write_csv(out / "hob_path.csv", prog.rows(),
+                  [f"hob centre path for {spec.name}; mm and degrees; x = centre distance "
+                   "from the hub axis, z = axial, infeed = x(0) - x"]),
+        write_text(out / "hob_program.nc", prog.gcode(args.feed)),
+    ]
+    files.append(write_json(out / "hob.json", {**prog.summary(),
+                                               "files": [str(f) for f in files]}))
+    s = prog.summary()
+    print(f"hob: {s['arc_moves']} arcs + {s['line_moves']} lines, max chordal deviation "
+          f"{s['max_deviation_mm']:.3g} mm (tolerance {s['tolerance_mm']:.3g} mm), "
+          f"Z {s['z_start_mm']:.4f} .. {s['z_end_mm']:.4f} mm, crown drop at ends "
+          f"{s['crown_drop_end_mm']:.5f} mm")
+    for f in files:
+        print(f)
+    return 0

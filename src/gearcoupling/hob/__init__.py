@@ -1,0 +1,25 @@
+"""Manufacturing: hob feed programs and measuring-machine charts (geometry level).
+
+Pure numpy kernels over the feed path and the exact hub flank; writers and plots import
+matplotlib lazily.
+"""
+
+from .charts import (
+    MeasuringCharts,
+    Trace,
+    measuring_charts,
+    plot_measuring_charts,
+    write_nominal_csv,
+)
+from .program import HobProgram, Move, hob_program
+
+__all__ = [
+    "HobProgram",
+    "MeasuringCharts",
+    "Move",
+    "Trace",
+    "hob_program",
+    "measuring_charts",
+    "plot_measuring_charts",
+    "write_nominal_csv",
+]

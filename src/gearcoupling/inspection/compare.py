@@ -1,0 +1,132 @@
+"""Measured part vs nominal (:func:`compare_part`) and part vs part (geometry regression)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import SpecError
+from ..hob.charts import measuring_charts
+from .io import load_points
+from .register import register
+from .report import FLANK_NAMES, InspectionReport, check_limits, evaluate, pass_fail
+from .surface import deviation, flank_table
+
+SAMPLE = 200_000  # points kept in the report for the deviation map
+
+
+@dataclass(frozen=True)
+class PartComparison:
+    """Two parts inspected against the same nominal; ``rows`` are B - A per tooth."""
+
+    a: InspectionReport
+    b: InspectionReport
+
+    def rows(self) -> list[dict[str, object]]:
+        ra = {r["tooth"]: r for r in self.a.rows()}
+        out = []
+        for rb in self.b.rows():
+            if rb["tooth"] not in ra:
+                continue
+            row: dict[str, object] = {"tooth": rb["tooth"]}
+            for key, vb in rb.items():
+                va = ra[rb["tooth"]].get(key)
+                if key.endswith("_mm") and isinstance(vb, float) and isinstance(va, float):
+                    row[f"{key[:-3]}_diff_mm"] = vb - va
+            out.append(row)
+        return out
+
+    def summary(self) -> dict:
+        rows = self.rows()
+        worst = {}
+        for row in rows:
+            for key, v in row.items():
+                if key != "tooth":
+                    worst[key] = max(worst.get(key, 0.0), abs(v))
+        return {"a": self.a.summary(), "b": self.b.summary(),
+                "common_teeth": [r["tooth"] for r in rows], "max_abs_diff": worst}
+
+
+def _points(source, units: str):
+    if isinstance(source, str | Path):
+        return load_points(source, units), str(source)
+    pts = np.asarray(source, dtype=float)
+    if pts.ndim != 2 or pts.shape[1] != 3 or len(pts) == 0:
+        raise SpecError("points", f"array of shape {pts.shape}", "an (n, 3) array, n >= 1")
+    if not np.all(np.isfinite(pts)):
+        raise SpecError("points", "array with NaN/inf", "finite coordinates only")
+    return pts * {"mm": 1.0, "in": 25.4, "m": 1000.0}[units], "array"
+
+
+def compare_part(spec, source, other=None, *, units: str = "mm", limits=None,
+                 coarse: str = "auto", fit_points: int = 20_000,
+                 grid: tuple[int, int] = (61, 41), outlier_mm: float | None = None,
+                 min_points: int = 30):
+    """Inspect a measured hub against the spec's nominal, tooth by tooth.
+
+    Parameters
+    ----------
+    spec : CouplingSpec
+    source : path or (n, 3) float array
+        Mesh (STL/PLY/OBJ: vertices) or point cloud (CSV/PLY/XYZ) of the hub, any placement.
+    other : path or array, optional
+        A second part: both are inspected and compared (:class:`PartComparison`, B - A).
+    units : {"mm", "in", "m"}
+        Unit of the file coordinates (a scan in other units than given is detected by
+        its size and refused with the reason).
+    limits : dict, optional
+        Tolerances in mm, keys of :data:`~gearcoupling.inspection.report.LIMITS`.
+    coarse : {"auto", "none"}
+        ``none`` keeps the file's frame (part coordinates; partial scans).
+    fit_points : int
+        Points used by the fine registration (accuracy knob; all points are evaluated).
+    grid : (int, int)
+        ``(z, r)`` grid of the tabulated exact flank (accuracy knob).
+    outlier_mm : float, optional
+        Points farther than this from the nominal are outliers (default 0.1 module).
+    min_points : int
+        A flank with fewer band points (or covering less than half of the evaluation
+        ranges) is not reported; a tooth is reported when both flanks are.
+
+    Returns
+    -------
+    InspectionReport or PartComparison
+    """
+    lim = check_limits(limits)
+    table = flank_table(spec, grid)
+    charts = measuring_charts(spec)
+    a = _inspect(spec, source, table, charts, units, lim, coarse, fit_points, outlier_mm,
+                 min_points)
+    if other is None:
+        return a
+    b = _inspect(spec, other, table, charts, units, lim, coarse, fit_points, outlier_mm,
+                 min_points)
+    return PartComparison(a, b)
+
+
+def _inspect(spec, source, table, charts, units, lim, coarse, fit_points, outlier_mm,
+             min_points) -> InspectionReport:
+    pts, name = _points(source, units)
+    reg = register(pts, table, coarse=coarse, fit_points=fit_points, outlier_mm=outlier_mm)
+    hub = reg.apply(pts)
+    dev = deviation(table, hub)
+    outlier = 0.2 * table.model.R / table.model.teeth if outlier_mm is None else outlier_mm
+    keep = np.abs(dev.d) <= outlier
+    dev = type(dev)(*(getattr(dev, f)[keep] for f in dev.__dataclass_fields__))
+    ev = evaluate(table, charts, dev, min_points=min_points)
+    ok, checks = pass_fail(ev, lim)
+    ev["part"].update(checks)
+    ev["part"]["outliers"] = int((~keep).sum())
+    take = np.linspace(0, len(dev.d) - 1, min(SAMPLE, len(dev.d))).astype(np.intp)
+    rb = table.model.R * math.cos(table.model.phi)
+    sample = {"tooth": dev.tooth[take], "flank": dev.flank[take], "z": dev.z[take],
+              "xi": np.sqrt(np.maximum(dev.r[take] ** 2 - rb**2, 0.0)), "d": dev.d[take]}
+    nominal = {f: {k: charts.values[f][k] for k in ("C_beta_mm", "f_Hbeta_mm",
+                                                    "lead_radius_mm")} for f in FLANK_NAMES}
+    nominal["lead_evaluation_mm"] = {"L_beta": 2 * table.half_lead}
+    nominal["band_mm"] = {"r_lo": table.r_lo, "r_hi": table.r_hi}
+    return InspectionReport(spec.name, name, len(pts), reg, table.table_error_mm, ev["teeth"],
+                            ev["flank"], ev["tooth"], ev["part"], lim, ok, sample, nominal)

@@ -1,0 +1,97 @@
+"""Read a measured part: a mesh (STL/PLY/OBJ, its vertices) or a point cloud (CSV/PLY/XYZ)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..errors import BackendError, SpecError
+
+MESH_SUFFIXES = (".stl", ".obj", ".ply", ".off", ".glb")
+TEXT_SUFFIXES = (".csv", ".xyz", ".txt", ".asc", ".pts")
+UNIT_SCALE = {"mm": 1.0, "in": 25.4, "m": 1000.0}
+ALLOWED = ("an existing, readable mesh (.stl .obj .ply .off .glb: its vertices are used) or "
+           "point cloud (.csv .xyz .txt .asc .pts: x y z columns; .ply vertices)")
+
+
+def load_points(path: str | Path, units: str = "mm") -> NDArray[np.float64]:
+    """Points of a scan or mesh file, in mm.
+
+    Parameters
+    ----------
+    path : str or Path
+    units : {"mm", "in", "m"}
+        Length unit of the file's coordinates.
+
+    Returns
+    -------
+    (n, 3) float
+        Finite points (mm); a file with no points or with non-finite coordinates is refused
+        (:class:`SpecError`).
+    """
+    if units not in UNIT_SCALE:
+        raise SpecError("units", units, f"one of {tuple(UNIT_SCALE)}")
+    p = Path(path)
+    if not p.is_file():
+        raise SpecError("file", str(p), ALLOWED + ": no such file")
+    suffix = p.suffix.lower()
+    if suffix in MESH_SUFFIXES:
+        pts = _load_mesh(p)
+    elif suffix in TEXT_SUFFIXES:
+        pts = _load_text(p)
+    else:
+        raise SpecError("file", str(p), ALLOWED)
+    if pts.ndim != 2 or pts.shape[1] != 3 or len(pts) == 0:
+        raise SpecError("file", str(p), "a file with at least one x y z point; it has none")
+    bad = ~np.all(np.isfinite(pts), axis=1)
+    if np.any(bad):
+        raise SpecError("file", str(p), f"finite coordinates; {int(bad.sum())} of {len(pts)} "
+                        f"points have NaN or infinity (first at row {int(np.argmax(bad))}): "
+                        "remove them from the scan")
+    return pts * UNIT_SCALE[units]
+
+
+def _load_mesh(p: Path) -> NDArray[np.float64]:
+    try:
+        import trimesh
+    except ImportError as err:  # pragma: no cover - trimesh is a core dependency
+        raise BackendError("reading meshes needs trimesh: pip install trimesh") from err
+    try:
+        obj = trimesh.load(p, process=False)
+    except Exception as err:  # trimesh raises many types on corrupt files
+        raise SpecError("file", str(p), f"{ALLOWED}; trimesh could not read it "
+                        f"({type(err).__name__}: {err})") from err
+    if isinstance(obj, trimesh.Scene):
+        geoms = list(obj.dump()) if obj.geometry else []
+        verts = [np.asarray(g.vertices, dtype=float) for g in geoms]
+        return np.concatenate(verts) if verts else np.zeros((0, 3))
+    return np.asarray(getattr(obj, "vertices", np.zeros((0, 3))), dtype=float)
+
+
+def _load_text(p: Path) -> NDArray[np.float64]:
+    rows = []
+    try:
+        with p.open(encoding="utf-8", errors="strict") as fh:
+            for line in fh:
+                text = line.strip()
+                if not text or text[0] in "#/;%":
+                    continue
+                parts = text.replace(",", " ").replace(";", " ").split()
+                try:
+                    vals = [float(v) for v in parts[:3]]
+                except ValueError:
+                    if not rows:
+                        continue  # a header line
+                    raise SpecError("file", str(p), f"numeric x y z columns; line "
+                                    f"{text[:60]!r} is not") from None
+                if len(vals) < 3:
+                    raise SpecError("file", str(p), f"three coordinates per line; line "
+                                    f"{text[:60]!r} has {len(vals)}")
+                rows.append(vals)
+    except UnicodeDecodeError as err:
+        raise SpecError("file", str(p), ALLOWED + "; it is not a text file") from err
+    except OSError as err:
+        raise SpecError("file", str(p), f"{ALLOWED}; reading failed ({err})") from err
+    return np.array(rows, dtype=float).reshape(-1, 3)
