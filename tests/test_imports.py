@@ -5,10 +5,12 @@ import sys
 
 import pytest
 
-HEAVY = ("trimesh", "manifold3d", "viser", "OCP", "meshio", "matplotlib", "dask")
+HEAVY = ("trimesh", "manifold3d", "viser", "OCP", "meshio", "matplotlib", "dask",
+         "distributed", "pyarrow")
 
 
 @pytest.mark.parametrize("module", ["gearcoupling", "gearcoupling.geometry", "gearcoupling.spec",
+                                    "gearcoupling.study",
                                     "gearcoupling.cli"])
 def test_kernels_import_no_heavy_backend(module):
     code = (f"import sys, {module}; "
