@@ -13,6 +13,8 @@ def register(sub) -> None:
                    help="output folder (default: outputs/study-<name>)")
     p.add_argument("--scheduler", metavar="tcp://HOST:PORT", default=None,
                    help="use a running dask scheduler instead of a local cluster")
+    p.add_argument("--connect-timeout", type=float, default=10.0, metavar="S",
+                   help="seconds to wait for --scheduler before giving up (default 10)")
     p.add_argument("--workers", type=int, default=None, metavar="N",
                    help="local cluster worker processes (default: one per core)")
     p.add_argument("--fresh", action="store_true",
@@ -39,6 +41,7 @@ def run(args) -> int:
                 advance()
 
         result = run_study(study, out, scheduler=args.scheduler, workers=args.workers,
+                           connect_timeout_s=args.connect_timeout,
                            fresh=args.fresh, on_start=on_start, on_chunk=lambda c: advance())
     print(result.table)
     if result.failed_rows:

@@ -88,8 +88,8 @@ def _manifest(study: Study, out: Path, fresh: bool) -> None:
         if old.get("digest") != data["digest"]:
             raise SpecError("output", str(out), "holds the parts of another study (its file "
                             "changed); use a new --output folder or --fresh")
-    if fresh and (out / "parts").is_dir():
-        for part in (out / "parts").glob("chunk-*.parquet"):
+    if (out / "parts").is_dir():  # temporaries of a killed run; with --fresh every part
+        for part in (out / "parts").glob("*chunk-*.parquet" if fresh else ".chunk-*"):
             part.unlink()
     write_json(path, data)
 
@@ -122,6 +122,7 @@ def _close(client, own_cluster: bool) -> None:
 
 def run_study(study: Study, out: str | Path, *, scheduler: str | None = None,
               workers: int | None = None, fresh: bool = False, client=None,
+              connect_timeout_s: float = CONNECT_TIMEOUT_S,
               on_start: Callable[[int, int], None] | None = None,
               on_chunk: Callable[[int], None] | None = None) -> StudyRun:
     """Evaluate every sample of ``study`` on dask and write ``<out>/study.parquet``.
@@ -140,7 +141,7 @@ def run_study(study: Study, out: str | Path, *, scheduler: str | None = None,
         on_start(len(todo), skipped)
     if todo:
         own = client is None
-        client = client or connect(scheduler, workers)
+        client = client or connect(scheduler, workers, connect_timeout_s)
         try:
             _compute(client, study, groups, todo, out, names, on_chunk)
         finally:
