@@ -1,0 +1,52 @@
+"""``gearcoupling study FILE``: a design study on dask.distributed -> Parquet table + plots."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+
+def register(sub) -> None:
+    p = sub.add_parser("study", help="design study over sampled spec keys and conditions on "
+                       "dask.distributed (Parquet table, plots; resumable)")
+    p.add_argument("file", metavar="FILE", help="study TOML file, or a bundled study name")
+    p.add_argument("-o", "--output", metavar="DIR", default=None,
+                   help="output folder (default: outputs/study-<name>)")
+    p.add_argument("--scheduler", metavar="tcp://HOST:PORT", default=None,
+                   help="use a running dask scheduler instead of a local cluster")
+    p.add_argument("--connect-timeout", type=float, default=10.0, metavar="S",
+                   help="seconds to wait for --scheduler before giving up (default 10)")
+    p.add_argument("--workers", type=int, default=None, metavar="N",
+                   help="local cluster worker processes (default: one per core)")
+    p.add_argument("--fresh", action="store_true",
+                   help="discard finished chunks in the output folder and start over")
+    p.add_argument("--no-plots", action="store_true", help="write only the table")
+    p.set_defaults(func=run)
+
+
+def run(args) -> int:
+    from ..study import load_study, read_table, run_study
+    from ..study.plots import study_plots
+    from .common import progress
+
+    study = load_study(args.file)
+    out = Path(args.output) if args.output else Path("outputs") / f"study-{study.name}"
+    from ..study.runner import chunks
+
+    with progress(f"study {study.name} (chunks)", len(chunks(study))) as advance:
+        def on_start(todo: int, skipped: int) -> None:
+            if skipped:
+                print(f"resuming: {skipped} finished chunk(s) in {out / 'parts'} skipped, "
+                      f"{todo} to run")
+            for _ in range(skipped):
+                advance()
+
+        result = run_study(study, out, scheduler=args.scheduler, workers=args.workers,
+                           connect_timeout_s=args.connect_timeout,
+                           fresh=args.fresh, on_start=on_start, on_chunk=lambda c: advance())
+    print(result.table)
+    if result.failed_rows:
+        print(f"{result.failed_rows} of {result.rows} rows refused (see the 'error' column)")
+    if not args.no_plots and study.plots:
+        for path in study_plots(study, read_table(result.table), out):
+            print(path)
+    return 0

@@ -1,0 +1,113 @@
+"""One study row: build the sample's spec, evaluate the outputs asked for.
+
+A sample the spec validation (or an evaluation) refuses with a gearcoupling error becomes a
+row with ``error`` set to the reason and its outputs empty; other exceptions propagate
+(a bug must not look like a result).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+from typing import Any
+
+import numpy as np
+
+from ..errors import GearCouplingError
+from .file import ANGLE_OUTPUTS, LOAD_OUTPUTS, OUTPUTS, build_spec
+
+
+def spec_hash(spec) -> str:
+    """Short SHA-256 of the resolved spec (mm, degrees), independent of its name."""
+    data = spec.to_dict()
+    data.pop("name", None)
+    return hashlib.sha256(json.dumps(data, sort_keys=True).encode()).hexdigest()[:16]
+
+
+def _version() -> str:
+    from .. import __version__
+
+    return __version__
+
+
+def angle_outputs(spec, misalignment_deg: float, *, steps: int, tolerance_mm: float
+                  ) -> dict[str, float]:
+    """Smallest backlash over a turn and the axial range of the first-touch point of the
+    contacting tooth of each flank, from one clearance map over a tooth pitch (``steps``
+    rotations; every tooth, so the whole turn)."""
+    from ..sweep.design import pitch_turning_angles
+    from ..sweep.tooth_map import check_misalignment, flank_minima
+
+    i = check_misalignment(misalignment_deg)
+    theta = pitch_turning_angles(spec.tooth.teeth, steps)
+    mins, _ = flank_minima(spec, i, np.stack([theta, np.pi - theta]), tolerance_mm=tolerance_mm)
+    gap = mins["normal"] / spec.tooth.base_radius / mins["rate"]  # (2, N, steps)
+    backlash = float(np.min(np.min(gap[0], axis=0) + np.min(gap[1], axis=0)))
+    k = np.argmin(gap, axis=1)  # contacting tooth per flank and rotation
+    z = np.take_along_axis(mins["z"], k[:, None, :], axis=1)
+    return {"min_backlash_mm": backlash * spec.tooth.pitch_radius,
+            "contact_z_min_mm": float(np.min(z)), "contact_z_max_mm": float(np.max(z))}
+
+
+def load_outputs(spec, misalignment_deg: float, torque_Nm: float | None, *, angles: int
+                 ) -> dict[str, float]:
+    """Largest tooth load and q over a turn at the torque, and the capacity (load analysis)."""
+    from ..load import capacity, load
+
+    out: dict[str, float] = {}
+    psi = np.arange(angles) * 360.0 / angles
+    res = load(spec, misalignment_deg, psi, torque_Nm=torque_Nm)
+    summary = res.summary()
+    out["max_tooth_load_N"] = float(summary["max_tooth_load_N"])
+    out["q"] = float(summary["q"])
+    cap = capacity(spec, misalignment_deg)
+    out["capacity_Nm"] = float(cap["capacity_Nm"])
+    return out
+
+
+def evaluate(payload: dict[str, Any], inputs: dict[str, Any]) -> dict[str, Any]:
+    """The row of one sample: inputs, operating conditions, outputs, spec hash, version."""
+    acc = payload["accuracy"]
+    wanted = payload["outputs"]
+    conditions = payload["conditions"]
+    row: dict[str, Any] = dict(inputs)
+    row.update({k: None for k in OUTPUTS if k in wanted})
+    row.update(spec_hash=None, version=_version(), error=None)
+    spec_keys = {k: v for k, v in inputs.items() if k not in ("misalignment_deg", "torque_Nm")}
+    try:
+        spec = build_spec(payload["base_name"], payload["base_text"],
+                          {**payload["fixed"], **spec_keys})
+        row["spec_hash"] = spec_hash(spec)
+        mis = float(inputs.get("misalignment_deg", conditions.get(
+            "misalignment_deg", math.degrees(spec.design_misalignment))))
+        torque = inputs.get("torque_Nm", conditions.get("torque_Nm"))
+        row["misalignment_deg"] = mis
+        row["torque_Nm"] = None if torque is None else float(torque)
+        if "critical_misalignment_deg" in wanted:
+            from ..sweep.design import critical_misalignment_deg
+
+            row["critical_misalignment_deg"] = critical_misalignment_deg(
+                spec, tolerance_deg=acc["angle_tolerance_deg"])
+        if "binding_angle_deg" in wanted:
+            from ..sweep.design import binding_angle_deg
+
+            row["binding_angle_deg"] = binding_angle_deg(
+                spec, tolerance_deg=acc["angle_tolerance_deg"], steps=int(acc["steps"]))
+        if any(k in wanted for k in ANGLE_OUTPUTS):
+            got = angle_outputs(spec, mis, steps=int(acc["steps"]),
+                                tolerance_mm=acc["tolerance_mm"])
+            row.update({k: v for k, v in got.items() if k in wanted})
+        if any(k in wanted for k in LOAD_OUTPUTS):
+            got = load_outputs(spec, mis, torque, angles=int(acc["load_angles"]))
+            row.update({k: v for k, v in got.items() if k in wanted})
+    except GearCouplingError as err:
+        row["error"] = f"{type(err).__name__}: {err}"
+        row.update({k: None for k in OUTPUTS if k in wanted})
+    return row
+
+
+def evaluate_chunk(payload: dict[str, Any], chunk: int, items: list[tuple[int, dict]]
+                   ) -> list[dict[str, Any]]:
+    """Rows of one chunk of samples ``(sample index, inputs)`` (one dask task)."""
+    return [{"sample": n, "chunk": chunk, **evaluate(payload, inputs)} for n, inputs in items]

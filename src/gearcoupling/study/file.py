@@ -1,0 +1,404 @@
+"""Study files (TOML): a base spec, the parameters to vary, the outputs wanted.
+
+A study file::
+
+    [study]
+    name = "crown-vs-angle"
+    base = "renzo-1967"            # template name, or a spec path relative to this file
+    method = "grid"                # grid | random | lhs
+    samples = 20                   # random and lhs only
+    seed = 1                       # random and lhs only
+    chunk = 4                      # samples per dask task
+    outputs = ["critical_misalignment_deg", "min_backlash_mm"]
+
+    [set]                          # fixed overrides of the base spec (file units)
+    "sleeve.tip_chamfer" = 0.02
+
+    [conditions]                   # operating conditions when not varied
+    misalignment_deg = 1.0         # default: the spec's design angle
+    torque_Nm = 500.0              # default: the spec's [load] torque
+
+    [accuracy]                     # knobs of the evaluations (defaults shown in ACCURACY)
+    tolerance_mm = 1e-7
+
+    [[vary]]
+    key = "hub.crowning.radius"    # any spec key (dotted, file units) or a condition
+    range = [1.5, 5.0]             # with steps (grid) or sampled (random, lhs)
+    steps = 8
+    [[vary]]
+    key = "tooth.pressure_angle_deg"
+    values = [20, 25]              # explicit values
+
+    [[plot]]
+    x = "hub.crowning.radius"
+    y = "critical_misalignment_deg"
+    group = ["tooth.pressure_angle_deg"]
+
+Errors name the file, the line and the key (:class:`~gearcoupling.errors.SpecError`).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from ..errors import SpecError
+from ..spec import MISALIGNMENT_RANGE_DEG, resolve_spec_path, spec_from_dict
+
+METHODS = ("grid", "random", "lhs")
+CONDITIONS = ("misalignment_deg", "torque_Nm")
+SPEC_OUTPUTS = ("critical_misalignment_deg", "binding_angle_deg")
+ANGLE_OUTPUTS = ("min_backlash_mm", "contact_z_min_mm", "contact_z_max_mm")
+LOAD_OUTPUTS = ("max_tooth_load_N", "q", "capacity_Nm")
+OUTPUTS = SPEC_OUTPUTS + ANGLE_OUTPUTS + LOAD_OUTPUTS
+ACCURACY = {"tolerance_mm": 1e-7, "angle_tolerance_deg": 1e-4, "steps": 16, "load_angles": 72}
+MAX_SAMPLES = 10_000_000
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """One varied input: explicit ``values`` or a ``range`` (with ``steps`` on a grid)."""
+
+    key: str
+    line: int
+    values: tuple[Any, ...] = ()
+    low: float | None = None
+    high: float | None = None
+    steps: int | None = None
+    integer: bool = False
+
+    @property
+    def is_condition(self) -> bool:
+        return self.key in CONDITIONS
+
+    def grid(self) -> tuple[Any, ...]:
+        """The grid values: ``values`` or ``steps`` evenly spaced over the range."""
+        if self.values:
+            return self.values
+        n = self.steps or 1
+        pts = [self.low + (self.high - self.low) * k / max(n - 1, 1) for k in range(n)]
+        return tuple(round(p) if self.integer else p for p in pts)
+
+    def at(self, u: float) -> Any:
+        """The value at unit coordinate ``u`` in [0, 1) (random and Latin-hypercube)."""
+        if self.values:
+            return self.values[min(int(u * len(self.values)), len(self.values) - 1)]
+        value = self.low + (self.high - self.low) * u
+        return round(value) if self.integer else value
+
+
+@dataclass(frozen=True)
+class Study:
+    """A parsed, validated study file (see the module docstring)."""
+
+    name: str
+    source: str
+    base_name: str
+    base_text: str
+    fixed: dict[str, Any]
+    parameters: tuple[Parameter, ...]
+    method: str
+    samples: int
+    seed: int
+    chunk: int
+    outputs: tuple[str, ...]
+    conditions: dict[str, float]
+    accuracy: dict[str, float]
+    plots: tuple[dict[str, Any], ...] = field(default=())
+
+    @property
+    def spec_keys(self) -> tuple[str, ...]:
+        return tuple(p.key for p in self.parameters if not p.is_condition)
+
+    def payload(self) -> dict[str, Any]:
+        """Plain data a dask worker needs to evaluate samples (no file access)."""
+        return {"base_name": self.base_name, "base_text": self.base_text, "fixed": self.fixed,
+                "outputs": list(self.outputs), "conditions": self.conditions,
+                "accuracy": self.accuracy}
+
+    def digest(self) -> str:
+        """Hash of everything that determines the rows (resuming refuses another study)."""
+        data = {**self.payload(), "parameters": [p.__dict__ | {"line": 0}
+                                                 for p in self.parameters],
+                "method": self.method, "samples": self.samples, "seed": self.seed,
+                "chunk": self.chunk}
+        return hashlib.sha256(json.dumps(data, sort_keys=True, default=str).encode()
+                              ).hexdigest()[:16]
+
+
+def _line_of(text: str, needle: str, default: int = 0) -> int:
+    for n, line in enumerate(text.splitlines(), 1):
+        if needle in line:
+            return n
+    return default
+
+
+class _Reader:
+    """Reads one table of the study file, naming file:line in errors, refusing unknown keys."""
+
+    def __init__(self, data: Any, where: str, text: str, path: str, line: int = 0):
+        self.where, self.text, self.path, self.line = where, text, path, line
+        if not isinstance(data, dict):
+            self.fail(where, data, "must be a TOML table")
+        self.data = dict(data)
+
+    def fail(self, key: str, value: Any, allowed: str, line: int | None = None):
+        n = line if line is not None else _line_of(self.text, key.rsplit(".", 1)[-1], self.line)
+        raise SpecError(f"{self.path}:{n} {key}", value, allowed)
+
+    def get(self, key: str, kind, default: Any = None, required: bool = False):
+        name = f"{self.where}.{key}" if self.where else key
+        if key not in self.data:
+            if required:
+                self.fail(name, None, "is required", self.line)
+            return default
+        value = self.data.pop(key)
+        if kind is float and isinstance(value, int) and not isinstance(value, bool):
+            value = float(value)
+        if not isinstance(value, kind) or (isinstance(value, bool) and kind is not bool):
+            self.fail(name, value, f"must be of type {getattr(kind, '__name__', kind)}")
+        return value
+
+    def done(self) -> None:
+        if self.data:
+            key = sorted(self.data)[0]
+            name = f"{self.where}.{key}" if self.where else key
+            self.fail(name, self.data[key], "unknown key")
+
+
+def _set_dotted(data: dict[str, Any], key: str, value: Any) -> None:
+    node = data
+    parts = key.split(".")
+    for part in parts[:-1]:
+        node = node.setdefault(part, {})
+        if not isinstance(node, dict):
+            raise SpecError(key, value, f"'{part}' is a value, not a table")
+    node[parts[-1]] = value
+
+
+def build_spec(base_name: str, base_text: str, overrides: dict[str, Any]):
+    """The base spec (TOML text) with dotted overrides in the file's units."""
+    data = tomllib.loads(base_text)
+    for key, value in overrides.items():
+        _set_dotted(data, key, value)
+    return spec_from_dict(data, name=base_name)
+
+
+def _parameter(entry: Any, index: int, text: str, path: str) -> Parameter:
+    line = _line_of(text, "[[vary]]", 0)
+    starts = [n for n, s in enumerate(text.splitlines(), 1) if s.strip() == "[[vary]]"]
+    if index < len(starts):
+        line = starts[index]
+    r = _Reader(entry, f"vary[{index}]", text, path, line)
+    key = r.get("key", str, required=True)
+    line = _line_of(text, f'"{key}"', line)
+    r.line = line
+    values = r.get("values", list)
+    rng = r.get("range", list)
+    steps = r.get("steps", int)
+    r.done()
+    where = f"vary '{key}'"
+    if (values is None) == (rng is None):
+        r.fail(where, None, "give exactly one of values = [...] or range = [low, high]", line)
+    if values is not None:
+        if not values:
+            r.fail(where, values, "values must not be empty", line)
+        return Parameter(key, line, values=tuple(values))
+    ok = (len(rng) == 2 and all(isinstance(v, int | float) and not isinstance(v, bool)
+                                and math.isfinite(v) for v in rng))
+    if not ok:
+        r.fail(where, rng, "range must be [low, high], two finite numbers", line)
+    if not rng[0] < rng[1]:
+        r.fail(where, rng, "empty range: low must be below high", line)
+    if steps is not None and steps < 1:
+        r.fail(where, steps, "steps must be at least 1", line)
+    integer = all(isinstance(v, int) for v in rng)
+    return Parameter(key, line, low=float(rng[0]), high=float(rng[1]), steps=steps,
+                     integer=integer)
+
+
+def _check_values(p: Parameter, study_path: str, base_name: str, base_text: str,
+                  fixed: dict[str, Any]) -> None:
+    """Every explicit value and both range ends must pass the spec's validation alone."""
+    probes = list(p.values) if p.values else [p.low, p.high]
+    if p.integer:
+        probes = [round(v) for v in probes]
+    for value in probes:
+        if p.key == "misalignment_deg":
+            lo, hi = MISALIGNMENT_RANGE_DEG
+            if not (isinstance(value, int | float) and lo <= value <= hi):
+                raise SpecError(f"{study_path}:{p.line} vary '{p.key}'", value,
+                                f"misalignment must be {lo}-{hi} degrees")
+            continue
+        if p.key == "torque_Nm":
+            if not (isinstance(value, int | float) and math.isfinite(value)):
+                raise SpecError(f"{study_path}:{p.line} vary '{p.key}'", value,
+                                "torque must be a finite number of N m")
+            continue
+        try:
+            build_spec(base_name, base_text, {**fixed, p.key: value})
+        except SpecError as err:
+            raise SpecError(f"{study_path}:{p.line} vary '{p.key}'", value,
+                            f"refused by the spec: {err}") from err
+
+
+def load_study(path: str | Path) -> Study:
+    """Parse and validate a study file (a path, or the name of a bundled study)."""
+    p = resolve_study_path(path)
+    text = p.read_text()
+    src = str(p)
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as err:
+        raise SpecError(src, None, f"is not valid TOML: {err}") from err
+    root = _Reader(data, "", text, src)
+    s = _Reader(root.get("study", dict, {}), "study", text, src, _line_of(text, "[study]"))
+    name = s.get("name", str, p.stem)
+    base = s.get("base", str, required=True)
+    method = s.get("method", str, "grid")
+    if method not in METHODS:
+        s.fail("study.method", method, f"must be one of {METHODS}")
+    samples = s.get("samples", int, 0)
+    seed = s.get("seed", int, 0)
+    chunk = s.get("chunk", int, 1)
+    outputs = tuple(s.get("outputs", list, ["critical_misalignment_deg"]))
+    s.done()
+    if chunk < 1:
+        s.fail("study.chunk", chunk, "must be at least 1 sample per task")
+    for out in outputs:
+        if out not in OUTPUTS:
+            s.fail("study.outputs", out, f"unknown output; allowed: {list(OUTPUTS)}")
+    if not outputs:
+        s.fail("study.outputs", outputs, "name at least one output")
+    base_path = _resolve_base(base, p.parent)
+    base_text = base_path.read_text()
+    fixed = root.get("set", dict, {})
+    cond_r = _Reader(root.get("conditions", dict, {}), "conditions", text, src)
+    conditions = {k: cond_r.get(k, float) for k in CONDITIONS if k in cond_r.data}
+    cond_r.done()
+    acc_r = _Reader(root.get("accuracy", dict, {}), "accuracy", text, src)
+    accuracy = {k: acc_r.get(k, type(v), v) for k, v in ACCURACY.items()}
+    acc_r.done()
+    for k, v in accuracy.items():
+        if not v > 0:
+            acc_r.fail(f"accuracy.{k}", v, "must be > 0")
+    params = tuple(_parameter(e, k, text, src) for k, e in enumerate(root.get("vary", list, [])))
+    plots = tuple(root.get("plot", list, []))
+    root.done()
+    keys = [q.key for q in params]
+    if len(set(keys)) != len(keys):
+        dup = next(k for k in keys if keys.count(k) > 1)
+        raise SpecError(f"{src}:{_line_of(text, dup)} vary", dup, "varied twice")
+    try:
+        build_spec(p.stem, base_text, fixed)
+    except SpecError as err:
+        raise SpecError(f"{src}:{_line_of(text, '[set]')} set", None,
+                        f"the base spec with these overrides is refused: {err}") from err
+    for q in params:
+        _check_values(q, src, base_path.stem, base_text, fixed)
+    if method != "grid":
+        if samples < 1:
+            s.fail("study.samples", samples, f"method '{method}' needs samples >= 1")
+        for q in params:
+            if q.steps is not None:
+                raise SpecError(f"{src}:{q.line} vary '{q.key}'", q.steps,
+                                f"steps apply to grids only, not method '{method}'")
+    else:
+        for q in params:
+            if q.low is not None and q.steps is None:
+                raise SpecError(f"{src}:{q.line} vary '{q.key}'", None,
+                                "a range on a grid needs steps = N")
+    study = Study(name, src, base_path.stem, base_text, fixed, params, method, samples, seed,
+                  chunk, outputs, conditions, accuracy, plots)
+    n = sample_count(study)
+    if not 1 <= n <= MAX_SAMPLES:
+        raise SpecError(f"{src} samples", n, f"must be 1-{MAX_SAMPLES}")
+    for k, plot in enumerate(plots):
+        _check_plot(plot, k, study, text)
+    return study
+
+
+def _check_plot(plot: Any, k: int, study: Study, text: str) -> None:
+    r = _Reader(plot, f"plot[{k}]", text, study.source)
+    x = r.get("x", str, required=True)
+    y = r.get("y", str, required=True)
+    group = r.get("group", list, [])
+    r.get("title", str)
+    r.done()
+    known = {q.key for q in study.parameters}
+    for key in [x, *group]:
+        if key not in known:
+            r.fail(f"plot[{k}]", key, f"not a varied key; varied: {sorted(known)}")
+    if y not in study.outputs:
+        r.fail(f"plot[{k}].y", y, f"not an output of this study: {list(study.outputs)}")
+
+
+def _resolve_base(base: str, folder: Path) -> Path:
+    candidate = folder / base
+    if candidate.suffix == ".toml" and candidate.is_file():
+        return candidate
+    return resolve_spec_path(base)
+
+
+def study_dir() -> Path:
+    """Folder of the bundled study files (in the wheel, or the repo's ``studies/``)."""
+    from importlib import resources
+
+    packaged = resources.files("gearcoupling") / "studies"
+    if packaged.is_dir():
+        return Path(str(packaged))
+    return Path(__file__).resolve().parents[3] / "studies"
+
+
+def study_names() -> list[str]:
+    """Names of the bundled study files."""
+    return sorted(p.stem for p in study_dir().glob("*.toml"))
+
+
+def resolve_study_path(path: str | Path) -> Path:
+    """A study file path, or the name of a bundled study."""
+    p = Path(path)
+    if p.is_file():
+        return p
+    candidate = study_dir() / f"{path}.toml"
+    if candidate.is_file():
+        return candidate
+    raise SpecError("study", str(path), f"no such file and not a bundled study; bundled: "
+                    f"{study_names()}")
+
+
+def sample_count(study: Study) -> int:
+    if study.method != "grid":
+        return study.samples
+    return math.prod(len(q.grid()) for q in study.parameters)
+
+
+def samples(study: Study) -> list[dict[str, Any]]:
+    """Every sample's inputs in a fixed order (seeded for random and lhs)."""
+    params = study.parameters
+    if study.method == "grid":
+        import itertools
+
+        return [dict(zip((q.key for q in params), combo, strict=True))
+                for combo in itertools.product(*(q.grid() for q in params))]
+    import numpy as np
+
+    if study.method == "lhs":
+        from scipy.stats import qmc
+
+        u = qmc.LatinHypercube(d=max(len(params), 1), seed=study.seed).random(study.samples)
+    else:
+        u = np.random.default_rng(study.seed).random((study.samples, max(len(params), 1)))
+    return [{q.key: _plain(q.at(float(u[n, j]))) for j, q in enumerate(params)}
+            for n in range(study.samples)]
+
+
+def _plain(value: Any) -> Any:
+    return value if not hasattr(value, "item") else value.item()
+
+

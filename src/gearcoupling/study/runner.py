@@ -1,0 +1,185 @@
+"""Run a study on dask.distributed: chunks of samples per task, one Parquet part per
+finished chunk (written atomically as results arrive), merged into ``study.parquet``.
+
+Resuming: the output folder holds ``study_manifest.json`` (the study's digest) and
+``parts/chunk-NNNNNN.parquet``; a rerun skips the chunks whose part exists and says so.
+A lost worker's tasks are retried (``retries``) by the scheduler; finished parts stay.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from ..atomic import atomic_path, write_json
+from ..errors import BackendError, SpecError
+from .evaluate import evaluate_chunk
+from .file import OUTPUTS, Study, sample_count, samples
+
+CONNECT_TIMEOUT_S = 10.0
+RETRIES = 3
+TABLE = "study.parquet"
+
+
+@dataclass(frozen=True)
+class StudyRun:
+    """Where a study's table is and what this run did."""
+
+    table: Path
+    rows: int
+    chunks: int
+    skipped_chunks: int
+    failed_rows: int
+
+
+def _pyarrow():
+    try:
+        import pyarrow as pa
+        import pyarrow.parquet as pq
+    except ImportError as err:  # pragma: no cover - depends on the install
+        raise BackendError("studies need pyarrow: pip install 'gearcoupling[study]'") from err
+    return pa, pq
+
+
+def _distributed():
+    try:
+        import distributed
+    except ImportError as err:  # pragma: no cover - depends on the install
+        raise BackendError("studies need dask.distributed: pip install "
+                           "'gearcoupling[study]'") from err
+    return distributed
+
+
+def columns(study: Study) -> list[str]:
+    """Column order of the table: sample, inputs, conditions, outputs, provenance."""
+    inputs = [q.key for q in study.parameters if q.key not in ("misalignment_deg", "torque_Nm")]
+    outs = [k for k in OUTPUTS if k in study.outputs]
+    return ["sample", "chunk", *inputs, "misalignment_deg", "torque_Nm", *outs,
+            "spec_hash", "version", "error"]
+
+
+def chunks(study: Study) -> list[list[tuple[int, dict[str, Any]]]]:
+    """Samples grouped ``study.chunk`` per task, each sample with its index."""
+    items = list(enumerate(samples(study)))
+    return [items[k:k + study.chunk] for k in range(0, len(items), study.chunk)]
+
+
+def _part_path(out: Path, chunk: int) -> Path:
+    return out / "parts" / f"chunk-{chunk:06d}.parquet"
+
+
+def _write_part(rows: list[dict[str, Any]], names: list[str], path: Path) -> None:
+    pa, pq = _pyarrow()
+    table = pa.Table.from_pylist([{k: r.get(k) for k in names} for r in rows])
+    with atomic_path(path) as tmp:
+        pq.write_table(table, tmp)
+
+
+def _manifest(study: Study, out: Path, fresh: bool) -> None:
+    path = out / "study_manifest.json"
+    data = {"study": study.name, "source": study.source, "digest": study.digest(),
+            "samples": sample_count(study), "chunk": study.chunk}
+    if path.is_file() and not fresh:
+        old = json.loads(path.read_text())
+        if old.get("digest") != data["digest"]:
+            raise SpecError("output", str(out), "holds the parts of another study (its file "
+                            "changed); use a new --output folder or --fresh")
+    if (out / "parts").is_dir():  # temporaries of a killed run; with --fresh every part
+        for part in (out / "parts").glob("*chunk-*.parquet" if fresh else ".chunk-*"):
+            part.unlink()
+    write_json(path, data)
+
+
+def connect(scheduler: str | None, workers: int | None, timeout_s: float = CONNECT_TIMEOUT_S):
+    """A dask Client: to ``scheduler`` (``tcp://HOST:PORT``) or a new LocalCluster with
+    ``workers`` single-threaded worker processes (default: one per core)."""
+    distributed = _distributed()
+    if scheduler:
+        try:
+            return distributed.Client(scheduler, timeout=timeout_s)
+        except (OSError, TimeoutError) as err:
+            raise BackendError(f"cannot reach the dask scheduler at {scheduler} within "
+                               f"{timeout_s:g} s ({type(err).__name__}); start one with "
+                               "'dask scheduler' or drop --scheduler") from err
+    n = workers or os.cpu_count() or 1
+    if n < 1:
+        raise SpecError("--workers", workers, "must be at least 1")
+    cluster = distributed.LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
+                                       dashboard_address=None)
+    return distributed.Client(cluster)
+
+
+def _close(client, own_cluster: bool) -> None:
+    cluster = client.cluster if own_cluster else None
+    client.close()
+    if cluster is not None:
+        cluster.close()
+
+
+def run_study(study: Study, out: str | Path, *, scheduler: str | None = None,
+              workers: int | None = None, fresh: bool = False, client=None,
+              connect_timeout_s: float = CONNECT_TIMEOUT_S,
+              on_start: Callable[[int, int], None] | None = None,
+              on_chunk: Callable[[int], None] | None = None) -> StudyRun:
+    """Evaluate every sample of ``study`` on dask and write ``<out>/study.parquet``.
+
+    ``on_start(todo, skipped)`` is called once the finished chunks are known, ``on_chunk(n)``
+    after each chunk's part is written (progress). ``client`` reuses a dask Client.
+    """
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    _manifest(study, out, fresh)
+    names = columns(study)
+    groups = chunks(study)
+    todo = [c for c in range(len(groups)) if not _part_path(out, c).is_file()]
+    skipped = len(groups) - len(todo)
+    if on_start is not None:
+        on_start(len(todo), skipped)
+    if todo:
+        own = client is None
+        client = client or connect(scheduler, workers, connect_timeout_s)
+        try:
+            _compute(client, study, groups, todo, out, names, on_chunk)
+        finally:
+            if own:
+                _close(client, scheduler is None)
+    return _merge(out, names, len(groups), skipped)
+
+
+def _compute(client, study, groups, todo, out, names, on_chunk) -> None:
+    distributed = _distributed()
+    payload = study.payload()
+    futures = {client.submit(evaluate_chunk, payload, c, groups[c], key=f"study-{study.digest()}"
+                             f"-{c}", retries=RETRIES, pure=False): c for c in todo}
+    for fut in distributed.as_completed(futures):
+        c = futures[fut]
+        _write_part(fut.result(), names, _part_path(out, c))
+        fut.release()
+        if on_chunk is not None:
+            on_chunk(c)
+
+
+def _merge(out: Path, names: list[str], n_chunks: int, skipped: int) -> StudyRun:
+    pa, pq = _pyarrow()
+    parts = [_part_path(out, c) for c in range(n_chunks)]
+    missing = [p.name for p in parts if not p.is_file()]
+    if missing:
+        raise BackendError(f"study incomplete: {len(missing)} chunk(s) missing ({missing[0]}...)"
+                           "; rerun to resume")
+    tables = [pq.read_table(p) for p in parts]
+    table = pa.concat_tables(tables, promote_options="default").select(names)
+    table = table.sort_by("sample")
+    with atomic_path(out / TABLE) as tmp:
+        pq.write_table(table, tmp)
+    failed = int(table.column("error").is_valid().to_numpy(zero_copy_only=False).sum())
+    return StudyRun(out / TABLE, table.num_rows, n_chunks, skipped, failed)
+
+
+def read_table(path: str | Path):
+    """A study table as a list of row dicts (pyarrow imported lazily)."""
+    _, pq = _pyarrow()
+    return pq.read_table(path).to_pylist()

@@ -1,0 +1,113 @@
+"""Study files: parsing, validation naming file:line and key, sampling, per-sample refusal."""
+
+from __future__ import annotations
+
+import math
+import textwrap
+
+import numpy as np
+import pytest
+
+import gearcoupling as gc
+from gearcoupling.errors import SpecError
+from gearcoupling.study import evaluate, load_study, samples, study_names
+from gearcoupling.study.file import OUTPUTS
+
+
+def write(tmp_path, body: str):
+    path = tmp_path / "s.toml"
+    path.write_text(textwrap.dedent(body))
+    return path
+
+
+HEAD = """\
+[study]
+base = "renzo-1967"
+outputs = ["min_backlash_mm"]
+"""
+
+
+def refuse(tmp_path, body: str, *needles: str):
+    with pytest.raises(SpecError) as err:
+        load_study(write(tmp_path, body))
+    for needle in needles:
+        assert needle in str(err.value), str(err.value)
+    return str(err.value)
+
+
+def test_unknown_spec_key_names_line_and_key(tmp_path):
+    refuse(tmp_path, HEAD + '[[vary]]\nkey = "hub.crowning.raduis"\nvalues = [2.0]\n',
+           "s.toml:5", "hub.crowning.raduis", "unknown key")
+
+
+def test_unknown_study_key_and_output(tmp_path):
+    refuse(tmp_path, HEAD + "[accuracy]\ntolerence_mm = 1e-6\n", "s.toml:5",
+           "accuracy.tolerence_mm", "unknown key")
+    refuse(tmp_path, '[study]\nbase = "renzo-1967"\noutputs = ["capacity_kNm"]\n',
+           "s.toml:3", "capacity_kNm", "unknown output")
+
+
+def test_empty_range_names_line(tmp_path):
+    refuse(tmp_path, HEAD + '\n[[vary]]\nkey = "hub.crowning.radius"\nrange = [3.0, 3.0]\n'
+           "steps = 4\n", "s.toml:6", "empty range")
+
+
+def test_range_outside_spec_limits(tmp_path):
+    msg = refuse(tmp_path, HEAD + '[[vary]]\nkey = "tooth.pressure_angle_deg"\n'
+                 "range = [10.0, 20.0]\nsteps = 3\n", "s.toml:5", "tooth.pressure_angle_deg",
+                 "refused by the spec")
+    assert "14.5" in msg  # the spec's own limit is quoted
+    refuse(tmp_path, HEAD + '[[vary]]\nkey = "misalignment_deg"\nvalues = [1.0, 7.0]\n',
+           "s.toml:5", "misalignment must be 0.0-6.0")
+
+
+def test_grid_is_the_cartesian_product_in_order(tmp_path):
+    s = load_study(write(tmp_path, HEAD + '[[vary]]\nkey = "hub.crowning.radius"\n'
+                         'range = [1.0, 3.0]\nsteps = 3\n[[vary]]\nkey = "misalignment_deg"\n'
+                         "values = [0.5, 1.0]\n"))
+    got = [(d["hub.crowning.radius"], d["misalignment_deg"]) for d in samples(s)]
+    assert got == [(r, m) for r in (1.0, 2.0, 3.0) for m in (0.5, 1.0)]
+
+
+def test_latin_hypercube_is_seeded_and_stratified(tmp_path):
+    body = ('[study]\nbase = "renzo-1967"\nmethod = "lhs"\nsamples = 16\nseed = 7\n'
+            'outputs = ["min_backlash_mm"]\n[[vary]]\nkey = "hub.crowning.radius"\n'
+            'range = [1.0, 5.0]\n[[vary]]\nkey = "misalignment_deg"\nrange = [0.0, 2.0]\n')
+    a, b = samples(load_study(write(tmp_path, body))), samples(load_study(write(tmp_path, body)))
+    assert a == b
+    for key, lo, hi in (("hub.crowning.radius", 1.0, 5.0), ("misalignment_deg", 0.0, 2.0)):
+        u = (np.array([d[key] for d in a]) - lo) / (hi - lo)
+        assert sorted(np.floor(u * 16).astype(int)) == list(range(16))  # one per stratum
+
+
+def test_refused_combination_becomes_a_row(tmp_path):
+    # each value alone is a valid renzo-1967 spec; together (R_c = 0.6 in, face 0.7 in) the
+    # crown turns past the 45° the spec allows, so that sample is a row with the reason
+    s = load_study(write(tmp_path, HEAD + '[[vary]]\nkey = "hub.crowning.radius"\n'
+                         'values = [0.6]\n[[vary]]\nkey = "hub.face_width"\nvalues = [0.5, 0.7]\n'))
+    rows = [evaluate(s.payload(), d) for d in samples(s)]
+    assert rows[0]["error"] is None and rows[0]["min_backlash_mm"] > 0
+    assert rows[1]["error"].startswith("SpecError") and rows[1]["min_backlash_mm"] is None
+
+
+def test_rows_equal_single_spec_calls(tmp_path):
+    from gearcoupling.sweep.design import critical_misalignment_deg, min_backlash_rad
+
+    s = load_study(write(tmp_path, '[study]\nbase = "renzo-1967"\noutputs = '
+                         '["critical_misalignment_deg", "min_backlash_mm"]\n[accuracy]\n'
+                         'angle_tolerance_deg = 1e-2\nsteps = 4\n[[vary]]\n'
+                         'key = "hub.crowning.radius"\nvalues = [2.0]\n'))
+    row = evaluate(s.payload(), samples(s)[0])
+    spec = gc.load_spec("renzo-1967", **{"hub.crowning.radius": 2.0})
+    assert row["critical_misalignment_deg"] == critical_misalignment_deg(spec, tolerance_deg=1e-2)
+    assert row["min_backlash_mm"] == min_backlash_rad(
+        spec, math.radians(1.0), steps=4) * spec.tooth.pitch_radius
+    assert row["spec_hash"] == gc.study.spec_hash(spec) and row["version"] == gc.__version__
+
+
+def test_bundled_studies_load():
+    names = study_names()
+    assert {"wei-fig14"} <= set(names)
+    for name in names:
+        s = load_study(name)
+        assert set(s.outputs) <= set(OUTPUTS) and len(samples(s)) >= 2
