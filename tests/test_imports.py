@@ -9,9 +9,16 @@ HEAVY = ("trimesh", "manifold3d", "viser", "OCP", "meshio", "matplotlib", "dask"
          "distributed", "pyarrow", "gmsh")
 
 
-@pytest.mark.parametrize("module", ["gearcoupling", "gearcoupling.geometry", "gearcoupling.spec",
-                                    "gearcoupling.cli", "gearcoupling.hob",
-                                    "gearcoupling.inspection", "gearcoupling.study"])
+@pytest.mark.parametrize("module", [
+    "gearcoupling",
+    "gearcoupling.geometry",
+    "gearcoupling.spec",
+    "gearcoupling.cli",
+    "gearcoupling.load",
+    "gearcoupling.hob",
+    "gearcoupling.inspection",
+    "gearcoupling.study",
+])
 def test_kernels_import_no_heavy_backend(module):
     code = (f"import sys, {module}; "
             f"print(','.join(m for m in {HEAVY!r} if m in sys.modules))")

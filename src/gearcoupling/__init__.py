@@ -32,6 +32,8 @@ _LAZY = {
     "hob_program": "gearcoupling.hob",
     "measuring_charts": "gearcoupling.hob",
     "compare_part": "gearcoupling.inspection",
+    "capacity": "gearcoupling.load",
+    "capacity_curve": "gearcoupling.load",
 }
 
 
@@ -52,6 +54,8 @@ __all__ = [
     "LoadResult",
     "SpecError",
     "build_part",
+    "capacity",
+    "capacity_curve",
     "check_interference",
     "compare_part",
     "export_part",

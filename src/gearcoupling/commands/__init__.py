@@ -1,12 +1,14 @@
 """CLI commands; each module has ``register(subparsers)``. Add new commands to COMMANDS."""
 
 from . import (
+    capacity,
     charts,
     check,
     compare,
     fea,
     generate,
     hob,
+    load,
     run,
     sections,
     spec,
@@ -17,5 +19,21 @@ from . import (
     view,
 )
 
-COMMANDS = [spec, sections, run, templates, check, view, generate, sweep,
-            fea, stiffness, study, hob, charts, compare]
+COMMANDS = [
+    spec,
+    sections,
+    run,
+    templates,
+    check,
+    view,
+    generate,
+    sweep,
+    load,
+    capacity,
+    fea,
+    stiffness,
+    study,
+    hob,
+    charts,
+    compare,
+]

@@ -210,6 +210,31 @@ class ContactModel:
         slope = np.where(hertz, sh, sl)
         return delta, slope
 
+    def _first_load(self, target, g, hertz_value, line_coeff, line_power):
+        """Smallest load at which a quantity increasing as ``value(W*) (W/W*)^(1/3)`` up to
+        ``W*`` (Hertz), then ``line_coeff W^line_power`` (line), reaches ``target``."""
+        ws = g["w_star"]
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            w_h = ws * (target / hertz_value) ** 3
+            w_l = (target / line_coeff) ** (1.0 / line_power)
+        hertz = (ws > 0) & (target <= hertz_value)
+        return np.where(hertz, w_h, np.maximum(w_l, ws))
+
+    def pressure_limit_load(self, p_MPa: float, g: dict) -> NDArray:
+        """Normal load (N) at which the interior pressure first reaches ``p_MPa``."""
+        ws = np.maximum(g["w_star"], 1e-300)
+        _, _, _, p_h = self._hertz(ws, g)
+        beta = np.sqrt(4 / (g["A_f"] * math.pi * g["L"] * self.E_star))
+        line = 2 / (math.pi * beta * g["L"])  # p0 = line sqrt(W)
+        return self._first_load(np.full(ws.shape, p_MPa), g, p_h, line, 0.5)
+
+    def half_length_limit_load(self, half_mm: NDArray, g: dict) -> NDArray:
+        """Normal load (N) at which the patch half-length along the face reaches ``half_mm``."""
+        ws = np.maximum(g["w_star"], 1e-300)
+        _, _, b_h, _ = self._hertz(ws, g)
+        beta = np.sqrt(4 / (g["A_f"] * math.pi * g["L"] * self.E_star))
+        return self._first_load(np.asarray(half_mm, dtype=float), g, b_h, beta, 0.5)
+
     def estimates(self, W: NDArray, g: dict) -> dict[str, NDArray]:
         """Pressures and patch sizes at normal load ``W`` (arrays named as in LoadResult)."""
         W = np.maximum(np.asarray(W, dtype=float), 0.0)
