@@ -24,6 +24,10 @@ _LAZY = {
     "build_part": "gearcoupling.parts",
     "export_part": "gearcoupling.export",
     "check_interference": "gearcoupling.interference",
+    # loaded contact (issue 10); gearcoupling.load is also callable as load()
+    "load": "gearcoupling.load",
+    "load_from_sweep": "gearcoupling.load",
+    "LoadResult": "gearcoupling.load",
 }
 
 
@@ -41,6 +45,7 @@ __all__ = [
     "FeedPath",
     "GearCouplingError",
     "GeometryError",
+    "LoadResult",
     "SpecError",
     "build_part",
     "check_interference",
@@ -49,6 +54,8 @@ __all__ = [
     "hub_flank",
     "inv",
     "inv_inverse",
+    "load",
+    "load_from_sweep",
     "load_spec",
     "sleeve_flank",
     "spec_from_dict",
