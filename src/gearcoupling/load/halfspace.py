@@ -87,10 +87,13 @@ class HalfSpace:
         return self.dx * self.dy
 
     def displacement(self, p: NDArray[np.float64]) -> NDArray[np.float64]:
+        # 2-D FFT as two 1-D passes that skip the zero padding on the way in and the
+        # discarded half on the way out (about 30 % less work than rfft2/irfft2)
         n1, n2 = self.shape
-        ph = fft.rfft2(p, s=(2 * n1, 2 * n2), axes=(-2, -1))
-        u = fft.irfft2(ph * self.kernel_hat, s=(2 * n1, 2 * n2), axes=(-2, -1))
-        return u[..., :n1, :n2]
+        h = fft.fft(fft.rfft(p, n=2 * n2, axis=-1), n=2 * n1, axis=-2)
+        h *= self.kernel_hat
+        h = fft.ifft(h, axis=-2)[..., :n1, :]
+        return fft.irfft(h, n=2 * n2, axis=-1)[..., :n2]
 
     def direct(self, p: NDArray[np.float64]) -> NDArray[np.float64]:
         """The same convolution by the direct double sum (slow; for checks)."""

@@ -23,7 +23,10 @@ Reported measures beside the grid-dependent peak ``max_pressure_MPa`` (it grows 
 - ``edge_load_share``: the share of the tooth load carried within that distance of an edge;
 - ``edge_intensity_MPa_sqrt_mm``: ``p sqrt(h)`` of the cell next to a cut edge (``h`` the
   cell size across the edge), which converges as the grid is refined;
-- ``patch_length_mm`` (along the face) and ``patch_width_mm`` (along the developed profile);
+- ``patch_length_mm``: the patch length along the face in the interior (cells at least the
+  interior distance from every cut edge; the whole patch where none is interior),
+  ``patch_extent_mm`` the whole patch's (longer where the edge peaks spread it), and
+  ``patch_width_mm`` along the developed profile;
 - ``edge_contact``: the patch reaches a face end.
 """
 
@@ -38,32 +41,29 @@ from scipy import ndimage
 
 from ..errors import SpecError
 from ..geometry.hub import FLANKS
+from .api import loaded_gaps
 from .gapfield import GapField, depth_range, developed_s, gap_field, windows
 from .halfspace import composite_modulus, half_space, solve_contact
 
 DEFAULT_GRID = (48, 32)  # cells (along the face, across the depth); see bench_surface.py
 COARSE_GRID = (32, 12)
 INTERIOR_FRACTION = 0.1  # interior = at least this share of the active depth from any edge
-DEFAULT_TOLERANCE = 1e-8
+DEFAULT_TOLERANCE = 1e-6  # contact solver: relative pressure change per iteration
+COARSE_TOLERANCE = 1e-5
+COMPLIANCE_TOLERANCE = 1e-3  # relative change of a tooth's compliance between rounds
 WINDOW_MARGIN = 1.5  # fine window = coarse patch length x this + 2 coarse cells
-STEEL = (206000.0, 0.3)
 
 ARRAYS = ("gap_angle_rad", "deflection_mm", "bending_deflection_mm", "tangential_force_N",
           "normal_force_N", "contact_z_mm", "contact_r_mm", "max_pressure_MPa",
           "interior_pressure_MPa", "edge_load_share", "edge_intensity_MPa_sqrt_mm",
-          "patch_length_mm", "patch_width_mm", "patches")
+          "patch_length_mm", "patch_extent_mm", "patch_width_mm", "patches")
 
 
 def contact_modulus(spec) -> float:
-    """Composite modulus ``E*`` (MPa) of the hub and sleeve materials (steel when the spec
-    carries no ``material`` section)."""
-    mat = getattr(spec, "material", None)
-    parts = []
-    for name in ("hub", "sleeve"):
-        m = getattr(mat, name, None) if mat is not None else None
-        parts.append((float(m.youngs_modulus_MPa), float(m.poisson_ratio)) if m is not None
-                     else STEEL)
-    return composite_modulus(parts[0][0], parts[0][1], parts[1][0], parts[1][1])
+    """Composite modulus ``E*`` (MPa) of the hub and sleeve materials (``[material]``)."""
+    m = spec.material
+    return composite_modulus(m.hub.youngs_modulus_MPa, m.hub.poisson_ratio,
+                             m.sleeve.youngs_modulus_MPa, m.sleeve.poisson_ratio)
 
 
 def _check_grid(grid) -> tuple[int, int]:
@@ -78,6 +78,7 @@ def _check_grid(grid) -> tuple[int, int]:
 
 
 def _offsets(gap_offset_rad, f: int, n: int) -> NDArray[np.float64]:
+    """Per-tooth gap offsets of the loaded flank ``(n,)`` (validated as ``load`` does)."""
     if gap_offset_rad is None:
         return np.zeros(n)
     off = np.asarray(gap_offset_rad, dtype=float)
@@ -134,7 +135,7 @@ def _solve(gf: GapField, hs, load_N: float, springs: _Springs, z0, r0, tolerance
         r = np.where(loaded, rc, r)
         c_new = springs(z, r)
         p0 = sol.pressure_MPa
-        if np.all(np.abs(c_new - c) <= 1e-6 * np.maximum(np.abs(c), 1e-300)):
+        if np.all(np.abs(c_new - c) <= COMPLIANCE_TOLERANCE * np.maximum(np.abs(c), 1e-300)):
             break
         c = c_new
     return sol, z, r, c
@@ -182,6 +183,7 @@ def patch_measures(gf: GapField, p: NDArray[np.float64], interior_mm: float
     on = p > 1e-9 * np.maximum(pmax, 1e-300)[:, None, None]
     out: dict[str, NDArray] = {"max_pressure_MPa": pmax}
     interior = np.zeros(n)
+    inner_on = np.zeros(on.shape, dtype=bool)
     near_share = np.zeros(n)
     intensity = np.zeros(n)
     patches = np.zeros(n, dtype=int)
@@ -197,6 +199,7 @@ def patch_measures(gf: GapField, p: NDArray[np.float64], interior_mm: float
         dist = ndimage.distance_transform_edt(pad, sampling=(gf.dz, gf.ds))[1:-1, 1:-1]
         inner = dist >= interior_mm
         interior[k] = float(np.max(p[k][inner], initial=0.0))
+        inner_on[k] = on[k] & inner if np.any(on[k] & inner) else on[k]
         near_share[k] = A * float(np.sum(p[k][~inner])) / load[k]
         cand = [p[k][_edge_cells(pad, 1)] * math.sqrt(gf.ds),
                 p[k][_edge_cells(pad, 0)] * math.sqrt(gf.dz)]
@@ -209,7 +212,8 @@ def patch_measures(gf: GapField, p: NDArray[np.float64], interior_mm: float
         "interior_pressure_MPa": interior,
         "edge_load_share": near_share,
         "edge_intensity_MPa_sqrt_mm": intensity,
-        "patch_length_mm": _extent(on, gf.z_mm, gf.dz, 1),
+        "patch_length_mm": _extent(inner_on, gf.z_mm, gf.dz, 1),
+        "patch_extent_mm": _extent(on, gf.z_mm, gf.dz, 1),
         "patch_width_mm": _extent(on, gf.s_mm[None, :], gf.ds, 2),
         "patches": patches,
         "edge_contact": edge,
@@ -262,11 +266,11 @@ def solve_pose(spec, misalignment: float, theta: NDArray[np.float64], gap_angle:
     g1 = gap_field(spec, misalignment, theta[cand], flank, zc, cd, gap_offset_rad=offsets[cand])
     hs1 = half_space((cf, cd), g1.dz, g1.ds, e_star)
     s1, z1, r1, _ = _solve(g1, hs1, load_N, springs, contact_z[cand], contact_r[cand],
-                           max(tolerance, 1e-6))
+                           max(tolerance, COARSE_TOLERANCE))
     windup1 = s1.approach_mm / r_b
     gmin = np.min(np.where(g1.mask, g1.gap_rad, np.inf), axis=(1, 2))
     lift = windup1 - np.min(gmin)
-    keep_t = (s1.load_N > 0) | (gmin <= windup1 + 0.25 * lift)
+    keep_t = (s1.load_N > 0) | (gmin <= windup1 + 0.1 * lift)
     teeth = cand[keep_t]
     p1 = s1.pressure_MPa[keep_t]
     on = p1 > 0
@@ -374,11 +378,10 @@ def solve_surface(spec, sweep_result, *, torque_Nm: float, loaded_flank: str | N
     f = FLANKS.index(flank)
     sw = sweep_result
     N, M = sw.theta_deg.shape
+    gap0 = loaded_gaps(sw, f, None)
     offsets = _offsets(gap_offset_rad, f, N)
     r_b, R = spec.tooth.base_radius, spec.tooth.pitch_radius
-    with np.errstate(invalid="ignore", divide="ignore"):
-        gap = sw.normal_clearance_mm[f] / r_b / _rate(spec, sw, f)
-    gap = np.where(np.isfinite(gap), gap, np.inf)
+    gap = np.where(np.isfinite(gap0), gap0, np.inf)
     springs = _Springs(compliance, r_b, R)
     e_star = contact_modulus(spec)
     mis = math.radians(sw.misalignment_deg)
@@ -423,19 +426,3 @@ def solve_surface(spec, sweep_result, *, torque_Nm: float, loaded_flank: str | N
     if keep_fields:
         res["fields"] = fields
     return res
-
-
-def _rate(spec, sw, f: int) -> NDArray[np.float64]:
-    """Turning rate at each sweep minimum (the sweep's gap angle is the normal clearance
-    over ``r_b`` times it), ``(N, M)``."""
-    from ..sweep.clearance import turning_rate
-    from ..sweep.flank_table import flank_table
-
-    table = flank_table(spec)
-    z = np.nan_to_num(sw.contact_z_mm[f])
-    lo, hi = table.radii(z)
-    t = np.clip((np.nan_to_num(sw.contact_r_mm[f], nan=0.0) - lo) / (hi - lo), 0.0, 1.0)
-    theta = np.radians(sw.theta_deg)
-    if f == 1:
-        theta = np.pi - theta  # the ccw flank at theta is the cw flank at pi - theta
-    return turning_rate(table, math.radians(sw.misalignment_deg), z, t, theta)
