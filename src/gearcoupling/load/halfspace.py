@@ -36,6 +36,7 @@ from ..errors import SpecError
 
 DEFAULT_TOLERANCE = 1e-8  # relative: |dp| summed / |p| summed and gap residual / gap scale
 MAX_ITER = 4000
+SPRING_EVERY = 10  # iterations between updates of position-dependent springs
 
 
 def composite_modulus(e1_MPa: float, nu1: float, e2_MPa: float, nu2: float) -> float:
@@ -158,7 +159,8 @@ def solve_contact(hs: HalfSpace, gap0_mm: ArrayLike, *, load_N: float | None = N
                   approach_mm: float | None = None, mask: ArrayLike | None = None,
                   spring_mm_per_N: ArrayLike | None = None,
                   tolerance: float = DEFAULT_TOLERANCE, max_iter: int = MAX_ITER,
-                  p0: ArrayLike | None = None) -> ContactSolution:
+                  p0: ArrayLike | None = None, spring_update=None,
+                  spring_tolerance: float = 1e-3) -> ContactSolution:
     """Solve ``p >= 0``, ``g >= 0``, ``p g = 0`` on one or several grids (Polonsky & Keer).
 
     ``g = gap0 + u(p) + c_k W_k - approach`` where ``u`` is the half-space displacement of
@@ -182,6 +184,12 @@ def solve_contact(hs: HalfSpace, gap0_mm: ArrayLike, *, load_N: float | None = N
     max_iter : int
     p0 : (..., n1, n2) float, optional
         Starting pressure (warm start).
+    spring_update : callable, optional
+        ``spring_update(p) -> (...,)`` compliances for the current pressure (springs that
+        depend on where the load sits, e.g. tooth bending at the load centre): evaluated
+        every few iterations and at convergence; the iteration restarts from steepest
+        descent whenever a compliance moved by more than ``spring_tolerance`` (relative),
+        and stops only when none did.
     """
     g0 = np.asarray(gap0_mm, dtype=float)
     if g0.shape[-2:] != hs.shape:
@@ -193,10 +201,7 @@ def solve_contact(hs: HalfSpace, gap0_mm: ArrayLike, *, load_N: float | None = N
         np.asarray(mask, bool), g0.shape)
     if not np.all(np.isfinite(g0[m])):
         raise SpecError("gap0_mm", "non-finite", "must be finite on contactable cells")
-    c = np.zeros(batch) if spring_mm_per_N is None else np.broadcast_to(
-        np.asarray(spring_mm_per_N, float), batch)
-    if np.any(~np.isfinite(c)) or np.any(c < 0):
-        raise SpecError("spring_mm_per_N", c, "must be finite and >= 0")
+    c = np.zeros(batch) if spring_mm_per_N is None else _springs(spring_mm_per_N, batch)
     if not (tolerance > 0):
         raise SpecError("tolerance", tolerance, "must be > 0")
     A = hs.cell_area
@@ -290,11 +295,25 @@ def solve_contact(hs: HalfSpace, gap0_mm: ArrayLike, *, load_N: float | None = N
         u = operator(p)
         res = float(np.sum(np.abs(p - p_old))) / max(float(np.sum(p)), 1e-300)
         gap_err = math.sqrt(G / max(int(np.count_nonzero(on)), 1)) / scale_len
-        if res <= tolerance and gap_err <= tolerance and not np.any(over):
+        converged = res <= tolerance and gap_err <= tolerance and not np.any(over)
+        if spring_update is not None and (converged or it % SPRING_EVERY == 0):
+            c_new = _springs(spring_update(p), batch)
+            if np.any(np.abs(c_new - c) > spring_tolerance * np.maximum(c, 1e-300)):
+                c, delta = c_new, 0.0
+                u = operator(p)
+                continue
+        if converged:
             break
     g = u + g0 - alpha
     load = A * np.sum(p, axis=(-2, -1))
     return ContactSolution(p, np.where(m, g, 0.0), float(alpha), load, c * load, it, res)
+
+
+def _springs(c, batch) -> NDArray[np.float64]:
+    c = np.broadcast_to(np.asarray(c, dtype=float), batch)
+    if np.any(~np.isfinite(c)) or np.any(c < 0):
+        raise SpecError("spring_mm_per_N", c, "must be finite and >= 0")
+    return c
 
 
 def hertz_ellipse(load_N: float, rx_mm: float, ry_mm: float, e_star_MPa: float

@@ -119,26 +119,24 @@ def _centres(gf: GapField, p: NDArray[np.float64]):
 
 
 def _solve(gf: GapField, hs, load_N: float, springs: _Springs, z0, r0, tolerance: float,
-           p0=None, max_rounds: int = 8):
-    """Contact of all grids of ``gf`` under ``load_N`` with the compliance iterated to a
-    fixed point at each tooth's load centre (starting from ``(z0, r0)``)."""
+           p0=None):
+    """Contact of all grids of ``gf`` under ``load_N``, each tooth's compliance taken at
+    its load centre (updated inside the solve; the sweep's contact point ``(z0, r0)`` where
+    a tooth carries nothing)."""
     gap0 = gf.base_radius * gf.gap_rad
-    z, r = z0, r0
-    c = springs(z, r)
-    sol = None
-    for _ in range(max_rounds):
-        sol = solve_contact(hs, gap0, load_N=load_N, mask=gf.mask, spring_mm_per_N=c,
-                            tolerance=tolerance, p0=p0)
-        zc, rc = _centres(gf, sol.pressure_MPa)
-        loaded = sol.load_N > 0
-        z = np.where(loaded, zc, z)
-        r = np.where(loaded, rc, r)
-        c_new = springs(z, r)
-        p0 = sol.pressure_MPa
-        if np.all(np.abs(c_new - c) <= COMPLIANCE_TOLERANCE * np.maximum(np.abs(c), 1e-300)):
-            break
-        c = c_new
-    return sol, z, r, c
+
+    def locate(p):
+        zc, rc = _centres(gf, p)
+        loaded = np.sum(p, axis=(-2, -1)) > 0
+        return np.where(loaded, zc, z0), np.where(loaded, rc, r0)
+
+    update = None if springs.compliance is None else (lambda p: springs(*locate(p)))
+    c0 = springs(*locate(p0)) if p0 is not None else springs(z0, r0)
+    sol = solve_contact(hs, gap0, load_N=load_N, mask=gf.mask, spring_mm_per_N=c0,
+                        tolerance=tolerance, p0=p0, spring_update=update,
+                        spring_tolerance=COMPLIANCE_TOLERANCE)
+    z, r = locate(sol.pressure_MPa)
+    return sol, z, r
 
 
 def _edge_cells(pad: NDArray[np.bool_], axis: int) -> NDArray[np.bool_]:
@@ -265,7 +263,7 @@ def solve_pose(spec, misalignment: float, theta: NDArray[np.float64], gap_angle:
     zc = windows(spec, misalignment, np.zeros(cand.size), math.inf, cf)
     g1 = gap_field(spec, misalignment, theta[cand], flank, zc, cd, gap_offset_rad=offsets[cand])
     hs1 = half_space((cf, cd), g1.dz, g1.ds, e_star)
-    s1, z1, r1, _ = _solve(g1, hs1, load_N, springs, contact_z[cand], contact_r[cand],
+    s1, z1, r1 = _solve(g1, hs1, load_N, springs, contact_z[cand], contact_r[cand],
                            max(tolerance, COARSE_TOLERANCE))
     windup1 = s1.approach_mm / r_b
     gmin = np.min(np.where(g1.mask, g1.gap_rad, np.inf), axis=(1, 2))
@@ -287,7 +285,7 @@ def solve_pose(spec, misalignment: float, theta: NDArray[np.float64], gap_angle:
                        gap_offset_rad=offsets[teeth])
         hs = half_space((nf, nd), gf.dz, gf.ds, e_star)
         p_start = _resample(g1, p1, gf)
-        sol, z0, r0, c = _solve(gf, hs, load_N, springs, z0, r0, tolerance, p_start)
+        sol, z0, r0 = _solve(gf, hs, load_N, springs, z0, r0, tolerance, p_start)
         full = gf.dz * nf >= 2.0 * (np.max(np.abs(gf.z_mm)) + 0.5 * gf.dz) * 0.999
         if full or not np.any(_window_hit(gf, sol.pressure_MPa)):
             break
@@ -308,7 +306,7 @@ def solve_pose(spec, misalignment: float, theta: NDArray[np.float64], gap_angle:
     out["contact_z_mm"][teeth[loaded]] = z0[loaded]
     out["contact_r_mm"][teeth[loaded]] = r0[loaded]
     R = spec.tooth.pitch_radius
-    out["bending_deflection_mm"][teeth] = c / springs.factor * W * r_b / R
+    out["bending_deflection_mm"][teeth] = sol.spring_mm * R / r_b  # circumferential, pitch
     with np.errstate(invalid="ignore"):
         out["deflection_mm"] = np.where(np.isfinite(out["gap_angle_rad"]),
                                         R * np.maximum(windup - out["gap_angle_rad"], 0.0), 0.0)
