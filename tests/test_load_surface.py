@@ -133,6 +133,11 @@ def test_edge_contact_flagged_past_the_critical_misalignment(renzo):
     assert res["edge_contact"][pivot, 0]
     below = sweep(renzo, 1.0, [0.0])
     assert not solve_surface(renzo, below, torque_Nm=2000.0)["edge_contact"].any()
+    # straight teeth, aligned: the patch runs the whole face, onto both face ends
+    straight = load_spec("renzo-1967", **{"hub.crowning.kind": "none"})
+    res = solve_surface(straight, sweep(straight, 0.0, [0.0]), torque_Nm=2000.0)
+    assert res["edge_contact"].all()
+    assert res["patch_extent_mm"][0, 0] >= straight.hub.face_width
 
 
 def test_contact_moves_from_root_to_tip_across_the_pivot(renzo):

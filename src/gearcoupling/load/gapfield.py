@@ -106,13 +106,14 @@ def face_range(spec, misalignment: float) -> float:
 def windows(spec, misalignment: float, z_centre_mm: ArrayLike, length_mm: float,
             n_face: int) -> NDArray[np.float64]:
     """Axial cell centres ``(n, n_face)`` of windows of ``length_mm`` centred on each
-    ``z_centre_mm`` and shifted inward so they end at the face range (the face ends inside
-    the window are masked)."""
+    ``z_centre_mm``, shifted inward so they end at most one cell past the face range
+    (:func:`face_range`); a window that reaches a face end so holds a cell beyond it, which
+    is masked as face cut. Longer windows cover the face range and one cell either side."""
     zc = np.atleast_1d(np.asarray(z_centre_mm, dtype=float))
     Z = face_range(spec, misalignment)
-    L = min(float(length_mm), 2.0 * Z)
-    lo = np.clip(zc - 0.5 * L, -Z, Z - L)
+    L = min(float(length_mm), 2.0 * Z * n_face / (n_face - 2))
     dz = L / n_face
+    lo = np.clip(zc - 0.5 * L, -Z - dz, Z + dz - L)
     return lo[:, None] + (np.arange(n_face) + 0.5)[None, :] * dz
 
 

@@ -42,7 +42,7 @@ from scipy import ndimage
 from ..errors import SpecError
 from ..geometry.hub import FLANKS
 from .api import loaded_gaps
-from .gapfield import GapField, depth_range, developed_s, gap_field, windows
+from .gapfield import GapField, depth_range, developed_s, face_range, gap_field, windows
 from .halfspace import composite_modulus, half_space, solve_contact
 
 DEFAULT_GRID = (48, 32)  # cells (along the face, across the depth); see bench_surface.py
@@ -286,7 +286,7 @@ def solve_pose(spec, misalignment: float, theta: NDArray[np.float64], gap_angle:
         hs = half_space((nf, nd), gf.dz, gf.ds, e_star)
         p_start = _resample(g1, p1, gf)
         sol, z0, r0 = _solve(gf, hs, load_N, springs, z0, r0, tolerance, p_start)
-        full = gf.dz * nf >= 2.0 * (np.max(np.abs(gf.z_mm)) + 0.5 * gf.dz) * 0.999
+        full = length >= 2.0 * face_range(spec, misalignment) * nf / (nf - 2)
         if full or not np.any(_window_hit(gf, sol.pressure_MPa)):
             break
         length *= 1.5
