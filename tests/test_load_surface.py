@@ -195,3 +195,15 @@ def test_bad_input(renzo):
         solve_surface(renzo, sw, torque_Nm=100.0, gap_offset_rad=np.zeros(3))
     with pytest.raises(SpecError, match="loaded_flank"):
         solve_surface(renzo, sw, torque_Nm=100.0, loaded_flank="left")
+
+
+def test_load_dispatches_to_the_surface_model(renzo):
+    from gearcoupling.load import load
+
+    res = load(renzo, 1.0, [0.0], model="surface", torque_Nm=-1500.0)
+    assert res.model == "surface" and res.loaded_flank == "cw"
+    assert res.windup_rad[0] < 0
+    torque = np.sum(res.tangential_force_N, axis=0) * renzo.tooth.pitch_radius * 1e-3
+    assert torque[0] == pytest.approx(1500.0, rel=1e-9)
+    assert np.all(res.interior_pressure_MPa <= res.max_pressure_MPa + 1e-9)
+    assert np.all(np.isfinite(res.max_pressure_MPa))
