@@ -73,7 +73,7 @@ def _check_grid(grid) -> tuple[int, int]:
         raise SpecError("grid", grid, "must be (cells along the face, cells across the "
                         "depth)") from err
     if nf < 4 or nd < 4 or nf * nd > 1_000_000:
-        raise SpecError("grid", grid, "needs 4-1000 cells each way (at most 1e6 cells)")
+        raise SpecError("grid", grid, "needs at least 4 cells each way, at most 1e6 in all")
     return nf, nd
 
 
@@ -264,7 +264,7 @@ def solve_pose(spec, misalignment: float, theta: NDArray[np.float64], gap_angle:
     g1 = gap_field(spec, misalignment, theta[cand], flank, zc, cd, gap_offset_rad=offsets[cand])
     hs1 = half_space((cf, cd), g1.dz, g1.ds, e_star)
     s1, z1, r1 = _solve(g1, hs1, load_N, springs, contact_z[cand], contact_r[cand],
-                           max(tolerance, COARSE_TOLERANCE))
+                        max(tolerance, COARSE_TOLERANCE))
     windup1 = s1.approach_mm / r_b
     gmin = np.min(np.where(g1.mask, g1.gap_rad, np.inf), axis=(1, 2))
     lift = windup1 - np.min(gmin)
