@@ -46,7 +46,28 @@ def run(args) -> int:
     print(result.table)
     if result.failed_rows:
         print(f"{result.failed_rows} of {result.rows} rows refused (see the 'error' column)")
+    rows = read_table(result.table) if study.tolerances or study.plots else []
+    if study.tolerances:
+        _tolerance_summary(study, rows, out, plots=not args.no_plots)
     if not args.no_plots and study.plots:
-        for path in study_plots(study, read_table(result.table), out):
+        for path in study_plots(study, rows, out):
             print(path)
     return 0
+
+
+def _tolerance_summary(study, rows, out: Path, *, plots: bool) -> None:
+    from ..atomic import write_json
+    from ..study.tolerance import summarise_rows
+
+    summary = summarise_rows(study, rows)
+    print(write_json(out / "tolerance_summary.json", summary))
+    for s in summary:
+        print(f"K = {s['K_mean']:.4f} [{s['K_mean_low']:.4f}, {s['K_mean_high']:.4f}] "
+              f"({100 * s['confidence']:g} % bounds of the mean), 5th percentile "
+              f"{s['K_p05']:.4f}, {s['samples']} samples; {s['samples_needed']} needed for "
+              f"+-{s['precision']:g}")
+    if plots and len(summary) == 1:
+        from ..plots import save_figure
+        from ..study.plots import plot_k_histogram
+
+        print(save_figure(plot_k_histogram(rows, summary[0]), out / "K-histogram.png"))

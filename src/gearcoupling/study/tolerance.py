@@ -337,3 +337,22 @@ def summarise_k(k_values, *, precision: float = 0.01, confidence: float = 0.95
             "K_p95": float(np.percentile(k, 95)), "K_min": float(np.min(k)),
             "confidence": confidence, "precision": precision,
             "samples_needed": math.ceil((z * sd / precision) ** 2) if sd > 0 else 1}
+
+
+def summarise_rows(study, rows: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """K summaries of a tolerance study's rows, one per point of its varied inputs."""
+    keys = [q.key for q in study.parameters]
+    points: dict[tuple, list[float]] = {}
+    refused: dict[tuple, int] = {}
+    for r in rows:
+        key = tuple(r[k] for k in keys)
+        if r["error"] is None and r.get("K") is not None:
+            points.setdefault(key, []).append(r["K"])
+        else:
+            refused[key] = refused.get(key, 0) + 1
+    out = []
+    for key, ks in points.items():
+        s = summarise_k(ks, precision=study.tolerances["precision"])
+        out.append({**dict(zip(keys, key, strict=True)), **s, "refused": refused.get(key, 0),
+                    "path": study.tolerances["path"], "tolerances": study.tolerances["values"]})
+    return out
