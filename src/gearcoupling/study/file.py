@@ -116,6 +116,7 @@ class Study:
     accuracy: dict[str, float]
     plots: tuple[dict[str, Any], ...] = field(default=())
     tolerances: dict[str, Any] | None = None  # Monte Carlo: Tolerances fields, path, draws
+    optimise: dict[str, Any] | None = None  # crown optimisation options (see .optimise)
 
     @property
     def spec_keys(self) -> tuple[str, ...]:
@@ -296,6 +297,7 @@ def load_study(path: str | Path) -> Study:
             acc_r.fail(f"accuracy.{k}", v, "must be > 0")
     params = tuple(_parameter(e, k, text, src) for k, e in enumerate(root.get("vary", list, [])))
     plots = tuple(root.get("plot", list, []))
+    optimise = root.get("optimise", dict)
     tolerances = None
     if "tolerances" in root.data:
         tolerances = _tolerances(_Reader(root.get("tolerances", dict), "tolerances", text, src))
@@ -321,13 +323,18 @@ def load_study(path: str | Path) -> Study:
             if q.steps is not None:
                 raise SpecError(f"{src}:{q.line} vary '{q.key}'", q.steps,
                                 f"steps apply to grids only, not method '{method}'")
-    else:
+    elif optimise is None:
         for q in params:
             if q.low is not None and q.steps is None:
                 raise SpecError(f"{src}:{q.line} vary '{q.key}'", None,
                                 "a range on a grid needs steps = N")
     study = Study(name, src, base_path.stem, base_text, fixed, params, method, samples, seed,
-                  chunk, outputs, conditions, accuracy, plots, tolerances)
+                  chunk, outputs, conditions, accuracy, plots, tolerances, optimise)
+    if optimise is not None:
+        from .optimise import optimise_options
+
+        optimise_options(study)
+        return study
     n = sample_count(study)
     if not 1 <= n <= MAX_SAMPLES:
         raise SpecError(f"{src} samples", n, f"must be 1-{MAX_SAMPLES}")
