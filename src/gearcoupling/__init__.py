@@ -28,6 +28,8 @@ _LAZY = {
     "load": "gearcoupling.load",
     "load_from_sweep": "gearcoupling.load",
     "LoadResult": "gearcoupling.load",
+    "capacity": "gearcoupling.load",
+    "capacity_curve": "gearcoupling.load",
 }
 
 
@@ -48,6 +50,8 @@ __all__ = [
     "LoadResult",
     "SpecError",
     "build_part",
+    "capacity",
+    "capacity_curve",
     "check_interference",
     "export_part",
     "feed_path",

@@ -11,9 +11,11 @@ import types
 
 from .api import load, load_from_sweep
 from .cantilever import CantileverCompliance
+from .capacity import capacity, capacity_curve, capacity_from_sweep
 from .result import CSV_COLUMNS, LoadResult
 
-__all__ = ["CSV_COLUMNS", "CantileverCompliance", "LoadResult", "load", "load_from_sweep"]
+__all__ = ["CSV_COLUMNS", "CantileverCompliance", "LoadResult", "capacity", "capacity_curve",
+           "capacity_from_sweep", "load", "load_from_sweep"]
 
 
 class _CallableModule(types.ModuleType):

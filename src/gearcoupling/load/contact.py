@@ -165,15 +165,75 @@ class ContactModel:
         c = _geometry_only(self.spec, CantileverCompliance)
         return c.half_thickness("hub", r), c.half_thickness("sleeve", r)
 
-    def approach_mm(self, W: NDArray, g: dict) -> NDArray:
-        """Normal approach (mm) of the contact under normal load ``W`` (N), continuous and
-        increasing: Hertz up to ``W*``, then Hertz(W*) plus the line-contact increment."""
-        W = np.maximum(np.asarray(W, dtype=float), 0.0)
+    def laws(self, g: dict) -> dict[str, NDArray]:
+        """Constants of the load-approach law at each contact (precomputed once):
+        ``delta_h = a_h W^(2/3)`` and ``delta_l = W sum_i kappa_i max(lam_i - ln(W)/2, 1)``."""
+        E2 = 2.0 * self.E_star
+        with np.errstate(divide="ignore", invalid="ignore"):
+            F = math.pi / 2 + (math.pi / 2 - 1) * np.log(np.minimum(g["ratio"], 1e12))
+            a_h = F * np.cbrt(9 / (2 * g["eps"] * g["Rp"]) / (math.pi * g["k"] * E2) ** 2)
+        beta = np.sqrt(4 / (g["A_f"] * math.pi * g["L"] * self.E_star))  # b = beta sqrt(W)
+        kap, lam = [], []
+        for mat, h in zip(self.mats, self._half_thickness(g["r"]), strict=True):
+            nu, E = mat.poisson_ratio, mat.youngs_modulus_MPa
+            kap.append(2 * (1 - nu**2) / (math.pi * g["L"] * E))
+            lam.append(np.log(2 * np.maximum(h, 1e-9) / beta) - nu / (2 * (1 - nu)))
+        law = {"a_h": np.where(np.isfinite(a_h), a_h, 0.0), "w_star": g["w_star"],
+               "kap": kap, "lam": lam}
+        law["d_star"] = law["a_h"] * np.cbrt(g["w_star"] ** 2)
+        law["l_star"] = self._line_approach(g["w_star"], law)[0]
+        return law
+
+    @staticmethod
+    def _line_approach(W, law):
+        with np.errstate(divide="ignore"):
+            half_ln = 0.5 * np.log(np.maximum(W, 1e-300))
+        d = np.zeros_like(W)
+        s = np.zeros_like(W)
+        for kap, lam in zip(law["kap"], law["lam"], strict=True):
+            br = lam - half_ln
+            free = br > LN_FLOOR
+            d = d + kap * np.where(free, br, LN_FLOOR)
+            s = s + kap * np.where(free, br - 0.5, LN_FLOOR)
+        return W * d, s
+
+    def approach_mm(self, W: NDArray, law: dict) -> tuple[NDArray, NDArray]:
+        """Normal approach (mm) under normal load ``W`` (N) and its slope (mm/N): Hertz up to
+        ``W*``, then Hertz(W*) plus the line-contact increment (continuous, increasing)."""
+        W = np.maximum(W, 0.0)
+        hertz = W < law["w_star"]
+        with np.errstate(divide="ignore"):
+            dh = law["a_h"] * np.cbrt(W * W)
+            sh = np.where(W > 0, (2 / 3) * law["a_h"] / np.cbrt(np.maximum(W, 1e-300)), np.inf)
+        dl, sl = self._line_approach(W, law)
+        delta = np.where(hertz, dh, law["d_star"] + dl - law["l_star"])
+        slope = np.where(hertz, sh, sl)
+        return delta, slope
+
+    def _first_load(self, target, g, hertz_value, line_coeff, line_power):
+        """Smallest load at which a quantity increasing as ``value(W*) (W/W*)^(1/3)`` up to
+        ``W*`` (Hertz), then ``line_coeff W^line_power`` (line), reaches ``target``."""
         ws = g["w_star"]
-        dh, *_ = self._hertz(np.minimum(W, ws), g)
-        dl, *_ = self._line(W, g)
-        dl0, *_ = self._line(np.minimum(W, ws), g)
-        return np.where(ws > 0, dh, 0.0) + np.maximum(dl - dl0, 0.0)
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            w_h = ws * (target / hertz_value) ** 3
+            w_l = (target / line_coeff) ** (1.0 / line_power)
+        hertz = (ws > 0) & (target <= hertz_value)
+        return np.where(hertz, w_h, np.maximum(w_l, ws))
+
+    def pressure_limit_load(self, p_MPa: float, g: dict) -> NDArray:
+        """Normal load (N) at which the interior pressure first reaches ``p_MPa``."""
+        ws = np.maximum(g["w_star"], 1e-300)
+        _, _, _, p_h = self._hertz(ws, g)
+        beta = np.sqrt(4 / (g["A_f"] * math.pi * g["L"] * self.E_star))
+        line = 2 / (math.pi * beta * g["L"])  # p0 = line sqrt(W)
+        return self._first_load(np.full(ws.shape, p_MPa), g, p_h, line, 0.5)
+
+    def half_length_limit_load(self, half_mm: NDArray, g: dict) -> NDArray:
+        """Normal load (N) at which the patch half-length along the face reaches ``half_mm``."""
+        ws = np.maximum(g["w_star"], 1e-300)
+        _, _, b_h, _ = self._hertz(ws, g)
+        beta = np.sqrt(4 / (g["A_f"] * math.pi * g["L"] * self.E_star))
+        return self._first_load(np.asarray(half_mm, dtype=float), g, b_h, beta, 0.5)
 
     def estimates(self, W: NDArray, g: dict) -> dict[str, NDArray]:
         """Pressures and patch sizes at normal load ``W`` (arrays named as in LoadResult)."""
