@@ -137,3 +137,19 @@ def test_tolerance_study_rows_are_seeded_per_sample(tmp_path):
 def test_tolerance_table_refuses_mixed_forms(tmp_path):
     refuse(tmp_path, '[study]\nbase = "renzo-1967"\n[tolerances]\npitch_mm = 0.006\n'
            "pitch_sd_mm = 0.002\n", "tolerances.pitch_mm", "limit or a standard deviation")
+
+
+def test_load_outputs_equal_the_load_package(tmp_path):
+    from gearcoupling.load import load
+    from gearcoupling.load.capacity import capacity
+
+    s = load_study(write(tmp_path, '[study]\nbase = "renzo-1967"\noutputs = ["max_tooth_load_N",'
+                         ' "q", "capacity_Nm"]\n[conditions]\ntorque_Nm = 1500.0\n'
+                         'load_model = "linear"\n[accuracy]\nload_angles = 8\n[[vary]]\n'
+                         'key = "misalignment_deg"\nvalues = [0.5]\n'))
+    row = evaluate(s.payload(), samples(s)[0])
+    spec = gc.load_spec("renzo-1967")
+    res = load(spec, 0.5, np.arange(8) * 45.0, torque_Nm=1500.0, model="linear")
+    assert row["max_tooth_load_N"] == float(np.max(res.tangential_force_N)) > 0
+    assert row["q"] == res.q() and row["torque_Nm"] == 1500.0
+    assert row["capacity_Nm"] == capacity(spec, 0.5, model="linear")["capacity_Nm"]

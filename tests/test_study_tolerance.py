@@ -128,3 +128,21 @@ def test_bad_tolerances_refused(spec):
         Tolerances.from_limits(runout=0.1)
     with pytest.raises(SpecError, match="path"):
         tolerance_sample(spec, 1.0, Tolerances(), 0, 0, path="slow")
+
+
+def test_renzo_capacity_is_the_load_packages_tooth_load_criterion(spec):
+    from gearcoupling.load.capacity import capacity_from_sweep
+    from gearcoupling.sweep import sweep
+
+    sw = sweep(spec, 1.0, np.degrees(rotations(spec, 1)))
+    cap = capacity_from_sweep(spec, sw, model="linear")["criteria_Nm"]["tooth_load"]
+    mine = linear_outputs(spec, sw.gap_angle_rad, 2000.0)["capacity_Nm"]
+    assert cap == pytest.approx(spec.load.accuracy_factor * mine, rel=1e-9)
+
+
+def test_compliance_model_k(spec):
+    zero = tolerance_sample(spec, 1.0, Tolerances(), 1, 0, steps=1, model="compliance")
+    assert zero["K"] == 1.0
+    out = tolerance_sample(spec, 1.0, Tolerances(pitch_sd_mm=0.003), 1, 0, steps=1,
+                           model="compliance")
+    assert 0 < out["K"] < 1.0

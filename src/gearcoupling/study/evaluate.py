@@ -50,20 +50,19 @@ def angle_outputs(spec, misalignment_deg: float, *, steps: int, tolerance_mm: fl
             "contact_z_min_mm": float(np.min(z)), "contact_z_max_mm": float(np.max(z))}
 
 
-def load_outputs(spec, misalignment_deg: float, torque_Nm: float | None, *, angles: int
-                 ) -> dict[str, float]:
-    """Largest tooth load and q over a turn at the torque, and the capacity (load analysis)."""
-    from ..load import capacity, load
+def load_outputs(spec, misalignment_deg: float, torque_Nm: float | None, *, angles: int,
+                 model: str | None = None) -> dict[str, float | None]:
+    """Largest tooth load and q over a turn at the torque (:func:`gearcoupling.load.load`),
+    and the governing capacity (:func:`gearcoupling.load.capacity.capacity`, times the
+    spec's accuracy factor), from the load analysis."""
+    from ..load import load
+    from ..load.capacity import capacity
 
-    out: dict[str, float] = {}
     psi = np.arange(angles) * 360.0 / angles
-    res = load(spec, misalignment_deg, psi, torque_Nm=torque_Nm)
-    summary = res.summary()
-    out["max_tooth_load_N"] = float(summary["max_tooth_load_N"])
-    out["q"] = float(summary["q"])
-    cap = capacity(spec, misalignment_deg)
-    out["capacity_Nm"] = float(cap["capacity_Nm"])
-    return out
+    res = load(spec, misalignment_deg, psi, torque_Nm=torque_Nm, model=model)
+    cap = capacity(spec, misalignment_deg, model=model)
+    return {"max_tooth_load_N": float(np.max(res.tangential_force_N)), "q": float(res.q()),
+            "capacity_Nm": cap["capacity_Nm"]}
 
 
 def evaluate(payload: dict[str, Any], inputs: dict[str, Any], sample: int = 0) -> dict[str, Any]:
@@ -105,7 +104,8 @@ def evaluate(payload: dict[str, Any], inputs: dict[str, Any], sample: int = 0) -
                                 tolerance_mm=acc["tolerance_mm"])
             row.update({k: v for k, v in got.items() if k in wanted})
         if any(k in wanted for k in LOAD_OUTPUTS):
-            got = load_outputs(spec, mis, torque, angles=int(acc["load_angles"]))
+            got = load_outputs(spec, mis, torque, angles=int(acc["load_angles"]),
+                               model=payload["conditions"].get("load_model"))
             row.update({k: v for k, v in got.items() if k in wanted})
     except GearCouplingError as err:
         row["error"] = f"{type(err).__name__}: {err}"
@@ -120,7 +120,7 @@ def _tolerance_row(payload, spec, mis: float, torque, sample: int) -> dict[str, 
     acc = payload["accuracy"]
     out = tolerance_sample(spec, mis, Tolerances(**t["values"]), payload["seed"], sample,
                            path=t["path"], torque_Nm=torque, steps=int(acc["steps"]),
-                           tolerance_mm=acc["tolerance_mm"])
+                           tolerance_mm=acc["tolerance_mm"], model=t["model"])
     return {k: v for k, v in out.items() if k in payload["outputs"]}
 
 

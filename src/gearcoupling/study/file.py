@@ -17,6 +17,7 @@ A study file::
     [conditions]                   # operating conditions when not varied
     misalignment_deg = 1.0         # default: the spec's design angle
     torque_Nm = 500.0              # default: the spec's [load] torque
+    load_model = "linear"          # default: the spec's [load] model
 
     [accuracy]                     # knobs of the evaluations (defaults shown in ACCURACY)
     tolerance_mm = 1e-7
@@ -287,7 +288,10 @@ def load_study(path: str | Path) -> Study:
     base_text = base_path.read_text()
     fixed = root.get("set", dict, {})
     cond_r = _Reader(root.get("conditions", dict, {}), "conditions", text, src)
-    conditions = {k: cond_r.get(k, float) for k in CONDITIONS if k in cond_r.data}
+    conditions: dict[str, Any] = {k: cond_r.get(k, float) for k in CONDITIONS
+                                  if k in cond_r.data}
+    if "load_model" in cond_r.data:
+        conditions["load_model"] = cond_r.get("load_model", str)
     cond_r.done()
     acc_r = _Reader(root.get("accuracy", dict, {}), "accuracy", text, src)
     accuracy = {k: acc_r.get(k, type(v), v) for k, v in ACCURACY.items()}
@@ -395,17 +399,20 @@ def resolve_study_path(path: str | Path) -> Path:
 def _tolerances(r: _Reader) -> dict[str, Any]:
     """``[tolerances]``: standard deviations (``*_sd_mm``) or ISO-style limits (``*_mm``,
     divided by ``coverage``), runouts, ``path``, ``draws`` per point, ``precision`` of K."""
-    from .tolerance import PATHS, Tolerances
+    from .tolerance import MODELS, PATHS, Tolerances
 
     coverage = r.get("coverage", float, 3.0)
     values = {k: r.get(k, float) for k in TOLERANCE_KEYS if k in r.data}
     limits = {k: r.get(k, float) for k in LIMIT_KEYS if k in r.data}
     path = r.get("path", str, "fast")
+    model = r.get("model", str, "renzo")
     draws = r.get("draws", int, 100)
     precision = r.get("precision", float, 0.01)
     r.done()
     if path not in PATHS:
         r.fail("tolerances.path", path, f"one of {PATHS}")
+    if model not in MODELS:
+        r.fail("tolerances.model", model, f"one of {MODELS}")
     if draws < 1 or not precision > 0:
         r.fail("tolerances.draws", (draws, precision), "draws >= 1 and precision > 0")
     for key in limits:
@@ -418,7 +425,8 @@ def _tolerances(r: _Reader) -> dict[str, Any]:
         tol = replace(tol, **values)
     except SpecError as err:
         r.fail("tolerances", None, str(err))
-    return {"values": asdict(tol), "path": path, "draws": draws, "precision": precision}
+    return {"values": asdict(tol), "path": path, "model": model, "draws": draws,
+            "precision": precision}
 
 
 def sample_count(study: Study) -> int:

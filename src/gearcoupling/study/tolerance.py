@@ -30,17 +30,21 @@ Three ways to get the per-tooth gap-angle map ``g[flank, tooth, rotation]``:
   spec with that flank's thickness - position errors as a thickness change of one flank -
   and that tooth's crowning radius); runout's radial part enters first order as above.
 
-Capacity uses Renzo's linear model (``[load]`` mesh stiffness ``C``, allowable tooth load
-``P_i``): at each rotation the wind-up that brings the most-loaded tooth to ``P_i`` gives
-the torque ``sum_k C R^2 max(0, dpsi - g_k)``; the capacity is its minimum over the turn
-(``P_c = q N P_i R`` with errors included). ``K`` is the ratio to the same spec without
-errors.
+Capacity, ``model = "renzo"`` (default, closed form, fastest): Renzo's linear model
+(``[load]`` mesh stiffness ``C``, allowable tooth load ``P_i``): at each rotation the
+wind-up that brings the most-loaded tooth to ``P_i`` gives the torque
+``sum_k C R^2 max(0, dpsi - g_k)``; the capacity is its minimum over the turn
+(``P_c = q N P_i R`` with errors included). ``"linear"`` or ``"compliance"``: the load
+analysis' :func:`~gearcoupling.load.capacity.capacity_from_sweep` on the per-tooth map
+(every criterion: tooth load, contact and root stress; the governing one). ``K`` is the
+ratio to the same spec and model without errors.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, fields, replace
+from functools import cached_property
 from typing import Any
 
 import numpy as np
@@ -49,6 +53,7 @@ from numpy.typing import NDArray
 from ..errors import SpecError
 
 PATHS = ("fast", "interpolated", "exact")
+MODELS = ("renzo", "linear", "compliance")
 CROWN_NODES = 5
 CROWN_SPAN_SD = 4.0
 
@@ -217,7 +222,7 @@ class CrownMaps:
 
     def __init__(self, spec, mis: float, psi, crown_sd_mm: float, tolerance_mm: float,
                  nodes: int = CROWN_NODES):
-        self.spec, self.psi = spec, psi
+        self.spec, self.psi, self.mis, self.tolerance_mm = spec, psi, mis, tolerance_mm
         self.nominal = ideal_map(spec, mis, psi, tolerance_mm)
         self.sd = crown_sd_mm
         if crown_sd_mm == 0:
@@ -231,6 +236,15 @@ class CrownMaps:
             "hub.crowning.radius": crown_radius_for_drop(spec, drop0 + self.half * x)}),
             mis, psi, tolerance_mm) for x in self.x])  # (nodes, 2, N, M)
 
+    @cached_property
+    def skeleton(self):
+        """The ideal :class:`~gearcoupling.sweep.SweepResult` on these rotations (contact
+        points and shapes for the load analysis; its gap angles are replaced per sample)."""
+        from ..sweep import sweep
+
+        return sweep(self.spec, math.degrees(self.mis), np.degrees(self.psi),
+                     tolerance_mm=self.tolerance_mm)
+
     def gap(self, err: ToothErrors) -> NDArray[np.float64]:
         """Per-tooth map ``(2, N, M)`` at each tooth's crown height (no rigid offsets)."""
         if self.sd == 0 or not np.any(err.crown_mm):
@@ -243,6 +257,27 @@ class CrownMaps:
         c = np.where(exact.any(axis=1, keepdims=True), exact.astype(float), c)
         c = c / c.sum(axis=1, keepdims=True)  # (N, nodes)
         return np.einsum("kn,nfkm->fkm", c, self.maps)
+
+
+def model_outputs(spec, skeleton, gap: NDArray[np.float64], torque_Nm: float, model: str
+                  ) -> dict[str, float]:
+    """:func:`linear_outputs` through the load analysis (``model`` linear or compliance) on
+    the ideal sweep ``skeleton`` with the gap angles ``gap`` ``(2, N, M)``."""
+    from ..load import load_from_sweep
+    from ..load.capacity import capacity_from_sweep
+
+    sw = replace(skeleton, gap_angle_rad=gap)
+    res = load_from_sweep(spec, sw, torque_Nm=torque_Nm, model=model)
+    cap = capacity_from_sweep(spec, sw, model=model, sign=1 if torque_Nm >= 0 else -1)
+    contact = np.sum(res.in_contact, axis=0)
+    backlash = float(np.min(np.min(gap[0], axis=0) + np.min(gap[1], axis=0)))
+    if cap["capacity_Nm"] is None:
+        raise SpecError("capacity", None, "no finite capacity (no criterion is reached)")
+    return {"backlash_mm": backlash * spec.tooth.pitch_radius,
+            "teeth_in_contact_min": int(np.min(contact)),
+            "teeth_in_contact_mean": float(np.mean(contact)),
+            "max_tooth_load_N": float(np.max(res.tangential_force_N)),
+            "capacity_Nm": float(cap["capacity_Nm"])}
 
 
 def linear_outputs(spec, gap: NDArray[np.float64], torque_Nm: float) -> dict[str, float]:
@@ -285,11 +320,13 @@ def _maps(spec, mis_deg: float, steps: int, crown_sd: float, tolerance_mm: float
 
 def tolerance_sample(spec, misalignment_deg: float, tol: Tolerances, seed: int, sample: int, *,
                      path: str = "fast", torque_Nm: float | None = None, steps: int = 4,
-                     tolerance_mm: float = 1e-7) -> dict[str, float]:
+                     tolerance_mm: float = 1e-7, model: str = "renzo") -> dict[str, float]:
     """One Monte Carlo sample (errors seeded by ``(seed, sample)``, so any chunking gives
     the same rows): the outputs with errors, the nominal capacity and ``K``."""
     if path not in PATHS:
         raise SpecError("path", path, f"one of {PATHS}")
+    if model not in MODELS:
+        raise SpecError("tolerances.model", model, f"one of {MODELS}")
     from ..sweep.tooth_map import check_misalignment
 
     check_misalignment(misalignment_deg)
@@ -311,8 +348,15 @@ def tolerance_sample(spec, misalignment_deg: float, tol: Tolerances, seed: int, 
     else:
         base = maps.gap(err) if path == "interpolated" else maps.nominal
         gap = base + gap_offsets_rad(spec, err)[:, :, None]
-    out = linear_outputs(spec, gap, T)
-    nominal = linear_outputs(spec, ideal, T)["capacity_Nm"]
+    if model == "renzo":
+        out = linear_outputs(spec, gap, T)
+        nominal = linear_outputs(spec, ideal, T)["capacity_Nm"]
+    else:
+        out = model_outputs(spec, maps.skeleton, gap, T, model)
+        key = ("nominal", model, id(ideal), T)
+        if key not in _CACHE:
+            _CACHE[key] = model_outputs(spec, maps.skeleton, ideal, T, model)["capacity_Nm"]
+        nominal = _CACHE[key]
     out["nominal_capacity_Nm"] = nominal
     out["K"] = out["capacity_Nm"] / nominal
     return out
