@@ -11,7 +11,7 @@ import pytest
 import gearcoupling as gc
 from gearcoupling.errors import SpecError
 from gearcoupling.study import evaluate, load_study, samples, study_names
-from gearcoupling.study.file import OUTPUTS
+from gearcoupling.study.file import OUTPUTS, TOLERANCE_OUTPUTS
 
 
 def write(tmp_path, body: str):
@@ -107,7 +107,49 @@ def test_rows_equal_single_spec_calls(tmp_path):
 
 def test_bundled_studies_load():
     names = study_names()
-    assert {"wei-fig14"} <= set(names)
+    assert {"wei-fig14", "renzo-tolerances"} <= set(names)
     for name in names:
         s = load_study(name)
-        assert set(s.outputs) <= set(OUTPUTS) and len(samples(s)) >= 2
+        allowed = TOLERANCE_OUTPUTS if s.tolerances else OUTPUTS
+        assert set(s.outputs) <= set(allowed) and len(samples(s)) >= 2
+
+
+def test_tolerance_study_rows_are_seeded_per_sample(tmp_path):
+    from gearcoupling.study.tolerance import Tolerances, summarise_rows, tolerance_sample
+
+    s = load_study(write(tmp_path, '[study]\nbase = "renzo-1967"\nseed = 5\n[accuracy]\n'
+                         'steps = 1\n[tolerances]\ndraws = 3\npitch_mm = 0.006\n'
+                         'hub_runout_mm = 0.01\n'))
+    assert s.tolerances["values"]["pitch_sd_mm"] == pytest.approx(0.002)  # limit / 3
+    items = samples(s)
+    assert [d["draw"] for d in items] == [0, 1, 2]
+    rows = [evaluate(s.payload(), d, n) for n, d in enumerate(items)]
+    spec = gc.load_spec("renzo-1967")
+    for n, row in enumerate(rows):
+        direct = tolerance_sample(spec, 1.0, Tolerances(pitch_sd_mm=0.002, hub_runout_mm=0.01),
+                                  5, n, steps=1)
+        assert row["K"] == direct["K"] < 1.0 and row["error"] is None
+    summary = summarise_rows(s, rows)
+    assert len(summary) == 1 and summary[0]["samples"] == 3
+    assert summary[0]["K_mean"] == pytest.approx(np.mean([r["K"] for r in rows]), rel=1e-12)
+
+
+def test_tolerance_table_refuses_mixed_forms(tmp_path):
+    refuse(tmp_path, '[study]\nbase = "renzo-1967"\n[tolerances]\npitch_mm = 0.006\n'
+           "pitch_sd_mm = 0.002\n", "tolerances.pitch_mm", "limit or a standard deviation")
+
+
+def test_load_outputs_equal_the_load_package(tmp_path):
+    from gearcoupling.load import load
+    from gearcoupling.load.capacity import capacity
+
+    s = load_study(write(tmp_path, '[study]\nbase = "renzo-1967"\noutputs = ["max_tooth_load_N",'
+                         ' "q", "capacity_Nm"]\n[conditions]\ntorque_Nm = 1500.0\n'
+                         'load_model = "linear"\n[accuracy]\nload_angles = 8\n[[vary]]\n'
+                         'key = "misalignment_deg"\nvalues = [0.5]\n'))
+    row = evaluate(s.payload(), samples(s)[0])
+    spec = gc.load_spec("renzo-1967")
+    res = load(spec, 0.5, np.arange(8) * 45.0, torque_Nm=1500.0, model="linear")
+    assert row["max_tooth_load_N"] == float(np.max(res.tangential_force_N)) > 0
+    assert row["q"] == res.q() and row["torque_Nm"] == 1500.0
+    assert row["capacity_Nm"] == capacity(spec, 0.5, model="linear")["capacity_Nm"]

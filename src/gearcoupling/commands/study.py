@@ -30,6 +30,8 @@ def run(args) -> int:
 
     study = load_study(args.file)
     out = Path(args.output) if args.output else Path("outputs") / f"study-{study.name}"
+    if study.optimise is not None:
+        return _optimise(study, out, plots=not args.no_plots)
     from ..study.runner import chunks
 
     with progress(f"study {study.name} (chunks)", len(chunks(study))) as advance:
@@ -46,7 +48,79 @@ def run(args) -> int:
     print(result.table)
     if result.failed_rows:
         print(f"{result.failed_rows} of {result.rows} rows refused (see the 'error' column)")
+    rows = read_table(result.table) if study.tolerances or study.plots else []
+    if study.tolerances:
+        _tolerance_summary(study, rows, out, plots=not args.no_plots)
     if not args.no_plots and study.plots:
-        for path in study_plots(study, read_table(result.table), out):
+        for path in study_plots(study, rows, out):
             print(path)
+    return 0
+
+
+def _tolerance_summary(study, rows, out: Path, *, plots: bool) -> None:
+    from ..atomic import write_json
+    from ..study.tolerance import summarise_rows
+
+    summary = summarise_rows(study, rows)
+    print(write_json(out / "tolerance_summary.json", summary))
+    for s in summary:
+        print(f"K = {s['K_mean']:.4f} [{s['K_mean_low']:.4f}, {s['K_mean_high']:.4f}] "
+              f"({100 * s['confidence']:g} % bounds of the mean), 5th percentile "
+              f"{s['K_p05']:.4f}, {s['samples']} samples; {s['samples_needed']} needed for "
+              f"+-{s['precision']:g}")
+    if plots and len(summary) == 1:
+        from ..plots import save_figure
+        from ..study.plots import plot_k_histogram
+
+        print(save_figure(plot_k_histogram(rows, summary[0]), out / "K-histogram.png"))
+
+
+def _optimise(study, out: Path, *, plots: bool) -> int:
+    """Crown optimisation: rows as they come, the optimum, capacity curves against the
+    compared specs."""
+    import numpy as np
+
+    from ..atomic import write_json
+    from ..spec import load_spec
+    from ..study.file import build_spec
+    from ..study.optimise import (
+        capacity_curve_Nm,
+        optimise_crown,
+        optimise_options,
+        plot_capacity_curves,
+        write_rows,
+    )
+    from .common import progress
+
+    options = optimise_options(study)
+    with progress(f"optimise {study.name} (evaluations)", options["max_evaluations"]) as adv:
+        result = optimise_crown(study, on_row=lambda r: adv())
+    out.mkdir(parents=True, exist_ok=True)
+    write_rows(result.rows, out / "study.parquet")
+    print(out / "study.parquet")
+    if result.best is None:
+        print("no feasible crown found within the bounds and budget")
+        return 1
+    keys = [q.key for q in study.parameters]
+    print("optimum: " + ", ".join(f"{k} = {result.best[k]:.6g}" for k in keys)
+          + f"; capacity {options['objective']} {result.best['objective']:.1f} N m, critical "
+          f"misalignment {result.best['critical_misalignment_deg']}")
+    angles = np.linspace(0.0, max(options["angles_deg"]), 9)[1:]
+    acc = study.accuracy
+    specs = {"optimum": build_spec(study.base_name, study.base_text,
+                                   {**study.fixed, **{k: result.best[k] for k in keys}})}
+    specs.update({name: load_spec(name) for name in options["compare"]})
+    curves = {name: (angles, capacity_curve_Nm(s, angles, steps=int(acc["steps"]),
+                                               tolerance_mm=acc["tolerance_mm"]))
+              for name, s in specs.items()}
+    report = {"best": result.best, "evaluations": len(result.rows),
+              "capacity_curves_Nm": {n: dict(zip([f"{a:g}" for a in angles], c.tolist(),
+                                                 strict=True)) for n, (_, c) in curves.items()}}
+    print(write_json(out / "optimum.json", report))
+    for name, (_, cap) in curves.items():
+        print(f"  {name:28s} " + " ".join(f"{c:8.0f}" for c in cap) + "  N m")
+    if plots:
+        from ..plots import save_figure
+
+        print(save_figure(plot_capacity_curves(curves), out / "capacity-curves.png"))
     return 0

@@ -15,7 +15,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import GearCouplingError
-from .file import ANGLE_OUTPUTS, LOAD_OUTPUTS, OUTPUTS, build_spec
+from .file import ANGLE_OUTPUTS, LOAD_OUTPUTS, OUTPUTS, TOLERANCE_OUTPUTS, build_spec
 
 
 def spec_hash(spec) -> str:
@@ -50,31 +50,33 @@ def angle_outputs(spec, misalignment_deg: float, *, steps: int, tolerance_mm: fl
             "contact_z_min_mm": float(np.min(z)), "contact_z_max_mm": float(np.max(z))}
 
 
-def load_outputs(spec, misalignment_deg: float, torque_Nm: float | None, *, angles: int
-                 ) -> dict[str, float]:
-    """Largest tooth load and q over a turn at the torque, and the capacity (load analysis)."""
-    from ..load import capacity, load
+def load_outputs(spec, misalignment_deg: float, torque_Nm: float | None, *, angles: int,
+                 model: str | None = None) -> dict[str, float | None]:
+    """Largest tooth load and q over a turn at the torque (:func:`gearcoupling.load.load`),
+    and the governing capacity (:func:`gearcoupling.load.capacity.capacity`, times the
+    spec's accuracy factor), from the load analysis."""
+    from ..load import load
+    from ..load.capacity import capacity
 
-    out: dict[str, float] = {}
     psi = np.arange(angles) * 360.0 / angles
-    res = load(spec, misalignment_deg, psi, torque_Nm=torque_Nm)
-    summary = res.summary()
-    out["max_tooth_load_N"] = float(summary["max_tooth_load_N"])
-    out["q"] = float(summary["q"])
-    cap = capacity(spec, misalignment_deg)
-    out["capacity_Nm"] = float(cap["capacity_Nm"])
-    return out
+    res = load(spec, misalignment_deg, psi, torque_Nm=torque_Nm, model=model)
+    cap = capacity(spec, misalignment_deg, model=model)
+    return {"max_tooth_load_N": float(np.max(res.tangential_force_N)), "q": float(res.q()),
+            "capacity_Nm": cap["capacity_Nm"]}
 
 
-def evaluate(payload: dict[str, Any], inputs: dict[str, Any]) -> dict[str, Any]:
-    """The row of one sample: inputs, operating conditions, outputs, spec hash, version."""
+def evaluate(payload: dict[str, Any], inputs: dict[str, Any], sample: int = 0) -> dict[str, Any]:
+    """The row of one sample: inputs, operating conditions, outputs, spec hash, version.
+    ``sample`` (the global index) seeds the tolerance draws."""
     acc = payload["accuracy"]
     wanted = payload["outputs"]
     conditions = payload["conditions"]
     row: dict[str, Any] = dict(inputs)
-    row.update({k: None for k in OUTPUTS if k in wanted})
+    names = TOLERANCE_OUTPUTS if payload.get("tolerances") else OUTPUTS
+    row.update({k: None for k in names if k in wanted})
     row.update(spec_hash=None, version=_version(), error=None)
-    spec_keys = {k: v for k, v in inputs.items() if k not in ("misalignment_deg", "torque_Nm")}
+    spec_keys = {k: v for k, v in inputs.items()
+                 if k not in ("misalignment_deg", "torque_Nm", "draw")}
     try:
         spec = build_spec(payload["base_name"], payload["base_text"],
                           {**payload["fixed"], **spec_keys})
@@ -84,6 +86,9 @@ def evaluate(payload: dict[str, Any], inputs: dict[str, Any]) -> dict[str, Any]:
         torque = inputs.get("torque_Nm", conditions.get("torque_Nm"))
         row["misalignment_deg"] = mis
         row["torque_Nm"] = None if torque is None else float(torque)
+        if payload.get("tolerances"):
+            row.update(_tolerance_row(payload, spec, mis, torque, sample))
+            return row
         if "critical_misalignment_deg" in wanted:
             from ..sweep.design import critical_misalignment_deg
 
@@ -99,15 +104,27 @@ def evaluate(payload: dict[str, Any], inputs: dict[str, Any]) -> dict[str, Any]:
                                 tolerance_mm=acc["tolerance_mm"])
             row.update({k: v for k, v in got.items() if k in wanted})
         if any(k in wanted for k in LOAD_OUTPUTS):
-            got = load_outputs(spec, mis, torque, angles=int(acc["load_angles"]))
+            got = load_outputs(spec, mis, torque, angles=int(acc["load_angles"]),
+                               model=payload["conditions"].get("load_model"))
             row.update({k: v for k, v in got.items() if k in wanted})
     except GearCouplingError as err:
         row["error"] = f"{type(err).__name__}: {err}"
-        row.update({k: None for k in OUTPUTS if k in wanted})
+        row.update({k: None for k in names if k in wanted})
     return row
+
+
+def _tolerance_row(payload, spec, mis: float, torque, sample: int) -> dict[str, Any]:
+    from .tolerance import Tolerances, tolerance_sample
+
+    t = payload["tolerances"]
+    acc = payload["accuracy"]
+    out = tolerance_sample(spec, mis, Tolerances(**t["values"]), payload["seed"], sample,
+                           path=t["path"], torque_Nm=torque, steps=int(acc["steps"]),
+                           tolerance_mm=acc["tolerance_mm"], model=t["model"])
+    return {k: v for k, v in out.items() if k in payload["outputs"]}
 
 
 def evaluate_chunk(payload: dict[str, Any], chunk: int, items: list[tuple[int, dict]]
                    ) -> list[dict[str, Any]]:
     """Rows of one chunk of samples ``(sample index, inputs)`` (one dask task)."""
-    return [{"sample": n, "chunk": chunk, **evaluate(payload, inputs)} for n, inputs in items]
+    return [{"sample": n, "chunk": chunk, **evaluate(payload, inputs, n)} for n, inputs in items]

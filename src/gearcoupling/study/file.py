@@ -17,6 +17,7 @@ A study file::
     [conditions]                   # operating conditions when not varied
     misalignment_deg = 1.0         # default: the spec's design angle
     torque_Nm = 500.0              # default: the spec's [load] torque
+    load_model = "linear"          # default: the spec's [load] model
 
     [accuracy]                     # knobs of the evaluations (defaults shown in ACCURACY)
     tolerance_mm = 1e-7
@@ -56,6 +57,11 @@ SPEC_OUTPUTS = ("critical_misalignment_deg", "binding_angle_deg")
 ANGLE_OUTPUTS = ("min_backlash_mm", "contact_z_min_mm", "contact_z_max_mm")
 LOAD_OUTPUTS = ("max_tooth_load_N", "q", "capacity_Nm")
 OUTPUTS = SPEC_OUTPUTS + ANGLE_OUTPUTS + LOAD_OUTPUTS
+TOLERANCE_OUTPUTS = ("backlash_mm", "teeth_in_contact_min", "teeth_in_contact_mean",
+                     "max_tooth_load_N", "capacity_Nm", "nominal_capacity_Nm", "K")
+TOLERANCE_KEYS = ("index_sd_mm", "pitch_sd_mm", "hub_runout_mm", "sleeve_runout_mm",
+                  "thickness_sd_mm", "crown_sd_mm")
+LIMIT_KEYS = ("index_mm", "pitch_mm", "thickness_mm", "crown_mm")
 ACCURACY = {"tolerance_mm": 1e-7, "angle_tolerance_deg": 1e-4, "steps": 16, "load_angles": 72}
 MAX_SAMPLES = 10_000_000
 
@@ -110,6 +116,8 @@ class Study:
     conditions: dict[str, float]
     accuracy: dict[str, float]
     plots: tuple[dict[str, Any], ...] = field(default=())
+    tolerances: dict[str, Any] | None = None  # Monte Carlo: Tolerances fields, path, draws
+    optimise: dict[str, Any] | None = None  # crown optimisation options (see .optimise)
 
     @property
     def spec_keys(self) -> tuple[str, ...]:
@@ -119,7 +127,7 @@ class Study:
         """Plain data a dask worker needs to evaluate samples (no file access)."""
         return {"base_name": self.base_name, "base_text": self.base_text, "fixed": self.fixed,
                 "outputs": list(self.outputs), "conditions": self.conditions,
-                "accuracy": self.accuracy}
+                "accuracy": self.accuracy, "tolerances": self.tolerances, "seed": self.seed}
 
     def digest(self) -> str:
         """Hash of everything that determines the rows (resuming refuses another study)."""
@@ -271,15 +279,19 @@ def load_study(path: str | Path) -> Study:
     if chunk < 1:
         s.fail("study.chunk", chunk, "must be at least 1 sample per task")
     for out in outputs:
-        if out not in OUTPUTS:
-            s.fail("study.outputs", out, f"unknown output; allowed: {list(OUTPUTS)}")
+        if out not in OUTPUTS + TOLERANCE_OUTPUTS:
+            s.fail("study.outputs", out, f"unknown output; allowed: {list(OUTPUTS)}, or with "
+                   f"[tolerances] {list(TOLERANCE_OUTPUTS)}")
     if not outputs:
         s.fail("study.outputs", outputs, "name at least one output")
     base_path = _resolve_base(base, p.parent)
     base_text = base_path.read_text()
     fixed = root.get("set", dict, {})
     cond_r = _Reader(root.get("conditions", dict, {}), "conditions", text, src)
-    conditions = {k: cond_r.get(k, float) for k in CONDITIONS if k in cond_r.data}
+    conditions: dict[str, Any] = {k: cond_r.get(k, float) for k in CONDITIONS
+                                  if k in cond_r.data}
+    if "load_model" in cond_r.data:
+        conditions["load_model"] = cond_r.get("load_model", str)
     cond_r.done()
     acc_r = _Reader(root.get("accuracy", dict, {}), "accuracy", text, src)
     accuracy = {k: acc_r.get(k, type(v), v) for k, v in ACCURACY.items()}
@@ -289,6 +301,13 @@ def load_study(path: str | Path) -> Study:
             acc_r.fail(f"accuracy.{k}", v, "must be > 0")
     params = tuple(_parameter(e, k, text, src) for k, e in enumerate(root.get("vary", list, [])))
     plots = tuple(root.get("plot", list, []))
+    optimise = root.get("optimise", dict)
+    tolerances = None
+    if "tolerances" in root.data:
+        tolerances = _tolerances(_Reader(root.get("tolerances", dict), "tolerances", text, src))
+        outputs = tuple(o for o in outputs if o in TOLERANCE_OUTPUTS) or TOLERANCE_OUTPUTS
+    elif any(o in TOLERANCE_OUTPUTS and o not in OUTPUTS for o in outputs):
+        s.fail("study.outputs", list(outputs), "tolerance outputs need a [tolerances] table")
     root.done()
     keys = [q.key for q in params]
     if len(set(keys)) != len(keys):
@@ -308,13 +327,18 @@ def load_study(path: str | Path) -> Study:
             if q.steps is not None:
                 raise SpecError(f"{src}:{q.line} vary '{q.key}'", q.steps,
                                 f"steps apply to grids only, not method '{method}'")
-    else:
+    elif optimise is None:
         for q in params:
             if q.low is not None and q.steps is None:
                 raise SpecError(f"{src}:{q.line} vary '{q.key}'", None,
                                 "a range on a grid needs steps = N")
     study = Study(name, src, base_path.stem, base_text, fixed, params, method, samples, seed,
-                  chunk, outputs, conditions, accuracy, plots)
+                  chunk, outputs, conditions, accuracy, plots, tolerances, optimise)
+    if optimise is not None:
+        from .optimise import optimise_options
+
+        optimise_options(study)
+        return study
     n = sample_count(study)
     if not 1 <= n <= MAX_SAMPLES:
         raise SpecError(f"{src} samples", n, f"must be 1-{MAX_SAMPLES}")
@@ -372,14 +396,55 @@ def resolve_study_path(path: str | Path) -> Path:
                     f"{study_names()}")
 
 
+def _tolerances(r: _Reader) -> dict[str, Any]:
+    """``[tolerances]``: standard deviations (``*_sd_mm``) or ISO-style limits (``*_mm``,
+    divided by ``coverage``), runouts, ``path``, ``draws`` per point, ``precision`` of K."""
+    from .tolerance import MODELS, PATHS, Tolerances
+
+    coverage = r.get("coverage", float, 3.0)
+    values = {k: r.get(k, float) for k in TOLERANCE_KEYS if k in r.data}
+    limits = {k: r.get(k, float) for k in LIMIT_KEYS if k in r.data}
+    path = r.get("path", str, "fast")
+    model = r.get("model", str, "renzo")
+    draws = r.get("draws", int, 100)
+    precision = r.get("precision", float, 0.01)
+    r.done()
+    if path not in PATHS:
+        r.fail("tolerances.path", path, f"one of {PATHS}")
+    if model not in MODELS:
+        r.fail("tolerances.model", model, f"one of {MODELS}")
+    if draws < 1 or not precision > 0:
+        r.fail("tolerances.draws", (draws, precision), "draws >= 1 and precision > 0")
+    for key in limits:
+        if key.replace("_mm", "_sd_mm") in values:
+            r.fail(f"tolerances.{key}", limits[key], "give a limit or a standard deviation")
+    try:
+        tol = Tolerances.from_limits(coverage=coverage, **limits) if limits else Tolerances()
+        from dataclasses import asdict, replace
+
+        tol = replace(tol, **values)
+    except SpecError as err:
+        r.fail("tolerances", None, str(err))
+    return {"values": asdict(tol), "path": path, "model": model, "draws": draws,
+            "precision": precision}
+
+
 def sample_count(study: Study) -> int:
+    draws = study.tolerances["draws"] if study.tolerances else 1
     if study.method != "grid":
-        return study.samples
-    return math.prod(len(q.grid()) for q in study.parameters)
+        return study.samples * draws
+    return math.prod(len(q.grid()) for q in study.parameters) * draws
 
 
 def samples(study: Study) -> list[dict[str, Any]]:
     """Every sample's inputs in a fixed order (seeded for random and lhs)."""
+    points = _points(study)
+    if not study.tolerances:
+        return points
+    return [{**p, "draw": d} for p in points for d in range(study.tolerances["draws"])]
+
+
+def _points(study: Study) -> list[dict[str, Any]]:
     params = study.parameters
     if study.method == "grid":
         import itertools

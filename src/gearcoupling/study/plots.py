@@ -43,3 +43,21 @@ def study_plots(study, rows: list[dict[str, Any]], out: Path) -> list[Path]:
         fig = plot_study(rows, p["x"], p["y"], p.get("group", []), title=p.get("title"))
         paths.append(save_figure(fig, out / f"plot-{k}-{p['y']}.png"))
     return paths
+
+
+def plot_k_histogram(rows: list[dict[str, Any]], summary: dict[str, Any], *, ax=None):
+    """Histogram of the accuracy factor K of a tolerance study, mean and its bounds marked."""
+    if ax is None:
+        fig, ax = new_figure(figsize=(7, 4.5))
+    else:
+        fig = ax.figure
+    k = [r["K"] for r in rows if r.get("K") is not None]
+    ax.hist(k, bins=max(10, min(60, len(k) // 10)), color="0.6")
+    for name, style in (("K_mean", "-"), ("K_mean_low", ":"), ("K_mean_high", ":"),
+                        ("K_p05", "--")):
+        ax.axvline(summary[name], color="C3", ls=style, label=f"{name} = {summary[name]:.4f}")
+    ax.set_xlabel("accuracy factor K = capacity with errors / without")
+    ax.set_ylabel("samples")
+    ax.set_title(f"{summary['samples']} samples, {summary['path']} path")
+    ax.legend(fontsize=7)
+    return fig

@@ -18,7 +18,7 @@ from typing import Any
 from ..atomic import atomic_path, write_json
 from ..errors import BackendError, SpecError
 from .evaluate import evaluate_chunk
-from .file import OUTPUTS, Study, sample_count, samples
+from .file import OUTPUTS, TOLERANCE_OUTPUTS, Study, sample_count, samples
 
 CONNECT_TIMEOUT_S = 10.0
 RETRIES = 3
@@ -57,8 +57,10 @@ def _distributed():
 def columns(study: Study) -> list[str]:
     """Column order of the table: sample, inputs, conditions, outputs, provenance."""
     inputs = [q.key for q in study.parameters if q.key not in ("misalignment_deg", "torque_Nm")]
-    outs = [k for k in OUTPUTS if k in study.outputs]
-    return ["sample", "chunk", *inputs, "misalignment_deg", "torque_Nm", *outs,
+    outs = [k for k in (TOLERANCE_OUTPUTS if study.tolerances else OUTPUTS)
+            if k in study.outputs]
+    draw = ["draw"] if study.tolerances else []
+    return ["sample", "chunk", *inputs, *draw, "misalignment_deg", "torque_Nm", *outs,
             "spec_hash", "version", "error"]
 
 

@@ -1,0 +1,191 @@
+"""Crown optimisation (Wei et al. section 4): choose feed-path parameters that maximise the
+capacity over a range of design angles, subject to a critical misalignment at or above the
+largest angle and no binding there, with scipy's optimisers. Every evaluation is a row.
+
+The study file names the parameters as ``[[vary]]`` ranges (the bounds) and the crown kind
+in ``[set]``; ``[optimise]`` gives the angles, the objective and the evaluation budget::
+
+    [optimise]
+    angles_deg = [0.25, 0.5, 0.75, 1.0]
+    objective = "mean"          # mean or min of the capacity over the angles
+    max_evaluations = 40
+    compare = ["renzo-1967"]    # specs whose capacity curves are plotted beside the optimum
+
+Capacity is Renzo's (linear model, allowable tooth load ``P_i``, K = 1) from the exact
+clearance map at each angle (:func:`.tolerance.linear_outputs`). Refused specs and
+infeasible points are rows too (``feasible`` false) and score a penalty.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from ..errors import GearCouplingError, SpecError
+from .evaluate import spec_hash
+from .file import Study, build_spec
+
+OBJECTIVES = ("mean", "min")
+PENALTY_NM = 1e12
+
+
+@dataclass(frozen=True)
+class Optimum:
+    """Best feasible row and every evaluation's row."""
+
+    best: dict[str, Any] | None
+    rows: list[dict[str, Any]]
+
+
+def capacity_curve_Nm(spec, angles_deg, *, steps: int = 4, tolerance_mm: float = 1e-7
+                      ) -> np.ndarray:
+    """Renzo's capacity (N m, linear model, K = 1) at each misalignment in ``angles_deg``."""
+    from .tolerance import ideal_map, linear_outputs, rotations
+
+    psi = rotations(spec, steps)
+    T = spec.load.torque_Nm or 0.0
+    return np.array([linear_outputs(spec, ideal_map(spec, math.radians(a), psi, tolerance_mm),
+                                    T)["capacity_Nm"] for a in angles_deg])
+
+
+def crown_row(study: Study, inputs: dict[str, Any], options: dict[str, Any]) -> dict[str, Any]:
+    """Evaluate one candidate crown: capacities, constraints, objective (a study row)."""
+    from ..sweep.design import critical_misalignment_deg, min_backlash_rad
+
+    angles = options["angles_deg"]
+    acc = study.accuracy
+    row: dict[str, Any] = {**inputs, "capacity_mean_Nm": None, "capacity_min_Nm": None,
+                           "critical_misalignment_deg": None, "min_backlash_mm": None,
+                           "feasible": False, "objective": -PENALTY_NM, "spec_hash": None,
+                           "error": None}
+    try:
+        spec = build_spec(study.base_name, study.base_text, {**study.fixed, **inputs})
+        row["spec_hash"] = spec_hash(spec)
+        cap = capacity_curve_Nm(spec, angles, steps=int(acc["steps"]),
+                                tolerance_mm=acc["tolerance_mm"])
+        row.update({f"capacity_{a:g}deg_Nm": float(c) for a, c in zip(angles, cap, strict=True)})
+        row["capacity_mean_Nm"] = float(np.mean(cap))
+        row["capacity_min_Nm"] = float(np.min(cap))
+        crit = critical_misalignment_deg(spec, tolerance_deg=acc["angle_tolerance_deg"])
+        row["critical_misalignment_deg"] = crit
+        top = max(angles)
+        backlash = min_backlash_rad(spec, math.radians(top), steps=int(acc["steps"]))
+        row["min_backlash_mm"] = backlash * spec.tooth.pitch_radius
+        crit_ok = crit is None or crit >= top
+        row["feasible"] = bool(crit_ok and backlash > 0)
+        value = row[f"capacity_{options['objective']}_Nm"]
+        # infeasible: penalised by how far the constraints are missed, so the search returns
+        short = (0.0 if crit_ok else top - crit) + max(0.0, -backlash) * 1e3
+        row["objective"] = value if row["feasible"] else value - PENALTY_NM * (1e-9 + short)
+    except GearCouplingError as err:
+        row["error"] = f"{type(err).__name__}: {err}"
+    return row
+
+
+def optimise_crown(study: Study, *, on_row: Callable[[dict[str, Any]], None] | None = None
+                   ) -> Optimum:
+    """Maximise the study's capacity objective over its ``[[vary]]`` ranges.
+
+    One parameter: bounded Brent (``minimize_scalar``); more: Nelder-Mead in coordinates
+    scaled to the unit box (out-of-box points are clipped and evaluated). Every evaluation
+    is a row (also passed to ``on_row``).
+    """
+    from scipy.optimize import minimize, minimize_scalar
+
+    options = optimise_options(study)
+    params = [q for q in study.parameters if q.low is not None]
+    if not params or len(params) != len(study.parameters):
+        raise SpecError(f"{study.source} vary", [q.key for q in study.parameters],
+                        "optimisation varies ranges only (range = [low, high], no values)")
+    rows: list[dict[str, Any]] = []
+    lo = np.array([q.low for q in params])
+    hi = np.array([q.high for q in params])
+
+    def f(u) -> float:
+        x = lo + (hi - lo) * np.clip(np.atleast_1d(u), 0.0, 1.0)
+        inputs = {q.key: float(v) for q, v in zip(params, x, strict=True)}
+        row = {"evaluation": len(rows), **crown_row(study, inputs, options)}
+        rows.append(row)
+        if on_row is not None:
+            on_row(row)
+        return -row["objective"] / 1e3
+
+    budget = options["max_evaluations"]
+    if len(params) == 1:
+        minimize_scalar(f, bounds=(0.0, 1.0), method="bounded",
+                        options={"maxiter": budget, "xatol": 1e-3})
+    else:
+        x0 = np.full(len(params), 0.5)
+        minimize(f, x0, method="Nelder-Mead", options={"maxfev": budget, "xatol": 1e-3,
+                                                        "fatol": 1e-3,
+                                                        "initial_simplex": _simplex(x0)})
+    feasible = [r for r in rows if r["feasible"]]
+    best = max(feasible, key=lambda r: r["objective"]) if feasible else None
+    return Optimum(best, rows)
+
+
+def _simplex(x0: np.ndarray) -> np.ndarray:
+    pts = [x0]
+    for k in range(x0.size):
+        p = x0.copy()
+        p[k] += 0.3
+        pts.append(p)
+    return np.array(pts)
+
+
+def optimise_options(study: Study) -> dict[str, Any]:
+    opt = dict(study.optimise or {})
+    angles = opt.get("angles_deg")
+    if not (isinstance(angles, list) and angles
+            and all(isinstance(a, int | float) and 0 < a <= 6 for a in angles)):
+        raise SpecError(f"{study.source} optimise.angles_deg", angles,
+                        "a non-empty list of design angles in (0, 6] degrees")
+    objective = opt.get("objective", "mean")
+    if objective not in OBJECTIVES:
+        raise SpecError(f"{study.source} optimise.objective", objective, f"one of {OBJECTIVES}")
+    budget = opt.get("max_evaluations", 40)
+    if not (isinstance(budget, int) and budget >= 3):
+        raise SpecError(f"{study.source} optimise.max_evaluations", budget, "an integer >= 3")
+    compare = opt.get("compare", [])
+    if not (isinstance(compare, list) and all(isinstance(c, str) for c in compare)):
+        raise SpecError(f"{study.source} optimise.compare", compare, "a list of spec names")
+    unknown = set(opt) - {"angles_deg", "objective", "max_evaluations", "compare"}
+    if unknown:
+        raise SpecError(f"{study.source} optimise", sorted(unknown)[0], "unknown key")
+    return {"angles_deg": [float(a) for a in angles], "objective": objective,
+            "max_evaluations": budget, "compare": compare}
+
+
+def write_rows(rows: list[dict[str, Any]], path) -> None:
+    """Rows with differing keys as one Parquet table (union of columns), atomically."""
+    from ..atomic import atomic_path
+    from .runner import _pyarrow
+
+    pa, pq = _pyarrow()
+    names: list[str] = []
+    for r in rows:
+        names += [k for k in r if k not in names]
+    table = pa.Table.from_pylist([{k: r.get(k) for k in names} for r in rows])
+    with atomic_path(path) as tmp:
+        pq.write_table(table, tmp)
+
+
+def plot_capacity_curves(curves: dict[str, tuple[np.ndarray, np.ndarray]], *, ax=None):
+    """Capacity (N m) against misalignment for named crowns; returns the Figure."""
+    from ..plots import new_figure
+
+    if ax is None:
+        fig, ax = new_figure(figsize=(7, 4.5))
+    else:
+        fig = ax.figure
+    for name, (angles, cap) in curves.items():
+        ax.plot(angles, cap, "o-", ms=3, label=name)
+    ax.set_xlabel("misalignment (deg)")
+    ax.set_ylabel("capacity (N m), Renzo linear model, K = 1")
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    return fig
