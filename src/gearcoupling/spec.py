@@ -549,7 +549,8 @@ def default_dedendum(tooth: ToothSystem, thickness: float, crowning: Crowning,
     f = default_fillet_radius(tooth, thickness, d)
     model = HubModel(R, phi, tooth.teeth, thickness, d, f, "cylinder", R, 0.5 * face_width,
                      crowning.generation == "revolved", feed_path(crowning, R, face_width))
-    z = np.linspace(0.0, 0.5 * face_width, 17)
+    planes = np.linspace(0.0, 0.5 * face_width, 17)
+    z = planes
 
     def undercut(h: float) -> bool:
         try:
@@ -560,14 +561,20 @@ def default_dedendum(tooth: ToothSystem, thickness: float, crowning: Crowning,
         return not bool(np.all(d_r2 < 0))
 
     lift = 1.0 - math.sin(phi)  # form depth = dedendum - fillet * lift
-    lo, hi = 0.0, d - f * lift
-    if not undercut(hi):
+    if not undercut(d - f * lift):
         return d
-    for _ in range(40):
-        mid = 0.5 * (lo + hi)
-        lo, hi = (mid, hi) if not undercut(mid) else (lo, mid)
-    if lo < 0.5 * R * math.sin(phi) ** 2:  # far below the spur limit: the crown is to blame
-        return 1.25 * m
+
+    def deepest() -> float:
+        lo, hi = 0.0, d - f * lift
+        for _ in range(40):
+            mid = 0.5 * (lo + hi)
+            lo, hi = (mid, hi) if not undercut(mid) else (lo, mid)
+        return lo
+
+    lo = deepest()  # crowning is a negative profile shift at the face ends: fit them too
+    if lo < 0.1 * R * math.sin(phi) ** 2:  # no useful depth fits: the crown is to blame;
+        z = planes[:1]  # fit the midplane and let the checks name the crown
+        lo = deepest()
     for _ in range(8):  # the default fillet depends on the dedendum: fixed point
         d = 0.9 * lo + default_fillet_radius(tooth, thickness, d) * lift
     return d
