@@ -7,8 +7,8 @@ random rigid placement), writes it as an ``.xyz`` text file, and times reading t
 and ``compare_part`` (coarse + fine registration, per-point deviations from the exact
 flank table, per tooth/flank fits), median of 3 runs. Then, at 1e5 points, the accuracy
 knobs: ``fit_points`` (registration subsample) and the flank table ``grid`` against the
-recovered index error, thickness and crown height
-(largest C_beta deviation over all flanks; the scan has the nominal crown). Markdown tables on stdout.
+recovered index error, thickness and crown height (largest C_beta deviation over all
+flanks; the scan has the nominal crown). Markdown tables on stdout.
 """
 
 from __future__ import annotations
