@@ -54,7 +54,7 @@ def run(args) -> int:
     if len(args.files) > 2:
         raise SpecError("FILE", args.files, "one scan, or two (A B) to compare")
     spec = spec_from_args(args)
-    with progress("compare", 1 + STAGES * len(args.files)) as advance:
+    with progress("compare", 2 + STAGES * len(args.files)) as advance:
         result = compare_part(spec, args.files[0],
                               args.files[1] if len(args.files) == 2 else None,
                               units=args.units, limits=parse_limits(args.limit),

@@ -16,7 +16,7 @@ from .report import FLANK_NAMES, InspectionReport, check_limits, evaluate, pass_
 from .surface import deviation, flank_table
 
 SAMPLE = 200_000  # points kept in the report for the deviation map
-STAGES = 3  # progress stages per part: read, register, evaluate
+STAGES = 2  # progress stages per part (register, evaluate), plus reading and the table
 
 
 @dataclass(frozen=True)
@@ -92,7 +92,7 @@ def compare_part(spec, source, other=None, *, units: str = "mm", limits=None,
         A flank with fewer band points (or covering less than half of the evaluation
         ranges) is not reported; a tooth is reported when both flanks are.
     advance : callable, optional
-        ``advance(label)`` after each stage (``STAGES`` per part, plus one): progress bars.
+        ``advance(label)`` after each stage (``STAGES`` per part, plus two): progress bars.
 
     Returns
     -------
@@ -100,20 +100,18 @@ def compare_part(spec, source, other=None, *, units: str = "mm", limits=None,
     """
     step = advance or (lambda label: None)
     lim = check_limits(limits)
+    parts = [_points(src, units) for src in (source, other) if src is not None]
+    step(f"read {', '.join(f'{len(p):,}' for p, _ in parts)} points")
     table = flank_table(spec, grid)
     charts = measuring_charts(spec)
     step("nominal flank table")
-    args = (table, charts, units, lim, coarse, fit_points, outlier_mm, min_points, step)
-    a = _inspect(spec, source, *args)
-    if other is None:
-        return a
-    return PartComparison(a, _inspect(spec, other, *args))
+    args = (table, charts, lim, coarse, fit_points, outlier_mm, min_points, step)
+    reports = [_inspect(spec, pts, name, *args) for pts, name in parts]
+    return reports[0] if other is None else PartComparison(*reports)
 
 
-def _inspect(spec, source, table, charts, units, lim, coarse, fit_points, outlier_mm,
+def _inspect(spec, pts, name, table, charts, lim, coarse, fit_points, outlier_mm,
              min_points, step) -> InspectionReport:
-    pts, name = _points(source, units)
-    step(f"read {len(pts):,} points")
     reg = register(pts, table, coarse=coarse, fit_points=fit_points, outlier_mm=outlier_mm)
     step(f"registered (rms {1e3 * reg.rms_mm:.2f} um)")
     hub = reg.apply(pts)

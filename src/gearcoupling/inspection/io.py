@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -83,10 +84,12 @@ def _load_text(p: Path) -> NDArray[np.float64]:
             skip += 1
         sample = head[skip] if skip < len(head) else ""
         delim = "," if "," in sample else (";" if ";" in sample else None)
-        pts = np.loadtxt(p, delimiter=delim, comments=("#", "//", "%"), skiprows=skip,
-                         usecols=(0, 1, 2), ndmin=2, dtype=float)
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")  # "no data" and friends: use the line reader
+            pts = np.loadtxt(p, delimiter=delim, comments=("#", "//", "%"), skiprows=skip,
+                             usecols=(0, 1, 2), ndmin=2, dtype=float)
         return pts.reshape(-1, 3)
-    except (ValueError, IndexError, UnicodeDecodeError, OSError):
+    except (ValueError, IndexError, UnicodeDecodeError, OSError, Warning):
         return _load_text_lines(p)
 
 
