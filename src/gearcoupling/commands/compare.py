@@ -13,7 +13,7 @@ from pathlib import Path
 
 from ..atomic import write_json
 from ..errors import SpecError
-from .common import add_spec_arguments, output_dir, spec_from_args
+from .common import add_spec_arguments, output_dir, progress, spec_from_args
 
 
 def register(sub) -> None:
@@ -47,15 +47,18 @@ def parse_limits(items: list[str]) -> dict[str, str]:
 def run(args) -> int:
     from ..hob.writers import write_csv
     from ..inspection import compare_part
+    from ..inspection.compare import STAGES
     from ..inspection.plots import plot_deviation_map, plot_inspection
     from ..plots import save_figure
 
     if len(args.files) > 2:
         raise SpecError("FILE", args.files, "one scan, or two (A B) to compare")
     spec = spec_from_args(args)
-    result = compare_part(spec, args.files[0], args.files[1] if len(args.files) == 2 else None,
-                          units=args.units, limits=parse_limits(args.limit),
-                          coarse=args.coarse, fit_points=args.fit_points)
+    with progress("compare", 2 + STAGES * len(args.files)) as advance:
+        result = compare_part(spec, args.files[0],
+                              args.files[1] if len(args.files) == 2 else None,
+                              units=args.units, limits=parse_limits(args.limit),
+                              coarse=args.coarse, fit_points=args.fit_points, advance=advance)
     out = output_dir(args, spec)
     units = ["lengths in mm, + = material excess / toward increasing polar angle"]
     if len(args.files) == 2:

@@ -42,7 +42,7 @@ def run(args) -> int:
     files.append(write_json(out / "hob.json", {**prog.summary(),
                                                "files": [str(f) for f in files]}))
     s = prog.summary()
-    print(f"hob: {s['arc_moves']} arcs + {s['line_moves']} lines, max chordal deviation "
+    print(f"hob: {s['arc_moves']} arc and {s['line_moves']} line moves, max chordal deviation "
           f"{s['max_deviation_mm']:.3g} mm (tolerance {s['tolerance_mm']:.3g} mm), "
           f"Z {s['z_start_mm']:.4f} .. {s['z_end_mm']:.4f} mm, crown drop at ends "
           f"{s['crown_drop_end_mm']:.5f} mm")

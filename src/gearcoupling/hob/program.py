@@ -187,7 +187,8 @@ def _chords(m: HubModel, r_h: float, s0: float, s1: float, tol: float) -> list[f
 
 
 def _pieces(m: HubModel, s_gen: float) -> list[tuple[float, float, float]]:
-    """``(s0, s1, kappa)`` pieces of the path on ``[-s_gen, s_gen]`` (nan: smooth)."""
+    """``(s0, s1, kappa)`` pieces of the path on ``[-s_gen, s_gen]`` (nan: smooth; runs of
+    smooth segments merged)."""
     inner = [b for b in m.path.breaks[1:] if 0.0 < b < s_gen]
     edges = [-s_gen, *(-b for b in reversed(inner)), *inner, s_gen]
     out = []
@@ -195,7 +196,11 @@ def _pieces(m: HubModel, s_gen: float) -> list[tuple[float, float, float]]:
         mid = 0.5 * abs(a + b)
         k = int(np.clip(np.searchsorted(m.path.breaks, mid, side="right") - 1, 0,
                         len(m.path.seg_kappa) - 1))
-        out.append((a, b, float(m.path.seg_kappa[k])))
+        kap = float(m.path.seg_kappa[k])
+        if out and math.isnan(kap) and math.isnan(out[-1][2]):
+            out[-1] = (out[-1][0], b, kap)  # one chord run over consecutive smooth segments
+        else:
+            out.append((a, b, kap))
     return out
 
 

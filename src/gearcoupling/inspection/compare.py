@@ -16,6 +16,7 @@ from .report import FLANK_NAMES, InspectionReport, check_limits, evaluate, pass_
 from .surface import deviation, flank_table
 
 SAMPLE = 200_000  # points kept in the report for the deviation map
+STAGES = 2  # progress stages per part (register, evaluate), plus reading and the table
 
 
 @dataclass(frozen=True)
@@ -64,7 +65,7 @@ def _points(source, units: str):
 def compare_part(spec, source, other=None, *, units: str = "mm", limits=None,
                  coarse: str = "auto", fit_points: int = 20_000,
                  grid: tuple[int, int] = (61, 41), outlier_mm: float | None = None,
-                 min_points: int = 30):
+                 min_points: int = 30, advance=None):
     """Inspect a measured hub against the spec's nominal, tooth by tooth.
 
     Parameters
@@ -90,33 +91,36 @@ def compare_part(spec, source, other=None, *, units: str = "mm", limits=None,
     min_points : int
         A flank with fewer band points (or covering less than half of the evaluation
         ranges) is not reported; a tooth is reported when both flanks are.
+    advance : callable, optional
+        ``advance(label)`` after each stage (``STAGES`` per part, plus two): progress bars.
 
     Returns
     -------
     InspectionReport or PartComparison
     """
+    step = advance or (lambda label: None)
     lim = check_limits(limits)
+    parts = [_points(src, units) for src in (source, other) if src is not None]
+    step(f"read {', '.join(f'{len(p):,}' for p, _ in parts)} points")
     table = flank_table(spec, grid)
     charts = measuring_charts(spec)
-    a = _inspect(spec, source, table, charts, units, lim, coarse, fit_points, outlier_mm,
-                 min_points)
-    if other is None:
-        return a
-    b = _inspect(spec, other, table, charts, units, lim, coarse, fit_points, outlier_mm,
-                 min_points)
-    return PartComparison(a, b)
+    step("nominal flank table")
+    args = (table, charts, lim, coarse, fit_points, outlier_mm, min_points, step)
+    reports = [_inspect(spec, pts, name, *args) for pts, name in parts]
+    return reports[0] if other is None else PartComparison(*reports)
 
 
-def _inspect(spec, source, table, charts, units, lim, coarse, fit_points, outlier_mm,
-             min_points) -> InspectionReport:
-    pts, name = _points(source, units)
+def _inspect(spec, pts, name, table, charts, lim, coarse, fit_points, outlier_mm,
+             min_points, step) -> InspectionReport:
     reg = register(pts, table, coarse=coarse, fit_points=fit_points, outlier_mm=outlier_mm)
+    step(f"registered (rms {1e3 * reg.rms_mm:.2f} um)")
     hub = reg.apply(pts)
     dev = deviation(table, hub)
     outlier = 0.2 * table.model.R / table.model.teeth if outlier_mm is None else outlier_mm
     keep = np.abs(dev.d) <= outlier
     dev = type(dev)(*(getattr(dev, f)[keep] for f in dev.__dataclass_fields__))
     ev = evaluate(table, charts, dev, min_points=min_points)
+    step("evaluated")
     ok, checks = pass_fail(ev, lim)
     ev["part"].update(checks)
     ev["part"]["outliers"] = int((~keep).sum())

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -71,6 +72,36 @@ def _load_mesh(p: Path) -> NDArray[np.float64]:
 
 
 def _load_text(p: Path) -> NDArray[np.float64]:
+    """numpy's C reader for well-formed files; the line-by-line reader names bad lines."""
+    try:
+        with p.open(encoding="utf-8") as fh:
+            head = [line.strip() for _, line in zip(range(50), fh, strict=False)]
+        skip = 0
+        for line in head:
+            first = line.replace(",", " ").split()[:1]
+            if line and line[0] not in "#/;%" and first and _is_number(first[0]):
+                break
+            skip += 1
+        sample = head[skip] if skip < len(head) else ""
+        delim = "," if "," in sample else (";" if ";" in sample else None)
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")  # "no data" and friends: use the line reader
+            pts = np.loadtxt(p, delimiter=delim, comments=("#", "//", "%"), skiprows=skip,
+                             usecols=(0, 1, 2), ndmin=2, dtype=float)
+        return pts.reshape(-1, 3)
+    except (ValueError, IndexError, UnicodeDecodeError, OSError, Warning):
+        return _load_text_lines(p)
+
+
+def _is_number(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
+
+
+def _load_text_lines(p: Path) -> NDArray[np.float64]:
     rows = []
     try:
         with p.open(encoding="utf-8", errors="strict") as fh:
