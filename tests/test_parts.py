@@ -9,7 +9,6 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, given, note, settings
 
 import gearcoupling as gc
 from gearcoupling.geometry.hub import hub_flank_model, hub_model
@@ -17,7 +16,7 @@ from gearcoupling.geometry.sleeve import flank_point, sleeve_model
 from gearcoupling.parts import SURFACE_KINDS, build_part
 from gearcoupling.parts.deviation import distance_to_mesh, measure_deviation
 from gearcoupling.parts.validity import check_part
-from test_random_specs import raw_specs
+from random_specs import STRATA, random_spec_data
 
 KIND = {k: i for i, k in enumerate(SURFACE_KINDS)}
 
@@ -180,15 +179,19 @@ def test_distance_to_mesh_against_a_known_surface():
     assert d == pytest.approx([0.5, 1.0, math.sqrt(2.0), 0.0], abs=1e-12)
 
 
-@settings(max_examples=25, deadline=None, derandomize=True,
-          suppress_health_check=[HealthCheck.too_slow])
-@given(raw_specs())
-def test_random_specs_build_valid_parts_or_raise_spec_error(data):
-    try:
-        spec = gc.spec_from_dict(data)
-    except gc.SpecError as err:
-        note(f"refused: {err}")
-        return
+@pytest.mark.parametrize("stratum", STRATA[::3], ids="-".join)
+def test_random_specs_build_valid_parts_within_tolerance(stratum):
+    """One seeded random spec per sampled stratum (crown kind x generation x tip): the first
+    of a few draws that the spec validation accepts must build valid parts and sectors."""
+    rng = np.random.default_rng(20261123 + STRATA.index(stratum))
+    for _ in range(8):
+        try:
+            spec = gc.spec_from_dict(random_spec_data(rng, *stratum))
+            break
+        except gc.SpecError:
+            continue
+    else:
+        pytest.fail(f"no spec of stratum {stratum} accepted in 8 draws")
     tol = _tol(spec, 0.05)
     for part in ("hub", "sleeve"):
         for teeth in (None, [0, 1, spec.tooth.teeth - 1]):
