@@ -179,3 +179,18 @@ def test_contact_law_is_hertz_for_a_sphere_and_continuous_at_the_switch():
                                else [np.broadcast_to(x, Ws.shape) for x in v]
                                for k, v in law.items()})
     assert np.all(np.diff(d) > 0) and np.all(s > 0)
+
+
+def test_max_tooth_load_grows_with_misalignment_and_crowning_radius():
+    """Wei et al.: the maximum tooth load increases with the misalignment and the crowning
+    radius (their Fig. 12 and conclusion 3), at the template torque."""
+    spec = gc.load_spec("renzo-1967")
+    flat = gc.load_spec("renzo-1967", **{"hub.crowning.radius": 4.0})
+    psi = np.linspace(0, 7.2, 5, endpoint=False)
+
+    def peak(s, i):
+        return float(np.max(load_from_sweep(s, sweep(s, i, psi)).tangential_force_N))
+
+    peaks = [peak(spec, i) for i in (0.25, 0.5, 1.0, 2.0)]
+    assert all(a < b for a, b in zip(peaks, peaks[1:], strict=False)), peaks
+    assert peak(flat, 1.0) > peaks[2]
