@@ -2,13 +2,12 @@
 
 from __future__ import annotations
 
-import csv
 import math
 from pathlib import Path
 
 import numpy as np
 
-from ..atomic import atomic_path, write_json
+from ..atomic import write_json
 from ..errors import SpecError
 from ..loadspec import LOAD_MODELS
 from .common import (
@@ -18,6 +17,7 @@ from .common import (
     output_dir,
     progress,
     spec_from_args,
+    write_rows_csv,
 )
 
 
@@ -44,13 +44,7 @@ def write_csv(result, path: str | Path) -> Path:
     """The long-form ``load.csv`` of a LoadResult, written atomically."""
     from ..load import CSV_COLUMNS
 
-    with atomic_path(path) as tmp, open(tmp, "w", newline="") as fh:
-        w = csv.writer(fh)
-        w.writerow(CSV_COLUMNS)
-        for row in result.rows():
-            w.writerow([f"{v:.9g}" if isinstance(v, float) else
-                        (str(v).lower() if isinstance(v, bool) else v) for v in row])
-    return Path(path)
+    return write_rows_csv(path, CSV_COLUMNS, result.rows())
 
 
 def study_misalignments(spec, count: int = 7) -> np.ndarray:
