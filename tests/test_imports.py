@@ -9,6 +9,7 @@ HEAVY = ("trimesh", "manifold3d", "viser", "OCP", "meshio", "matplotlib", "dask"
 
 
 @pytest.mark.parametrize("module", ["gearcoupling", "gearcoupling.geometry", "gearcoupling.spec",
+                                    "gearcoupling.load",
                                     "gearcoupling.cli"])
 def test_kernels_import_no_heavy_backend(module):
     code = (f"import sys, {module}; "

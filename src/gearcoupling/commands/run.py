@@ -49,6 +49,14 @@ def _sweep(spec, out: Path) -> list[Path]:
     return sweep_files(spec, out, math.degrees(spec.design_misalignment), 360)
 
 
+def _load(spec, out: Path) -> list[Path]:
+    from .load import load_files
+
+    if spec.load.torque_Nm is None:
+        raise BackendError("no [load] torque_Nm in the spec")  # reported as skipped
+    return load_files(spec, out, math.degrees(spec.design_misalignment), 360)
+
+
 def _check(spec, out: Path) -> list[Path]:
     from .check import run_step
 
@@ -67,6 +75,7 @@ STEPS: list[tuple[str, str, Step]] = [
     ("parts", "hub and sleeve STL", _parts),
     ("step", "hub and sleeve STEP", _step_files),
     ("sweep", "sweep at the design angle", _sweep),
+    ("load", "loaded contact at the design angle", _load),
     ("check", "interference check at the design angle", _check),
     ("viewer", "static viewer HTML", _viewer),
 ]

@@ -1,0 +1,84 @@
+"""``gearcoupling capacity``: torque capacity and q vs misalignment, per criterion."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import SpecError
+from ..loadspec import LOAD_MODELS
+from ..spec import load_spec, parse_override
+from .common import add_spec_arguments, output_dir, progress, spec_from_args, write_rows_csv
+
+COLUMNS = ("spec", "misalignment_deg", "capacity_Nm", "governing", "tooth_load_Nm",
+           "contact_stress_Nm", "bending_stress_Nm", "face_end_torque_Nm", "q",
+           "load_sharing_factor", "max_tooth_load_N")
+
+
+def register(sub) -> None:
+    p = sub.add_parser("capacity", help="torque capacity and q vs misalignment per criterion "
+                       "(capacity.csv, capacity.png), optionally against other specs")
+    add_spec_arguments(p)
+    p.add_argument("--compare", nargs="+", default=[], metavar="SPEC",
+                   help="more specs (templates or files) to overlay, same --set applied")
+    p.add_argument("--model", choices=LOAD_MODELS, default=None,
+                   help="load model (default: each spec's [load] model)")
+    p.add_argument("--max", type=float, default=None, metavar="DEG",
+                   help="largest misalignment (default: the spec's design angle, >= 0.5)")
+    p.add_argument("--count", type=int, default=25, metavar="N",
+                   help="misalignments from 0 to --max (default 25)")
+    p.add_argument("--no-plots", action="store_true", help="write only the CSV")
+    p.set_defaults(func=run)
+
+
+def rows(name: str, curve: list[dict]):
+    """CSV rows of one capacity curve in :data:`COLUMNS` order."""
+    for c in curve:
+        crit = c["criteria_Nm"]
+        yield (name, c["misalignment_deg"], c["capacity_Nm"], c["governing"],
+               crit.get("tooth_load"), crit.get("contact_stress"), crit.get("bending_stress"),
+               c["face_end_torque_Nm"], c["q"], c["load_sharing_factor"], c["max_tooth_load_N"])
+
+
+def write_csv(curves: dict[str, list[dict]], path: Path) -> Path:
+    return write_rows_csv(path, COLUMNS, (row for name, curve in curves.items()
+                                          for row in rows(name, curve)))
+
+
+def capacity_files(specs: list, out: Path, misalignments_deg: np.ndarray, *,
+                   model: str | None = None, plots: bool = True) -> list[Path]:
+    """Capacity curves of ``specs`` (first one names the folder) to CSV and plot."""
+    from ..load import capacity_curve
+
+    curves: dict[str, list[dict]] = {}
+    n = len(specs) * misalignments_deg.size
+    with progress("capacity", n) as advance:
+        for spec in specs:
+            curves[spec.name] = capacity_curve(
+                spec, misalignments_deg, model=model,
+                progress=lambda i, _n, s=spec: advance(f"{s.name} {i}/{_n}"))
+    paths = [write_csv(curves, out / "capacity.csv")]
+    if plots:
+        from ..load.plots import plot_capacity
+        from ..plots import save_figure
+
+        paths.append(save_figure(plot_capacity(curves), out / "capacity.png"))
+    return paths
+
+
+def run(args) -> int:
+    spec = spec_from_args(args)
+    overrides = dict(parse_override(t) for t in args.overrides)
+    others = [load_spec(s, **overrides) for s in args.compare]
+    top = args.max if args.max is not None else max(math.degrees(spec.design_misalignment), 0.5)
+    if not (math.isfinite(top) and 0 < top <= 6):
+        raise SpecError("--max", args.max, "must be a misalignment in (0, 6] degrees")
+    if args.count < 2:
+        raise SpecError("--count", args.count, "must be at least 2")
+    out = output_dir(args, spec)
+    for path in capacity_files([spec, *others], out, np.linspace(0.0, top, args.count),
+                               model=args.model, plots=not args.no_plots):
+        print(path)
+    return 0
