@@ -36,7 +36,7 @@ def register(sub) -> None:
                    help="sweep accuracy of every gap in mm (default 1e-7)")
     p.add_argument("--no-plots", action="store_true", help="write only the CSV and JSON")
     p.add_argument("--quick-plots", action="store_true",
-                   help="only the tooth-load plot (skip the misalignment studies)")
+                   help="only the tooth-load and patch plots (skip the misalignment studies)")
     p.set_defaults(func=run)
 
 
@@ -114,10 +114,11 @@ def load_files(spec, out: Path, misalignment_deg: float, angles: int, *,
     summary = res.summary()
     paths = [write_csv(res, out / "load.csv"), write_json(out / "load_summary.json", summary)]
     if plots:
-        from ..load.plots import plot_tooth_load
+        from ..load.plots import plot_patches, plot_tooth_load
         from ..plots import save_figure
 
         paths.append(save_figure(plot_tooth_load(res), out / "load_tooth_load.png"))
+        paths.append(save_figure(plot_patches(res), out / "load_patches.png"))
         if with_studies:
             paths += studies(spec, resolve_torque_Nm(spec, torque_Nm), model, out)
     return paths
