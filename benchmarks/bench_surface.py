@@ -7,6 +7,8 @@ dependent where a flank end cuts the patch: it grows like 1/sqrt(cell)), the int
 pressure and the edge intensity p sqrt(cell) (both grid independent), the patch length,
 and their differences from the finest grid.
 
+``--figures DIR`` writes pressure maps of the most loaded tooth on the developed flank
+(renzo-1967: aligned, 1°, and past the critical misalignment) as PNG files.
 ``--theory`` prints the validation tables instead: Hertz's elliptic contact (curvature
 ratios 1-20) and a quadratic gap cut by a straight edge, against grid refinement, and the
 crowned renzo-1967 patch against the line contact of the exact lead curvature.
@@ -138,6 +140,40 @@ def theory():
                   f"{res['edge_load_share'][0, 0]:.3f} |")
 
 
+def figures(out_dir):
+    from pathlib import Path
+
+    from gearcoupling.plots import new_figure, save_figure
+    from gearcoupling.sweep.design import critical_misalignment_deg
+
+    spec = load_spec("renzo-1967")
+    comp = tooth_compliance(spec)
+    crit = critical_misalignment_deg(spec)
+    cases = (("aligned", 0.0), ("1deg", 1.0), ("past_critical", crit + 0.3))
+    fig, axes = new_figure(1, len(cases), figsize=(5.6 * len(cases), 4.4), layout="constrained")
+    for ax, (name, mis) in zip(axes, cases, strict=True):
+        res = solve_surface(spec, sweep(spec, mis, [0.0]), torque_Nm=2000.0, compliance=comp,
+                            keep_fields=True)
+        f = res["fields"][0]
+        W = res["normal_force_N"][:, 0]
+        k = int(np.argmax(W))
+        i = int(np.flatnonzero(f["teeth"] == k)[0])
+        gf, p = f["field"], f["pressure_MPa"][i]
+        shown = np.where(gf.mask[i], p, np.nan)
+        im = ax.pcolormesh(gf.z_mm[i], gf.s_mm, shown.T, shading="nearest", cmap="inferno")
+        ax.contour(gf.z_mm[i], gf.s_mm, gf.mask[i].T.astype(float), levels=[0.5],
+                   colors="c", linewidths=0.8)
+        ax.set_title(f"{name} ({mis:.2f}°), tooth {k}: W = {W[k]:.0f} N\n"
+                     f"p_max {res['max_pressure_MPa'][k, 0]:.0f}, interior "
+                     f"{res['interior_pressure_MPa'][k, 0]:.0f} MPa, edge "
+                     f"{bool(res['edge_contact'][k, 0])}", fontsize=8)
+        ax.set_xlabel("z (mm, sleeve frame)")
+        ax.set_ylabel("s (mm, involute arc from the base circle)")
+        fig.colorbar(im, ax=ax, label="pressure (MPa)")
+    path = save_figure(fig, Path(out_dir) / "surface_pressure_renzo.png")
+    print(f"wrote {path}")
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--spec", default="renzo-1967")
@@ -147,7 +183,11 @@ def main(argv=None):
     ap.add_argument("--quick", action="store_true", help="stop at the 96 x 64 grid")
     ap.add_argument("--rigid", action="store_true", help="rigid teeth (no bending compliance)")
     ap.add_argument("--theory", action="store_true", help="print the validation tables")
+    ap.add_argument("--figures", metavar="DIR", help="write pressure maps into DIR")
     args = ap.parse_args(argv)
+    if args.figures:
+        figures(args.figures)
+        return
     if args.theory:
         theory()
         return

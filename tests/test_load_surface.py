@@ -207,3 +207,23 @@ def test_load_dispatches_to_the_surface_model(renzo):
     assert torque[0] == pytest.approx(1500.0, rel=1e-9)
     assert np.all(res.interior_pressure_MPa <= res.max_pressure_MPa + 1e-9)
     assert np.all(np.isfinite(res.max_pressure_MPa))
+
+
+def test_gap_offsets_enter_as_rigid_rotations(renzo):
+    """A common offset only shifts the wind-up; a tooth made proud (negative offset) takes
+    more load, one set back less (index errors, DESIGN.md §6)."""
+    sw = sweep(renzo, 1.0, [0.0])
+    base = solve_surface(renzo, sw, torque_Nm=2000.0)
+    N = renzo.tooth.teeth
+    shifted = solve_surface(renzo, sw, torque_Nm=2000.0, gap_offset_rad=np.full(N, 1e-4))
+    assert shifted["windup_rad"][0] == pytest.approx(base["windup_rad"][0] + 1e-4, rel=1e-6)
+    assert np.allclose(shifted["normal_force_N"], base["normal_force_N"], rtol=1e-4,
+                       atol=1e-6 * base["normal_force_N"].max())
+    k = int(np.argmax(base["normal_force_N"][:, 0]))
+    off = np.zeros((2, N))
+    off[1, k] = -2e-5  # ccw row: the loaded flank
+    proud = solve_surface(renzo, sw, torque_Nm=2000.0, gap_offset_rad=off)
+    assert proud["normal_force_N"][k, 0] > base["normal_force_N"][k, 0] * 1.05
+    off[1, k] = 2e-5
+    back = solve_surface(renzo, sw, torque_Nm=2000.0, gap_offset_rad=off)
+    assert back["normal_force_N"][k, 0] < base["normal_force_N"][k, 0] * 0.95

@@ -31,7 +31,6 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..errors import SpecError
 from ..geometry.hub import FLANKS, hub_model, tip_radius
-from ..geometry.involute import inv
 from ..geometry.sleeve import sleeve_model
 from ..sweep.flank_table import flank_table
 from ..sweep.pose import hub_to_sleeve
@@ -159,9 +158,8 @@ def gap_field(spec, misalignment: float, theta: ArrayLike, flank: str, z_mm: Arr
     P = hub_to_sleeve(misalignment, theta)  # (n, 3, 3)
     zq = np.broadcast_to(z[:, :, None], (n, nf, n_depth))
     rq = np.broadcast_to(r[None, None, :], (n, nf, n_depth))
-    # sleeve cw flank polar angle at rq (a first guess for the facing hub point)
-    c0 = 0.5 * sm.space_width / sm.R + float(inv(sm.phi))
-    aq = -(c0 - inv(np.arccos(np.minimum(r_b / rq, 1.0))))
+    half = sm.half_angle(rq)  # the sleeve cw flank lies at polar angle -half
+    aq = -half  # first guess for the facing hub point
     zh = rh = None
     for _ in range(FIXED_POINT_STEPS):
         px, py, zh = _apply(P, rq * np.cos(aq), rq * np.sin(aq), zq, transpose=True)
@@ -170,9 +168,7 @@ def gap_field(spec, misalignment: float, theta: ArrayLike, flank: str, z_mm: Arr
         qx, qy, _ = _apply(P, rh * np.cos(a), rh * np.sin(a), zh)
         aq = np.arctan2(qy, qx)
     # the hub point facing the cell: its polar angle at the cell's (r, z)
-    delta = aq + c0 - inv(np.arccos(np.minimum(r_b / rq, 1.0)))
-    rate = _turning_rate(P, rq, aq, zq, misalignment)
-    gap = delta / rate
+    gap = (aq + half) / _turning_rate(P, rq, aq, zq)
     if gap_offset_rad is not None:
         off = np.broadcast_to(np.asarray(gap_offset_rad, dtype=float), (n,))
         gap = gap + off[:, None, None]
@@ -208,7 +204,7 @@ def _apply(P, x, y, z, transpose=False):
     return tuple(c[i][0] * x + c[i][1] * y + c[i][2] * z for i in range(3))
 
 
-def _turning_rate(P, rq, aq, zq, misalignment):
+def _turning_rate(P, rq, aq, zq):
     """Sleeve polar angle change per unit hub turn about its tilted axis ``k = P e_z``."""
     k = P[:, :, 2]  # (n, 3)
     x, y = rq * np.cos(aq), rq * np.sin(aq)

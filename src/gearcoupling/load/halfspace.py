@@ -32,7 +32,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy import fft
 
-from ..errors import SpecError
+from ..errors import GearCouplingError, SpecError
 
 DEFAULT_TOLERANCE = 1e-8  # relative: |dp| summed / |p| summed and gap residual / gap scale
 MAX_ITER = 4000
@@ -257,8 +257,10 @@ def solve_contact(hs: HalfSpace, gap0_mm: ArrayLike, *, load_N: float | None = N
     while True:
         it += 1
         if it > max_iter:
-            raise RuntimeError(f"contact solver did not converge in {max_iter} iterations "
-                               f"(relative change {res:.3g} > {tolerance:.3g})")
+            raise GearCouplingError(
+                f"contact solver did not converge in {max_iter} iterations (relative "
+                f"change {res:.3g} > tolerance {tolerance:.3g}): loosen the tolerance or "
+                "coarsen the grid")
         on = p > 0
         g = u + g0
         if given_load:

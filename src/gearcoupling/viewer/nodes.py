@@ -32,9 +32,8 @@ from .scene import (
     PoseState,
     SceneMeshes,
     build_scene_meshes,
-    clearance_colors,
     default_color_scale_mm,
-    flank_values,
+    flank_colors,
     hub_rotation,
     interference_mesh,
     legend,
@@ -212,10 +211,11 @@ class CouplingScene:
         """Move the hub to a pose and recolour: no mesh is rebuilt (the interference
         solid, which is new geometry at every pose, is the only node re-added)."""
         st = self.settings
-        state = pose_state(self.spec, misalignment_deg, psi_deg, band_mm=st.band_mm)
+        state = pose_state(self.spec, misalignment_deg, psi_deg, band_mm=st.band_mm,
+                           pressure=st.color_mode == "pressure")
         st.misalignment_deg, st.psi_deg = state.misalignment_deg, state.psi_deg
         rot = hub_rotation(state.misalignment_deg, state.psi_deg)
-        colors = clearance_colors(flank_values(state, st.color_mode), self.color_scale_mm)
+        colors = flank_colors(state, st.color_mode, self.color_scale_mm, self.spec)
         patch = None
         volume = 0.0
         # the boolean runs only when some flank comes within the chordal tolerance: farther
@@ -251,8 +251,11 @@ class CouplingScene:
         """Recolour the flanks after a colour-scale change (same pose)."""
         if self.state is None:
             return
-        colors = clearance_colors(flank_values(self.state, self.settings.color_mode),
-                                  self.color_scale_mm)
+        st = self.settings
+        if st.color_mode == "pressure" and self.state.pressure_MPa is None:
+            self.set_pose(st.misalignment_deg, st.psi_deg)  # solves the pressure
+            return
+        colors = flank_colors(self.state, st.color_mode, self.color_scale_mm, self.spec)
         with self.server.atomic():
             for f in range(2):
                 for k, handle in enumerate(self._flanks[f]):

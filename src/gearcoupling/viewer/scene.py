@@ -41,10 +41,13 @@ NO_CONTACT_RGB = (150, 150, 150)
 # clearance colour stops from 0 (touching) to the colour scale (free)
 _STOPS = np.array([[0.0, 255, 215, 0], [0.35, 120, 200, 60], [0.7, 40, 170, 170],
                    [1.0, 40, 80, 200]])
-COLOR_MODES = ("clearance", "separation")
+COLOR_MODES = ("clearance", "separation", "pressure")
 """What the flank colours show: the clearance itself, or Renzo's separation (clearance
 minus the smallest of its flank at this pose: 0 on the teeth that touch first when torque
-closes the backlash)."""
+closes the backlash), or the contact pressure at the spec's torque (the ``surface`` load
+model's interior pressure of each tooth, against the allowable contact stress)."""
+_PRESSURE_STOPS = np.array([[0.0, 40, 80, 200], [0.5, 40, 170, 170], [0.8, 255, 215, 0],
+                            [1.0, 220, 20, 20]])
 DEFAULT_PLOT_SAMPLES = 720
 VIEW_SWEEP_TOLERANCE_MM = 1e-5
 """Accuracy of the clearance minima the viewer shows (mm), far below what colours show."""
@@ -266,6 +269,7 @@ class PoseState:
     contact_tooth: NDArray[np.intp]
     interfering: NDArray[np.bool_]
     backlash_mm: float
+    pressure_MPa: NDArray[np.float64] | None = None  # (2, N) with pressure=True
 
     @property
     def min_clearance_mm(self) -> NDArray[np.float64]:
@@ -287,7 +291,8 @@ class PoseState:
 
 
 def pose_state(spec, misalignment_deg: float, psi_deg: float, *, band_mm: float = 0.005,
-               tolerance_mm: float = VIEW_SWEEP_TOLERANCE_MM) -> PoseState:
+               tolerance_mm: float = VIEW_SWEEP_TOLERANCE_MM,
+               pressure: bool = False) -> PoseState:
     """Exact clearances, contact points and interference at one pose.
 
     Parameters
@@ -300,6 +305,9 @@ def pose_state(spec, misalignment_deg: float, psi_deg: float, *, band_mm: float 
         smallest on its flank (Renzo's separation ``z`` below the band), or negative.
     tolerance_mm : float
         Accuracy of the clearance minima (see :func:`gearcoupling.sweep.sweep`).
+    pressure : bool
+        Also solve the contact pressure at the spec's ``[load]`` torque (the ``surface``
+        model, about a second): ``pressure_MPa``.
     """
     mis, psi = check_pose(misalignment_deg, psi_deg)
     if not (math.isfinite(band_mm) and band_mm >= 0):
@@ -324,7 +332,20 @@ def pose_state(spec, misalignment_deg: float, psi_deg: float, *, band_mm: float 
     backlash = float(res.backlash_mm[0])
     return PoseState(mis, psi, float(band_mm), clear, normal, res.theta_deg[:, 0], points,
                      flank_idx, tooth_idx, interfering, backlash if math.isfinite(backlash)
-                     else 0.0)
+                     else 0.0, _pressure(spec, res) if pressure else None)
+
+
+def _pressure(spec, res) -> NDArray[np.float64]:
+    """Interior contact pressure ``(2, N)`` of the loaded flank's teeth at the spec's torque
+    (the ``surface`` load model; 0 on the other flank and on unloaded teeth)."""
+    from ..load.api import resolve_torque_Nm, tooth_compliance
+    from ..load.surface import solve_surface
+
+    out = solve_surface(spec, res, torque_Nm=resolve_torque_Nm(spec, None),
+                        compliance=tooth_compliance(spec))
+    p = np.zeros((2, res.teeth))
+    p[FLANKS.index(out["loaded_flank"])] = out["interior_pressure_MPa"][:, 0]
+    return p
 
 
 # ------------------------------------------------------------------ colours
@@ -344,6 +365,27 @@ def flank_values(state: PoseState, mode: str = "clearance") -> NDArray[np.float6
     with np.errstate(invalid="ignore"):
         sep = np.where(np.isfinite(c), c - low, np.inf)
     return np.where(state.interfering, c, np.maximum(sep, 0.0))
+
+
+def flank_colors(state: PoseState, mode: str, scale_mm: float, spec) -> NDArray[np.uint8]:
+    """RGB ``(2, N, 3)`` of the flanks in a colour mode (:data:`COLOR_MODES`)."""
+    if mode != "pressure":
+        return clearance_colors(flank_values(state, mode), scale_mm)
+    if state.pressure_MPa is None:
+        raise ValueError("pressure colours need pose_state(..., pressure=True)")
+    return pressure_colors(state.pressure_MPa,
+                           spec.material.hub.allowable_contact_stress_MPa)
+
+
+def pressure_colors(pressure_MPa: ArrayLike, allowable_MPa: float) -> NDArray[np.uint8]:
+    """RGB ``(..., 3) uint8``: grey without load, then blue through cyan and yellow to red
+    at the allowable contact stress and above."""
+    p = np.asarray(pressure_MPa, dtype=float)
+    t = np.clip(p / allowable_MPa, 0.0, 1.0)
+    rgb = np.stack([np.interp(t, _PRESSURE_STOPS[:, 0], _PRESSURE_STOPS[:, j])
+                    for j in (1, 2, 3)], axis=-1)
+    rgb = np.where((p <= 0)[..., None], np.asarray(NO_CONTACT_RGB, dtype=float), rgb)
+    return np.rint(rgb).astype(np.uint8)
 
 
 def default_color_scale_mm(spec) -> float:
@@ -370,6 +412,12 @@ def legend(scale_mm: float, steps: int = 4,
            mode: str = "clearance") -> list[tuple[str, tuple[int, int, int]]]:
     """Legend entries ``(label, rgb)``: interference, then ``steps + 1`` values from 0 to
     ``scale_mm``, then no contact."""
+    if mode == "pressure":
+        frac = np.linspace(0.0, 1.0, steps + 1)[1:]
+        cols = pressure_colors(frac, 1.0)
+        return ([(f"{f:.2f} x allowable contact stress" + (" and above" if f == 1 else ""),
+                  tuple(int(x) for x in c)) for f, c in zip(frac, cols, strict=True)]
+                + [("no load", NO_CONTACT_RGB)])
     values = np.linspace(0.0, scale_mm, steps + 1)
     cols = clearance_colors(values, scale_mm)
     out = [("< 0 mm (interference)", INTERFERENCE_RGB)]
@@ -383,6 +431,8 @@ def legend(scale_mm: float, steps: int = 4,
 
 
 def legend_title(mode: str = "clearance") -> str:
+    if mode == "pressure":
+        return "interior contact pressure at the spec's torque (surface model)"
     return ("flank clearance (circumferential)" if mode == "clearance" else
             "flank separation z (clearance minus the flank's smallest)")
 
@@ -540,6 +590,7 @@ __all__ = [
     "clearance_curve",
     "cut_sleeve",
     "default_color_scale_mm",
+    "flank_colors",
     "flank_values",
     "hub_rotation",
     "interference_mesh",
@@ -550,6 +601,7 @@ __all__ = [
     "plot_range",
     "plot_series",
     "pose_state",
+    "pressure_colors",
     "quaternion_wxyz",
     "split_hub",
     "submesh",

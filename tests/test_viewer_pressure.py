@@ -1,0 +1,30 @@
+"""The viewer's contact-pressure colours (issue 10): the surface model at the shown pose."""
+
+import numpy as np
+
+from gearcoupling.load.api import tooth_compliance
+from gearcoupling.load.surface import solve_surface
+from gearcoupling.sweep import sweep
+from gearcoupling.viewer import scene as vs
+
+
+def test_pressure_colours_follow_the_surface_model(renzo):
+    st = vs.pose_state(renzo, 1.0, 0.0, pressure=True)
+    assert st.pressure_MPa.shape == (2, renzo.tooth.teeth)
+    assert np.all(st.pressure_MPa[0] == 0)  # positive torque loads the ccw flanks
+    ref = solve_surface(renzo, sweep(renzo, 1.0, [0.0], tolerance_mm=vs.VIEW_SWEEP_TOLERANCE_MM),
+                        torque_Nm=renzo.load.torque_Nm, compliance=tooth_compliance(renzo))
+    assert np.allclose(st.pressure_MPa[1], ref["interior_pressure_MPa"][:, 0], rtol=1e-9)
+    cols = vs.flank_colors(st, "pressure", 0.02, renzo)
+    grey = np.all(cols == np.asarray(vs.NO_CONTACT_RGB, np.uint8), axis=-1)
+    assert np.array_equal(grey, st.pressure_MPa <= 0)
+    # more pressure, redder
+    loaded = np.flatnonzero(st.pressure_MPa[1] > 0)
+    lo, hi = loaded[np.argmin(st.pressure_MPa[1, loaded])], loaded[np.argmax(
+        st.pressure_MPa[1, loaded])]
+    assert int(cols[1, hi, 0]) >= int(cols[1, lo, 0])
+    entries = vs.legend(0.02, mode="pressure")
+    assert entries[-1][0] == "no load" and "allowable" in entries[-2][0]
+    # the clearance modes are unchanged by the new one
+    assert np.array_equal(vs.flank_colors(st, "clearance", 0.02, renzo),
+                          vs.clearance_colors(st.clearance_mm, 0.02))
