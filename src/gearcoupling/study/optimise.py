@@ -117,14 +117,19 @@ def optimise_crown(study: Study, *, on_row: Callable[[dict[str, Any]], None] | N
     lo = np.array([q.low for q in params])
     hi = np.array([q.high for q in params])
 
+    seen: dict[tuple[float, ...], float] = {}
+
     def f(u) -> float:
         x = lo + (hi - lo) * np.clip(np.atleast_1d(u), 0.0, 1.0)
+        if tuple(x) in seen:  # a clipped point met again: no second evaluation or row
+            return seen[tuple(x)]
         inputs = {q.key: float(v) for q, v in zip(params, x, strict=True)}
         row = {"evaluation": len(rows), **crown_row(study, inputs, options)}
         rows.append(row)
         if on_row is not None:
             on_row(row)
-        return -row["objective"] / 1e3
+        seen[tuple(x)] = -row["objective"] / 1e3
+        return seen[tuple(x)]
 
     budget = options["max_evaluations"]
     if len(params) == 1:
