@@ -2,9 +2,12 @@
 
 from __future__ import annotations
 
+import json
+
 import gearcoupling as gc
-from gearcoupling.study import load_study
-from gearcoupling.study.optimise import capacity_curve_Nm, optimise_crown
+from gearcoupling.cli import main
+from gearcoupling.study import read_table
+from gearcoupling.study.optimise import capacity_curve_Nm
 
 STUDY = """\
 [study]
@@ -16,6 +19,7 @@ angle_tolerance_deg = 1e-2
 angles_deg = [0.5, 1.5]
 max_evaluations = 6
 model = "renzo"
+compare = ["renzo-1967"]
 [[vary]]
 key = "hub.crowning.radius"
 range = [1.0, 6.0]
@@ -25,8 +29,10 @@ range = [1.0, 6.0]
 def test_optimisation_rows_constraints_and_best(tmp_path):
     path = tmp_path / "opt.toml"
     path.write_text(STUDY)
-    result = optimise_crown(load_study(path))
-    rows = result.rows
+    out = tmp_path / "out"
+    assert main(["study", str(path), "-o", str(out), "--no-plots"]) == 0
+    rows = read_table(out / "study.parquet")
+    report = json.loads((out / "optimum.json").read_text())
     assert 3 <= len(rows) <= 7 and [r["evaluation"] for r in rows] == list(range(len(rows)))
     for r in rows:
         spec = gc.load_spec("renzo-1967", **{"hub.crowning.radius": r["hub.crowning.radius"]})
@@ -37,5 +43,9 @@ def test_optimisation_rows_constraints_and_best(tmp_path):
         assert r["feasible"] == ((crit is None or crit >= 1.5) and r["min_backlash_mm"] > 0)
     feasible = [r for r in rows if r["feasible"]]
     assert any(not r["feasible"] for r in rows) and feasible  # the bound is active
-    assert result.best["objective"] == max(r["objective"] for r in feasible)
-    assert result.best["objective"] == result.best["capacity_mean_Nm"]
+    best = report["best"]
+    assert best["objective"] == max(r["objective"] for r in feasible)
+    assert best["objective"] == best["capacity_mean_Nm"]
+    base = report["capacity_curves_Nm"]["renzo-1967"]
+    assert base["1.5"] == capacity_curve_Nm(gc.load_spec("renzo-1967"), [1.5], model="renzo",
+                                            steps=1)[0]

@@ -210,3 +210,22 @@ def plot_capacity_curves(curves: dict[str, tuple[np.ndarray, np.ndarray]], *, ax
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
     return fig
+
+
+def compare_curves(study: Study, best: dict[str, Any], points: int = 8
+                   ) -> dict[str, tuple[np.ndarray, np.ndarray]]:
+    """Capacity curves (``points`` angles up to the largest design angle) of the optimum
+    and of the ``compare`` specs, by name."""
+    from ..spec import load_spec
+
+    options = optimise_options(study)
+    acc = study.accuracy
+    angles = np.linspace(0.0, max(options["angles_deg"]), points + 1)[1:]
+    keys = [q.key for q in study.parameters]
+    specs = {"optimum": build_spec(study.base_name, study.base_text,
+                                   {**study.fixed, **{k: best[k] for k in keys}})}
+    specs.update({name: load_spec(name) for name in options["compare"]})
+    return {name: (angles, capacity_curve_Nm(s, angles, model=options["model"],
+                                             steps=int(acc["steps"]),
+                                             tolerance_mm=acc["tolerance_mm"]))
+            for name, s in specs.items()}
