@@ -88,3 +88,24 @@ def test_additional_moment_grows_with_misalignment_and_friction():
                                     ["tilting_moment_Nm"]))
     assert moments[0] < moments[1] < moments[2]
     assert all(f < m for f, m in zip(frictionless, moments, strict=True))
+
+
+def test_plots_return_figures_and_accept_ax():
+    from gearcoupling.load.plots import (
+        plot_capacity,
+        plot_patches,
+        plot_q_graph,
+        plot_tooth_load,
+        plot_vs_misalignment,
+    )
+    from gearcoupling.plots import new_figure
+
+    spec = gc.load_spec("renzo-1967")
+    res = load_from_sweep(spec, sweep(spec, 1.0, [0.0, 3.6]))
+    fig, ax = new_figure()
+    assert plot_tooth_load(res, ax=ax) is fig
+    assert plot_patches(res).axes
+    assert plot_q_graph({"x": [(0.25, 0.22)]}, ax=ax) is fig
+    assert plot_vs_misalignment([0.5, 1.0], {"a": [1.0, 2.0]}, "y", ax=ax) is fig
+    rows = [{"misalignment_deg": 0.0, "capacity_Nm": 10.0, "criteria_Nm": {"tooth_load": 10.0}}]
+    assert plot_capacity({"s": rows}, ax=ax) is fig

@@ -138,3 +138,59 @@ def test_bad_load_spec_values_are_refused():
             gc.load_spec("renzo-1967", **{key: value})
     with pytest.raises(SpecError, match="not both"):
         gc.load_spec("renzo-1967", **{"load.torque_Nm": 5.0})
+
+
+def _synthetic(cm, A_f, A_p, L, r):
+    """A contact-geometry dict like ContactModel.geometry for given curvatures."""
+    ratio = A_f / A_p
+    k = ratio ** (2 / math.pi)
+    eps = 1 + (math.pi / 2 - 1) / ratio
+    Rp = 1 / (A_f + A_p)
+    ws = (0.5 * L) ** 3 * math.pi * 2 * cm.E_star / (6 * k**2 * eps * Rp)
+    arr = lambda v: np.array([float(v)])  # noqa: E731
+    return {"A_f": arr(A_f), "A_p": arr(A_p), "L": arr(L), "k": arr(k), "eps": arr(eps),
+            "Rp": arr(Rp), "ratio": arr(ratio), "w_star": arr(ws), "r": arr(r), "z": arr(0.0)}
+
+
+def test_contact_law_is_hertz_for_a_sphere_and_continuous_at_the_switch():
+    spec = gc.load_spec("renzo-1967")
+    from gearcoupling.load.contact import contact_model
+
+    cm = contact_model(spec)
+    Rs = 20.0  # sphere of radius 20 mm on a plane: curvature 1/Rs both ways
+    g = _synthetic(cm, 1 / Rs, 1 / Rs, 50.0, spec.tooth.pitch_radius)
+    law = cm.laws(g)
+    W = np.array([100.0])
+    delta, _ = cm.approach_mm(W, law)
+    a = (3 * W * Rs / (4 * cm.E_star)) ** (1 / 3)
+    assert delta[0] == pytest.approx(float(a[0] ** 2 / Rs), rel=1e-9)
+    est = cm.estimates(W, g)
+    assert est["interior_pressure_MPa"][0] == pytest.approx(
+        float(1.5 * W[0] / (math.pi * a[0] ** 2)), rel=1e-9)
+    # conformal profile: the ellipse outgrows L, then line contact; approach stays continuous
+    g = _synthetic(cm, 5e-3, 1e-5, 8.0, spec.tooth.pitch_radius)
+    law = cm.laws(g)
+    ws = float(g["w_star"][0])
+    lo, _ = cm.approach_mm(np.array([ws * (1 - 1e-9)]), law)
+    hi, _ = cm.approach_mm(np.array([ws * (1 + 1e-9)]), law)
+    assert hi[0] == pytest.approx(lo[0], rel=1e-6)
+    Ws = np.geomspace(1e-3, 1e6, 400) * ws
+    d, s = cm.approach_mm(Ws, {k: np.broadcast_to(v, Ws.shape) if isinstance(v, np.ndarray)
+                               else [np.broadcast_to(x, Ws.shape) for x in v]
+                               for k, v in law.items()})
+    assert np.all(np.diff(d) > 0) and np.all(s > 0)
+
+
+def test_max_tooth_load_grows_with_misalignment_and_crowning_radius():
+    """Wei et al.: the maximum tooth load increases with the misalignment and the crowning
+    radius (their Fig. 12 and conclusion 3), at the template torque."""
+    spec = gc.load_spec("renzo-1967")
+    flat = gc.load_spec("renzo-1967", **{"hub.crowning.radius": 4.0})
+    psi = np.linspace(0, 7.2, 5, endpoint=False)
+
+    def peak(s, i):
+        return float(np.max(load_from_sweep(s, sweep(s, i, psi)).tangential_force_N))
+
+    peaks = [peak(spec, i) for i in (0.25, 0.5, 1.0, 2.0)]
+    assert np.all(np.diff(peaks) > 0), peaks
+    assert peak(flat, 1.0) > peaks[2]

@@ -96,3 +96,14 @@ def test_missing_torque_is_a_clear_error():
     sw = sweep(spec, 1.0, [0.0])
     with pytest.raises(SpecError, match="torque"):
         load_from_sweep(spec, sw, model="linear")
+
+
+def test_public_api_from_the_top_level():
+    spec = gc.load_spec("renzo-1967")
+    res = gc.load(spec, 1.0, [0.0, 1.0], model="linear", tolerance_mm=1e-6)
+    assert isinstance(res, gc.LoadResult) and res.tangential_force_N.shape == (50, 2)
+    import gearcoupling.load as pkg  # the package is callable too: gc.load works either way
+
+    again = pkg(spec, 1.0, [0.0, 1.0], model="linear", tolerance_mm=1e-6)
+    np.testing.assert_array_equal(again.tangential_force_N, res.tangential_force_N)
+    assert callable(gc.capacity) and callable(gc.capacity_curve)

@@ -2,17 +2,15 @@
 
 from __future__ import annotations
 
-import csv
 import math
 from pathlib import Path
 
 import numpy as np
 
-from ..atomic import atomic_path
 from ..errors import SpecError
 from ..loadspec import LOAD_MODELS
 from ..spec import load_spec, parse_override
-from .common import add_spec_arguments, output_dir, progress, spec_from_args
+from .common import add_spec_arguments, output_dir, progress, spec_from_args, write_rows_csv
 
 COLUMNS = ("spec", "misalignment_deg", "capacity_Nm", "governing", "tooth_load_Nm",
            "contact_stress_Nm", "bending_stress_Nm", "face_end_torque_Nm", "q",
@@ -45,14 +43,8 @@ def rows(name: str, curve: list[dict]):
 
 
 def write_csv(curves: dict[str, list[dict]], path: Path) -> Path:
-    with atomic_path(path) as tmp, open(tmp, "w", newline="") as fh:
-        w = csv.writer(fh)
-        w.writerow(COLUMNS)
-        for name, curve in curves.items():
-            for row in rows(name, curve):
-                w.writerow(["" if v is None else (f"{v:.9g}" if isinstance(v, float) else v)
-                            for v in row])
-    return path
+    return write_rows_csv(path, COLUMNS, (row for name, curve in curves.items()
+                                          for row in rows(name, curve)))
 
 
 def capacity_files(specs: list, out: Path, misalignments_deg: np.ndarray, *,

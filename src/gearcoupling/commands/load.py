@@ -2,13 +2,12 @@
 
 from __future__ import annotations
 
-import csv
 import math
 from pathlib import Path
 
 import numpy as np
 
-from ..atomic import atomic_path, write_json
+from ..atomic import write_json
 from ..errors import SpecError
 from ..loadspec import LOAD_MODELS
 from .common import (
@@ -18,6 +17,7 @@ from .common import (
     output_dir,
     progress,
     spec_from_args,
+    write_rows_csv,
 )
 
 
@@ -36,7 +36,7 @@ def register(sub) -> None:
                    help="sweep accuracy of every gap in mm (default 1e-7)")
     p.add_argument("--no-plots", action="store_true", help="write only the CSV and JSON")
     p.add_argument("--quick-plots", action="store_true",
-                   help="only the tooth-load plot (skip the misalignment studies)")
+                   help="only the tooth-load and patch plots (skip the misalignment studies)")
     p.set_defaults(func=run)
 
 
@@ -44,13 +44,7 @@ def write_csv(result, path: str | Path) -> Path:
     """The long-form ``load.csv`` of a LoadResult, written atomically."""
     from ..load import CSV_COLUMNS
 
-    with atomic_path(path) as tmp, open(tmp, "w", newline="") as fh:
-        w = csv.writer(fh)
-        w.writerow(CSV_COLUMNS)
-        for row in result.rows():
-            w.writerow([f"{v:.9g}" if isinstance(v, float) else
-                        (str(v).lower() if isinstance(v, bool) else v) for v in row])
-    return Path(path)
+    return write_rows_csv(path, CSV_COLUMNS, result.rows())
 
 
 def study_misalignments(spec, count: int = 7) -> np.ndarray:
@@ -120,10 +114,11 @@ def load_files(spec, out: Path, misalignment_deg: float, angles: int, *,
     summary = res.summary()
     paths = [write_csv(res, out / "load.csv"), write_json(out / "load_summary.json", summary)]
     if plots:
-        from ..load.plots import plot_tooth_load
+        from ..load.plots import plot_patches, plot_tooth_load
         from ..plots import save_figure
 
         paths.append(save_figure(plot_tooth_load(res), out / "load_tooth_load.png"))
+        paths.append(save_figure(plot_patches(res), out / "load_patches.png"))
         if with_studies:
             paths += studies(spec, resolve_torque_Nm(spec, torque_Nm), model, out)
     return paths

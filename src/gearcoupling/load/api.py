@@ -55,6 +55,15 @@ def loaded_gaps(sweep_result, flank: int, gap_offset_rad: ArrayLike | None) -> N
     return g + off[:, None]
 
 
+def contact_points(spec, sweep_result, flank: int) -> tuple[NDArray, NDArray]:
+    """First-touch ``(z, r)`` of the loaded flank, ``(N, M)``; where nothing faces the sleeve
+    (no finite point) the midplane pitch point stands in (those teeth carry no load)."""
+    z = sweep_result.contact_z_mm[flank]
+    r = sweep_result.contact_r_mm[flank]
+    ok = np.isfinite(z) & np.isfinite(r)
+    return np.where(ok, z, 0.0), np.where(ok, r, spec.tooth.pitch_radius)
+
+
 def tooth_compliance(spec):
     """The compliance object of ``[load] stiffness``: cantilever, or the FE table."""
     if spec.load.stiffness == "fe":
@@ -122,8 +131,7 @@ def load_from_sweep(spec, sweep_result, *, torque_Nm: float | None = None,
     m = resolve_model(spec, model)
     flank = 1 if T >= 0 else 0
     g = loaded_gaps(sweep_result, flank, gap_offset_rad)
-    z = sweep_result.contact_z_mm[flank]
-    r = sweep_result.contact_r_mm[flank]
+    z, r = contact_points(spec, sweep_result, flank)
     if m == "linear":
         from .linear_model import solve_linear
 
@@ -179,8 +187,7 @@ def _result(spec, sw, T: float, model: str, flank: int, g, z, r, out: dict) -> L
         theta_deg=np.asarray(sw.theta_deg), windup_rad=sign * np.asarray(out["windup_rad"]),
         gap_angle_rad=g, deflection_mm=get("deflection_mm"), tangential_force_N=P,
         normal_force_N=get("normal_force_N"),
-        contact_z_mm=get("contact_z_mm", np.where(P > 0, z, zeros)),
-        contact_r_mm=get("contact_r_mm", np.where(P > 0, r, zeros)),
+        contact_z_mm=get("contact_z_mm", z), contact_r_mm=get("contact_r_mm", r),
         max_pressure_MPa=get("max_pressure_MPa"),
         interior_pressure_MPa=get("interior_pressure_MPa", out.get("max_pressure_MPa", zeros)),
         edge_load_share=get("edge_load_share"), patch_length_mm=get("patch_length_mm"),

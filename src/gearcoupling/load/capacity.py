@@ -23,7 +23,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import SpecError
-from .api import loaded_gaps, resolve_model, tooth_compliance
+from .api import contact_points, loaded_gaps, resolve_model, tooth_compliance
 from .compliance import first_limit_torque_Nmm
 from .contact import contact_model
 
@@ -100,10 +100,7 @@ def capacity_from_sweep(spec, sweep_result, *, model: str | None = None,
     m = resolve_model(spec, model)
     flank = 1 if sign >= 0 else 0
     g = loaded_gaps(sweep_result, flank, gap_offset_rad)
-    R = spec.tooth.pitch_radius
-    z = np.nan_to_num(sweep_result.contact_z_mm[flank])
-    r = np.where(np.isfinite(sweep_result.contact_r_mm[flank]),
-                 sweep_result.contact_r_mm[flank], R)
+    z, r = contact_points(spec, sweep_result, flank)
     comp = tooth_compliance(spec)
     limits = limit_loads(spec, z, r, comp)
     torques: dict[str, float] = {}

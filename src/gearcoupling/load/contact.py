@@ -133,31 +133,22 @@ class ContactModel:
 
     # ------------------------------------------------------------------ contact laws
     def _hertz(self, W, g):
-        """Approach, semi-axes (depth, face) and p0 of the elliptic contact."""
+        """Semi-axes (across the depth, along the face) and p0 of the elliptic contact."""
         E2 = 2.0 * self.E_star
         k, eps, Rp = g["k"], g["eps"], g["Rp"]
         with np.errstate(divide="ignore", invalid="ignore"):
-            F = math.pi / 2 + (math.pi / 2 - 1) * np.log(np.minimum(g["ratio"], 1e12))
-            delta = F * np.cbrt(9 / (2 * eps * Rp) * (W / (math.pi * k * E2)) ** 2)
             a = np.cbrt(6 * k**2 * eps * W * Rp / (math.pi * E2))
             b = np.cbrt(6 * eps * W * Rp / (math.pi * k * E2))
             p0 = np.where(W > 0, 1.5 * W / (math.pi * a * b), 0.0)
-        return delta, a, b, p0
+        return a, b, p0
 
     def _line(self, W, g):
-        """Approach increment law, half-width along the face and p0 of the line contact."""
-        L, R = g["L"], 1.0 / g["A_f"]
-        b = np.sqrt(4 * W * R / (math.pi * L * self.E_star))
-        delta = np.zeros_like(W)
-        for mat, h in zip(self.mats, self._half_thickness(g["r"]), strict=True):
-            nu, E = mat.poisson_ratio, mat.youngs_modulus_MPa
-            with np.errstate(divide="ignore"):
-                br = np.log(np.where(b > 0, 2 * h / np.maximum(b, 1e-300), np.inf))
-            br = np.where(W > 0, np.maximum(br - nu / (2 * (1 - nu)), LN_FLOOR), LN_FLOOR)
-            delta = delta + 2 * W / (math.pi * L) * (1 - nu**2) / E * br
+        """Half-width along the face and p0 of the line contact."""
+        L = g["L"]
+        b = np.sqrt(4 * W / (g["A_f"] * math.pi * L * self.E_star))
         with np.errstate(divide="ignore", invalid="ignore"):
             p0 = np.where(W > 0, 2 * W / (math.pi * np.maximum(b, 1e-300) * L), 0.0)
-        return delta, b, p0
+        return b, p0
 
     def _half_thickness(self, r):
         from .cantilever import CantileverCompliance
@@ -223,7 +214,7 @@ class ContactModel:
     def pressure_limit_load(self, p_MPa: float, g: dict) -> NDArray:
         """Normal load (N) at which the interior pressure first reaches ``p_MPa``."""
         ws = np.maximum(g["w_star"], 1e-300)
-        _, _, _, p_h = self._hertz(ws, g)
+        _, _, p_h = self._hertz(ws, g)
         beta = np.sqrt(4 / (g["A_f"] * math.pi * g["L"] * self.E_star))
         line = 2 / (math.pi * beta * g["L"])  # p0 = line sqrt(W)
         return self._first_load(np.full(ws.shape, p_MPa), g, p_h, line, 0.5)
@@ -231,7 +222,7 @@ class ContactModel:
     def half_length_limit_load(self, half_mm: NDArray, g: dict) -> NDArray:
         """Normal load (N) at which the patch half-length along the face reaches ``half_mm``."""
         ws = np.maximum(g["w_star"], 1e-300)
-        _, _, b_h, _ = self._hertz(ws, g)
+        _, b_h, _ = self._hertz(ws, g)
         beta = np.sqrt(4 / (g["A_f"] * math.pi * g["L"] * self.E_star))
         return self._first_load(np.asarray(half_mm, dtype=float), g, b_h, beta, 0.5)
 
@@ -239,8 +230,8 @@ class ContactModel:
         """Pressures and patch sizes at normal load ``W`` (arrays named as in LoadResult)."""
         W = np.maximum(np.asarray(W, dtype=float), 0.0)
         hertz = (W <= g["w_star"]) & (W > 0)
-        _, a, b_h, p_h = self._hertz(W, g)
-        b_l, p_l = self._line(W, g)[1:]
+        a, b_h, p_h = self._hertz(W, g)
+        b_l, p_l = self._line(W, g)
         half_len = np.where(hertz, b_h, b_l)  # along the face
         width = np.where(hertz, 2 * a, g["L"])  # across the depth
         p0 = np.where(hertz, p_h, p_l)

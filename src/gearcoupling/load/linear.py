@@ -15,7 +15,7 @@ from ..errors import SpecError
 
 
 def solve_windup(gap_rad: NDArray[np.float64], stiffness_Nmm_per_rad: NDArray[np.float64],
-                 torque_Nmm: float) -> NDArray[np.float64]:
+                 torque_Nmm: float, *, excess: bool = False):
     """Exact wind-up of each rotation for linear tooth stiffnesses.
 
     Parameters
@@ -26,6 +26,10 @@ def solve_windup(gap_rad: NDArray[np.float64], stiffness_Nmm_per_rad: NDArray[np
         Torsional stiffness ``K_k`` of each tooth pair (N·mm/rad), > 0.
     torque_Nmm : float
         Torque magnitude ``T >= 0`` (N·mm).
+
+    excess : bool
+        Return ``(min_k g_k, dpsi - min_k g_k)`` instead: the excess keeps its full relative
+        precision at tiny torques.
 
     Returns
     -------
@@ -41,10 +45,11 @@ def solve_windup(gap_rad: NDArray[np.float64], stiffness_Nmm_per_rad: NDArray[np
         raise SpecError("torque_Nm", torque_Nmm / 1e3, "must be a finite torque")
     if not np.all(np.any(np.isfinite(g), axis=0)):
         raise SpecError("misalignment_deg", None, "no tooth can touch at some rotation")
+    g_min = np.min(g, axis=0)
     if torque_Nmm == 0:
-        return np.min(g, axis=0)
+        return (g_min, np.zeros_like(g_min)) if excess else g_min
     order = np.argsort(g, axis=0)
-    gs = np.take_along_axis(g, order, axis=0)
+    gs = np.take_along_axis(g, order, axis=0) - g_min  # exact 0 for the first: no cancellation
     Ks = np.where(np.isfinite(gs), np.take_along_axis(K, order, axis=0), 0.0)
     gs0 = np.where(np.isfinite(gs), gs, 0.0)
     cum_K = np.cumsum(Ks, axis=0)            # stiffness of the first n+1 teeth
@@ -54,4 +59,5 @@ def solve_windup(gap_rad: NDArray[np.float64], stiffness_Nmm_per_rad: NDArray[np
         t_next = np.where(np.isfinite(gs[1:]), gs[1:] * cum_K[:-1] - cum_Kg[:-1], np.inf)
     n = np.sum(t_next < torque_Nmm, axis=0)  # teeth beyond the first that are active
     cols = np.arange(g.shape[1])
-    return (torque_Nmm + cum_Kg[n, cols]) / cum_K[n, cols]
+    x = (torque_Nmm + cum_Kg[n, cols]) / cum_K[n, cols]
+    return (g_min, x) if excess else g_min + x

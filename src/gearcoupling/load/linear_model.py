@@ -33,8 +33,10 @@ def solve_linear(spec, gap_rad: NDArray, z_mm: NDArray, r_mm: NDArray,
     R = spec.tooth.pitch_radius
     C = mesh_stiffness_N_per_mm(spec)
     K = C * R * R
-    windup = solve_windup(gap_rad, K, torque_Nmm)
-    closure = np.maximum(windup[None, :] - gap_rad, 0.0)
+    g_min, x = solve_windup(gap_rad, K, torque_Nmm, excess=True)
+    windup = g_min + x
+    # closure from the gaps above the first (exact differences, no cancellation at tiny T)
+    closure = np.maximum(x[None, :] - (gap_rad - g_min[None, :]), 0.0)
     P = C * R * closure
     Fn = P / math.cos(spec.tooth.pressure_angle)
     active = closure > 0
