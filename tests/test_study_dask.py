@@ -179,3 +179,19 @@ def test_worker_killed_mid_study_is_retried(cluster, study_file, uninterrupted, 
             run.wait(timeout=15)
     assert run.returncode == 0, err
     assert read_table(out / "study.parquet") == uninterrupted
+
+
+def test_local_cluster_by_default(tmp_path, capsys):
+    study = tmp_path / "local.toml"
+    study.write_text('[study]\nbase = "renzo-1967"\noutputs = ["min_backlash_mm"]\n'
+                     '[accuracy]\nsteps = 2\n[[vary]]\nkey = "misalignment_deg"\n'
+                     'values = [0.0, 1.0]\n[[plot]]\nx = "misalignment_deg"\n'
+                     'y = "min_backlash_mm"\n')
+    assert main(["study", str(study), "-o", str(tmp_path / "out"), "--workers", "1"]) == 0
+    rows = read_table(tmp_path / "out" / "study.parquet")
+    spec = gc.load_spec("renzo-1967")
+    # aligned, the smallest backlash over the turn is the spec's aligned backlash
+    assert rows[0]["min_backlash_mm"] == pytest.approx(spec.derived["aligned_backlash_mm"],
+                                                       rel=1e-6)
+    assert rows[1]["min_backlash_mm"] < rows[0]["min_backlash_mm"]
+    assert (tmp_path / "out" / "plot-0-min_backlash_mm.png").stat().st_size > 1000

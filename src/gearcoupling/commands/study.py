@@ -76,15 +76,11 @@ def _tolerance_summary(study, rows, out: Path, *, plots: bool) -> None:
 
 
 def _optimise(study, out: Path, *, plots: bool) -> int:
-    """Crown optimisation: rows as they come, the optimum, capacity curves against the
+    """Crown optimisation: every evaluation's row, the optimum, capacity curves against the
     compared specs."""
-    import numpy as np
-
     from ..atomic import write_json
-    from ..spec import load_spec
-    from ..study.file import build_spec
     from ..study.optimise import (
-        capacity_curve_Nm,
+        compare_curves,
         optimise_crown,
         optimise_options,
         plot_capacity_curves,
@@ -105,17 +101,11 @@ def _optimise(study, out: Path, *, plots: bool) -> int:
     print("optimum: " + ", ".join(f"{k} = {result.best[k]:.6g}" for k in keys)
           + f"; capacity {options['objective']} {result.best['objective']:.1f} N m, critical "
           f"misalignment {result.best['critical_misalignment_deg']}")
-    angles = np.linspace(0.0, max(options["angles_deg"]), 9)[1:]
-    acc = study.accuracy
-    specs = {"optimum": build_spec(study.base_name, study.base_text,
-                                   {**study.fixed, **{k: result.best[k] for k in keys}})}
-    specs.update({name: load_spec(name) for name in options["compare"]})
-    curves = {name: (angles, capacity_curve_Nm(s, angles, steps=int(acc["steps"]),
-                                               tolerance_mm=acc["tolerance_mm"]))
-              for name, s in specs.items()}
+    curves = compare_curves(study, result.best)
     report = {"best": result.best, "evaluations": len(result.rows),
               "capacity_curves_Nm": {n: dict(zip([f"{a:g}" for a in angles], c.tolist(),
-                                                 strict=True)) for n, (_, c) in curves.items()}}
+                                                 strict=True))
+                                     for n, (angles, c) in curves.items()}}
     print(write_json(out / "optimum.json", report))
     for name, (_, cap) in curves.items():
         print(f"  {name:28s} " + " ".join(f"{c:8.0f}" for c in cap) + "  N m")

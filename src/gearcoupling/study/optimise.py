@@ -10,9 +10,10 @@ in ``[set]``; ``[optimise]`` gives the angles, the objective and the evaluation 
     objective = "mean"          # mean or min of the capacity over the angles
     max_evaluations = 40
     compare = ["renzo-1967"]    # specs whose capacity curves are plotted beside the optimum
+    model = "compliance"        # capacity model (default the spec's; "renzo": closed form)
 
-Capacity is Renzo's (linear model, allowable tooth load ``P_i``, K = 1) from the exact
-clearance map at each angle (:func:`.tolerance.linear_outputs`). Refused specs and
+Capacity is the load analysis' governing capacity (tooth load, contact and root stress)
+at each angle, or Renzo's closed form with ``model = "renzo"``. Refused specs and
 infeasible points are rows too (``feasible`` false) and score a penalty.
 """
 
@@ -41,11 +42,22 @@ class Optimum:
     rows: list[dict[str, Any]]
 
 
-def capacity_curve_Nm(spec, angles_deg, *, steps: int = 4, tolerance_mm: float = 1e-7
-                      ) -> np.ndarray:
-    """Renzo's capacity (N m, linear model, K = 1) at each misalignment in ``angles_deg``."""
+def capacity_curve_Nm(spec, angles_deg, *, model: str | None = None, steps: int = 4,
+                      tolerance_mm: float = 1e-7) -> np.ndarray:
+    """Capacity (N m) at each misalignment in ``angles_deg``: the load analysis' governing
+    capacity (:func:`gearcoupling.load.capacity.capacity`, ``model`` default the spec's,
+    times the spec's accuracy factor), or with ``model = "renzo"`` Renzo's closed form
+    (linear model, tooth-load criterion, K = 1, ``steps`` rotations per pitch)."""
     from .tolerance import ideal_map, linear_outputs, rotations
 
+    if model != "renzo":
+        from ..load.capacity import capacity
+
+        caps = [capacity(spec, a, model=model, tolerance_mm=tolerance_mm)["capacity_Nm"]
+                for a in angles_deg]
+        if any(c is None for c in caps):
+            raise SpecError("capacity", None, "no criterion is reached at some angle")
+        return np.array(caps, dtype=float)
     psi = rotations(spec, steps)
     T = spec.load.torque_Nm or 0.0
     return np.array([linear_outputs(spec, ideal_map(spec, math.radians(a), psi, tolerance_mm),
@@ -65,7 +77,7 @@ def crown_row(study: Study, inputs: dict[str, Any], options: dict[str, Any]) -> 
     try:
         spec = build_spec(study.base_name, study.base_text, {**study.fixed, **inputs})
         row["spec_hash"] = spec_hash(spec)
-        cap = capacity_curve_Nm(spec, angles, steps=int(acc["steps"]),
+        cap = capacity_curve_Nm(spec, angles, model=options["model"], steps=int(acc["steps"]),
                                 tolerance_mm=acc["tolerance_mm"])
         row.update({f"capacity_{a:g}deg_Nm": float(c) for a, c in zip(angles, cap, strict=True)})
         row["capacity_mean_Nm"] = float(np.mean(cap))
@@ -105,14 +117,19 @@ def optimise_crown(study: Study, *, on_row: Callable[[dict[str, Any]], None] | N
     lo = np.array([q.low for q in params])
     hi = np.array([q.high for q in params])
 
+    seen: dict[tuple[float, ...], float] = {}
+
     def f(u) -> float:
         x = lo + (hi - lo) * np.clip(np.atleast_1d(u), 0.0, 1.0)
+        if tuple(x) in seen:  # a clipped point met again: no second evaluation or row
+            return seen[tuple(x)]
         inputs = {q.key: float(v) for q, v in zip(params, x, strict=True)}
         row = {"evaluation": len(rows), **crown_row(study, inputs, options)}
         rows.append(row)
         if on_row is not None:
             on_row(row)
-        return -row["objective"] / 1e3
+        seen[tuple(x)] = -row["objective"] / 1e3
+        return seen[tuple(x)]
 
     budget = options["max_evaluations"]
     if len(params) == 1:
@@ -153,11 +170,15 @@ def optimise_options(study: Study) -> dict[str, Any]:
     compare = opt.get("compare", [])
     if not (isinstance(compare, list) and all(isinstance(c, str) for c in compare)):
         raise SpecError(f"{study.source} optimise.compare", compare, "a list of spec names")
-    unknown = set(opt) - {"angles_deg", "objective", "max_evaluations", "compare"}
+    model = opt.get("model")
+    if model not in (None, "renzo", "linear", "compliance", "surface"):
+        raise SpecError(f"{study.source} optimise.model", model,
+                        "renzo, linear, compliance or surface (default: the spec's)")
+    unknown = set(opt) - {"angles_deg", "objective", "max_evaluations", "compare", "model"}
     if unknown:
         raise SpecError(f"{study.source} optimise", sorted(unknown)[0], "unknown key")
     return {"angles_deg": [float(a) for a in angles], "objective": objective,
-            "max_evaluations": budget, "compare": compare}
+            "max_evaluations": budget, "compare": compare, "model": model}
 
 
 def write_rows(rows: list[dict[str, Any]], path) -> None:
@@ -185,7 +206,26 @@ def plot_capacity_curves(curves: dict[str, tuple[np.ndarray, np.ndarray]], *, ax
     for name, (angles, cap) in curves.items():
         ax.plot(angles, cap, "o-", ms=3, label=name)
     ax.set_xlabel("misalignment (deg)")
-    ax.set_ylabel("capacity (N m), Renzo linear model, K = 1")
+    ax.set_ylabel("capacity (N m)")
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
     return fig
+
+
+def compare_curves(study: Study, best: dict[str, Any], points: int = 8
+                   ) -> dict[str, tuple[np.ndarray, np.ndarray]]:
+    """Capacity curves (``points`` angles up to the largest design angle) of the optimum
+    and of the ``compare`` specs, by name."""
+    from ..spec import load_spec
+
+    options = optimise_options(study)
+    acc = study.accuracy
+    angles = np.linspace(0.0, max(options["angles_deg"]), points + 1)[1:]
+    keys = [q.key for q in study.parameters]
+    specs = {"optimum": build_spec(study.base_name, study.base_text,
+                                   {**study.fixed, **{k: best[k] for k in keys}})}
+    specs.update({name: load_spec(name) for name in options["compare"]})
+    return {name: (angles, capacity_curve_Nm(s, angles, model=options["model"],
+                                             steps=int(acc["steps"]),
+                                             tolerance_mm=acc["tolerance_mm"]))
+            for name, s in specs.items()}

@@ -110,8 +110,9 @@ def connect(scheduler: str | None, workers: int | None, timeout_s: float = CONNE
     n = workers or os.cpu_count() or 1
     if n < 1:
         raise SpecError("--workers", workers, "must be at least 1")
+    # ":0": the scheduler's HTTP server on a free port (8787 may belong to another cluster)
     cluster = distributed.LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                                       dashboard_address=None)
+                                       dashboard_address=":0")
     return distributed.Client(cluster)
 
 
