@@ -211,8 +211,12 @@ class _Planes:
         idx = np.flatnonzero(feasible & (rqh > sl.r_fillet))
         if idx.size:
             rql, _, _ = self.at(t_lo[idx], idx)
-            tf = self.cross("r", sl.r_fillet, t_lo[idx], t_hi[idx], rql - sl.r_fillet,
-                            rqh[idx] - sl.r_fillet, idx)
+            tf = t_lo[idx].copy()  # all of [t_lo, t_hi] above the fillet start: t_a = t_lo
+            below = rql < sl.r_fillet  # else no crossing to solve (both ends above it)
+            if np.any(below):
+                ib = idx[below]
+                tf[below] = self.cross("r", sl.r_fillet, t_lo[ib], t_hi[ib],
+                                       rql[below] - sl.r_fillet, rqh[ib] - sl.r_fillet, ib)
             t_a[idx], k_a[idx] = tf, SLEEVE_FILLET
             k_hi[idx] = SLEEVE_FILLET
         return feasible, (t_lo, k_lo), (t_a, k_a), (t_hi, k_hi)
@@ -421,8 +425,10 @@ def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
     j2 = np.argmin(v2, axis=1)
     vmin = v[rows_all, j]
     finite_max = np.max(np.where(np.isfinite(v), v, -np.inf), axis=1)
-    second = np.isfinite(v2[rows_all, j2]) & (
-        v2[rows_all, j2] - vmin <= 0.25 * (finite_max - vmin))
+    v2min = v2[rows_all, j2]
+    second = np.isfinite(v2min)  # then vmin is finite too
+    second[second] = (v2min[second] - vmin[second]
+                      <= 0.25 * (finite_max[second] - vmin[second]))
     extra = rows_all[second]
     origin = np.concatenate([rows_all, extra])
     meas, th_of = meas[origin], th_of[origin]
