@@ -63,6 +63,8 @@ def save_png(fig, path: str | Path, dpi: int = 130) -> Path:
 
 def plot_clearance(result: SweepResult, *, ax=None):
     """Clearance of every tooth against the coupling rotation, per flank (2 x 2 panels)."""
+    from matplotlib.collections import LineCollection
+
     fig, axes = _axes(ax, (2, 2), figsize=(13, 8), sharex=True)
     colours = _colours("twilight", result.teeth)
     psi = result.angles_deg
@@ -71,8 +73,9 @@ def plot_clearance(result: SweepResult, *, ax=None):
         for row, (data, label) in enumerate(((result.clearance_mm, "whole flank"),
                                               (result.pitch_clearance_mm, "pitch line"))):
             ax = axes[row, f]
-            for k in range(result.teeth):
-                ax.plot(psi[order], data[f, k, order] * 1e3, color=colours[k], lw=0.6)
+            y = np.where(np.isfinite(data[f][:, order]), data[f][:, order] * 1e3, np.nan)
+            segments = np.stack(np.broadcast_arrays(psi[order][None, :], y), axis=-1)
+            ax.add_collection(LineCollection(segments, colors=colours, lw=0.6))  # one per tooth
             ax.plot(psi[order], np.min(data[f], axis=0)[order] * 1e3, color="k", lw=1.5,
                     label="contacting tooth")
             ax.set_title(f"{flank} flank, {label} (circumferential)")
