@@ -5,8 +5,10 @@ clearance measures - for ``renzo-1967`` at 1°, and (2) the speed/accuracy table
 grid and tolerance against the time of the full map and the error of its minima against a
 brute-force evaluation of the exact flank (``hub_flank_model``) on a dense grid.
 
-Run: ``python benchmarks/bench_sweep.py [--quick]``. Times are the best of several runs
-of CPU time of this process (the machine is shared; wall time is printed beside it).
+Run: ``python benchmarks/bench_sweep.py [--quick] [--against /work/main]``. Times are the
+best of several runs of CPU time of this process (the machine is shared; wall time is
+printed beside it). ``--against DIR`` times the same full maps with the kernel of another
+checkout (``DIR/src``, in a subprocess) in the same run, for old-vs-new figures.
 """
 
 from __future__ import annotations
@@ -14,6 +16,8 @@ from __future__ import annotations
 import argparse
 import math
 import os
+import subprocess
+import sys
 import time
 
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
@@ -38,9 +42,35 @@ def timed(fn, repeats):
     return min(cpu), min(wall)
 
 
+_OTHER = """
+import time, numpy as np
+from gearcoupling.spec import load_spec
+from gearcoupling.sweep import sweep
+def best(fn, k):
+    out = []
+    for _ in range(k):
+        c = time.process_time(); fn(); out.append(time.process_time() - c)
+    return min(out)
+s = load_spec("renzo-1967"); a = np.arange(360.0)
+sweep(s, 1.0, a, tolerance_mm=1e-6)
+print(best(lambda: sweep(s, 1.0, a, tolerance_mm=1e-6), {k}),
+      best(lambda: sweep(s, 1.0, a, tolerance_mm=1e-6, periodic=False), 1))
+"""
+
+
+def other_checkout(path: str, repeats: int):
+    """(periodic, per-tooth) full-map CPU seconds of renzo-1967 with another checkout."""
+    env = dict(os.environ, PYTHONPATH=os.path.join(path, "src"), OPENBLAS_NUM_THREADS="1")
+    out = subprocess.run([sys.executable, "-c", _OTHER.replace("{k}", str(repeats))],
+                         env=env, capture_output=True, text=True, check=True)
+    return [float(v) for v in out.stdout.split()]
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="fewer repeats and reference angles")
+    ap.add_argument("--against", metavar="DIR", help="also time the kernel of this checkout")
+    ap.add_argument("--maps-only", action="store_true", help="skip the accuracy table")
     args = ap.parse_args(argv)
     repeats = 3 if args.quick else 7
     spec = load_spec("renzo-1967")
@@ -58,13 +88,20 @@ def main(argv=None):
     print(f"  periodic (default): {cpu * 1e3:.1f} ms CPU ({wall * 1e3:.1f} ms wall)")
     cpu, wall = timed(lambda: sweep(spec, mis_deg, angles, tolerance_mm=1e-6, periodic=False),
                       max(1, repeats // 3))
-    print(f"  per tooth (periodic=False): {cpu * 1e3:.1f} ms CPU ({wall * 1e3:.1f} ms wall)")
+    print(f"  per tooth (periodic=False, {n} evaluations): {cpu * 1e3:.1f} ms CPU "
+          f"({wall * 1e3:.1f} ms wall)")
+    if args.against:
+        old, old_pt = other_checkout(args.against, repeats)
+        print(f"  {args.against}: periodic {old * 1e3:.1f} ms CPU, per tooth "
+              f"{old_pt * 1e3:.1f} ms CPU (same run, subprocess)")
     other = load_spec("industrial-m2")
     sweep(other, 0.75, angles, tolerance_mm=1e-6)
     cpu, wall = timed(lambda: sweep(other, 0.75, angles, tolerance_mm=1e-6), repeats)
     print(f"  industrial-m2 at 0.75° (38 teeth, ~3420 distinct turning angles): "
           f"{cpu * 1e3:.1f} ms CPU ({wall * 1e3:.1f} ms wall)")
 
+    if args.maps_only:
+        return
     # reference: brute force on the exact flank at sample turning angles
     thetas = np.radians([0.0, 8.0, 37.0, 90.0, 133.0, 165.4, 251.0, 300.0])
     if args.quick:

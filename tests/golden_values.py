@@ -33,9 +33,34 @@ def golden(spec) -> dict:
     return out
 
 
+# --- sweep design angles (issue 14 item 5; key "sweep", written by ``--sweep``) ---
+SWEEP_SOURCE = ("gearcoupling.sweep.design: critical_misalignment_deg (bisection) and "
+                "binding_angle_deg (Brent), each to 1e-4 deg, 16 rotations per tooth pitch, "
+                "default kernel tolerance 1e-7 mm; computed by this code and cross-checked "
+                "where theory gives a value (renzo-1967: critical vs Renzo's b/2 = R_c cot(phi) i "
+                "-> 2.085 deg, tests/test_sweep_theory.py)")
+
+
+def golden_sweep(spec) -> dict:
+    """The sweep's critical and binding angles (deg, ``None`` = not reached by 6°)."""
+    from gearcoupling.sweep.design import binding_angle_deg, critical_misalignment_deg
+
+    return {"critical_misalignment_deg": critical_misalignment_deg(spec),
+            "binding_angle_deg": binding_angle_deg(spec),
+            "tolerance_deg": 1e-4, "source": SWEEP_SOURCE}
+
+
 if __name__ == "__main__":
-    names = sys.argv[1:] or gc.template_names()
+    args = sys.argv[1:]
+    sweep_only = "--sweep" in args
+    names = [a for a in args if a != "--sweep"] or gc.template_names()
     for name in names:
         path = GOLDEN / f"{name}.json"
-        path.write_text(json.dumps(golden(gc.load_spec(name)), indent=1) + "\n")
+        spec = gc.load_spec(name)
+        old = json.loads(path.read_text()) if path.exists() else {}
+        new = dict(old) if sweep_only else {**golden(spec), **{k: v for k, v in old.items()
+                                                              if k == "sweep"}}
+        if sweep_only:
+            new["sweep"] = golden_sweep(spec)
+        path.write_text(json.dumps(new, indent=1) + "\n")
         print(path)

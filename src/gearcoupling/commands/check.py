@@ -170,16 +170,20 @@ def print_table(result, count: int) -> None:
 def write_outputs(spec, result, out: Path) -> list[Path]:
     """CSV, JSON (with the sweep's exact clearance), plot and worst posed meshes."""
     from ..sweep import sweep
+    from ..sweep.result import require_finite
 
     reference = backlash = None
     if result.hub_rotation_deg == 0.0:
-        swept = sweep(spec, result.misalignment_deg, result.angles_deg)
+        swept = sweep(spec, result.misalignment_deg, result.angles_deg).check_finite()
         reference = np.min(swept.normal_clearance_mm, axis=(0, 1))
         backlash = swept.backlash_mm
     summary = result.summary()
     if reference is not None:
         summary["sweep_min_normal_clearance_mm"] = [float(v) for v in reference]
         summary["sweep_backlash_mm"] = [float(v) for v in backlash]
+    # validated before anything is written: no NaN in the CSV or the JSON
+    require_finite(result.rows(), "interference.csv")
+    require_finite(summary, "interference.json")
     written = [write_csv(result, out / "interference.csv"),
                write_json(out / "interference.json", summary),
                plot(result, reference, out / "interference.png", backlash)]

@@ -56,14 +56,16 @@ def sweep_files(spec, out: Path, misalignment_deg: float, angles: int, *,
     """Run a sweep and write ``sweep.csv``, ``sweep_summary.json`` and the plots."""
     from ..sweep import sweep
     from ..sweep.design import design_quantities
+    from ..sweep.result import require_finite
 
     if angles < 1:
         raise SpecError("--angles", angles, "must be at least 1")
     psi = np.arange(angles) * 360.0 / angles
-    result = sweep(spec, misalignment_deg, psi, tolerance_mm=tolerance_mm)
+    result = sweep(spec, misalignment_deg, psi, tolerance_mm=tolerance_mm).check_finite()
     summary = result.summary()
     extra = design_quantities(spec, misalignment_deg) if design else {}
     summary.update(extra)
+    require_finite(summary, "sweep_summary.json")  # nothing is written before this
     paths = [write_csv(result, out / "sweep.csv"),
              write_json(out / "sweep_summary.json", summary)]
     if plots:

@@ -212,8 +212,12 @@ class _Planes:
         idx = np.flatnonzero(feasible & (rqh > sl.r_fillet))
         if idx.size:
             rql, _, _ = self.at(t_lo[idx], idx)
-            tf = self.cross("r", sl.r_fillet, t_lo[idx], t_hi[idx], rql - sl.r_fillet,
-                            rqh[idx] - sl.r_fillet, idx)
+            tf = t_lo[idx].copy()  # all of [t_lo, t_hi] above the fillet start: t_a = t_lo
+            below = rql < sl.r_fillet  # else no crossing to solve (both ends above it)
+            if np.any(below):
+                ib = idx[below]
+                tf[below] = self.cross("r", sl.r_fillet, t_lo[ib], t_hi[ib],
+                                       rql[below] - sl.r_fillet, rqh[ib] - sl.r_fillet, ib)
             t_a[idx], k_a[idx] = tf, SLEEVE_FILLET
             k_hi[idx] = SLEEVE_FILLET
         return feasible, (t_lo, k_lo), (t_a, k_a), (t_hi, k_hi)
@@ -347,7 +351,8 @@ _FOLD = {0: (0, 4, 6), 1: (1, 5, 7), 2: (2,), 3: (3,)}
 
 def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
              pitch_radius: float, tolerance_mm: float = DEFAULT_TOLERANCE_MM,
-             grid: int = DEFAULT_GRID, max_levels: int = 40) -> dict[str, Minimum]:
+             grid: int = DEFAULT_GRID, max_levels: int = 40,
+             measures: tuple[str, ...] = MEASURES) -> dict[str, Minimum]:
     """Minimum gaps of tooth 0's cw flank to space 0 at turning angles ``theta``.
 
     Parameters
@@ -366,18 +371,28 @@ def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
         (and the flank table error is below it).
     grid : int
         Coarse planes over the face width (>= 3); more finds narrow minima more surely.
+    measures : tuple of str
+        Which of :data:`MEASURES` to find (the others are not computed: the design
+        searches want only ``normal``, a third of the rows).
 
     Returns
     -------
     dict of measure name -> Minimum
-        For each of :data:`MEASURES`.
+        For each of ``measures``.
     """
     if grid < 3:
         raise ArgumentError(f"grid must be at least 3 planes, got {grid}")
     if not tolerance_mm > 0:
         raise ArgumentError(f"tolerance_mm must be > 0, got {tolerance_mm!r}")
+    unknown = set(measures) - set(MEASURES)
+    if unknown or not measures:
+        raise ArgumentError(f"measures must be among {MEASURES}, got {measures!r}")
     theta = np.asarray(theta, dtype=float).ravel()
     n = theta.size
+    # the virtual measures (rows of _plane_minima) the requested measures fold from
+    wanted = sorted({vm for m in measures for vm in _FOLD[MEASURES.index(m)]})
+    pos = {vm: j for j, vm in enumerate(wanted)}
+    W = len(wanted)
     sl = _Sleeve(sm)
     hf = table.half_face
     zg = np.linspace(-hf, hf, grid)
@@ -385,13 +400,14 @@ def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
     tile = np.tile(np.arange(grid), n)
     y_ends = (table.plane_y(kz_g, np.zeros(grid))[tile], table.plane_y(kz_g, np.ones(grid))[tile])
     planes = (kz_g[:, tile], lo_g[tile], (hi_g - lo_g)[tile], y_ends)
+    need = (any(vm not in (2, 3) for vm in wanted), any(vm in (2, 3) for vm in wanted))
     V, T, K = _plane_minima(table, sl, misalignment, zg[tile], np.repeat(theta, grid),
-                            pitch_radius, planes, exact=False)
+                            pitch_radius, planes, need=need, exact=False)
     # rows = (virtual measure, theta) pairs
-    meas = np.repeat(np.arange(8), n)
-    th_of = np.tile(np.arange(n), 8)
-    v, t, k = (X.reshape(8 * n, grid) for X in (V, T, K))
-    rows_all = np.arange(8 * n)
+    meas = np.repeat(np.array(wanted), n)
+    th_of = np.tile(np.arange(n), W)
+    v, t, k = (X[wanted].reshape(W * n, grid) for X in (V, T, K))
+    rows_all = np.arange(W * n)
 
     def evaluate(z, rows):
         """Minima of each row's own measure in the planes ``z`` (whole-flank rows and
@@ -414,7 +430,7 @@ def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
     j = np.argmin(v, axis=1)
     # a second coarse local minimum nearly as low as the best is refined too, as an extra
     # row (two nearly equal minima, e.g. tip edge and form circle on a swing tooth)
-    pad = np.full((8 * n, 1), np.inf)
+    pad = np.full((W * n, 1), np.inf)
     left, right = np.hstack([pad, v[:, :-1]]), np.hstack([v[:, 1:], pad])
     cols = np.arange(grid)[None, :]
     local = (v <= left) & (v <= right) & (np.abs(cols - j[:, None]) > 1) & np.isfinite(v)
@@ -422,8 +438,10 @@ def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
     j2 = np.argmin(v2, axis=1)
     vmin = v[rows_all, j]
     finite_max = np.max(np.where(np.isfinite(v), v, -np.inf), axis=1)
-    second = np.isfinite(v2[rows_all, j2]) & (
-        v2[rows_all, j2] - vmin <= 0.25 * (finite_max - vmin))
+    v2min = v2[rows_all, j2]
+    second = np.isfinite(v2min)  # then vmin is finite too
+    second[second] = (v2min[second] - vmin[second]
+                      <= 0.25 * (finite_max[second] - vmin[second]))
     extra = rows_all[second]
     origin = np.concatenate([rows_all, extra])
     meas, th_of = meas[origin], th_of[origin]
@@ -661,7 +679,7 @@ def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
         best_t[ex] = np.where(use, te, best_t[ex])
         best_k[ex] = np.where(use, ke, best_k[ex])
     # each row keeps the better of its own and its extra row's minimum
-    R = 8 * n
+    R = W * n
     if origin.size > R:
         ex_rows = np.arange(R, origin.size)
         won = best_v[ex_rows] < best_v[origin[ex_rows]]
@@ -676,8 +694,9 @@ def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
     r = lo + best_t * (hi - lo)
     rate = turning_rate(table, misalignment, best_z, best_t, theta[th_of])
     result = {}
-    for mi, name in enumerate(MEASURES):
-        rows = np.array(_FOLD[mi])[:, None] * n + np.arange(n)[None, :]  # (branches, n)
+    for name in measures:
+        fold = [pos[vm] for vm in _FOLD[MEASURES.index(name)]]
+        rows = np.array(fold)[:, None] * n + np.arange(n)[None, :]  # (branches, n)
         jb = np.argmin(best_v[rows], axis=0)
         sel = rows[jb, np.arange(n)]
         result[name] = Minimum(best_v[sel], best_z[sel], r[sel], best_t[sel], best_k[sel],

@@ -21,6 +21,7 @@ from .tooth_map import check_misalignment, flank_minima
 
 ANGLE_TOLERANCE_DEG = 1e-4
 DEFAULT_STEPS = 16  # rotations per tooth pitch for the design searches
+BINDING_BRACKETS_DEG = (0.5, 1.0, 2.0, 4.0, MISALIGNMENT_RANGE_DEG[1])
 
 
 def pitch_turning_angles(teeth: int, steps: int = DEFAULT_STEPS) -> np.ndarray:
@@ -56,7 +57,8 @@ def min_backlash_rad(spec, misalignment: float, *, steps: int = DEFAULT_STEPS,
     """Smallest backlash (rad) over a full turn at misalignment ``i`` (radians)."""
     theta = pitch_turning_angles(spec.tooth.teeth, steps)
     both = np.stack([theta, np.pi - theta])
-    mins, _ = flank_minima(spec, misalignment, both, tolerance_mm=tolerance_mm)
+    mins, _ = flank_minima(spec, misalignment, both, tolerance_mm=tolerance_mm,
+                           measures=("normal",))
     gap = mins["normal"] / spec.tooth.base_radius / mins["rate"]
     return float(np.min(np.min(gap[0], axis=0) + np.min(gap[1], axis=0)))
 
@@ -64,7 +66,7 @@ def min_backlash_rad(spec, misalignment: float, *, steps: int = DEFAULT_STEPS,
 def pivot_on_face_end(spec, misalignment: float) -> bool:
     """Whether the pivot teeth (theta = 0 and 180°) touch first at a face end."""
     mins, _ = flank_minima(spec, misalignment, np.array([0.0, np.pi]),
-                           tolerance_mm=DEFAULT_TOLERANCE_MM)
+                           tolerance_mm=DEFAULT_TOLERANCE_MM, measures=("normal",))
     return bool(np.any(mins["kind"] == FACE_END))
 
 
@@ -100,13 +102,25 @@ def binding_angle_deg(spec, *, tolerance_deg: float = ANGLE_TOLERANCE_DEG,
     """Misalignment (degrees) at which the smallest backlash over a turn reaches zero
     (Brent's method to ``tolerance_deg``); ``None`` if the coupling does not bind by 6°."""
     hi = math.radians(MISALIGNMENT_RANGE_DEG[1])
+    known: dict[float, float] = {}
 
-    def f(i):
-        return min_backlash_rad(spec, i, steps=steps)
+    def f(i):  # brentq evaluates the ends again: each value once
+        if i not in known:
+            known[i] = min_backlash_rad(spec, i, steps=steps)
+        return known[i]
 
-    if f(hi) > 0:
+    # bracket from below (small angles are cheap: few rows need deep refinement), so the
+    # costly 6° end is evaluated only when nothing smaller binds
+    lo = 0.0
+    for deg in BINDING_BRACKETS_DEG:
+        i = math.radians(deg)
+        if f(i) <= 0:
+            hi = i
+            break
+        lo = i
+    else:
         return None
-    root = brentq(f, 0.0, hi, xtol=math.radians(tolerance_deg), rtol=1e-12)
+    root = brentq(f, lo, hi, xtol=math.radians(tolerance_deg), rtol=1e-12)
     return math.degrees(root)
 
 

@@ -13,8 +13,10 @@ measured at the cell centres between the nodes (``max_error_mm``, arc length at 
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from functools import cached_property, lru_cache
+from itertools import pairwise
 
 import numpy as np
 from numpy.polynomial import chebyshev as C
@@ -30,21 +32,29 @@ DEFAULT_TABLE_TOLERANCE_MM = 1e-7
 
 @dataclass(frozen=True, eq=False)
 class FlankTable:
-    """Chebyshev tables of one hub flank (tooth 0, cw side, hub frame).
+    """Chebyshev tables of one hub flank (tooth 0, cw side, hub frame), piecewise in ``z``.
+
+    The face width is cut into pieces at the feed path's curvature jumps
+    (:func:`kink_edges`: ``end_round``'s start, as a narrow band where the enveloped flank
+    carries the jump along a slanted line), so that each piece is analytic and its table
+    converges geometrically; smooth paths have one piece.
 
     Attributes
     ----------
     half_face : float
         Hub half face width (mm); ``z`` spans ``[-half_face, half_face]``.
-    y : (nz, nt) float
-        Chebyshev coefficients of ``y(z, t) = r sin(alpha)`` (mm) in ``z / half_face`` and
-        ``2 t - 1``.
-    form : (nz,) float
+    y : (pieces, nz, nt) float
+        Chebyshev coefficients of ``y(z, t) = r sin(alpha)`` (mm) in the piece's own
+        ``x in [-1, 1]`` and ``2 t - 1``.
+    form : (pieces, nz) float
         Chebyshev coefficients of the form radius ``r_form(z)`` (mm) in ``x``.
     tip_kind, tip_radius : str, float
         The tip surface (sphere about O or cylinder), evaluated in closed form.
     max_error_mm : float
-        Largest interpolation error of ``y`` found at the cell centres (mm).
+        Largest interpolation error of ``y`` found between the nodes and on the edges of
+        every piece (mm).
+    edges : (pieces + 1,) float
+        Axial ends of the pieces, from ``-half_face`` to ``half_face``.
     """
 
     half_face: float
@@ -53,10 +63,41 @@ class FlankTable:
     tip_kind: str
     tip_radius: float
     max_error_mm: float
+    edges: NDArray[np.float64]
+
+    def _local(self, z):
+        """Piece index and local coordinate of flat ``z``: ``(k (n,) int, x (n,) float)``."""
+        e = self.edges
+        k = np.clip(np.searchsorted(e, z, side="right") - 1, 0, e.size - 2)
+        lo, hi = e[k], e[k + 1]
+        return k, (2.0 * z - (lo + hi)) / (hi - lo)
+
+    def _by_piece(self, z, matrices, out_rows: int):
+        """``matrices[k] @ T(x)`` per point (``(out_rows, n)``) for flat ``z``, one matrix
+        product per piece (Chebyshev polynomials by an in-place recurrence)."""
+        k, x = self._local(z)
+        nz = self.y.shape[1]
+        v = np.empty((nz, x.size))  # T_j(x), j along axis 0
+        v[0] = 1.0
+        v[1] = x
+        x2 = 2.0 * x
+        for j in range(2, nz):
+            np.multiply(x2, v[j - 1], out=v[j])
+            v[j] -= v[j - 2]
+        if len(matrices) == 1:
+            return _product(matrices[0], v)
+        out = np.empty((out_rows, x.size))
+        for p, mat in enumerate(matrices):
+            sel = np.flatnonzero(k == p)
+            if sel.size:
+                out[:, sel] = _product(mat, v[:, sel])
+        return out
 
     def radii(self, z: NDArray[np.float64]):
         """``(r_form(z), r_tip(z))`` in mm."""
-        return C.chebval(z / self.half_face, self.form), self._tip(z)
+        z = np.asarray(z, dtype=float)
+        form = self._by_piece(z.ravel(), self.form[:, None, :], 1)[0]
+        return form.reshape(z.shape), self._tip(z)
 
     def _tip(self, z):
         if self.tip_kind == "cylinder":
@@ -64,9 +105,11 @@ class FlankTable:
         return np.sqrt(np.maximum(self.tip_radius**2 - z * z, 0.0))
 
     def z_coefficients(self, z: NDArray[np.float64]) -> NDArray[np.float64]:
-        """Coefficients in ``t`` of ``y`` in the planes ``z``: ``(..., nt)``."""
-        vz = C.chebvander(z / self.half_face, self.y.shape[0] - 1)
-        return vz @ self.y  # BLAS: 10x faster than einsum on (2000, 24) x (24, 12)
+        """Chebyshev coefficients in ``2 t - 1`` of ``y`` in the planes ``z``: ``(..., nt)``."""
+        z = np.asarray(z, dtype=float)
+        nt = self.y.shape[2]
+        out = self._by_piece(z.ravel(), np.swapaxes(self.y, 1, 2), nt)
+        return out.T.reshape(*z.shape, nt)
 
     def y_at(self, kz: NDArray[np.float64], t: NDArray[np.float64]) -> NDArray[np.float64]:
         """``y`` at heights ``t`` for per-plane coefficients ``kz`` (``(..., nt)``)."""
@@ -74,32 +117,34 @@ class FlankTable:
 
     @cached_property
     def _power(self) -> NDArray[np.float64] | None:
-        """``y``'s coefficients in powers of ``s = 2 t - 1`` (Chebyshev in ``z``), or None
-        where that form could lose more than 1e-12 mm to rounding: Horner's rule
-        ``2 nt eps sum |a|`` plus the conversion ``eps sum |c| |M|`` (``|T_i(x)| <= 1``;
-        about 1e-14 mm on the templates, 1e-15 measured; the (64, 64) table keeps
-        Clenshaw)."""
-        nt = self.y.shape[1]
+        """``y``'s coefficients in powers of ``s = 2 t - 1`` (Chebyshev in ``z``),
+        ``(pieces, nz, nt)``, or None where that form could lose more than 1e-12 mm to
+        rounding: Horner's rule ``2 nt eps sum |a|`` plus the conversion
+        ``eps sum |c| |M|`` (``|T_i(x)| <= 1``; about 1e-14 mm on the templates, 1e-15
+        measured; the (64, 64) table keeps Clenshaw)."""
+        nt = self.y.shape[2]
         to_power = np.zeros((nt, nt))
         for j in range(nt):
             p = C.cheb2poly(np.eye(nt)[j])
             to_power[: p.size, j] = p
         yp = self.y @ to_power.T
         eps = np.finfo(float).eps
-        bound = eps * (2 * nt * float(np.sum(np.abs(yp)))
-                       + float(np.sum(np.abs(self.y) @ np.abs(to_power).T)))
+        bound = eps * (2 * nt * float(np.max(np.sum(np.abs(yp), axis=(1, 2))))
+                       + float(np.max(np.sum(np.abs(self.y) @ np.abs(to_power).T,
+                                             axis=(1, 2)))))
         return yp if bound <= 1e-12 else None
 
     @cached_property
-    def _plane_matrix(self) -> NDArray[np.float64]:
-        """``(nt + 1, nz)``: the ``t`` coefficients of ``y`` (:attr:`_power` or Chebyshev)
-        and the form radius, against the Chebyshev polynomials in ``z``."""
+    def _plane_matrices(self) -> NDArray[np.float64]:
+        """``(pieces, nt + 1, nz)``: the ``t`` coefficients of ``y`` (:attr:`_power` or
+        Chebyshev) and the form radius, against the Chebyshev polynomials in ``x``."""
         yp = self._power
+        coef = self.y if yp is None else yp
         return np.ascontiguousarray(
-            np.hstack([self.y if yp is None else yp, self.form[:, None]]).T)
+            np.concatenate([coef, self.form[:, :, None]], axis=2).transpose(0, 2, 1))
 
     def plane_coefficients(self, z: NDArray[np.float64]):
-        """The planes ``z`` (``(n,)``) for :meth:`plane_y`, in one matrix product.
+        """The planes ``z`` (``(n,)``) for :meth:`plane_y`, in one matrix product per piece.
 
         Returns
         -------
@@ -109,16 +154,7 @@ class FlankTable:
         r_form, r_tip : (n,) float
             As :meth:`radii`.
         """
-        x = z / self.half_face
-        nz = self.y.shape[0]
-        v = np.empty((nz, *x.shape))  # Chebyshev polynomials T_k(x), k along axis 0
-        v[0] = 1.0
-        v[1] = x
-        x2 = 2.0 * x
-        for k in range(2, nz):
-            np.multiply(x2, v[k - 1], out=v[k])
-            v[k] -= v[k - 2]
-        out = self._plane_matrix @ v
+        out = self._by_piece(z, self._plane_matrices, self.y.shape[2] + 1)
         return out[:-1], out[-1], self._tip(z)
 
     def plane_y(self, coef: NDArray[np.float64], t: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -136,11 +172,20 @@ class FlankTable:
         return b
 
     def even_in_z(self, rel: float = 1e-12) -> bool:
-        """Whether the flank is symmetric about the midplane (``y`` and ``r_form`` even in
-        ``z``: odd Chebyshev coefficients below ``rel`` of the even ones)."""
-        return bool(np.max(np.abs(self.y[1::2])) <= rel * np.max(np.abs(self.y[0::2]))
-                    and np.max(np.abs(self.form[1::2]), initial=0.0)
-                    <= rel * np.max(np.abs(self.form[0::2])))
+        """Whether the flank is symmetric about the midplane: pieces mirror each other and
+        ``y``, ``r_form`` at mirrored sample points agree within ``rel`` of ``|y|``."""
+        hf = self.half_face
+        if not np.allclose(self.edges, -self.edges[::-1], rtol=0.0, atol=1e-12 * hf):
+            return False
+        z = np.linspace(0.0, hf, 9)
+        t = np.linspace(0.0, 1.0, 5)
+        zz, tt = np.meshgrid(np.concatenate([z, -z]), t, indexing="ij")
+        r, a = self.evaluate(zz, tt)
+        y = r * np.sin(a)
+        n = z.size
+        scale = np.max(np.abs(y))
+        return bool(np.max(np.abs(y[:n] - y[n:])) <= rel * scale
+                    and np.max(np.abs(r[:n] - r[n:])) <= rel * np.max(np.abs(r)))
 
     def evaluate(self, z, t):
         """``(r, alpha)`` at ``(z, t)`` (broadcast)."""
@@ -148,6 +193,16 @@ class FlankTable:
         lo, hi = self.radii(z)
         r = lo + t * (hi - lo)
         return r, np.arcsin(self.y_at(self.z_coefficients(z), t) / r)
+
+
+def _product(mat: NDArray[np.float64], v: NDArray[np.float64]) -> NDArray[np.float64]:
+    """``mat @ v`` for a small ``mat`` (``(rows, nz)``): numpy's own loop below 20000
+    columns, BLAS above. A threaded BLAS wakes its threads for each product: 16 ms for a
+    (13, 24) x (24, 2000) product on a loaded 2-core machine against 0.4 ms in one
+    thread (measured), and the sweep makes hundreds of them."""
+    if v.shape[1] <= 20000:
+        return np.einsum("ij,jn->in", mat, v)
+    return mat @ v
 
 
 def clenshaw(coef: NDArray[np.float64], t: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -178,44 +233,102 @@ def exact_alpha(m: HubModel, z, t):
     return r, np.arctan2(pts[..., 1], pts[..., 0])
 
 
-def build_flank_table(m: HubModel, nodes: tuple[int, int] = DEFAULT_NODES) -> FlankTable:
-    """Fit the Chebyshev tables of ``m``'s flank on ``nodes = (nz, nt)`` nodes."""
-    nz, nt = nodes
-    if nz < 4 or nt < 3:
-        raise ArgumentError(f"flank table nodes must be at least (4, 3), got {nodes}")
-    xz, yt = _nodes(nz), _nodes(nt)
+def kink_edges(m: HubModel) -> NDArray[np.float64]:
+    """Axial edges of the table pieces: ``[-hf, ..., hf]``, cut where the feed path's
+    curvature jumps inside the face (``end_round``'s start ``s0``).
+
+    The revolved flank carries the jump in the plane ``z = qz(s0)``; the enveloped one
+    along ``z = qz(s0) - h sin e(s0)`` over the rack depths ``h`` of the flank (DESIGN.md
+    §3), so there the jump gets a piece of its own, that band (a narrow piece converges
+    fast although it is not smooth).
+    """
     hf = m.half_face
-    z = hf * xz
+    p = m.path
+    cuts: list[float] = []
+    for k in range(1, p.breaks.size - 1):
+        s0 = p.breaks[k]
+        if not np.isfinite(s0):
+            continue
+        before, after = p.seg_kappa[k - 1], p.seg_kappa[k]
+        if np.isnan(before) or np.isnan(after):
+            continue  # smooth segments join with continuous curvature
+        if abs(after - before) <= 1e-12 * max(abs(after), abs(before)):
+            continue
+        zb, e0 = float(p.qz_break[k]), float(p.e_break[k])
+        if m.revolved or e0 == 0.0:
+            band = [zb]
+        else:  # rack depths from above the hub tip to the form (margin 10 %)
+            h_lo, h_hi = -1.1 * (m.tip_radius - m.R), 1.1 * m.dedendum
+            band = sorted([zb - h_hi * math.sin(e0), zb - h_lo * math.sin(e0)])
+        cuts += [c for c in band if 1e-6 * hf < c < hf * (1 - 1e-6)]
+        if any(abs(c) <= 1e-6 * hf for c in band):
+            cuts.append(0.0)
+    half = sorted(set(cuts))
+    edges = sorted({*(-c for c in half), *half, -hf, hf})
+    return np.array(edges, dtype=float)
+
+
+def _fit_piece(m: HubModel, lo: float, hi: float, nz: int, nt: int):
+    """Chebyshev coefficients ``(nz, nt)`` of ``y`` and ``(nz,)`` of ``r_form`` on
+    ``z in [lo, hi]``."""
+    xz, yt = _nodes(nz), _nodes(nt)
+    z = 0.5 * (lo + hi) + 0.5 * (hi - lo) * xz
     t = 0.5 * (yt + 1.0)
     r, a = exact_alpha(m, z[:, None], t[None, :])
     vz, vt = C.chebvander(xz, nz - 1), C.chebvander(yt, nt - 1)
     coef = np.linalg.solve(vz, np.linalg.solve(vt, (r * np.sin(a)).T).T)
-    form = np.linalg.solve(vz, form_radius(m, z))
-    table = FlankTable(hf, coef, form, m.tip_kind, m.tip_radius, 0.0)
-    # measured error at the cell centres (worst place for an interpolant)
-    zc = hf * 0.5 * (xz[1:] + xz[:-1])
-    tc = 0.5 * (0.5 * (yt[1:] + yt[:-1]) + 1.0)
-    r_ex, a_ex = exact_alpha(m, zc[:, None], tc[None, :])
-    r_in, a_in = table.evaluate(zc[:, None], tc[None, :])
+    return coef, np.linalg.solve(vz, form_radius(m, z))
+
+
+def _check_points(edges, nz: int, nt: int):
+    """Where the table error is measured: the cell centres between the nodes of every
+    piece, the profile ends ``t = 0, 1`` at those planes and the piece edges in ``z``
+    (the kernel's minima often lie on the edges, where an interpolant is weakest)."""
+    xz, yt = _nodes(nz), _nodes(nt)
+    xc = np.concatenate([[-1.0], 0.5 * (xz[1:] + xz[:-1]), [1.0]])
+    tc = np.concatenate([[0.0], 0.5 * (0.5 * (yt[1:] + yt[:-1]) + 1.0), [1.0]])
+    z = np.concatenate([0.5 * (lo + hi) + 0.5 * (hi - lo) * xc for lo, hi in pairwise(edges)])
+    return np.meshgrid(z, tc, indexing="ij")
+
+
+def build_flank_table(m: HubModel, nodes: tuple[int, int] = DEFAULT_NODES) -> FlankTable:
+    """Fit the Chebyshev tables of ``m``'s flank on ``nodes = (nz, nt)`` nodes per piece
+    (pieces from :func:`kink_edges`)."""
+    nz, nt = nodes
+    if nz < 4 or nt < 3:
+        raise ArgumentError(f"flank table nodes must be at least (4, 3), got {nodes}")
+    edges = kink_edges(m)
+    fits = [_fit_piece(m, lo, hi, nz, nt) for lo, hi in pairwise(edges)]
+    coef = np.stack([f[0] for f in fits])
+    form = np.stack([f[1] for f in fits])
+    table = FlankTable(m.half_face, coef, form, m.tip_kind, m.tip_radius, 0.0, edges)
+    zc, tc = _check_points(edges, nz, nt)
+    r_ex, a_ex = exact_alpha(m, zc, tc)
+    r_in, a_in = table.evaluate(zc, tc)
     err = float(np.max(np.abs(r_ex * np.sin(a_ex) - r_in * np.sin(a_in))))
     if not np.isfinite(err):
         raise GeometryError("hub flank table is not finite")
-    return FlankTable(hf, coef, form, m.tip_kind, m.tip_radius, err)
+    return FlankTable(m.half_face, coef, form, m.tip_kind, m.tip_radius, err, edges)
 
 
 def adaptive_flank_table(m: HubModel, tolerance_mm: float = DEFAULT_TABLE_TOLERANCE_MM
                          ) -> FlankTable:
     """The smallest table of :data:`NODE_LADDER` whose measured error is within tolerance.
 
-    Smooth feed paths (circular, none, vari_crown) reach 1e-7 mm with (24, 12) or (32, 16)
-    nodes; paths with a curvature jump (end_round, some tables) converge slowly and stop at
-    the largest table: read ``max_error_mm``.
+    Smooth feed paths (circular, none, vari_crown, table) reach 1e-7 mm with (24, 12) to
+    (32, 32) nodes; ``end_round``'s curvature jump gets pieces of its own
+    (:func:`kink_edges`), but on the enveloped flank the jump runs slanted through its
+    band piece, which converges slowly: the ladder stops when a rung no longer halves the
+    error; read ``max_error_mm``.
     """
     if not (tolerance_mm > 0):
         raise ArgumentError(f"table tolerance must be > 0 mm, got {tolerance_mm!r}")
     table = None
     for nodes in NODE_LADDER:
-        table = build_flank_table(m, nodes)
+        trial = build_flank_table(m, nodes)
+        if table is not None and trial.max_error_mm > 0.5 * table.max_error_mm:
+            break  # stalled (a jump the pieces do not isolate): more nodes buy nothing
+        table = trial
         if table.max_error_mm <= tolerance_mm:
             break
     return table

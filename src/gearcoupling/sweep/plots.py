@@ -1,4 +1,9 @@
-"""Pictures of a sweep (matplotlib, Agg, written atomically).
+"""Pictures of a sweep (matplotlib).
+
+Every ``plot_*`` function returns a :class:`matplotlib.figure.Figure` and accepts ``ax=``:
+an Axes for the one-panel plots, a sequence of Axes (as many as its panels) for the others;
+without it a new Figure is made (not through pyplot: the user's back-end is never
+switched). :func:`plot_all` writes them as PNG files, atomically.
 
 - :func:`plot_clearance` - clearance of every tooth against rotation (Renzo Fig. 10, Wei
   Fig. 5), both flanks, whole flank and pitch line;
@@ -17,8 +22,9 @@ from pathlib import Path
 
 import numpy as np
 
+from ..atomic import atomic_path
+from ..errors import ArgumentError
 from ..geometry.sleeve import sleeve_model
-from ..plots import new_figure, save_figure
 from .clearance import _Sleeve
 from .design import binding_angle_deg, critical_misalignment_deg, min_backlash_rad
 from .flank_table import flank_table
@@ -27,20 +33,50 @@ from .result import SweepResult
 from .tooth_map import check_misalignment, flank_minima
 
 
-def plot_clearance(result: SweepResult, path: str | Path) -> Path:
-    """Clearance of every tooth against the coupling rotation, per flank."""
-    fig, axes = new_figure(2, 2, figsize=(13, 8), sharex=True)
-    import matplotlib.pyplot as plt
+def _axes(ax, shape: tuple[int, int], **kwargs):
+    """``(figure, axes)``: the given Axes (one, or ``shape`` of them) or a new Figure."""
+    from matplotlib.figure import Figure
 
-    colours = plt.cm.twilight(np.linspace(0, 1, result.teeth, endpoint=False))
+    if ax is None:
+        fig = Figure(figsize=kwargs.pop("figsize", None))
+        axes = fig.subplots(*shape, **kwargs)
+        return fig, axes
+    axes = np.asarray(ax, dtype=object)
+    count = shape[0] * shape[1]
+    if axes.size != count:
+        raise ArgumentError(f"ax must hold {count} Axes for this plot, got {axes.size}")
+    axes = axes.reshape(shape).squeeze() if count > 1 else axes.ravel()[0]  # as subplots
+    return np.ravel(axes)[0].figure, axes
+
+
+def _colours(name: str, count: int):
+    import matplotlib
+
+    return matplotlib.colormaps[name](np.linspace(0, 1, count, endpoint=False))
+
+
+def save_png(fig, path: str | Path, dpi: int = 130) -> Path:
+    """Write ``fig`` as PNG atomically."""
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, format="png", dpi=dpi)
+    return Path(path)
+
+
+def plot_clearance(result: SweepResult, *, ax=None):
+    """Clearance of every tooth against the coupling rotation, per flank (2 x 2 panels)."""
+    from matplotlib.collections import LineCollection
+
+    fig, axes = _axes(ax, (2, 2), figsize=(13, 8), sharex=True)
+    colours = _colours("twilight", result.teeth)
     psi = result.angles_deg
     order = np.argsort(psi)
     for f, flank in enumerate(("cw", "ccw")):
         for row, (data, label) in enumerate(((result.clearance_mm, "whole flank"),
                                               (result.pitch_clearance_mm, "pitch line"))):
             ax = axes[row, f]
-            for k in range(result.teeth):
-                ax.plot(psi[order], data[f, k, order] * 1e3, color=colours[k], lw=0.6)
+            y = np.where(np.isfinite(data[f][:, order]), data[f][:, order] * 1e3, np.nan)
+            segments = np.stack(np.broadcast_arrays(psi[order][None, :], y), axis=-1)
+            ax.add_collection(LineCollection(segments, colors=colours, lw=0.6))  # one per tooth
             ax.plot(psi[order], np.min(data[f], axis=0)[order] * 1e3, color="k", lw=1.5,
                     label="contacting tooth")
             ax.set_title(f"{flank} flank, {label} (circumferential)")
@@ -51,25 +87,27 @@ def plot_clearance(result: SweepResult, path: str | Path) -> Path:
     fig.suptitle(f"{result.spec_name}: clearance of every tooth at i = "
                  f"{result.misalignment_deg:g}°")
     fig.tight_layout()
-    return save_figure(fig, path)
+    return fig
 
 
-def plot_contact_path(result: SweepResult, spec, path: str | Path) -> Path:
-    """Points of first touch on the hub flank (axial position, radius) over the turn."""
+def plot_contact_path(result: SweepResult, spec, *, ax=None):
+    """Points of first touch on the hub flank (axial position, radius) over the turn
+    (2 panels: cw, ccw)."""
     table = flank_table(spec)
     sm = sleeve_model(spec)
     hf = table.half_face
     z = np.linspace(-hf, hf, 201)
     lo, hi = table.radii(z)
-    fig, axes = new_figure(1, 2, figsize=(13, 5.5), sharey=True)
+    fig, axes = _axes(ax, (1, 2), figsize=(13, 5.5), sharey=True)
     for f, flank in enumerate(("cw", "ccw")):
         ax = axes[f]
         ax.fill_between(z, lo, hi, color="0.92", label="hub flank")
         ax.axhline(sm.r_form, color="0.5", ls="--", lw=0.8, label="sleeve flank starts")
         ax.axhline(spec.tooth.pitch_radius, color="0.5", ls=":", lw=0.8, label="pitch circle")
         th = result.theta_deg
-        sc = ax.scatter(result.contact_z_mm[f].ravel(), result.contact_r_mm[f].ravel(),
-                        c=th.ravel(), cmap="twilight", s=4, vmin=0, vmax=360)
+        touch = np.isfinite(result.normal_clearance_mm[f])  # "no contact" has no point
+        sc = ax.scatter(result.contact_z_mm[f][touch], result.contact_r_mm[f][touch],
+                        c=th[touch], cmap="twilight", s=4, vmin=0, vmax=360)
         j = np.argmin(result.normal_clearance_mm[f], axis=0)
         cols = np.arange(result.angles_deg.size)
         ax.plot(result.contact_z_mm[f][j, cols], result.contact_r_mm[f][j, cols], "k.",
@@ -82,7 +120,7 @@ def plot_contact_path(result: SweepResult, spec, path: str | Path) -> Path:
     axes[0].set_ylabel("radius on the hub flank (mm)")
     fig.colorbar(sc, ax=axes, shrink=0.8)
     fig.suptitle(f"{result.spec_name}: contact path at i = {result.misalignment_deg:g}°")
-    return save_figure(fig, path)
+    return fig
 
 
 def clearance_field(spec, misalignment_deg: float, theta_deg: float, nz: int = 121,
@@ -105,23 +143,30 @@ def clearance_field(spec, misalignment_deg: float, theta_deg: float, nz: int = 1
     return z, r, np.where(off, np.nan, circ)
 
 
-def plot_clearance_map(result: SweepResult, spec, path: str | Path) -> Path:
-    """Gap over one flank at the contacting tooth's θ and at a swing tooth (θ = 90°)."""
+def plot_clearance_map(result: SweepResult, spec, *, ax=None):
+    """Gap over one flank at the contacting tooth's θ and at a swing tooth (θ = 90°)
+    (2 panels); a flank that faces no sleeve flank (tilted out of the sleeve face at large
+    misalignment) is said so instead of drawn."""
     th = result.contacting_theta_deg("normal")[0]
-    fig, axes = new_figure(1, 2, figsize=(13, 5), sharey=True)
-    for ax, theta in zip(axes, (th, 90.0), strict=True):
+    fig, axes = _axes(ax, (1, 2), figsize=(13, 5), sharey=True)
+    for ax_, theta in zip(axes, (th, 90.0), strict=True):
         z, r, c = clearance_field(spec, result.misalignment_deg, theta)
-        cs = ax.contourf(z, r, c * 1e3, levels=24, cmap="viridis")
-        fig.colorbar(cs, ax=ax, label="circumferential gap (µm)")
+        ax_.set_title(f"cw flank at θ = {theta:.1f}°")
+        ax_.set_xlabel("z (mm)")
+        if not np.any(np.isfinite(c)):
+            ax_.text(0.5, 0.5, "no point faces the sleeve flank", ha="center",
+                     va="center", transform=ax_.transAxes)
+            continue
+        cs = ax_.contourf(z, r, np.where(np.isfinite(c), c * 1e3, np.nan), levels=24,
+                          cmap="viridis")
+        fig.colorbar(cs, ax=ax_, label="circumferential gap (µm)")
         k = np.nanargmin(c)
-        ax.plot(z.ravel()[k], r.ravel()[k], "r*", ms=12, label="minimum")
-        ax.set_title(f"cw flank at θ = {theta:.1f}°")
-        ax.set_xlabel("z (mm)")
-        ax.legend(fontsize=8)
+        ax_.plot(z.ravel()[k], r.ravel()[k], "r*", ms=12, label="minimum")
+        ax_.legend(fontsize=8)
     axes[0].set_ylabel("r (mm)")
     fig.suptitle(f"{result.spec_name}: clearance map at i = {result.misalignment_deg:g}° "
                  "(blank: facing the sleeve tip chamfer)")
-    return save_figure(fig, path)
+    return fig
 
 
 def backlash_curve(spec, misalignment_deg, *, steps: int = 8):
@@ -131,12 +176,12 @@ def backlash_curve(spec, misalignment_deg, *, steps: int = 8):
                      for a in misalignment_deg])
 
 
-def plot_backlash(spec, path: str | Path, *, max_deg: float = 6.0, count: int = 25,
-                  binding_deg: float | None = None) -> Path:
+def plot_backlash(spec, *, max_deg: float = 6.0, count: int = 25,
+                  binding_deg: float | None = None, ax=None):
     """Smallest backlash over a turn against misalignment, with the binding angle."""
     a = np.linspace(0.0, max_deg, count)
     b = backlash_curve(spec, a)
-    fig, ax = new_figure(figsize=(8, 5))
+    fig, ax = _axes(ax, (1, 1), figsize=(8, 5))
     ax.plot(a, b * 1e3, "o-", ms=3, label="smallest backlash over a turn")
     ax.axhline(0.0, color="k", lw=0.8)
     ax.axvline(math.degrees(spec.design_misalignment), color="g", ls="--",
@@ -147,7 +192,7 @@ def plot_backlash(spec, path: str | Path, *, max_deg: float = 6.0, count: int = 
     ax.set_ylabel("backlash at the pitch circle (µm)")
     ax.set_title(f"{spec.name}: backlash against misalignment")
     ax.legend(fontsize=8)
-    return save_figure(fig, path)
+    return fig
 
 
 def critical_curve(spec, radius_ratios, *, tolerance_deg: float = 1e-3):
@@ -161,8 +206,7 @@ def critical_curve(spec, radius_ratios, *, tolerance_deg: float = 1e-3):
     return np.array(out)
 
 
-def plot_critical_vs_radius(spec, path: str | Path, *,
-                            radius_ratios=(0.6, 0.8, 1.0, 1.5, 2.0, 3.0)) -> Path:
+def plot_critical_vs_radius(spec, *, radius_ratios=(0.6, 0.8, 1.0, 1.5, 2.0, 3.0), ax=None):
     """Critical misalignment against the (uniform) crowning radius, with the small-angle
     estimate ``i = b/2 / (R_c cot phi)`` (contact travel reaching the face end)."""
     ratios = np.asarray(radius_ratios, dtype=float)
@@ -171,22 +215,22 @@ def plot_critical_vs_radius(spec, path: str | Path, *,
     hf = 0.5 * spec.hub.face_width
     q = np.linspace(ratios.min(), ratios.max(), 100)
     est = np.degrees(hf / (q * R / math.tan(spec.tooth.pressure_angle)))
-    fig, ax = new_figure(figsize=(8, 5))
+    fig, ax = _axes(ax, (1, 1), figsize=(8, 5))
     ax.plot(ratios, crit, "o-", label="sweep (contact reaches the face end)")
     ax.plot(q, est, "--", color="0.4", label="b/2 = R_c cot φ · i (Renzo)")
     ax.set_xlabel("crowning radius R_c / R")
     ax.set_ylabel("critical misalignment (deg)")
     ax.set_title(f"{spec.name}: critical misalignment against crowning radius")
     ax.legend(fontsize=8)
-    return save_figure(fig, path)
+    return fig
 
 
-def plot_generation(spec, misalignment_deg: float, path: str | Path, *,
-                    count: int = 721) -> Path:
-    """Pitch-line clearance over θ for both generation methods and their difference."""
+def plot_generation(spec, misalignment_deg: float, *, count: int = 721, ax=None):
+    """Pitch-line clearance over θ for both generation methods and their difference
+    (2 panels)."""
     i = check_misalignment(misalignment_deg)
     theta = np.linspace(0.0, 2 * np.pi, count)
-    fig, axes = new_figure(2, 1, figsize=(9, 7), sharex=True)
+    fig, axes = _axes(ax, (2, 1), figsize=(9, 7), sharex=True)
     curves = {}
     for gen in ("enveloped", "revolved"):
         s = spec.replace(**{"hub.crowning.generation": gen})
@@ -205,7 +249,7 @@ def plot_generation(spec, misalignment_deg: float, path: str | Path, *,
     axes[1].legend(fontsize=8)
     axes[1].set_ylabel("revolved - enveloped (µm)")
     axes[1].set_xlabel("turning angle θ (deg)")
-    return save_figure(fig, path)
+    return fig
 
 
 def plot_all(result: SweepResult, spec, out_dir: str | Path, *, design: dict | None = None,
@@ -213,15 +257,15 @@ def plot_all(result: SweepResult, spec, out_dir: str | Path, *, design: dict | N
     """Every sweep picture into ``out_dir``; ``studies`` adds the backlash, R_c and
     generation studies (several seconds)."""
     out = Path(out_dir)
-    paths = [plot_clearance(result, out / "sweep_clearance.png"),
-             plot_contact_path(result, spec, out / "sweep_contact_path.png"),
-             plot_clearance_map(result, spec, out / "sweep_clearance_map.png")]
+    figures = {"sweep_clearance.png": lambda: plot_clearance(result),
+               "sweep_contact_path.png": lambda: plot_contact_path(result, spec),
+               "sweep_clearance_map.png": lambda: plot_clearance_map(result, spec)}
     if studies:
         binding = (design or {}).get("binding_angle_deg")
         if binding is None and design is None:
             binding = binding_angle_deg(spec, tolerance_deg=1e-3, steps=8)
-        paths.append(plot_backlash(spec, out / "sweep_backlash.png", binding_deg=binding))
-        paths.append(plot_critical_vs_radius(spec, out / "sweep_critical_vs_rc.png"))
-        paths.append(plot_generation(spec, max(result.misalignment_deg, 0.5),
-                                     out / "sweep_generation.png"))
-    return paths
+        figures["sweep_backlash.png"] = lambda: plot_backlash(spec, binding_deg=binding)
+        figures["sweep_critical_vs_rc.png"] = lambda: plot_critical_vs_radius(spec)
+        figures["sweep_generation.png"] = lambda: plot_generation(
+            spec, max(result.misalignment_deg, 0.5))
+    return [save_png(make(), out / name) for name, make in figures.items()]

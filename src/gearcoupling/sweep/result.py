@@ -9,9 +9,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import ArgumentError
+from ..errors import ArgumentError, GeometryError
 from ..geometry.hub import FLANKS
-from .clearance import KINDS
+from .clearance import KINDS, NONE
 
 CSV_COLUMNS = ("theta_deg", "tooth", "flank", "clearance_mm", "normal_clearance_mm",
                "pitch_clearance_mm", "contact_z_mm", "contact_r_mm", "contact_kind")
@@ -66,6 +66,25 @@ class SweepResult:
     gap_angle_rad: NDArray[np.float64] | None = None
 
     kinds: tuple[str, ...] = KINDS
+
+    def check_finite(self) -> SweepResult:
+        """This result, after checking that no value is NaN and that values are infinite
+        only where nothing faces the sleeve flank (``"no contact"``); else
+        :class:`~gearcoupling.errors.GeometryError` naming the array and a place. Writers
+        call it before they write anything."""
+        facing = self.contact_kind != NONE
+        for name in ("clearance_mm", "normal_clearance_mm", "contact_z_mm", "contact_r_mm",
+                     "pitch_clearance_mm", "pitch_normal_clearance_mm", "backlash_mm"):
+            a = getattr(self, name)
+            bad = np.isnan(a)
+            if name in ("clearance_mm", "normal_clearance_mm", "contact_z_mm", "contact_r_mm"):
+                bad |= facing & ~np.isfinite(a)
+            if np.any(bad):
+                where = tuple(int(i) for i in np.argwhere(bad)[0])
+                raise GeometryError(f"sweep of {self.spec_name!r} at "
+                                    f"{self.misalignment_deg:g}°: {name} is not finite at "
+                                    f"index {where} (a kernel fault: please report the spec)")
+        return self
 
     def kind_names(self) -> NDArray[np.str_]:
         """``contact_kind`` as strings, ``(flank, tooth, angle)``."""
@@ -162,13 +181,34 @@ class SweepResult:
                            str(names[self.contact_kind[f, k, j]]))
 
 
+def require_finite(data, what: str):
+    """``data`` (nested dicts, lists, numbers, ``None``) after checking it holds no NaN;
+    else :class:`~gearcoupling.errors.GeometryError` naming ``what`` and the key."""
+    def walk(x, key):
+        if isinstance(x, dict):
+            for k, v in x.items():
+                walk(v, f"{key}.{k}" if key else str(k))
+        elif isinstance(x, list | tuple | np.ndarray):
+            for j, v in enumerate(np.asarray(x, dtype=object).ravel()):
+                walk(v, f"{key}[{j}]")
+        elif isinstance(x, float | np.floating) and math.isnan(x):
+            raise GeometryError(f"{what}: {key} is NaN (a kernel fault: please report the "
+                                "spec); nothing was written")
+
+    walk(data, "")
+    return data
+
+
 def _finite(data):
-    """Replace non-finite floats (no contact) by None so JSON stays valid."""
+    """Replace infinite floats (no contact) by None so JSON stays valid; NaN raises."""
     if isinstance(data, dict):
         return {k: _finite(v) for k, v in data.items()}
     if isinstance(data, list | tuple):
         return [_finite(v) for v in data]
     if isinstance(data, float | np.floating):
+        if math.isnan(data):
+            raise GeometryError("sweep summary: a value is NaN (a kernel fault: please "
+                                "report the spec)")
         return float(data) if math.isfinite(data) else None
     if isinstance(data, np.integer):
         return int(data)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from dataclasses import fields
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -10,12 +11,15 @@ from numpy.typing import ArrayLike
 from ..errors import SpecError
 from ..geometry.sleeve import sleeve_model
 from ..spec import MISALIGNMENT_RANGE_DEG
-from .clearance import DEFAULT_GRID, DEFAULT_TOLERANCE_MM, minimise
+from .clearance import DEFAULT_GRID, DEFAULT_TOLERANCE_MM, MEASURES, Minimum, minimise
 from .flank_table import DEFAULT_TABLE_TOLERANCE_MM, flank_table
 from .pose import turning_angles
 from .result import SweepResult
 
+CHUNK_ANGLES = 1024  # turning angles per kernel call: bounds its memory (~30 kB per angle)
 _KEY_SCALE = 1e11  # turning angles closer than 1e-11 rad share one evaluation
+_KEYS = {"clearance": "circumferential", "normal": "normal", "pitch": "pitch_circumferential",
+         "pitch_normal": "pitch_normal"}
 
 
 def check_misalignment(misalignment_deg: float) -> float:
@@ -40,27 +44,34 @@ def check_angles(angles_deg: ArrayLike) -> np.ndarray:
 
 
 def flank_minima(spec, misalignment: float, theta, *, tolerance_mm: float,
-                 grid: int = DEFAULT_GRID, periodic: bool = True):
+                 grid: int = DEFAULT_GRID, periodic: bool = True,
+                 measures: tuple[str, ...] = MEASURES):
     """Minima of tooth 0's cw flank at turning angles ``theta`` (any shape), all measures.
 
     With ``periodic`` (ideal geometry) equal turning angles are evaluated once, and when the
     hub flank is symmetric about the midplane (:meth:`FlankTable.even_in_z`) so are
     ``theta`` and ``theta + pi``: mirroring ``z -> -z`` maps ``P(theta)`` to
     ``P(theta - pi)`` (``Mz Rx(i) Mz = Rz(pi) Rx(i) Rz(-pi)``) and the sleeve onto itself,
-    so the gaps, ``r``, kind and rate are equal and the contact ``z`` changes sign.
+    so the gaps, ``r``, kind and rate are equal and the contact ``z`` changes sign. Aligned
+    (``misalignment == 0``) the pose is the identity at every ``theta``: one evaluation.
+
+    ``measures`` (of :data:`~.clearance.MEASURES`) limits the work to what is wanted.
 
     Returns
     -------
     dict of name -> array shaped like ``theta``
         ``clearance``, ``normal``, ``pitch``, ``pitch_normal`` (mm), ``z``, ``r`` (mm),
-        ``kind`` and ``rate`` of the normal minimum (the point of first touch).
+        ``kind`` and ``rate`` of the normal minimum (the point of first touch); only those
+        of the ``measures`` found (``z``, ``r``, ``kind``, ``rate`` with ``normal``).
     """
     table = flank_table(spec, min(DEFAULT_TABLE_TOLERANCE_MM, tolerance_mm))
     sm = sleeve_model(spec)
     theta = np.asarray(theta, dtype=float)
     flat = np.mod(theta.ravel(), 2.0 * np.pi)
     mirror = np.zeros(flat.shape, dtype=bool)
-    if periodic:
+    if misalignment == 0.0:  # P(theta) is the identity: every turning angle alike
+        th, inverse = flat[:1] * 0.0, np.zeros(flat.size, dtype=np.intp)
+    elif periodic:
         if table.even_in_z():
             mirror = flat >= np.pi
             flat = np.where(mirror, flat - np.pi, flat)
@@ -69,17 +80,18 @@ def flank_minima(spec, misalignment: float, theta, *, tolerance_mm: float,
         th = flat[first]
     else:
         th, inverse = flat, np.arange(flat.size)
-    res = minimise(table, sm, misalignment, th, pitch_radius=spec.tooth.pitch_radius,
-                   tolerance_mm=tolerance_mm, grid=grid)
-    full = res["normal"]
-    out = {
-        "clearance": res["circumferential"].value_mm, "normal": full.value_mm,
-        "pitch": res["pitch_circumferential"].value_mm,
-        "pitch_normal": res["pitch_normal"].value_mm,
-        "z": full.z_mm, "r": full.r_mm, "kind": full.kind, "rate": full.rate,
-    }
+    parts = [minimise(table, sm, misalignment, th[j:j + CHUNK_ANGLES],
+                      pitch_radius=spec.tooth.pitch_radius, tolerance_mm=tolerance_mm,
+                      grid=grid, measures=measures) for j in range(0, th.size, CHUNK_ANGLES)]
+    res = {m: Minimum(*(np.concatenate([getattr(p[m], f.name) for p in parts])
+                        for f in fields(Minimum))) for m in parts[0]}
+    out = {key: res[m].value_mm for key, m in _KEYS.items() if m in res}
+    if "normal" in res:
+        full = res["normal"]
+        out.update(z=full.z_mm, r=full.r_mm, kind=full.kind, rate=full.rate)
     out = {k: v[inverse] for k, v in out.items()}
-    out["z"] = np.where(mirror, -out["z"], out["z"])
+    if "z" in out:
+        out["z"] = np.where(mirror, -out["z"], out["z"])
     return {k: v.reshape(theta.shape) for k, v in out.items()}, table
 
 
