@@ -11,19 +11,24 @@ medians, not single runs.
 from __future__ import annotations
 
 import argparse
+import os
 import statistics
 import subprocess
 import sys
 import time
 
 
-def wall(code: str, repeats: int) -> float:
-    times = []
+def wall(code: str, repeats: int) -> tuple[float, float]:
+    """Median wall time and median CPU time (user + system) of ``python -c code``."""
+    walls, cpus = [], []
     for _ in range(repeats):
-        t0 = time.perf_counter()
+        c0, t0 = os.times(), time.perf_counter()
         subprocess.run([sys.executable, "-c", code], check=True)
-        times.append(time.perf_counter() - t0)
-    return statistics.median(times)
+        c1 = os.times()
+        walls.append(time.perf_counter() - t0)
+        cpus.append(c1.children_user + c1.children_system - c0.children_user
+                    - c0.children_system)
+    return statistics.median(walls), statistics.median(cpus)
 
 
 def main() -> None:
@@ -33,11 +38,13 @@ def main() -> None:
     base = wall("pass", args.repeats)
     np_ = wall("import numpy", args.repeats)
     gc = wall("import gearcoupling", args.repeats)
-    print(f"median wall time of a fresh interpreter ({args.repeats} runs each):")
-    print(f"  python -c pass                  {base:.3f} s")
-    print(f"  python -c 'import numpy'        {np_:.3f} s  (+{np_ - base:.3f} s)")
-    print(f"  python -c 'import gearcoupling' {gc:.3f} s  (+{gc - base:.3f} s over the "
-          f"interpreter, +{gc - np_:.3f} s over numpy)")
+    print(f"fresh interpreters, medians of {args.repeats} runs: wall s / CPU s")
+    for label, (w, c) in (("python -c pass", base), ("import numpy", np_),
+                          ("import gearcoupling", gc)):
+        print(f"  {label:20s} {w:6.3f} / {c:6.3f}   (+{w - base[0]:.3f} / "
+              f"+{c - base[1]:.3f} over the bare interpreter)")
+    print(f"  gearcoupling over numpy: +{gc[0] - np_[0]:.3f} s wall, "
+          f"+{gc[1] - np_[1]:.3f} s CPU")
     out = subprocess.run([sys.executable, "-X", "importtime", "-c", "import gearcoupling"],
                          capture_output=True, text=True, check=True).stderr.splitlines()
     rows = []

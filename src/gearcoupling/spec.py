@@ -4,6 +4,8 @@ Spec files are TOML with ``units = "mm"`` (default) or ``"in"`` for lengths and 
 degrees (keys ending in ``_deg``). :func:`load_spec` reads a bundled template by name or a
 file by path and applies dotted overrides; every invalid value or combination raises
 :class:`~gearcoupling.errors.SpecError` naming the field, the value and what is allowed.
+Keys left out get defaults (:data:`DEFAULT_RULES`) chosen to always validate. Units,
+frames and signs: ``docs/conventions.md``; defaults and errors: ``docs/spec-and-cli.md``.
 """
 
 from __future__ import annotations
