@@ -143,26 +143,26 @@ def sections_figure(spec: CouplingSpec, tolerance_mm: float | None = None, *,
 
     z = np.linspace(-0.5 * spec.hub.face_width, 0.5 * spec.hub.face_width, 81)
     prof = crown_profile(spec, z)
-    ax = axes[1]
-    ax.plot(z, prof["thickness_enveloped_mm"], label="enveloped (hob)")
-    ax.plot(z, prof["thickness_revolved_mm"], "--", label="revolved")
-    ax.set_xlabel("z (mm)")
-    ax.set_ylabel("tooth thickness at pitch circle (mm)")
-    ax.set_title("crown: tooth thickness along the face")
-    ax.legend(fontsize=8)
-    ax2 = ax.twinx()
+    a1 = axes[1]
+    a1.plot(z, prof["thickness_enveloped_mm"], label="enveloped (hob)")
+    a1.plot(z, prof["thickness_revolved_mm"], "--", label="revolved")
+    a1.set_xlabel("z (mm)")
+    a1.set_ylabel("tooth thickness at pitch circle (mm)")
+    a1.set_title("crown: tooth thickness along the face")
+    a1.legend(fontsize=8)
+    ax2 = a1.twinx()
     ax2.plot(z, prof["crown_drop_mm"], color="grey", lw=0.8)
     ax2.set_ylabel("feed-path crown drop (mm)", color="grey")
 
-    ax = axes[2]
-    ax.plot(z, prof["pressure_angle_enveloped_deg"], label="enveloped (hob)")
-    ax.plot(z, prof["pressure_angle_revolved_deg"], "--", label="revolved")
-    ax.plot(z, np.degrees(np.arctan(np.tan(spec.tooth.pressure_angle) * np.cos(prof["e"]))),
+    a2 = axes[2]
+    a2.plot(z, prof["pressure_angle_enveloped_deg"], label="enveloped (hob)")
+    a2.plot(z, prof["pressure_angle_revolved_deg"], "--", label="revolved")
+    a2.plot(z, np.degrees(np.arctan(np.tan(spec.tooth.pressure_angle) * np.cos(prof["e"]))),
             ":", color="k", label="tan φ' = tan φ cos e (Renzo eq. 1)")
-    ax.set_xlabel("z (mm)")
-    ax.set_ylabel("transverse pressure angle at pitch circle (deg)")
-    ax.set_title("transverse pressure angle (cf. Renzo Fig. 7)")
-    ax.legend(fontsize=8)
+    a2.set_xlabel("z (mm)")
+    a2.set_ylabel("transverse pressure angle at pitch circle (deg)")
+    a2.set_title("transverse pressure angle (cf. Renzo Fig. 7)")
+    a2.legend(fontsize=8)
     if own:
         fig.tight_layout()
     return fig

@@ -45,10 +45,10 @@ def check_misalignment_deg(value: object, field_name: str = "misalignment_deg") 
     onto it; anything else outside, non-numeric or non-finite raises :class:`SpecError`.
     """
     lo, hi = MISALIGNMENT_RANGE_DEG
-    ok = isinstance(value, int | float) and not isinstance(value, bool) and math.isfinite(value)
-    _check(ok and lo - _ROUNDING_DEG <= value <= hi + _ROUNDING_DEG, field_name, value,
-           f"must be a finite angle from {lo} to {hi} degrees")
-    return min(max(float(value), lo), hi)  # type: ignore[arg-type]
+    if isinstance(value, bool) or not isinstance(value, int | float) or not (
+            math.isfinite(value) and lo - _ROUNDING_DEG <= value <= hi + _ROUNDING_DEG):
+        raise SpecError(field_name, value, f"must be a finite angle from {lo} to {hi} degrees")
+    return min(max(float(value), lo), hi)
 
 
 def _check(ok: bool, field_name: str, value: object, allowed: str) -> None:
@@ -336,8 +336,8 @@ class CouplingSpec:
 
     def to_dict(self) -> dict[str, Any]:
         """The resolved spec as plain data in mm and degrees (keys say their unit)."""
-        out = {"name": self.name, "units": "mm",
-               "design_misalignment_deg": self.design_misalignment_deg}
+        out: dict[str, Any] = {"name": self.name, "units": "mm",
+                               "design_misalignment_deg": self.design_misalignment_deg}
         d = asdict(self)
         tooth = d["tooth"]
         tooth["pressure_angle_deg"] = math.degrees(tooth.pop("pressure_angle"))
