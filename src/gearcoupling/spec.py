@@ -402,10 +402,12 @@ SPEC_KEYS: dict[str, tuple[str, ...]] = {
 # how each derived default is chosen (quoted when a derived value is refused)
 DEFAULT_RULES: dict[str, str] = {
     "hub.backlash": "0.04 m",
-    "hub.tip.diameter": "2 (R + m), lowered for few teeth so that the tips are not pointed",
-    "hub.root.dedendum": "1.25 m, reduced for few teeth so that the hob does not undercut",
-    "hub.root.fillet_radius": "0.3 m, reduced so that the hob tip rounds of adjacent flanks "
-                              "fit in the tooth space",
+    "hub.tip.diameter": "2 (R + m), lowered where the teeth would be pointed (few teeth, "
+                        "and at the face ends by the crown drop)",
+    "hub.root.dedendum": "1.25 m, reduced to 90 % of the deepest cut free of undercut in "
+                         "every plane of the face (few teeth, small pressure angles)",
+    "hub.root.fillet_radius": "0.3 m, reduced to 80 % of the largest hob tip round that fits "
+                              "in the tooth space, and to at most half the dedendum",
     "hub.body.bore_diameter": "root diameter minus max(6 m, 0.3 R)",
     "hub.body.length": "the face width",
     "sleeve.space_width": "pi m / 2",
