@@ -85,3 +85,38 @@ def _umask() -> int:
     mask = os.umask(0)
     os.umask(mask)
     return mask
+
+
+def test_plots_return_figures_draw_on_given_axes_and_never_switch_the_backend(tmp_path):
+    import subprocess
+    import sys
+
+    # a user's interactive back-end survives importing and using the plot functions
+    code = ("import matplotlib; matplotlib.use('svg'); import matplotlib.pyplot as plt\n"
+            "import gearcoupling as gc\n"
+            "from gearcoupling.plots import sections_figure, plot_sections\n"
+            "spec = gc.load_spec('industrial-m2')\n"
+            "fig = sections_figure(spec, 0.01)\n"
+            f"plot_sections(spec, {str(tmp_path / 's.png')!r}, 0.01)\n"
+            "print(matplotlib.get_backend(), type(fig).__name__, len(plt.get_fignums()))\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True).stdout.split()
+    assert out == ["svg", "Figure", "0"]  # backend kept, a Figure, nothing left in pyplot
+    assert (tmp_path / "s.png").read_bytes()[:4] == b"\x89PNG"
+
+    from matplotlib.figure import Figure
+
+    from gearcoupling.plots import sections_figure
+
+    fig = Figure()
+    axes = fig.subplots(1, 3)
+    assert sections_figure(gc_spec(), 0.01, ax=axes) is fig
+    assert all(a.has_data() for a in axes)
+    with pytest.raises(ValueError, match="3 axes"):
+        sections_figure(gc_spec(), 0.01, ax=axes[:2])
+
+
+def gc_spec():
+    import gearcoupling as gc
+
+    return gc.load_spec("industrial-m2")

@@ -31,3 +31,11 @@ def test_later_stages_are_reachable_lazily_from_the_top_level():
             "from gearcoupling.parts import build_part; assert gc.build_part is build_part; "
             "assert callable(gc.export_part) and callable(gc.check_interference)")
     subprocess.run([sys.executable, "-c", code], check=True)
+
+
+def test_import_gearcoupling_loads_no_scipy():
+    # issue 14 item 8: scipy.interpolate/optimize (~0.4 s) are imported inside the
+    # functions that use them; `import gearcoupling` costs numpy plus our own modules
+    code = "import sys, gearcoupling; print(','.join(m for m in sys.modules if 'scipy' in m))"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == ""

@@ -1,10 +1,11 @@
 """gearcoupling: crowned-tooth gear couplings, from a parameter file to exact geometry.
 
 The public kernels (pure numpy/scipy) and the spec loader are importable from here;
-mesh, CAD and viewer back-ends are imported only where they are used.
+mesh, CAD and viewer back-ends are imported only where they are used. Units, frames,
+signs and names: ``docs/conventions.md``.
 """
 
-from .errors import BackendError, GearCouplingError, GeometryError, SpecError
+from .errors import ArgumentError, BackendError, GearCouplingError, GeometryError, SpecError
 from .geometry import (
     FeedPath,
     feed_path,
@@ -46,6 +47,7 @@ def __getattr__(name: str):
 
 
 __all__ = [
+    "ArgumentError",
     "BackendError",
     "CouplingSpec",
     "FeedPath",

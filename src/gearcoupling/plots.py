@@ -3,41 +3,66 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from .atomic import atomic_path
+from .errors import ArgumentError, BackendError
 from .geometry.hub import hub_flank_model, hub_model, plane_rack
 from .geometry.section import transverse_section
 
+if TYPE_CHECKING:  # matplotlib is imported where a plot is drawn
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
 
-def new_figure(*args, **kwargs):
-    """``plt.subplots`` on the non-interactive Agg back-end (matplotlib imported lazily)."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt.subplots(*args, **kwargs)
+    from .spec import CouplingSpec
 
 
-def save_figure(fig, path: str | Path, dpi: int = 130) -> Path:
-    """Write ``fig`` as PNG atomically and close it."""
-    import matplotlib.pyplot as plt
+_FIGURE_KEYS = ("figsize", "dpi", "layout", "facecolor")
 
+
+def import_matplotlib():
+    """``matplotlib``, or :class:`~gearcoupling.errors.BackendError` naming the extra."""
+    try:
+        import matplotlib
+    except ImportError as err:
+        raise BackendError("plots need matplotlib (a dependency of gearcoupling): "
+                           "pip install matplotlib") from err
+    return matplotlib
+
+
+def new_figure(*args: Any, **kwargs: Any) -> tuple[Figure, Any]:
+    """A new ``(figure, axes)`` like ``plt.subplots``, without pyplot.
+
+    The figure is a plain :class:`matplotlib.figure.Figure`: no back-end is selected or
+    switched (never ``matplotlib.use``) and nothing is registered with pyplot, so the
+    caller's interactive session is untouched; ``figure.savefig`` writes files with any
+    back-end. ``figsize``, ``dpi``, ``layout`` and ``facecolor`` go to the figure, the
+    rest to :meth:`Figure.subplots`.
+    """
+    import_matplotlib()
+    from matplotlib.figure import Figure
+
+    fig = Figure(**{k: kwargs.pop(k) for k in _FIGURE_KEYS if k in kwargs})
+    return fig, fig.subplots(*args, **kwargs)
+
+
+def save_figure(fig: Figure, path: str | Path, dpi: int = 130) -> Path:
+    """Write ``fig`` as PNG atomically (nothing is closed: the figure stays usable)."""
     with atomic_path(path) as tmp:
         fig.savefig(tmp, format="png", dpi=dpi)
-    plt.close(fig)
     return Path(path)
 
 
-def section_planes(spec, count: int = 5) -> np.ndarray:
+def section_planes(spec: CouplingSpec, count: int = 5) -> np.ndarray:
     """Axial positions (mm) from the midplane to the face end for the section plots."""
     return np.linspace(0.0, 0.5 * spec.hub.face_width, count)
 
 
-def crown_profile(spec, z_mm: np.ndarray) -> dict[str, np.ndarray]:
+def crown_profile(spec: CouplingSpec, z_mm: np.ndarray) -> dict[str, np.ndarray]:
     """Pitch-circle tooth thickness, transverse pressure angle and crown drop along ``z``.
 
     Returns arrays in mm and degrees for the spec's crowning generated both ways, and
@@ -59,25 +84,42 @@ def crown_profile(spec, z_mm: np.ndarray) -> dict[str, np.ndarray]:
     return out
 
 
-def plot_sections(spec, path: str | Path, tolerance_mm: float | None = None) -> Path:
+def sections_figure(spec: CouplingSpec, tolerance_mm: float | None = None, *,
+                    ax: Sequence[Axes] | None = None) -> Figure:
     """Transverse sections of hub and sleeve at several planes, and the crown along the face.
 
-    Left: three hub teeth and the sleeve spaces around them at planes from the midplane
-    to the face end. Right: pitch-circle tooth thickness and transverse pressure angle
-    along the face for the enveloped (hob-generated) and revolved constructions, with
-    Renzo's eq. (1) ``tan phi' = tan phi cos e`` for comparison.
+    Top (``ax[0]``): three hub teeth and the sleeve spaces around them at planes from the
+    midplane to the face end. Bottom: pitch-circle tooth thickness (``ax[1]``) and
+    transverse pressure angle (``ax[2]``) along the face for the enveloped (hob-generated)
+    and revolved constructions, with Renzo's eq. (1) ``tan phi' = tan phi cos e``.
+
+    Parameters
+    ----------
+    tolerance_mm : float, optional
+        Chordal tolerance of the plotted sections (default module / 1000).
+    ax : sequence of 3 Axes, optional
+        Where to draw; default a new 14 x 10 in figure. Returns the figure of ``ax[0]``.
     """
+    import_matplotlib()
+    from matplotlib import colormaps
+
     tol = 1e-3 * spec.tooth.module if tolerance_mm is None else tolerance_mm
     N = spec.tooth.teeth
-    fig, axes = new_figure(2, 2, figsize=(14, 10), gridspec_kw={"height_ratios": [1.1, 1]})
-    axes[0, 1].remove()
-    axes[0, 0].remove()
-    ax = fig.add_subplot(2, 1, 1)
-    axes = [ax, axes[1, 0], axes[1, 1]]
+    own = ax is None
+    if ax is None:
+        fig, grid = new_figure(2, 2, figsize=(14, 10), gridspec_kw={"height_ratios": [1.1, 1]})
+        grid[0, 0].remove()
+        grid[0, 1].remove()
+        axes = [fig.add_subplot(2, 1, 1), grid[1, 0], grid[1, 1]]
+    else:
+        axes = list(ax)
+        if len(axes) != 3:
+            raise ArgumentError(f"ax = {ax!r}: must be 3 axes (sections, thickness, "
+                                "pressure angle)")
+        fig = axes[0].figure
+    ax0 = axes[0]
     planes = section_planes(spec)
-    import matplotlib.pyplot as plt
-
-    colours = plt.cm.viridis(np.linspace(0, 0.9, len(planes)))
+    colours = colormaps["viridis"](np.linspace(0, 0.9, len(planes)))
     window = 1.25 * 2 * math.pi / N
 
     def clip(poly):
@@ -90,36 +132,43 @@ def plot_sections(spec, path: str | Path, tolerance_mm: float | None = None) -> 
         return -y, x
 
     sleeve = transverse_section(spec, "sleeve", 0.0, tol)
-    ax.plot(*clip(sleeve), color="k", lw=1.2, label="sleeve (all z)")
+    ax0.plot(*clip(sleeve), color="k", lw=1.2, label="sleeve (all z)")
     for z, c in zip(planes, colours, strict=True):
         hub = transverse_section(spec, "hub", z, tol)
-        ax.plot(*clip(hub), color=c, lw=1.0, label=f"hub z = {z:.3g} mm")
-    ax.set_aspect("equal")
-    ax.set_title(f"{spec.name}: transverse sections (tooth 0 up)")
-    ax.set_xlabel("mm")
-    ax.legend(fontsize=7, loc="lower left")
+        ax0.plot(*clip(hub), color=c, lw=1.0, label=f"hub z = {z:.3g} mm")
+    ax0.set_aspect("equal")
+    ax0.set_title(f"{spec.name}: transverse sections (tooth 0 up)")
+    ax0.set_xlabel("mm")
+    ax0.legend(fontsize=7, loc="lower left")
 
     z = np.linspace(-0.5 * spec.hub.face_width, 0.5 * spec.hub.face_width, 81)
     prof = crown_profile(spec, z)
-    ax = axes[1]
-    ax.plot(z, prof["thickness_enveloped_mm"], label="enveloped (hob)")
-    ax.plot(z, prof["thickness_revolved_mm"], "--", label="revolved")
-    ax.set_xlabel("z (mm)")
-    ax.set_ylabel("tooth thickness at pitch circle (mm)")
-    ax.set_title("crown: tooth thickness along the face")
-    ax.legend(fontsize=8)
-    ax2 = ax.twinx()
+    a1 = axes[1]
+    a1.plot(z, prof["thickness_enveloped_mm"], label="enveloped (hob)")
+    a1.plot(z, prof["thickness_revolved_mm"], "--", label="revolved")
+    a1.set_xlabel("z (mm)")
+    a1.set_ylabel("tooth thickness at pitch circle (mm)")
+    a1.set_title("crown: tooth thickness along the face")
+    a1.legend(fontsize=8)
+    ax2 = a1.twinx()
     ax2.plot(z, prof["crown_drop_mm"], color="grey", lw=0.8)
     ax2.set_ylabel("feed-path crown drop (mm)", color="grey")
 
-    ax = axes[2]
-    ax.plot(z, prof["pressure_angle_enveloped_deg"], label="enveloped (hob)")
-    ax.plot(z, prof["pressure_angle_revolved_deg"], "--", label="revolved")
-    ax.plot(z, np.degrees(np.arctan(np.tan(spec.tooth.pressure_angle) * np.cos(prof["e"]))),
+    a2 = axes[2]
+    a2.plot(z, prof["pressure_angle_enveloped_deg"], label="enveloped (hob)")
+    a2.plot(z, prof["pressure_angle_revolved_deg"], "--", label="revolved")
+    a2.plot(z, np.degrees(np.arctan(np.tan(spec.tooth.pressure_angle) * np.cos(prof["e"]))),
             ":", color="k", label="tan φ' = tan φ cos e (Renzo eq. 1)")
-    ax.set_xlabel("z (mm)")
-    ax.set_ylabel("transverse pressure angle at pitch circle (deg)")
-    ax.set_title("transverse pressure angle (cf. Renzo Fig. 7)")
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    return save_figure(fig, path)
+    a2.set_xlabel("z (mm)")
+    a2.set_ylabel("transverse pressure angle at pitch circle (deg)")
+    a2.set_title("transverse pressure angle (cf. Renzo Fig. 7)")
+    a2.legend(fontsize=8)
+    if own:
+        fig.tight_layout()
+    return fig
+
+
+def plot_sections(spec: CouplingSpec, path: str | Path,
+                  tolerance_mm: float | None = None) -> Path:
+    """:func:`sections_figure` written to ``path`` as PNG (atomically)."""
+    return save_figure(sections_figure(spec, tolerance_mm), path)

@@ -4,6 +4,8 @@ Spec files are TOML with ``units = "mm"`` (default) or ``"in"`` for lengths and 
 degrees (keys ending in ``_deg``). :func:`load_spec` reads a bundled template by name or a
 file by path and applies dotted overrides; every invalid value or combination raises
 :class:`~gearcoupling.errors.SpecError` naming the field, the value and what is allowed.
+Keys left out get defaults (:data:`DEFAULT_RULES`) chosen to always validate. Units,
+frames and signs: ``docs/conventions.md``; defaults and errors: ``docs/spec-and-cli.md``.
 """
 
 from __future__ import annotations
@@ -44,10 +46,10 @@ def check_misalignment_deg(value: object, field_name: str = "misalignment_deg") 
     onto it; anything else outside, non-numeric or non-finite raises :class:`SpecError`.
     """
     lo, hi = MISALIGNMENT_RANGE_DEG
-    ok = isinstance(value, int | float) and not isinstance(value, bool) and math.isfinite(value)
-    _check(ok and lo - _ROUNDING_DEG <= value <= hi + _ROUNDING_DEG, field_name, value,
-           f"must be a finite angle from {lo} to {hi} degrees")
-    return min(max(float(value), lo), hi)  # type: ignore[arg-type]
+    if isinstance(value, bool) or not isinstance(value, int | float) or not (
+            math.isfinite(value) and lo - _ROUNDING_DEG <= value <= hi + _ROUNDING_DEG):
+        raise SpecError(field_name, value, f"must be a finite angle from {lo} to {hi} degrees")
+    return min(max(float(value), lo), hi)
 
 
 def _check(ok: bool, field_name: str, value: object, allowed: str) -> None:
@@ -337,8 +339,8 @@ class CouplingSpec:
 
     def to_dict(self) -> dict[str, Any]:
         """The resolved spec as plain data in mm and degrees (keys say their unit)."""
-        out = {"name": self.name, "units": "mm",
-               "design_misalignment_deg": self.design_misalignment_deg}
+        out: dict[str, Any] = {"name": self.name, "units": "mm",
+                               "design_misalignment_deg": self.design_misalignment_deg}
         d = asdict(self)
         tooth = d["tooth"]
         tooth["pressure_angle_deg"] = math.degrees(tooth.pop("pressure_angle"))
@@ -406,10 +408,12 @@ SPEC_KEYS: dict[str, tuple[str, ...]] = {
 # how each derived default is chosen (quoted when a derived value is refused)
 DEFAULT_RULES: dict[str, str] = {
     "hub.backlash": "0.04 m",
-    "hub.tip.diameter": "2 (R + m), lowered for few teeth so that the tips are not pointed",
-    "hub.root.dedendum": "1.25 m, reduced for few teeth so that the hob does not undercut",
-    "hub.root.fillet_radius": "0.3 m, reduced so that the hob tip rounds of adjacent flanks "
-                              "fit in the tooth space",
+    "hub.tip.diameter": "2 (R + m), lowered where the teeth would be pointed (few teeth, "
+                        "and at the face ends by the crown drop)",
+    "hub.root.dedendum": "1.25 m, reduced to 90 % of the deepest cut free of undercut in "
+                         "every plane of the face (few teeth, small pressure angles)",
+    "hub.root.fillet_radius": "0.3 m, reduced to 80 % of the largest hob tip round that fits "
+                              "in the tooth space, and to at most half the dedendum",
     "hub.body.bore_diameter": "root diameter minus max(6 m, 0.3 R)",
     "hub.body.length": "the face width",
     "sleeve.space_width": "pi m / 2",

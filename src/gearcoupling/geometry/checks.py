@@ -37,6 +37,17 @@ def _max_curvature(m: HubModel, crowning) -> float:
     return max(0.0 if math.isinf(r) else 1.0 / r for r in radii)
 
 
+_FIELD_ATTR = {"kappa": "table_kappa", "drop": "table_drop", "end_radius": "end_radius"}
+
+
+def _crown_field(cr, *, end: bool = False) -> str:
+    """The spec key that sets a crown's curvature (the end radius of ``end_round`` where
+    ``end``; the samples of a ``table``)."""
+    if cr.kind == "table":
+        return f"hub.crowning.{'kappa' if cr.table_s else 'drop'}"
+    return f"hub.crowning.{'end_radius' if end and cr.kind == 'end_round' else 'radius'}"
+
+
 def _check_table_path(m: HubModel, crowning) -> None:
     """A table crown is validated along its splined path, not only at its samples: the
     samples must reach the face end and the drop must stay >= 0 between them."""
@@ -87,8 +98,7 @@ def check_spec(spec) -> None:
         _check_table_path(m, cr)
     kmax = _max_curvature(m, cr)
     if kmax * hub.root.dedendum > 0.5:
-        key = {"end_round": "end_radius", "table": "kappa" if cr.table_s else "drop"}
-        raise SpecError(f"hub.crowning.{key.get(cr.kind, 'radius')}",
+        raise SpecError(_crown_field(cr, end=True),
                         1.0 / kmax, f"crowning radius must be at least twice the hub dedendum "
                         f"({2 * hub.root.dedendum:.6g} mm)")
     z_end = m.half_face
@@ -98,9 +108,8 @@ def check_spec(spec) -> None:
     except GeometryError:
         e_end = math.pi / 2
     if abs(math.degrees(e_end)) > MAX_END_TANGENT_DEG:
-        key = "radius" if cr.kind != "table" else "kappa" if cr.table_s else "drop"
-        raise SpecError(f"hub.crowning.{key}",
-                        cr.radius if key == "radius" else getattr(cr, f"table_{key}"),
+        field = _crown_field(cr)
+        raise SpecError(field, getattr(cr, _FIELD_ATTR.get(field.rpartition(".")[2], "radius")),
                         f"too small for the face width {hub.face_width:.6g} mm: the feed path "
                         f"turns {math.degrees(e_end):.1f}° by the face end, at most "
                         f"{MAX_END_TANGENT_DEG:g}° allowed")

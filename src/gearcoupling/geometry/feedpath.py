@@ -19,7 +19,6 @@ from itertools import pairwise
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.interpolate import CubicSpline
 
 from ..errors import ArgumentError, GeometryError
 
@@ -158,6 +157,8 @@ class FeedPath:
 
 
 def _spline_path(R: float, s_knots, kappa_knots, kind: str) -> FeedPath:
+    from scipy.interpolate import CubicSpline  # lazy: keeps `import gearcoupling` fast
+
     spline = CubicSpline(s_knots, kappa_knots, bc_type=((1, 0.0), "not-a-knot"))
     anti = spline.antiderivative()
 
@@ -176,6 +177,8 @@ def drop_table_to_curvature(z_knots, drop_knots, n: int = 400):
     ``v = R - drop(z)`` then has ``tan e = drop'``, ``kappa = drop'' / (1 + drop'^2)^1.5``
     and arc length ``s = ∫ sqrt(1 + drop'^2) dz``, sampled at ``n`` points.
     """
+    from scipy.interpolate import CubicSpline
+
     d = CubicSpline(z_knots, drop_knots, bc_type=((1, 0.0), "not-a-knot"))
     z = np.linspace(0.0, float(z_knots[-1]), n)
     d1, d2 = d(z, 1), d(z, 2)

@@ -14,7 +14,6 @@ from functools import lru_cache
 
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy.optimize import brentq
 
 from ..errors import ArgumentError, GeometryError
 from .hub import FLANKS
@@ -100,6 +99,8 @@ def sleeve_model(spec) -> SleeveModel:
         lo = max(r_form, r_b * (1 + 1e-12))
         if gap(lo) >= 0 or gap(r_major) <= 0:
             raise GeometryError("sleeve root fillet does not fit between flank and major circle")
+        from scipy.optimize import brentq  # lazy: keeps `import gearcoupling` fast
+
         r_fillet = brentq(gap, lo, r_major, xtol=1e-14 * r_major, rtol=1e-15)
         p, n = flank_point(base, r_fillet)
         c = p + rho * n
