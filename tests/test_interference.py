@@ -319,3 +319,19 @@ def test_mesh_backlash_matches_exact_free_turn_of_the_outlines():
         assert res.side_gap_rad[f, 0] == pytest.approx(free(sign), abs=tol / r_b)
     half_sweep = 0.5 * float(sweep(spec, 0.0, [0.0]).backlash_mm[0])
     assert R * res.side_gap_rad[0, 0] == pytest.approx(half_sweep, abs=2 * tol * R / r_b)
+
+
+def test_overlap_attribution_is_one_rule():
+    """Points just either side of tooth centres go to that tooth and to the flank on their
+    side (DESIGN.md §6: tooth k centred at 2 pi k / N, ccw beyond the centre)."""
+    from gearcoupling.interference.attribution import FLANKS, flank_index, nearest_tooth
+
+    n = 7
+    k = np.arange(-3, 4)
+    eps = 0.2 * 2 * np.pi / n
+    for side, sign in ((0, -1), (1, 1)):
+        a = 2 * np.pi * k / n + sign * eps
+        pts = np.stack([np.cos(a), np.sin(a), np.zeros_like(a)], axis=-1) * 40.0
+        assert np.array_equal(nearest_tooth(pts, n), k)
+        assert np.all(flank_index(pts, k, n) == side)
+        assert FLANKS[side] == ("cw", "ccw")[side]
