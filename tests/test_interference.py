@@ -335,3 +335,28 @@ def test_overlap_attribution_is_one_rule():
         assert np.array_equal(nearest_tooth(pts, n), k)
         assert np.all(flank_index(pts, k, n) == side)
         assert FLANKS[side] == ("cw", "ccw")[side]
+
+
+def test_plot_returns_a_figure_accepts_ax_and_keeps_the_backend(renzo):
+    import subprocess
+    import sys
+
+    code = (
+        "import matplotlib, sys\n"
+        "matplotlib.use('svg')\n"
+        "import gearcoupling as gc\n"
+        "from gearcoupling.interference import check_interference, plot_interference\n"
+        "from matplotlib.figure import Figure\n"
+        "res = check_interference(gc.load_spec('renzo-1967'), 1.0, [0.0, 3.0], "
+        "tolerance_mm=0.05)\n"
+        "fig = plot_interference(res, res.min_gap_mm)\n"
+        "assert isinstance(fig, Figure) and len(fig.axes) == 2\n"
+        "line = fig.axes[1].lines[0]\n"
+        "assert list(line.get_ydata()) == list(res.min_gap_mm)\n"
+        "own = Figure()\n"
+        "axes = own.subplots(2, 1)\n"
+        "assert plot_interference(res, ax=axes) is own and axes[0].lines\n"
+        "assert matplotlib.get_backend() == 'svg', matplotlib.get_backend()\n"
+        "assert 'matplotlib.pyplot' not in sys.modules\n"
+    )
+    subprocess.run([sys.executable, "-c", code], check=True)
