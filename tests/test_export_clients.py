@@ -49,7 +49,7 @@ def _counts(values) -> dict[int, int]:
 @pytest.fixture()
 def gmsh():
     gmsh = clients.module("gmsh", "pip install gmsh (in the test extra)")
-    gmsh.initialize(["gmsh", "-noenv"], readConfigFiles=False)
+    gmsh.initialize(readConfigFiles=False)
     gmsh.option.setNumber("General.Terminal", 0)
     gmsh.logger.start()
     yield gmsh

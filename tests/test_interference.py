@@ -319,3 +319,44 @@ def test_mesh_backlash_matches_exact_free_turn_of_the_outlines():
         assert res.side_gap_rad[f, 0] == pytest.approx(free(sign), abs=tol / r_b)
     half_sweep = 0.5 * float(sweep(spec, 0.0, [0.0]).backlash_mm[0])
     assert R * res.side_gap_rad[0, 0] == pytest.approx(half_sweep, abs=2 * tol * R / r_b)
+
+
+def test_overlap_attribution_is_one_rule():
+    """Points just either side of tooth centres go to that tooth and to the flank on their
+    side (DESIGN.md §6: tooth k centred at 2 pi k / N, ccw beyond the centre)."""
+    from gearcoupling.interference.attribution import FLANKS, flank_index, nearest_tooth
+
+    n = 7
+    k = np.arange(-3, 4)
+    eps = 0.2 * 2 * np.pi / n
+    for side, sign in ((0, -1), (1, 1)):
+        a = 2 * np.pi * k / n + sign * eps
+        pts = np.stack([np.cos(a), np.sin(a), np.zeros_like(a)], axis=-1) * 40.0
+        assert np.array_equal(nearest_tooth(pts, n), k)
+        assert np.all(flank_index(pts, k, n) == side)
+        assert FLANKS[side] == ("cw", "ccw")[side]
+
+
+def test_plot_returns_a_figure_accepts_ax_and_keeps_the_backend(renzo):
+    import subprocess
+    import sys
+
+    code = (
+        "import matplotlib, sys\n"
+        "matplotlib.use('svg')\n"
+        "import gearcoupling as gc\n"
+        "from gearcoupling.interference import check_interference, plot_interference\n"
+        "from matplotlib.figure import Figure\n"
+        "res = check_interference(gc.load_spec('renzo-1967'), 1.0, [0.0, 3.0], "
+        "tolerance_mm=0.05)\n"
+        "fig = plot_interference(res, res.min_gap_mm)\n"
+        "assert isinstance(fig, Figure) and len(fig.axes) == 2\n"
+        "line = fig.axes[1].lines[0]\n"
+        "assert list(line.get_ydata()) == list(res.min_gap_mm)\n"
+        "own = Figure()\n"
+        "axes = own.subplots(2, 1)\n"
+        "assert plot_interference(res, ax=axes) is own and axes[0].lines\n"
+        "assert matplotlib.get_backend() == 'svg', matplotlib.get_backend()\n"
+        "assert 'matplotlib.pyplot' not in sys.modules\n"
+    )
+    subprocess.run([sys.executable, "-c", code], check=True)

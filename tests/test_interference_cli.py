@@ -13,7 +13,7 @@ def test_free_coupling_exits_0_and_writes_everything(tmp_path, capsys):
     assert main(["check", "renzo-1967", "--angles", "6", "-o", str(out)]) == 0
     text = capsys.readouterr().out
     assert "worst angles" in text and "no interference" in text
-    rows = list(csv.DictReader((out / "interference.csv").open()))
+    rows = list(csv.DictReader((out / "interference.csv").read_text().splitlines()))
     assert len(rows) == 6 and all(float(r["min_gap_mm"]) > 0 for r in rows)
     data = json.loads((out / "interference.json").read_text())
     assert data["interferes"] is False and data["misalignment_deg"] == pytest.approx(1.0)
@@ -60,7 +60,7 @@ def test_bad_options_exit_2(tmp_path, capsys, argv, words):
 def test_backlash_option_writes_mesh_and_sweep_backlash(tmp_path):
     assert main(["check", "renzo-1967", "--angles", "3", "--backlash", "--method", "distance",
                  "-o", str(tmp_path)]) == 0
-    rows = list(csv.DictReader((tmp_path / "interference.csv").open()))
+    rows = list(csv.DictReader((tmp_path / "interference.csv").read_text().splitlines()))
     data = json.loads((tmp_path / "interference.json").read_text())
     bound = 2 * data["tolerance_mm"] * 63.5 / (63.5 * 0.9396926207859084)
     for r, exact in zip(rows, data["sweep_backlash_mm"], strict=True):

@@ -94,40 +94,13 @@ def write_csv(result, path: Path) -> Path:
 
 
 def plot(result, reference_mm, path: Path, backlash_mm=None) -> Path:
-    """Overlap volume, signed minimum gap and (if measured) backlash against the angle."""
-    from ..plots import new_figure, save_figure
+    """Write :func:`~gearcoupling.interference.plot.plot_interference` as PNG, atomically."""
+    from ..interference.plot import plot_interference
 
-    a = result.angles_deg
-    rows = 3 if result.backlash_mm is not None else 2
-    fig, axes = new_figure(rows, 1, figsize=(9, 3.25 * rows), sharex=True)
-    ax1, ax2 = axes[0], axes[1]
-    ax1.plot(a, result.overlap_volume_mm3, ".-", color="tab:red")
-    ax1.set_ylabel("overlap volume (mm³)")
-    ax1.set_title(f"{result.spec_name}: i = {result.misalignment_deg:g}°, {result.method}, "
-                  f"{result.model}, tolerance {result.tolerance_mm:.4g} mm")
-    ax1.grid(alpha=0.3)
-    ax2.plot(a, result.min_gap_mm, ".-", label="mesh minimum gap (− depth when overlapping)")
-    if reference_mm is not None:
-        ax2.plot(a, reference_mm, "--", color="k", lw=1,
-                 label="sweep: smallest normal clearance (exact)")
-    tol = result.tolerance_mm
-    ax2.axhspan(-tol, tol, color="0.85", label="± chordal tolerance")
-    ax2.axhline(0.0, color="tab:red", lw=0.8)
-    ax2.set_ylabel("gap (mm)")
-    ax2.legend(fontsize=8)
-    ax2.grid(alpha=0.3)
-    if rows == 3:
-        ax3 = axes[2]
-        ax3.plot(a, result.backlash_mm, ".-", color="tab:green", label="mesh backlash")
-        if backlash_mm is not None:
-            ax3.plot(a, backlash_mm, "--", color="k", lw=1, label="sweep backlash")
-        ax3.axhline(0.0, color="tab:red", lw=0.8)
-        ax3.set_ylabel("backlash at R (mm)")
-        ax3.legend(fontsize=8)
-        ax3.grid(alpha=0.3)
-    axes[-1].set_xlabel("rotation ψ (deg)")
-    fig.tight_layout()
-    return save_figure(fig, path, dpi=120)
+    fig = plot_interference(result, reference_mm, backlash_mm)
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, format="png", dpi=120)
+    return Path(path)
 
 
 def write_meshes(result, index: int, out: Path) -> list[Path]:

@@ -23,7 +23,12 @@ from numpy.typing import NDArray
 
 from ..errors import BackendError, GeometryError
 from ..parts.builder import SURFACE_KINDS, Run, tooth_runs
+from .fit import DEGREE, fit_sections
 
+FIT_SHARE = 0.5
+"""Share of the tolerance the fitted profile B-splines may deviate from the exact points."""
+DENSE_SHARE = 0.25
+"""Chord tolerance (share of the tolerance) of the exact points the profiles are fitted to."""
 _CIRCLES = {"root", "tip", "fillet_cw", "fillet_ccw"}  # exact arcs (hub fillets excepted)
 _LINES = {"chamfer_cw", "chamfer_ccw"}
 
@@ -65,9 +70,13 @@ def _groups(kinds: NDArray) -> list[tuple[int, int, int]]:
     return out
 
 
-def _edge(o, pts: NDArray, kind: str, centre: NDArray | None, tol: float):
-    """One exact edge through the 3-D points ``pts`` (first and last are its ends)."""
+def _edge(o, pts: NDArray, kind: str, centre: NDArray | None, tol: float, spline=None):
+    """One exact edge through the 3-D points ``pts`` (first and last are its ends): a line,
+    an arc, the fitted cubic ``spline = (poles (K, 3), knots, mults)`` when given, else a
+    cubic interpolating ``pts``."""
     gp, build = o["gp"], o["build"]
+    if spline is not None:
+        return build.BRepBuilderAPI_MakeEdge(_bspline(o, *spline)).Edge()
     p = [gp.gp_Pnt(*map(float, q)) for q in pts]
     if kind in _LINES or (len(pts) == 2 and kind not in _CIRCLES):
         return build.BRepBuilderAPI_MakeEdge(p[0], p[-1]).Edge()
@@ -88,16 +97,39 @@ def _edge(o, pts: NDArray, kind: str, centre: NDArray | None, tol: float):
     return build.BRepBuilderAPI_MakeEdge(interp.Curve()).Edge()
 
 
-def _wire(o, ring: NDArray, kinds: NDArray, z: float, centres, tol: float):
+def _bspline(o, poles: NDArray, knots: NDArray, mults: NDArray):
+    from OCP.Geom import Geom_BSplineCurve
+
+    col, gp = o["col"], o["gp"]
+    p = col.Array1_gp_Pnt(1, len(poles))
+    for i, q in enumerate(poles, start=1):
+        p.SetValue(i, gp.gp_Pnt(*map(float, q)))
+    k = col.Array1_double(1, len(knots))
+    m = col.Array1_int(1, len(knots))
+    for i, (kv, mv) in enumerate(zip(knots, mults, strict=True), start=1):
+        k.SetValue(i, float(kv))
+        m.SetValue(i, int(mv))
+    return Geom_BSplineCurve(p, k, m, DEGREE)
+
+
+def _wire(o, ring: NDArray, kinds: NDArray, z: float, centres, tol: float,
+          splines: dict | None = None):
     """Closed wire of a whole transverse outline ``ring (n, 2)`` (counter-clockwise) whose
-    segment ``i`` (``ring[i] -> ring[i + 1]``) has kind code ``kinds[i]``; built clockwise."""
+    segment ``i`` (``ring[i] -> ring[i + 1]``) has kind code ``kinds[i]``; built clockwise.
+    ``splines[start]`` is the fitted ``(poles (K, 2), knots, mults)`` of the group of
+    segments from ``start`` (in the wire's direction)."""
     n = len(ring)
     pts3 = np.concatenate([ring, np.full((n, 1), z)], axis=1)
     wire = o["build"].BRepBuilderAPI_MakeWire()
     for start, stop, code in reversed(_groups(kinds)):
         idx = np.arange(start, stop + 1) % n
         kind = SURFACE_KINDS[code]
-        edge = _edge(o, pts3[idx][::-1], kind, centres(kind, ring[idx[len(idx) // 2]]), tol)
+        spline = None if splines is None else splines.get(start)
+        if spline is not None:
+            poles, knots, mults = spline
+            spline = (np.column_stack([poles, np.full(len(poles), z)]), knots, mults)
+        edge = _edge(o, pts3[idx][::-1], kind, centres(kind, ring[idx[len(idx) // 2]]), tol,
+                     spline)
         wire.Add(edge)
         if not wire.IsDone():
             raise GeometryError("outline edges do not join into a wire")
@@ -137,26 +169,35 @@ def hub_solid(spec, tol: float):
     from ..parts.hub import hub_layout
 
     o = _occ()
-    lay = hub_layout(spec, sampling_tolerance(spec, tol))
+    lay = hub_layout(spec, sampling_tolerance(spec, tol))  # section planes
+    dense = hub_layout(spec, DENSE_SHARE * tol)  # exact points the profiles are fitted to
     n = spec.tooth.teeth
-    kinds = np.resize(lay.kinds, n * len(lay.kinds))
+    dense_kinds = np.resize(dense.kinds, n * len(dense.kinds))
     z_all = _section_planes(lay.grid.z)
     cuts = curvature_breaks(hub_model(spec))
     edges = np.concatenate([[-lay.half_face], -cuts[::-1], cuts, [lay.half_face]])
-    pieces = []
+    rows = []
     for z0, z1 in pairwise(edges):
         inside = z_all[(z_all > z0 + 1e-9 * lay.half_face) & (z_all < z1 - 1e-9 * lay.half_face)]
         z_rows = np.concatenate([[z0], inside, [z1]])
-        if len(z_rows) == 2:
-            z_rows = np.linspace(z0, z1, 3)
+        rows.append(np.linspace(z0, z1, 3) if len(z_rows) == 2 else z_rows)
+    # one fit over every section of every piece: the pieces share their cut sections exactly
+    z_fit = np.unique(np.concatenate(rows))
+    rings = np.stack([_tile_ring(pitch, n) for pitch in dense.grid.points(z_fit)])
+    splines = fit_outlines(rings, dense_kinds, FIT_SHARE * tol)
+    pieces = []
+    for z_rows in rows:
         loft = o["offset"].BRepOffsetAPI_ThruSections(True, False, 1e-6)
         loft.CheckCompatibility(False)
-        for z, pitch in zip(z_rows, lay.grid.points(z_rows), strict=True):
-            ring = _tile_ring(pitch, n)
-            loft.AddWire(_wire(o, ring, kinds, float(z), lambda kind, p: _origin(kind), tol))
+        loft.SetMaxDegree(3)
+        for z in z_rows:
+            i = int(np.argmin(np.abs(z_fit - z)))
+            loft.AddWire(_wire(o, rings[i], dense_kinds, float(z),
+                               lambda kind, p: _origin(kind), tol, splines[i]))
         loft.Build()
         if not loft.IsDone():
             raise GeometryError("hub loft failed")
+        _drop_unit_weights(loft.Shape())
         pieces.append(loft.Shape())
     shape = pieces[0] if len(pieces) == 1 else _sew(o, pieces, np.concatenate([-cuts, cuts]))
     gp, prim, algo = o["gp"], o["prim"], o["algo"]
@@ -170,6 +211,56 @@ def hub_solid(spec, tol: float):
         bore = prim.BRepPrimAPI_MakeCylinder(ax, lay.r_bore, 2 * hl + 2.0).Shape()
         shape = algo.BRepAlgoAPI_Cut(shape, bore).Shape()
     return shape
+
+
+def _drop_unit_weights(shape) -> None:
+    """Make the loft's B-spline faces and edges polynomial where all their weights are 1
+    (to rounding): the same geometry, written without a weight per control point."""
+    from OCP.BRep import BRep_Tool
+    from OCP.Geom import Geom_BSplineCurve, Geom_BSplineSurface
+    from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE
+    from OCP.TopExp import TopExp_Explorer
+    from OCP.TopoDS import TopoDS
+
+    exp = TopExp_Explorer(shape, TopAbs_FACE)
+    while exp.More():
+        surf = BRep_Tool.Surface_s(TopoDS.Face(exp.Current()))
+        if isinstance(surf, Geom_BSplineSurface) and (surf.IsURational() or surf.IsVRational()):
+            nu, nv = surf.NbUPoles(), surf.NbVPoles()
+            w = np.array([[surf.Weight(i, j) for j in range(1, nv + 1)]
+                          for i in range(1, nu + 1)])
+            if np.abs(w - 1.0).max() < 1e-12:
+                for i in range(1, nu + 1):
+                    for j in range(1, nv + 1):
+                        surf.SetWeight(i, j, 1.0)
+        exp.Next()
+    exp = TopExp_Explorer(shape, TopAbs_EDGE)
+    while exp.More():
+        curve = BRep_Tool.Curve_s(TopoDS.Edge(exp.Current()), 0.0, 1.0)
+        if isinstance(curve, Geom_BSplineCurve) and curve.IsRational():
+            w = np.array([curve.Weight(i) for i in range(1, curve.NbPoles() + 1)])
+            if np.abs(w - 1.0).max() < 1e-12:
+                for i in range(1, curve.NbPoles() + 1):
+                    curve.SetWeight(i, 1.0)
+        exp.Next()
+
+
+def fit_outlines(rings: NDArray, kinds: NDArray, tol: float, skip=()) -> list:
+    """Fitted cubic B-splines of every edge of the sections ``rings (s, n, 2)``: per section
+    a dict ``{group start: (poles (K, 2), knots, mults)}`` in the wire's (clockwise)
+    direction, one knot vector per edge for all sections, the fewest poles whose fit
+    deviates by at most ``tol`` (:func:`~gearcoupling.export.fit.fit_sections`); edges of
+    the ``skip`` kinds (exact arcs) and of fewer than 4 points are left out."""
+    n = rings.shape[1]
+    out: list[dict] = [{} for _ in rings]
+    for start, stop, code in _groups(kinds):
+        if SURFACE_KINDS[code] in skip or stop - start + 1 < DEGREE + 1:
+            continue
+        idx = (np.arange(start, stop + 1) % n)[::-1]
+        fit = fit_sections(rings[:, idx], tol)
+        for section, poles in zip(out, fit.poles, strict=True):
+            section[start] = (poles, fit.knots, fit.mults)
+    return out
 
 
 def _sew(o, pieces, cut_z: NDArray):
@@ -221,15 +312,18 @@ def _origin(kind: str):
     return np.zeros(2) if kind in ("root", "tip") else None
 
 
+SECTION_STRIDE = 3
+"""Loft sections at every this many planes of the hub grid (sized for chords at the
+sampling tolerance): a cubic in ``z`` through them is far closer to the crowned surface."""
+
+
 def _section_planes(z: NDArray) -> NDArray:
-    """Loft sections: every other grid plane (a cubic B-spline through them is far more
-    accurate than the chords the grid was sized for), always with both ends."""
-    if len(z) <= 5:
+    """Loft sections: every :data:`SECTION_STRIDE`-th grid plane, spread evenly over the
+    face, at least 4 (cubic in ``z``), always with both ends."""
+    count = max(4, math.ceil((len(z) - 1) / SECTION_STRIDE) + 1)
+    if len(z) <= count:
         return z
-    keep = np.zeros(len(z), dtype=bool)
-    keep[::2] = True
-    keep[-1] = True
-    return z[keep]
+    return z[np.round(np.linspace(0, len(z) - 1, count)).astype(int)]
 
 
 def sleeve_solid(spec, tol: float):
@@ -238,11 +332,12 @@ def sleeve_solid(spec, tol: float):
     from ..parts.sleeve import sleeve_layout
 
     o = _occ()
-    lay = sleeve_layout(spec, sampling_tolerance(spec, tol))
+    lay = sleeve_layout(spec, DENSE_SHARE * tol)  # exact points the flanks are fitted to
     sm = sleeve_model(spec)
     n = spec.tooth.teeth
     ring = _tile_ring(lay.pitch, n)
     kinds = np.resize(lay.kinds, n * len(lay.kinds))
+    exact = tuple(_CIRCLES | _LINES)  # root, tip, fillets and chamfers stay exact
     fc = np.array(sm.fillet_centre)
 
     def centres(kind, p):
@@ -258,7 +353,8 @@ def sleeve_solid(spec, tol: float):
 
     gp, build, prim = o["gp"], o["build"], o["prim"]
     hf = lay.half_face
-    inner = _wire(o, ring, kinds, -hf, centres, tol)
+    fitted = fit_outlines(ring[None], kinds, FIT_SHARE * tol, skip=exact)[0]
+    inner = _wire(o, ring, kinds, -hf, centres, tol, fitted)
     circ = gp.gp_Circ(gp.gp_Ax2(gp.gp_Pnt(0, 0, -hf), gp.gp_Dir(0, 0, 1)), lay.r_outer)
     outer = build.BRepBuilderAPI_MakeWire(build.BRepBuilderAPI_MakeEdge(circ).Edge()).Wire()
     face = build.BRepBuilderAPI_MakeFace(outer)
@@ -338,6 +434,8 @@ def write_step(shape, path: str | Path, *, name: str = "part") -> Path:
     Interface_Static.SetCVal_s("write.step.unit", "MM")
     Interface_Static.SetCVal_s("write.step.schema", "AP214IS")
     Interface_Static.SetCVal_s("write.step.product.name", name)
+    # no 2-D parameter curves: readers rebuild them from the 3-D edges and surfaces
+    Interface_Static.SetIVal_s("write.surfacecurve.mode", 0)
     from OCP.IFSelect import IFSelect_ReturnStatus
 
     with _quiet_stdout():

@@ -7,7 +7,8 @@ submodels chosen from :func:`gearcoupling.sweep.sweep` or on the full parts.
 """
 
 from .check import METHODS, InterferenceResult, Overlap, check_interference, posed_meshes
+from .plot import plot_interference
 from .submodel import Model, build_model
 
 __all__ = ["METHODS", "InterferenceResult", "Model", "Overlap", "build_model",
-           "check_interference", "posed_meshes"]
+           "check_interference", "plot_interference", "posed_meshes"]

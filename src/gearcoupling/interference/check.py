@@ -35,6 +35,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..errors import ArgumentError, SpecError
 from . import distance as dist
+from .attribution import FLANKS, flank_index, nearest_tooth
 from .posed import hub_pose, window_pose, window_to_sleeve
 from .submodel import (
     Model,
@@ -48,7 +49,6 @@ from .submodel import (
 
 METHODS = ("boolean", "distance")
 MIN_VOLUME_MM3 = 1e-9  # overlap pieces below this are numerical dust of the intersection
-FLANKS = ("cw", "ccw")
 
 
 @dataclass(frozen=True)
@@ -221,19 +221,6 @@ def _check_teeth(teeth, N: int) -> int | str | None:
                      f"to {(N - 2) // 2} (sectors of 2k + 1 teeth)")
 
 
-def _tooth_of(points: NDArray, N: int) -> NDArray[np.int64]:
-    """Relative tooth (space) index nearest to the polar angle of window-frame points."""
-    ang = np.arctan2(points[..., 1], points[..., 0])
-    return np.rint(ang / (2.0 * math.pi / N)).astype(np.int64)
-
-
-def _flank_of(points_hub: NDArray, rel: NDArray, N: int) -> list[str]:
-    """Hub flank from polar angle offsets of hub-frame points to their tooth centre."""
-    ang = np.arctan2(points_hub[..., 1], points_hub[..., 0]) - 2.0 * math.pi * rel / N
-    ang = np.remainder(ang + math.pi, 2.0 * math.pi) - math.pi
-    return [FLANKS[int(a > 0)] for a in np.atleast_1d(ang)]
-
-
 @dataclass
 class _PoseAcc:
     """What one rotation gathers over its windows."""
@@ -267,8 +254,8 @@ def _boolean_pieces(model: Model, A: NDArray, N: int):
         centroid = np.asarray(tm.center_mass, dtype=float)
         d, foot = dist.surface_distance(v, model.sleeve)
         k = int(np.argmax(d))
-        rel = int(_tooth_of(centroid, N))
-        flank = _flank_of(centroid @ A, np.array(rel), N)[0]
+        rel = int(nearest_tooth(centroid, N))
+        flank = FLANKS[int(flank_index(centroid @ A, rel, N))]
         out.append((rel, flank, float(vol), float(d[k]), centroid, (v[k], foot[k])))
     return _merge(out)
 
@@ -288,8 +275,8 @@ def _distance_pieces(model: Model, A: NDArray, N: int):
     vol = dist.positive_integral(pts, local, depth)  # per face
     hot = vol > 0
     centres = pts[local[hot]].mean(axis=1)
-    rel = _tooth_of(centres, N)
-    flank = np.array(_flank_of(hub.vertices[used][local[hot]].mean(axis=1), rel, N))
+    rel = nearest_tooth(centres, N)
+    flank = np.array(FLANKS)[flank_index(hub.vertices[used][local[hot]].mean(axis=1), rel, N)]
     out = []
     for r in np.unique(rel):
         for f in FLANKS:

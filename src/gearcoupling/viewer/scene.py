@@ -25,6 +25,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..errors import ArgumentError, SpecError
 from ..geometry.hub import FLANKS, hub_flank_model, hub_model
+from ..interference.attribution import flank_index, nearest_tooth
 from ..interference.posed import PreparedPart, affine
 from ..parts import SURFACE_KINDS, build_part, check_tolerance
 from ..sweep import sweep
@@ -557,18 +558,16 @@ def interference_mesh(meshes: SceneMeshes, rotation: ArrayLike,
     if interfering is not None:
         mask = np.asarray(interfering, dtype=bool)
         teeth = mask.shape[1]
-        pitch = 2.0 * np.pi / teeth
         keep = []
         for piece in overlap.decompose():
             verts = np.asarray(piece.to_mesh().vert_properties, dtype=float)[:, :3]
             if verts.size == 0:
                 continue
             c = rot.T @ verts.mean(axis=0)  # hub frame
-            a = math.atan2(c[1], c[0])
-            k = int(np.rint(a / pitch)) % teeth
-            rel = math.remainder(a - k * pitch, 2.0 * np.pi)
+            k = int(nearest_tooth(c, teeth)) % teeth
+            flank = int(flank_index(c, k, teeth))
             thick = 2.0 * piece.volume() / max(piece.surface_area(), 1e-300)
-            if mask[0 if rel < 0 else 1, k] or thick > meshes.tolerance_mm:
+            if mask[flank, k] or thick > meshes.tolerance_mm:
                 keep.append(piece)
         overlap = type(overlap).compose(keep) if keep else type(overlap)()
     volume = float(overlap.volume())
