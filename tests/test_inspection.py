@@ -186,3 +186,22 @@ def test_cli_limits_fail_the_teeth_with_index_errors(renzo, tmp_path, capsys):
     assert main(["compare", "renzo-1967", str(tmp_path / "scan.xyz"), "--limit", "fpt=-1",
                  "-o", str(out)]) == 2
     assert math.isfinite(summary["registration"]["rms_mm"])
+
+
+def test_spec_inspection_limits_are_read_and_used(renzo, tmp_path):
+    from gearcoupling.spec import resolve_spec_path
+
+    text = resolve_spec_path("renzo-1967").read_text()
+    path = tmp_path / "limits.toml"
+    path.write_text(text + "\n[inspection]\nfpt = 0.0003\nFp = 0.002\n")
+    spec = gc.load_spec(path)
+    assert spec.inspection.fpt == pytest.approx(0.0003 * 25.4, rel=1e-12)  # inch file
+    assert spec.inspection.as_dict() == pytest.approx({"fpt": 0.00762, "Fp": 0.0508})
+    path.write_text(text + "\n[inspection]\nfp = 0.0003\n")
+    with pytest.raises(gc.SpecError, match=r"inspection\.fp "):
+        gc.load_spec(path)
+    pts = synthetic_hub(renzo, per_flank=150, index_mm={7: 0.015}, noise_mm=0.0005)
+    rep = compare_part(spec, pts)
+    assert rep.summary()["failed_teeth"] == [7, 8] and rep.part["F_p_pass"] is True
+    # a limit given to the call overrides the spec's
+    assert compare_part(spec, pts, limits={"fpt": 0.02}).part["pass"] is True

@@ -281,6 +281,39 @@ class Sleeve:
                self.outer_diameter, f"must exceed the major diameter {self.major_diameter:.6g} mm")
 
 
+# ---- inspection tolerance limits (issue 13: gearcoupling compare) ----
+INSPECTION_LIMITS = ("fpt", "Fp", "Fr", "f_Halpha", "f_Hbeta", "C_beta", "thickness")
+
+
+@dataclass(frozen=True)
+class InspectionLimits:
+    """Tolerance limits in mm that ``gearcoupling compare`` checks (``inf`` = no limit).
+
+    ``fpt`` single pitch, ``Fp`` total cumulative pitch, ``Fr`` runout, ``f_Halpha`` /
+    ``f_Hbeta`` profile / lead slope, ``C_beta`` crown height deviation, ``thickness``
+    tooth thickness deviation (see docs/manufacturing.md).
+    """
+
+    fpt: float = math.inf
+    Fp: float = math.inf
+    Fr: float = math.inf
+    f_Halpha: float = math.inf
+    f_Hbeta: float = math.inf
+    C_beta: float = math.inf
+    thickness: float = math.inf
+
+    def __post_init__(self):
+        for name in INSPECTION_LIMITS:
+            v = getattr(self, name)
+            _check(isinstance(v, int | float) and not isinstance(v, bool) and v > 0,
+                   f"inspection.{name}", v, "must be a positive length (inf = no limit)")
+
+    def as_dict(self) -> dict[str, float]:
+        """The finite limits."""
+        return {n: getattr(self, n) for n in INSPECTION_LIMITS if math.isfinite(getattr(self, n))}
+# ---- end inspection limits ----
+
+
 @dataclass(frozen=True)
 class CouplingSpec:
     """A complete coupling: tooth system, hub, sleeve and design misalignment (radians)."""
@@ -291,6 +324,7 @@ class CouplingSpec:
     design_misalignment: float = 0.0
     name: str = field(default="custom", compare=False)
     units: str = field(default="mm", compare=False)
+    inspection: InspectionLimits = field(default_factory=InspectionLimits, compare=False)
 
     def __post_init__(self):
         lo, hi = MISALIGNMENT_RANGE_DEG
@@ -319,7 +353,7 @@ class CouplingSpec:
         d = asdict(self)
         tooth = d["tooth"]
         tooth["pressure_angle_deg"] = math.degrees(tooth.pop("pressure_angle"))
-        out.update(tooth=tooth, hub=d["hub"], sleeve=d["sleeve"])
+        out.update(tooth=tooth, hub=d["hub"], sleeve=d["sleeve"], inspection=d["inspection"])
         cr = out["hub"]["crowning"]
         for key in ("table_s", "table_kappa", "table_z", "table_drop"):
             cr[key] = list(cr[key])
@@ -511,8 +545,12 @@ def spec_from_dict(data: dict[str, Any], name: str = "custom") -> CouplingSpec:
         outer_diameter=s.length("outer_diameter", major + 2 * max(3 * m, 0.1 * R)),
     )
     s.done()
+    ins = root.table("inspection")  # issue 13: tolerance limits for compare
+    inspection = InspectionLimits(**{k: ins.length(k, math.inf) for k in INSPECTION_LIMITS})
+    ins.done()
     root.done()
-    return CouplingSpec(tooth, hub, sleeve, misalignment, name=name, units=units)
+    return CouplingSpec(tooth, hub, sleeve, misalignment, name=name, units=units,
+                        inspection=inspection)
 
 
 def _pointed_radius(tooth: ToothSystem, arc_width: float) -> float:

@@ -26,7 +26,8 @@ def register(sub) -> None:
     p.add_argument("--units", default="mm", choices=("mm", "in", "m"),
                    help="units of the file coordinates (default mm)")
     p.add_argument("--limit", action="append", default=[], metavar="NAME=MM",
-                   help="tolerance limit, repeatable; NAME one of " + ", ".join(LIMITS))
+                   help="tolerance limit, repeatable, overriding the spec's [inspection] "
+                        "table; NAME one of " + ", ".join(LIMITS))
     p.add_argument("--coarse", default="auto", choices=("auto", "none"),
                    help="auto: find axis and teeth; none: the file is in the hub frame")
     p.add_argument("--fit-points", type=int, default=20_000, metavar="N",

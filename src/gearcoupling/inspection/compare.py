@@ -79,7 +79,8 @@ def compare_part(spec, source, other=None, *, units: str = "mm", limits=None,
         Unit of the file coordinates (a scan in other units than given is detected by
         its size and refused with the reason).
     limits : dict, optional
-        Tolerances in mm, keys of :data:`~gearcoupling.inspection.report.LIMITS`.
+        Tolerances in mm, keys of :data:`~gearcoupling.inspection.report.LIMITS`; they
+        override the spec's ``[inspection]`` limits.
     coarse : {"auto", "none"}
         ``none`` keeps the file's frame (part coordinates; partial scans).
     fit_points : int
@@ -99,7 +100,7 @@ def compare_part(spec, source, other=None, *, units: str = "mm", limits=None,
     InspectionReport or PartComparison
     """
     step = advance or (lambda label: None)
-    lim = check_limits(limits)
+    lim = check_limits({**spec.inspection.as_dict(), **dict(limits or {})})
     parts = [_points(src, units) for src in (source, other) if src is not None]
     step(f"read {', '.join(f'{len(p):,}' for p, _ in parts)} points")
     table = flank_table(spec, grid)
