@@ -179,7 +179,7 @@ def test_cli_limits_fail_the_teeth_with_index_errors(renzo, tmp_path, capsys):
     # tooth 7 (f_pt = +15 um) and tooth 8 (f_pt = -15 um after it) fail, nothing else
     assert summary["failed_teeth"] == [7, 8]
     assert summary["part"]["F_p_pass"] is True
-    for name in ("inspection.csv", "inspection.png", "deviation_map.png"):
+    for name in ("inspection.csv", "inspection.png", "deviation_map.png", "deviation.ply"):
         assert (out / name).stat().st_size > 0
     assert main(["compare", "renzo-1967", str(tmp_path / "scan.xyz"), "--limit", "bogus=1",
                  "-o", str(out)]) == 2
@@ -205,3 +205,35 @@ def test_spec_inspection_limits_are_read_and_used(renzo, tmp_path):
     assert rep.summary()["failed_teeth"] == [7, 8] and rep.part["F_p_pass"] is True
     # a limit given to the call overrides the spec's
     assert compare_part(spec, pts, limits={"fpt": 0.02}).part["pass"] is True
+
+
+def test_heatmap_colours_and_viser_scene(renzo, tmp_path):
+    from gearcoupling.inspection.heatmap import (
+        add_deviation_heatmap,
+        deviation_colours,
+        write_deviation_ply,
+    )
+
+    rgb = deviation_colours(np.array([-1.0, 0.0, 1.0, 5.0]), 1.0)
+    assert rgb[1].tolist() == [247, 247, 247] and rgb[2].tolist() == rgb[3].tolist()
+    assert rgb[0, 2] > rgb[0, 0] and rgb[2, 0] > rgb[2, 2]  # blue minus, red plus
+    pts = synthetic_hub(renzo, per_flank=80, index_mm={4: 0.02})
+    rep = compare_part(renzo, pts)
+    ply = write_deviation_ply(rep, tmp_path / "dev.ply", limit_mm=0.02)
+    import trimesh
+
+    cloud = trimesh.load(ply)
+    assert len(cloud.vertices) == len(rep.sample["d"])
+    # the reddest points are on tooth 4's ccw flank (turned into the space: + material)
+    red = np.asarray(cloud.colors)[:, 0].astype(int) - np.asarray(cloud.colors)[:, 2]
+    top = np.argsort(red)[-20:]
+    assert set(rep.sample["tooth"][top].tolist()) == {4}
+    viser = pytest.importorskip("viser")
+    from gearcoupling.viewer.html import free_port
+
+    server = viser.ViserServer(host="127.0.0.1", port=free_port(), verbose=False)
+    try:
+        handle = add_deviation_heatmap(server, rep)
+        assert np.asarray(handle.points).shape == (len(rep.sample["d"]), 3)
+    finally:
+        server.stop()

@@ -2,9 +2,9 @@
 
 ``compare SPEC FILE`` writes ``inspection.csv`` (one row per measured tooth),
 ``inspection.json`` (registration, part values, limits, pass/fail),
-``inspection.png`` and ``deviation_map.png``. ``compare SPEC A B`` inspects both and
-writes ``comparison.csv`` / ``comparison.json`` (B - A per tooth). Exit status 1 when a
-tooth fails a limit.
+``inspection.png``, ``deviation_map.png`` and ``deviation.ply`` (coloured points on the
+part). ``compare SPEC A B`` inspects both and writes ``comparison.csv`` /
+``comparison.json`` (B - A per tooth). Exit status 1 when a tooth fails a limit.
 """
 
 from __future__ import annotations
@@ -49,6 +49,7 @@ def run(args) -> int:
     from ..hob.writers import write_csv
     from ..inspection import compare_part
     from ..inspection.compare import STAGES
+    from ..inspection.heatmap import write_deviation_ply
     from ..inspection.plots import plot_deviation_map, plot_inspection
     from ..plots import save_figure
 
@@ -71,7 +72,8 @@ def run(args) -> int:
         reports = [result]
         files = [write_csv(out / "inspection.csv", result.rows(), units),
                  save_figure(plot_inspection(result), out / "inspection.png"),
-                 save_figure(plot_deviation_map(result), out / "deviation_map.png")]
+                 save_figure(plot_deviation_map(result), out / "deviation_map.png"),
+                 write_deviation_ply(result, out / "deviation.ply")]
         files.append(write_json(out / "inspection.json", {**result.summary(),
                                                           "files": [str(f) for f in files]}))
     failed = False

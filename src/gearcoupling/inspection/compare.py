@@ -127,7 +127,8 @@ def _inspect(spec, pts, name, table, charts, lim, coarse, fit_points, outlier_mm
     ev["part"]["outliers"] = int((~keep).sum())
     take = np.linspace(0, len(dev.d) - 1, min(SAMPLE, len(dev.d))).astype(np.intp)
     rb = table.model.R * math.cos(table.model.phi)
-    sample = {"tooth": dev.tooth[take], "flank": dev.flank[take], "z": dev.z[take],
+    sample = {"points": hub[dev.index[take]],
+              "tooth": dev.tooth[take], "flank": dev.flank[take], "z": dev.z[take],
               "xi": np.sqrt(np.maximum(dev.r[take] ** 2 - rb**2, 0.0)), "d": dev.d[take]}
     nominal = {f: {k: charts.values[f][k] for k in ("C_beta_mm", "f_Hbeta_mm",
                                                     "lead_radius_mm")} for f in FLANK_NAMES}
