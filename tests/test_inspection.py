@@ -237,3 +237,9 @@ def test_heatmap_colours_and_viser_scene(renzo, tmp_path):
         assert np.asarray(handle.points).shape == (len(rep.sample["d"]), 3)
     finally:
         server.stop()
+
+
+def test_too_sparse_scan_is_refused_not_passed(renzo):
+    pts = synthetic_hub(renzo, per_flank=12)
+    with pytest.raises(RegistrationError, match="no tooth has both flanks measured"):
+        compare_part(renzo, pts, coarse="none")

@@ -11,7 +11,7 @@ import numpy as np
 from ..errors import SpecError
 from ..hob.charts import measuring_charts
 from .io import load_points
-from .register import register
+from .register import RegistrationError, register
 from .report import FLANK_NAMES, InspectionReport, check_limits, evaluate, pass_fail
 from .surface import deviation, flank_table
 
@@ -121,6 +121,11 @@ def _inspect(spec, pts, name, table, charts, lim, coarse, fit_points, outlier_mm
     keep = np.abs(dev.d) <= outlier
     dev = type(dev)(*(getattr(dev, f)[keep] for f in dev.__dataclass_fields__))
     ev = evaluate(table, charts, dev, min_points=min_points)
+    if not len(ev["teeth"]):
+        raise RegistrationError(
+            f"{name}: no tooth has both flanks measured: a flank needs {min_points} points "
+            f"in the band |z| <= {table.half_lead:.4g} mm, r = {table.r_lo:.5g} .. "
+            f"{table.r_hi:.5g} mm covering half of it ({len(dev.d)} band points in all)")
     step("evaluated")
     ok, checks = pass_fail(ev, lim)
     ev["part"].update(checks)
