@@ -87,7 +87,8 @@ class InspectionReport:
             row: dict[str, object] = {"tooth": int(k)}
             for f in FLANK_NAMES:
                 for key, arr in self.flank[f].items():
-                    row[f"{key}_{f}"] = _clean(arr[i])
+                    col = f"{key[:-3]}_{f}_mm" if key.endswith("_mm") else f"{key}_{f}"
+                    row[col] = _clean(arr[i])
             for key, arr in self.tooth.items():
                 row[key] = _clean(arr[i])
             if self.passed is not None:
