@@ -161,6 +161,10 @@ def test_two_parts_compare_as_geometry_regression(renzo, tmp_path, capsys):
     diffs = np.array([row["thickness_dev_diff_mm"] for row in cmp.rows()])
     assert len(diffs) == renzo.tooth.teeth
     assert np.max(np.abs(diffs - 0.008)) < 1.0 * UM
+    # every flank value is compared: each flank moved out by 4 um * cos(phi) along its normal
+    offsets = np.array([[row[f"offset_{f}_diff_mm"] for f in ("cw", "ccw")] for row in cmp.rows()])
+    np.testing.assert_allclose(offsets, 0.004 * math.cos(renzo.tooth.pressure_angle), atol=UM)
+    assert max(abs(row["fpt_cw_diff_mm"]) for row in cmp.rows()) < UM
     out = tmp_path / "cmp"
     assert main(["compare", "renzo-1967", str(tmp_path / "a.xyz"), str(tmp_path / "b.csv"),
                  "-o", str(out)]) == 0
