@@ -247,3 +247,23 @@ def test_too_sparse_scan_is_refused_not_passed(renzo):
     pts = synthetic_hub(renzo, per_flank=12)
     with pytest.raises(RegistrationError, match="no tooth has both flanks measured"):
         compare_part(renzo, pts, coarse="none")
+
+
+def test_runout_is_measured_from_the_bore_when_the_scan_has_it(renzo):
+    """An eccentric tooth ring: invisible to the teeth-only fit, 2 e of runout to the bore."""
+    rng = np.random.default_rng(0)
+    teeth = synthetic_hub(renzo, per_flank=150, noise_mm=0.0005)
+    rb, L = 0.5 * renzo.hub.body.bore_diameter, renzo.hub.body.length
+    th, z = rng.uniform(0, 2 * np.pi, 4000), rng.uniform(-0.4 * L, 0.4 * L, 4000)
+    e = np.array([0.02, -0.01])
+    bore = np.stack([rb * np.cos(th) + e[0], rb * np.sin(th) + e[1], z], axis=-1)
+    only = compare_part(renzo, random_placement(teeth)[0])
+    assert only.part["runout_datum"] == "teeth best-fit axis" and only.part["F_r_mm"] < 1 * UM
+    rep = compare_part(renzo, random_placement(np.concatenate([teeth, bore]))[0])
+    assert rep.part["runout_datum"] == "bore axis"
+    # sampled at 50 spaces the sinusoid's range is 2 e cos(small angle) ~ 2 e
+    N = renzo.tooth.teeth
+    ang = 2 * np.pi * (np.arange(N) + 0.5) / N
+    expect = np.ptp(-(e[0] * np.cos(ang) + e[1] * np.sin(ang)))
+    assert rep.part["F_r_mm"] == pytest.approx(expect, abs=1 * UM)
+    assert np.hypot(*rep.part["bore"]["centre_mm"]) == pytest.approx(np.hypot(*e), abs=0.5 * UM)

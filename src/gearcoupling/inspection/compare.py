@@ -10,6 +10,7 @@ import numpy as np
 
 from ..errors import SpecError
 from ..hob.charts import measuring_charts
+from .datum import bore_datum
 from .io import load_points
 from .register import RegistrationError, register
 from .report import FLANK_NAMES, InspectionReport, check_limits, evaluate, pass_fail
@@ -120,7 +121,9 @@ def _inspect(spec, pts, name, table, charts, lim, coarse, fit_points, outlier_mm
     outlier = 0.2 * table.model.R / table.model.teeth if outlier_mm is None else outlier_mm
     keep = np.abs(dev.d) <= outlier
     dev = type(dev)(*(getattr(dev, f)[keep] for f in dev.__dataclass_fields__))
-    ev = evaluate(table, charts, dev, min_points=min_points)
+    datum = bore_datum(hub, spec)
+    ev = evaluate(table, charts, dev, min_points=min_points,
+                  datum_centre=None if datum is None else datum["centre_mm"])
     if not len(ev["teeth"]):
         raise RegistrationError(
             f"{name}: no tooth has both flanks measured: a flank needs {min_points} points "
@@ -130,6 +133,10 @@ def _inspect(spec, pts, name, table, charts, lim, coarse, fit_points, outlier_mm
     ok, checks = pass_fail(ev, lim)
     ev["part"].update(checks)
     ev["part"]["outliers"] = int((~keep).sum())
+    ev["part"]["runout_datum"] = "teeth best-fit axis" if datum is None else "bore axis"
+    if datum is not None:
+        ev["part"]["bore"] = {k: (v.tolist() if hasattr(v, "tolist") else v)
+                              for k, v in datum.items()}
     take = np.linspace(0, len(dev.d) - 1, min(SAMPLE, len(dev.d))).astype(np.intp)
     rb = table.model.R * math.cos(table.model.phi)
     sample = {"points": hub[dev.index[take]],
