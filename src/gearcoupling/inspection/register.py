@@ -9,7 +9,8 @@ the part's coordinates, or a scan of a few teeth whose centroid is not on the ax
 
 Fine: Gauss-Newton on the point-to-flank distances of the exact nominal (point-to-plane
 ICP with the exact surface: the nominal point and normal are re-evaluated at every
-iteration), over at most ``fit_points`` band points, with a uniform normal offset and a
+iteration; Huber weights, so a few teeth with large pitch errors do not pull the axis),
+over at most ``fit_points`` band points, with a uniform normal offset and a
 crown-height change as nuisance parameters (size and form are reported, not fitted away
 by the placement); a rank-deficient direction (the axial shift of straight teeth) is left
 at its coarse value (least-norm step).
@@ -190,6 +191,7 @@ def fine_register(points, table: FlankTable, Rm, t, *, fit_points: int = 20_000,
     if len(cand) > fit_points:
         cand = rng.choice(cand, fit_points, replace=False)
     sub = points[cand]
+    weight = np.ones(len(sub))
     iterations = 0
     for _ in range(max_iter):
         iterations += 1
@@ -209,7 +211,14 @@ def fine_register(points, table: FlankTable, Rm, t, *, fit_points: int = 20_000,
         zn = (dev.z[ok] / table.half_lead)[:, None]
         J = np.concatenate([np.cross(qi, n), n, np.ones_like(zn), zn * zn], axis=1)
         scale = np.array([1.0 / m.R] * 3 + [1.0] * 5)
-        x = np.linalg.lstsq(J * scale, -d, rcond=1e-9)[0][:6] * scale[:6]
+        sw = np.sqrt(weight[dev.index[ok]])[:, None]
+        x_all = np.linalg.lstsq(J * scale * sw, -d * sw[:, 0], rcond=1e-9)[0] * scale
+        x = x_all[:6]
+        # Huber weights for the next step (robust to a few teeth with large pitch errors)
+        res = d + J @ x_all
+        k = max(1.345 * 1.4826 * float(np.median(np.abs(res))), 1e-7)
+        weight[:] = 1.0
+        weight[dev.index[ok]] = np.minimum(1.0, k / np.maximum(np.abs(res), 1e-300))
         dR = _rodrigues(x[:3])
         Rm, t = dR @ Rm, dR @ t + x[3:]
         if np.linalg.norm(x[:3]) * m.R + np.linalg.norm(x[3:]) < 1e-9 * m.R:
