@@ -98,3 +98,19 @@ def test_plot_accepts_axes_and_cli_writes_files(tmp_path, capsys):
         assert (tmp_path / f).stat().st_size > 0
     assert main(["charts", "industrial-m2", "-o", str(tmp_path), "--points", "2"]) == 2
     assert "points = 2" in capsys.readouterr().err
+
+
+def test_lead_range_stops_where_a_tip_sphere_cuts_the_lead_radius():
+    """A short, small hub: the tip sphere passes below the lead radius before the face end."""
+    spec = gc.spec_from_dict({"tooth": {"teeth": 12, "module": 1.0, "pressure_angle_deg": 25},
+                              "hub": {"face_width": 8.4, "root": {"dedendum": 1.0},
+                                      "crowning": {"kind": "circular", "radius": 60.0}}})
+    ch = measuring_charts(spec, points=41)
+    m = hub_model(spec)
+    r_lead = ch.values["cw"]["lead_radius_mm"]
+    reach = math.sqrt(m.tip_radius**2 - r_lead**2)
+    assert reach < m.half_face - min(0.05 * 8.4, 1.0)  # the ISO range would leave the flank
+    assert 0.5 * ch.lead_evaluation_mm == pytest.approx(reach, rel=1e-9)
+    lead = next(t for t in ch.traces if t.kind == "lead")
+    assert np.all(np.hypot(lead.points[:, 0], lead.points[:, 1]) <= m.tip_radius)
+    assert ch.values["cw"]["C_beta_mm"] > 0

@@ -161,6 +161,10 @@ def test_two_parts_compare_as_geometry_regression(renzo, tmp_path, capsys):
     diffs = np.array([row["thickness_dev_diff_mm"] for row in cmp.rows()])
     assert len(diffs) == renzo.tooth.teeth
     assert np.max(np.abs(diffs - 0.008)) < 1.0 * UM
+    # every flank value is compared: each flank moved out by 4 um * cos(phi) along its normal
+    offsets = np.array([[row[f"offset_{f}_diff_mm"] for f in ("cw", "ccw")] for row in cmp.rows()])
+    np.testing.assert_allclose(offsets, 0.004 * math.cos(renzo.tooth.pressure_angle), atol=UM)
+    assert max(abs(row["fpt_cw_diff_mm"]) for row in cmp.rows()) < UM
     out = tmp_path / "cmp"
     assert main(["compare", "renzo-1967", str(tmp_path / "a.xyz"), str(tmp_path / "b.csv"),
                  "-o", str(out)]) == 0
@@ -179,10 +183,87 @@ def test_cli_limits_fail_the_teeth_with_index_errors(renzo, tmp_path, capsys):
     # tooth 7 (f_pt = +15 um) and tooth 8 (f_pt = -15 um after it) fail, nothing else
     assert summary["failed_teeth"] == [7, 8]
     assert summary["part"]["F_p_pass"] is True
-    for name in ("inspection.csv", "inspection.png", "deviation_map.png"):
+    for name in ("inspection.csv", "inspection.png", "deviation_map.png", "deviation.ply"):
         assert (out / name).stat().st_size > 0
     assert main(["compare", "renzo-1967", str(tmp_path / "scan.xyz"), "--limit", "bogus=1",
                  "-o", str(out)]) == 2
     assert main(["compare", "renzo-1967", str(tmp_path / "scan.xyz"), "--limit", "fpt=-1",
                  "-o", str(out)]) == 2
     assert math.isfinite(summary["registration"]["rms_mm"])
+
+
+def test_spec_inspection_limits_are_read_and_used(renzo, tmp_path):
+    from gearcoupling.spec import resolve_spec_path
+
+    text = resolve_spec_path("renzo-1967").read_text()
+    path = tmp_path / "limits.toml"
+    path.write_text(text + "\n[inspection]\nfpt = 0.0003\nFp = 0.002\n")
+    spec = gc.load_spec(path)
+    assert spec.inspection.fpt == pytest.approx(0.0003 * 25.4, rel=1e-12)  # inch file
+    assert spec.inspection.as_dict() == pytest.approx({"fpt": 0.00762, "Fp": 0.0508})
+    path.write_text(text + "\n[inspection]\nfp = 0.0003\n")
+    with pytest.raises(gc.SpecError, match=r"inspection\.fp "):
+        gc.load_spec(path)
+    pts = synthetic_hub(renzo, per_flank=150, index_mm={7: 0.015}, noise_mm=0.0005)
+    rep = compare_part(spec, pts)
+    assert rep.summary()["failed_teeth"] == [7, 8] and rep.part["F_p_pass"] is True
+    # a limit given to the call overrides the spec's
+    assert compare_part(spec, pts, limits={"fpt": 0.02}).part["pass"] is True
+
+
+def test_heatmap_colours_and_viser_scene(renzo, tmp_path):
+    from gearcoupling.inspection.heatmap import (
+        add_deviation_heatmap,
+        deviation_colours,
+        write_deviation_ply,
+    )
+
+    rgb = deviation_colours(np.array([-1.0, 0.0, 1.0, 5.0]), 1.0)
+    assert rgb[1].tolist() == [247, 247, 247] and rgb[2].tolist() == rgb[3].tolist()
+    assert rgb[0, 2] > rgb[0, 0] and rgb[2, 0] > rgb[2, 2]  # blue minus, red plus
+    pts = synthetic_hub(renzo, per_flank=80, index_mm={4: 0.02})
+    rep = compare_part(renzo, pts)
+    ply = write_deviation_ply(rep, tmp_path / "dev.ply", limit_mm=0.02)
+    import trimesh
+
+    cloud = trimesh.load(ply)
+    assert len(cloud.vertices) == len(rep.sample["d"])
+    # the reddest points are on tooth 4's ccw flank (turned into the space: + material)
+    red = np.asarray(cloud.colors)[:, 0].astype(int) - np.asarray(cloud.colors)[:, 2]
+    top = np.argsort(red)[-20:]
+    assert set(rep.sample["tooth"][top].tolist()) == {4}
+    viser = pytest.importorskip("viser")
+    from gearcoupling.viewer.html import free_port
+
+    server = viser.ViserServer(host="127.0.0.1", port=free_port(), verbose=False)
+    try:
+        handle = add_deviation_heatmap(server, rep)
+        assert np.asarray(handle.points).shape == (len(rep.sample["d"]), 3)
+    finally:
+        server.stop()
+
+
+def test_too_sparse_scan_is_refused_not_passed(renzo):
+    pts = synthetic_hub(renzo, per_flank=12)
+    with pytest.raises(RegistrationError, match="no tooth has both flanks measured"):
+        compare_part(renzo, pts, coarse="none")
+
+
+def test_runout_is_measured_from_the_bore_when_the_scan_has_it(renzo):
+    """An eccentric tooth ring: invisible to the teeth-only fit, 2 e of runout to the bore."""
+    rng = np.random.default_rng(0)
+    teeth = synthetic_hub(renzo, per_flank=150, noise_mm=0.0005)
+    rb, L = 0.5 * renzo.hub.body.bore_diameter, renzo.hub.body.length
+    th, z = rng.uniform(0, 2 * np.pi, 4000), rng.uniform(-0.4 * L, 0.4 * L, 4000)
+    e = np.array([0.02, -0.01])
+    bore = np.stack([rb * np.cos(th) + e[0], rb * np.sin(th) + e[1], z], axis=-1)
+    only = compare_part(renzo, random_placement(teeth)[0])
+    assert only.part["runout_datum"] == "teeth best-fit axis" and only.part["F_r_mm"] < 1 * UM
+    rep = compare_part(renzo, random_placement(np.concatenate([teeth, bore]))[0])
+    assert rep.part["runout_datum"] == "bore axis"
+    # sampled at 50 spaces the sinusoid's range is 2 e cos(small angle) ~ 2 e
+    N = renzo.tooth.teeth
+    ang = 2 * np.pi * (np.arange(N) + 0.5) / N
+    expect = np.ptp(-(e[0] * np.cos(ang) + e[1] * np.sin(ang)))
+    assert rep.part["F_r_mm"] == pytest.approx(expect, abs=1 * UM)
+    assert np.hypot(*rep.part["bore"]["centre_mm"]) == pytest.approx(np.hypot(*e), abs=0.5 * UM)

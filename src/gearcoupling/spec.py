@@ -305,6 +305,39 @@ class Sleeve:
                self.outer_diameter, f"must exceed the major diameter {self.major_diameter:.6g} mm")
 
 
+# ---- inspection tolerance limits (issue 13: gearcoupling compare) ----
+INSPECTION_LIMITS = ("fpt", "Fp", "Fr", "f_Halpha", "f_Hbeta", "C_beta", "thickness")
+
+
+@dataclass(frozen=True)
+class InspectionLimits:
+    """Tolerance limits in mm that ``gearcoupling compare`` checks (``inf`` = no limit).
+
+    ``fpt`` single pitch, ``Fp`` total cumulative pitch, ``Fr`` runout, ``f_Halpha`` /
+    ``f_Hbeta`` profile / lead slope, ``C_beta`` crown height deviation, ``thickness``
+    tooth thickness deviation (see docs/manufacturing.md).
+    """
+
+    fpt: float = math.inf
+    Fp: float = math.inf
+    Fr: float = math.inf
+    f_Halpha: float = math.inf
+    f_Hbeta: float = math.inf
+    C_beta: float = math.inf
+    thickness: float = math.inf
+
+    def __post_init__(self):
+        for name in INSPECTION_LIMITS:
+            v = getattr(self, name)
+            _check(isinstance(v, int | float) and not isinstance(v, bool) and v > 0,
+                   f"inspection.{name}", v, "must be a positive length (inf = no limit)")
+
+    def as_dict(self) -> dict[str, float]:
+        """The finite limits."""
+        return {n: getattr(self, n) for n in INSPECTION_LIMITS if math.isfinite(getattr(self, n))}
+# ---- end inspection limits ----
+
+
 @dataclass(frozen=True)
 class CouplingSpec:
     """A complete coupling: tooth system, hub, sleeve and design misalignment (radians)."""
@@ -317,6 +350,7 @@ class CouplingSpec:
     load: LoadSpec = field(default_factory=LoadSpec)  # [load] (loadspec.py)
     material: Materials = field(default_factory=Materials)  # [material] (loadspec.py)
     units: str = field(default="mm", compare=False)
+    inspection: InspectionLimits = field(default_factory=InspectionLimits, compare=False)
 
     def __post_init__(self):
         check_misalignment_deg(math.degrees(self.design_misalignment), "design_misalignment_deg")
@@ -344,7 +378,7 @@ class CouplingSpec:
         d = asdict(self)
         tooth = d["tooth"]
         tooth["pressure_angle_deg"] = math.degrees(tooth.pop("pressure_angle"))
-        out.update(tooth=tooth, hub=d["hub"], sleeve=d["sleeve"])
+        out.update(tooth=tooth, hub=d["hub"], sleeve=d["sleeve"], inspection=d["inspection"])
         out["load"] = {k: v for k, v in d["load"].items() if v is not None}
         out["material"] = {p: {k: v for k, v in m.items() if k != "part"}
                            for p, m in d["material"].items()}
@@ -692,9 +726,12 @@ def _build(root: _Table, name: str) -> CouplingSpec:
     s.done()
     load = parse_load(root.data.pop("load", {}))
     material = parse_material(root.data.pop("material", {}))
+    ins = root.table("inspection")  # issue 13: tolerance limits for compare
+    inspection = InspectionLimits(**{k: ins.length(k, math.inf) for k in INSPECTION_LIMITS})
+    ins.done()
     root.done()
     return CouplingSpec(tooth, hub, sleeve, misalignment, name=name, units=units, load=load,
-                        material=material)
+                        material=material, inspection=inspection)
 
 
 def _crown_drop(crowning: Crowning, R: float, face: float, z: float) -> float:

@@ -2,9 +2,9 @@
 
 ``compare SPEC FILE`` writes ``inspection.csv`` (one row per measured tooth),
 ``inspection.json`` (registration, part values, limits, pass/fail),
-``inspection.png`` and ``deviation_map.png``. ``compare SPEC A B`` inspects both and
-writes ``comparison.csv`` / ``comparison.json`` (B - A per tooth). Exit status 1 when a
-tooth fails a limit.
+``inspection.png``, ``deviation_map.png`` and ``deviation.ply`` (coloured points on the
+part). ``compare SPEC A B`` inspects both and writes ``comparison.csv`` /
+``comparison.json`` (B - A per tooth). Exit status 1 when a tooth fails a limit.
 """
 
 from __future__ import annotations
@@ -26,7 +26,8 @@ def register(sub) -> None:
     p.add_argument("--units", default="mm", choices=("mm", "in", "m"),
                    help="units of the file coordinates (default mm)")
     p.add_argument("--limit", action="append", default=[], metavar="NAME=MM",
-                   help="tolerance limit, repeatable; NAME one of " + ", ".join(LIMITS))
+                   help="tolerance limit, repeatable, overriding the spec's [inspection] "
+                        "table; NAME one of " + ", ".join(LIMITS))
     p.add_argument("--coarse", default="auto", choices=("auto", "none"),
                    help="auto: find axis and teeth; none: the file is in the hub frame")
     p.add_argument("--fit-points", type=int, default=20_000, metavar="N",
@@ -48,6 +49,7 @@ def run(args) -> int:
     from ..hob.writers import write_csv
     from ..inspection import compare_part
     from ..inspection.compare import STAGES
+    from ..inspection.heatmap import write_deviation_ply
     from ..inspection.plots import plot_deviation_map, plot_inspection
     from ..plots import save_figure
 
@@ -70,7 +72,8 @@ def run(args) -> int:
         reports = [result]
         files = [write_csv(out / "inspection.csv", result.rows(), units),
                  save_figure(plot_inspection(result), out / "inspection.png"),
-                 save_figure(plot_deviation_map(result), out / "deviation_map.png")]
+                 save_figure(plot_deviation_map(result), out / "deviation_map.png"),
+                 write_deviation_ply(result, out / "deviation.ply")]
         files.append(write_json(out / "inspection.json", {**result.summary(),
                                                           "files": [str(f) for f in files]}))
     failed = False

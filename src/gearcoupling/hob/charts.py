@@ -146,8 +146,10 @@ def _trace(m: HubModel, kind: str, flank: str, pos: float, z, r, x, rng) -> Trac
 
 
 def evaluation_ranges(spec, tip_exclusion: float = 0.08):
-    """``(L_beta half length, profile ranges)``: the lead evaluation half length (mm) and a
-    function ``z -> (r_start, r_end)`` of the profile evaluation range in plane ``z``."""
+    """``(half_lead, profile, r_lead)``: the lead evaluation half length (mm; shortened where
+    a tip sphere cuts the lead radius), a function ``z -> (r_start, r_end)`` of the profile
+    evaluation range in plane ``z`` and the lead trace radius (middle of ``L_alpha`` in
+    the midplane)."""
     m = hub_model(spec)
     b = 2.0 * m.half_face
     half_lead = m.half_face - min(0.05 * b, spec.tooth.module)
@@ -160,7 +162,18 @@ def evaluation_ranges(spec, tip_exclusion: float = 0.08):
         x_end = x0 + (1.0 - tip_exclusion) * (x1 - x0)
         return r0, math.sqrt(rb**2 + x_end**2)
 
-    return half_lead, profile
+    r0, r1 = profile(0.0)
+    x_mid = 0.5 * (math.sqrt(r0**2 - rb**2) + math.sqrt(r1**2 - rb**2))
+    r_lead = math.sqrt(rb**2 + x_mid**2)
+    return min(half_lead, lead_reach(m, r_lead)), profile, r_lead
+
+
+def lead_reach(m: HubModel, r: float) -> float:
+    """Largest ``|z|`` (up to the face end) where radius ``r`` is still below the tip
+    surface (a tip sphere cuts the corners of short, small hubs)."""
+    if float(tip_radius(m, m.half_face)) >= r:
+        return m.half_face
+    return math.sqrt(max(m.tip_radius**2 - r * r, 0.0)) * (1.0 - 1e-12)
 
 
 def measuring_charts(spec, points: int = 101, tip_exclusion: float = 0.08) -> MeasuringCharts:
@@ -181,12 +194,9 @@ def measuring_charts(spec, points: int = 101, tip_exclusion: float = 0.08) -> Me
         raise SpecError("tip_exclusion", tip_exclusion, "a share from 0 to 0.5")
     m = hub_model(spec)
     rb = m.R * math.cos(m.phi)
-    half_lead, profile_range = evaluation_ranges(spec, tip_exclusion)
+    half_lead, profile_range, r_lead = evaluation_ranges(spec, tip_exclusion)
     traces: list[Trace] = []
     values: dict[str, dict[str, float]] = {}
-    r0, r1 = profile_range(0.0)
-    x0, x1 = math.sqrt(r0**2 - rb**2), math.sqrt(r1**2 - rb**2)
-    r_lead = math.sqrt(rb**2 + (0.5 * (x0 + x1)) ** 2)
     for flank in FLANKS:
         vals: dict[str, float] = {}
         for z in (-half_lead, 0.0, half_lead):
@@ -200,7 +210,8 @@ def measuring_charts(spec, points: int = 101, tip_exclusion: float = 0.08) -> Me
             key = {-half_lead: "z_minus", 0.0: "mid", half_lead: "z_plus"}[z]
             vals[f"f_Halpha_{key}_mm"] = profile_slope(tr.x_mm, tr.deviation_mm,
                                                         tr.evaluation_mm)
-        z = np.linspace(-m.half_face, m.half_face, points)
+        reach = lead_reach(m, r_lead)
+        z = np.linspace(-reach, reach, points)
         tr = _trace(m, "lead", flank, r_lead, z, r_lead, z, (-half_lead, half_lead))
         traces.append(tr)
         c_beta, f_hb, apex = lead_values(tr.x_mm, tr.deviation_mm, half_lead)

@@ -10,8 +10,9 @@ import numpy as np
 
 from ..errors import SpecError
 from ..hob.charts import measuring_charts
+from .datum import bore_datum
 from .io import load_points
-from .register import register
+from .register import RegistrationError, register
 from .report import FLANK_NAMES, InspectionReport, check_limits, evaluate, pass_fail
 from .surface import deviation, flank_table
 
@@ -79,7 +80,8 @@ def compare_part(spec, source, other=None, *, units: str = "mm", limits=None,
         Unit of the file coordinates (a scan in other units than given is detected by
         its size and refused with the reason).
     limits : dict, optional
-        Tolerances in mm, keys of :data:`~gearcoupling.inspection.report.LIMITS`.
+        Tolerances in mm, keys of :data:`~gearcoupling.inspection.report.LIMITS`; they
+        override the spec's ``[inspection]`` limits.
     coarse : {"auto", "none"}
         ``none`` keeps the file's frame (part coordinates; partial scans).
     fit_points : int
@@ -99,7 +101,7 @@ def compare_part(spec, source, other=None, *, units: str = "mm", limits=None,
     InspectionReport or PartComparison
     """
     step = advance or (lambda label: None)
-    lim = check_limits(limits)
+    lim = check_limits({**spec.inspection.as_dict(), **dict(limits or {})})
     parts = [_points(src, units) for src in (source, other) if src is not None]
     step(f"read {', '.join(f'{len(p):,}' for p, _ in parts)} points")
     table = flank_table(spec, grid)
@@ -119,14 +121,26 @@ def _inspect(spec, pts, name, table, charts, lim, coarse, fit_points, outlier_mm
     outlier = 0.2 * table.model.R / table.model.teeth if outlier_mm is None else outlier_mm
     keep = np.abs(dev.d) <= outlier
     dev = type(dev)(*(getattr(dev, f)[keep] for f in dev.__dataclass_fields__))
-    ev = evaluate(table, charts, dev, min_points=min_points)
+    datum = bore_datum(hub, spec)
+    ev = evaluate(table, charts, dev, min_points=min_points,
+                  datum_centre=None if datum is None else datum["centre_mm"])
+    if not len(ev["teeth"]):
+        raise RegistrationError(
+            f"{name}: no tooth has both flanks measured: a flank needs {min_points} points "
+            f"in the band |z| <= {table.half_lead:.4g} mm, r = {table.r_lo:.5g} .. "
+            f"{table.r_hi:.5g} mm covering half of it ({len(dev.d)} band points in all)")
     step("evaluated")
     ok, checks = pass_fail(ev, lim)
     ev["part"].update(checks)
     ev["part"]["outliers"] = int((~keep).sum())
+    ev["part"]["runout_datum"] = "teeth best-fit axis" if datum is None else "bore axis"
+    if datum is not None:
+        ev["part"]["bore"] = {k: (v.tolist() if hasattr(v, "tolist") else v)
+                              for k, v in datum.items()}
     take = np.linspace(0, len(dev.d) - 1, min(SAMPLE, len(dev.d))).astype(np.intp)
     rb = table.model.R * math.cos(table.model.phi)
-    sample = {"tooth": dev.tooth[take], "flank": dev.flank[take], "z": dev.z[take],
+    sample = {"points": hub[dev.index[take]],
+              "tooth": dev.tooth[take], "flank": dev.flank[take], "z": dev.z[take],
               "xi": np.sqrt(np.maximum(dev.r[take] ** 2 - rb**2, 0.0)), "d": dev.d[take]}
     nominal = {f: {k: charts.values[f][k] for k in ("C_beta_mm", "f_Hbeta_mm",
                                                     "lead_radius_mm")} for f in FLANK_NAMES}

@@ -9,8 +9,11 @@ the part's coordinates, or a scan of a few teeth whose centroid is not on the ax
 
 Fine: Gauss-Newton on the point-to-flank distances of the exact nominal (point-to-plane
 ICP with the exact surface: the nominal point and normal are re-evaluated at every
-iteration), over at most ``fit_points`` band points; a rank-deficient direction (the
-axial shift of straight teeth) is left at its coarse value (least-norm step).
+iteration; Huber weights, so a few teeth with large pitch errors do not pull the axis),
+over at most ``fit_points`` band points, with a uniform normal offset and a
+crown-height change as nuisance parameters (size and form are reported, not fitted away
+by the placement); a rank-deficient direction (the axial shift of straight teeth) is left
+at its coarse value (least-norm step).
 """
 
 from __future__ import annotations
@@ -92,19 +95,22 @@ def _spectrum(alpha, r, R: float, N: int) -> dict[int, float]:
 
 
 def check_scale(points, tip_radius: float) -> None:
-    """Refuse a scan whose size does not match the spec, naming inch/metre files."""
-    r_max = float(np.max(np.hypot(points[:, 0], points[:, 1])))
+    """Refuse a scan whose size does not match the spec, naming inch/metre files.
+
+    The size is the 99.5th percentile of the radius about the axis (a few stray points
+    do not change it); it must be the hub tip radius within -15 / +12 %.
+    """
+    r_max = float(np.percentile(np.hypot(points[:, 0], points[:, 1]), 99.5))
     ratio = r_max / tip_radius
     for scale, what in ((1 / 25.4, "inches: pass units='in' (--units in)"),
                         (1 / 1000.0, "metres: pass units='m' (--units m)"),
-                        (25.4, "mm read as inches, or a spec in inches against a scan in "
-                               "inch-scaled mm: check --units")):
+                        (25.4, "a mm file read as inches: pass units='mm'")):
         if abs(ratio / scale - 1.0) < 0.12:
             raise SpecError("units", f"scan radius {r_max:.5g} mm", f"the scan is about "
                             f"{ratio:.4g} times the spec's size (hub tip radius "
                             f"{tip_radius:.5g} mm): it looks like {what}")
     if not 0.85 < ratio < 1.12:
-        raise RegistrationError(f"scan does not match the spec: its largest radius about the "
+        raise RegistrationError(f"scan does not match the spec: its outer radius about the "
                                 f"axis is {r_max:.5g} mm, the spec's hub tip radius "
                                 f"{tip_radius:.5g} mm (a scan of another part?)")
 
@@ -185,6 +191,7 @@ def fine_register(points, table: FlankTable, Rm, t, *, fit_points: int = 20_000,
     if len(cand) > fit_points:
         cand = rng.choice(cand, fit_points, replace=False)
     sub = points[cand]
+    weight = np.ones(len(sub))
     iterations = 0
     for _ in range(max_iter):
         iterations += 1
@@ -198,9 +205,20 @@ def fine_register(points, table: FlankTable, Rm, t, *, fit_points: int = 20_000,
                                     "or pass coarse='none' / --coarse none for a partial scan "
                                     "in the part frame)")
         qi, n, d = q[dev.index[ok]], dev.normal[ok], dev.d[ok]
-        J = np.concatenate([np.cross(qi, n), n], axis=1)
-        scale = np.array([m.R] * 3 + [1.0] * 3)
-        x = np.linalg.lstsq(J * scale, -d, rcond=1e-9)[0] * scale
+        # nuisance columns: a uniform plus-material offset (thickness) and a crown change
+        # are size/form, not placement; without them they leak into the weakly determined
+        # axial shift through the sample's asymmetry
+        zn = (dev.z[ok] / table.half_lead)[:, None]
+        J = np.concatenate([np.cross(qi, n), n, np.ones_like(zn), zn * zn], axis=1)
+        scale = np.array([1.0 / m.R] * 3 + [1.0] * 5)
+        sw = np.sqrt(weight[dev.index[ok]])[:, None]
+        x_all = np.linalg.lstsq(J * scale * sw, -d * sw[:, 0], rcond=1e-9)[0] * scale
+        x = x_all[:6]
+        # Huber weights for the next step (robust to a few teeth with large pitch errors)
+        res = d + J @ x_all
+        k = max(1.345 * 1.4826 * float(np.median(np.abs(res))), 1e-7)
+        weight[:] = 1.0
+        weight[dev.index[ok]] = np.minimum(1.0, k / np.maximum(np.abs(res), 1e-300))
         dR = _rodrigues(x[:3])
         Rm, t = dR @ Rm, dR @ t + x[3:]
         if np.linalg.norm(x[:3]) * m.R + np.linalg.norm(x[3:]) < 1e-9 * m.R:

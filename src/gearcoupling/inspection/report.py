@@ -16,9 +16,10 @@ Pitch: a flank's position along the pitch circle ``u = -+ a0 R / (r_ref |n_t|)``
 cumulative ``F_pk = u_k - mean(u)``, ``F_p`` its range. Thickness deviation (arc at ``R``)
 ``(a0_cw + a0_ccw) R / (r_ref |n_t|)``. Runout of a ball in space ``k`` (between teeth
 ``k`` and ``k+1``): ``(a0_ccw,k + a0_cw,k+1) / (2 sin phi)`` less its mean; ``F_r`` its
-range. Registration fits all six rigid degrees of freedom to the flanks, so pitch and
-runout are relative to the teeth's own best-fit axis (an eccentric tooth ring is centred
-by the fit, not reported as runout).
+range. Registration fits all six rigid degrees of freedom to the flanks, so pitch is
+relative to the teeth's own best-fit axis; runout is relative to the bore axis when the
+scan has bore points (:mod:`.datum`), else to that best-fit axis too (an eccentric tooth
+ring is then centred by the fit, not reported as runout).
 """
 
 from __future__ import annotations
@@ -74,7 +75,7 @@ class InspectionReport:
     teeth: NDArray[np.intp]
     flank: dict[str, dict[str, NDArray[np.float64]]] = field(repr=False)
     tooth: dict[str, NDArray[np.float64]] = field(repr=False)
-    part: dict[str, float | bool | None] = field(default_factory=dict)
+    part: dict[str, object] = field(default_factory=dict)
     limits: dict[str, float] = field(default_factory=dict)
     passed: NDArray[np.bool_] | None = field(default=None, repr=False)
     sample: dict[str, NDArray] = field(default_factory=dict, repr=False)
@@ -87,7 +88,8 @@ class InspectionReport:
             row: dict[str, object] = {"tooth": int(k)}
             for f in FLANK_NAMES:
                 for key, arr in self.flank[f].items():
-                    row[f"{key}_{f}"] = _clean(arr[i])
+                    col = f"{key[:-3]}_{f}_mm" if key.endswith("_mm") else f"{key}_{f}"
+                    row[col] = _clean(arr[i])
             for key, arr in self.tooth.items():
                 row[key] = _clean(arr[i])
             if self.passed is not None:
@@ -135,8 +137,14 @@ def _group_fit(g, B, d, n_groups):
 
 
 def evaluate(table: FlankTable, charts: MeasuringCharts, dev: PointDeviation, *,
-             min_points: int = 30, min_cover: float = 0.5) -> dict:
-    """Per tooth and flank values from the band deviations of a registered scan."""
+             min_points: int = 30, min_cover: float = 0.5,
+             datum_centre: NDArray[np.float64] | None = None) -> dict:
+    """Per tooth and flank values from the band deviations of a registered scan.
+
+    ``datum_centre``: the datum (bore) axis at ``z = 0`` in the hub frame; runout is then
+    relative to it (the tooth ring's offset from the datum adds its radial component at
+    each space), else relative to the teeth's best-fit axis.
+    """
     m = table.model
     N = m.teeth
     rb = m.R * math.cos(m.phi)
@@ -187,6 +195,9 @@ def evaluate(table: FlankTable, charts: MeasuringCharts, dev: PointDeviation, *,
         flank[f]["Fpk_mm"] = uk - mean
     nxt = (teeth + 1) % N
     run = np.where(have[nxt], (x2[teeth, 1, 0] + x2[nxt, 0, 0]) / (2 * math.sin(m.phi)), np.nan)
+    if datum_centre is not None:  # the ring sits at -centre from the datum axis
+        ang = 2 * math.pi * (teeth + 0.5) / N
+        run = run - (datum_centre[0] * np.cos(ang) + datum_centre[1] * np.sin(ang))
     run_valid = run[np.isfinite(run)]
     run = run - (float(np.mean(run_valid)) if len(run_valid) else 0.0)
     tooth = {"thickness_dev_mm": (x2[teeth, 0, 0] + x2[teeth, 1, 0]) * factor,

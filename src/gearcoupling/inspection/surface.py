@@ -70,7 +70,7 @@ def flank_table(spec, grid: tuple[int, int] = (61, 41), tip_exclusion: float = 0
     if not (len(grid) == 2 and all(isinstance(g, int) and g >= 6 for g in grid)):
         raise SpecError("grid", grid, "two integers >= 6 (points in z and r)")
     m = hub_model(spec)
-    half_lead, profile = evaluation_ranges(spec, tip_exclusion)
+    half_lead, profile, _ = evaluation_ranges(spec, tip_exclusion)
     zs = np.linspace(-half_lead, half_lead, 9)
     ranges = np.array([profile(float(z)) for z in zs])
     r_lo, r_hi = float(ranges[:, 0].max()), float(ranges[:, 1].min())
