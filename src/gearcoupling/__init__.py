@@ -24,6 +24,12 @@ _LAZY = {
     "build_part": "gearcoupling.parts",
     "export_part": "gearcoupling.export",
     "check_interference": "gearcoupling.interference",
+    # loaded contact (issue 10); gearcoupling.load is also callable as load()
+    "load": "gearcoupling.load",
+    "load_from_sweep": "gearcoupling.load",
+    "LoadResult": "gearcoupling.load",
+    "capacity": "gearcoupling.load",
+    "capacity_curve": "gearcoupling.load",
 }
 
 
@@ -41,14 +47,19 @@ __all__ = [
     "FeedPath",
     "GearCouplingError",
     "GeometryError",
+    "LoadResult",
     "SpecError",
     "build_part",
+    "capacity",
+    "capacity_curve",
     "check_interference",
     "export_part",
     "feed_path",
     "hub_flank",
     "inv",
     "inv_inverse",
+    "load",
+    "load_from_sweep",
     "load_spec",
     "sleeve_flank",
     "spec_from_dict",

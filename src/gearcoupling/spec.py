@@ -19,6 +19,7 @@ from pathlib import Path
 from typing import Any, ClassVar
 
 from .errors import SpecError
+from .loadspec import LoadSpec, Materials, parse_load, parse_material
 
 MM_PER_INCH = 25.4
 UNITS = {"mm": 1.0, "in": MM_PER_INCH}
@@ -290,6 +291,8 @@ class CouplingSpec:
     sleeve: Sleeve
     design_misalignment: float = 0.0
     name: str = field(default="custom", compare=False)
+    load: LoadSpec = field(default_factory=LoadSpec)  # [load] (loadspec.py)
+    material: Materials = field(default_factory=Materials)  # [material] (loadspec.py)
     units: str = field(default="mm", compare=False)
 
     def __post_init__(self):
@@ -320,6 +323,9 @@ class CouplingSpec:
         tooth = d["tooth"]
         tooth["pressure_angle_deg"] = math.degrees(tooth.pop("pressure_angle"))
         out.update(tooth=tooth, hub=d["hub"], sleeve=d["sleeve"])
+        out["load"] = {k: v for k, v in d["load"].items() if v is not None}
+        out["material"] = {p: {k: v for k, v in m.items() if k != "part"}
+                           for p, m in d["material"].items()}
         cr = out["hub"]["crowning"]
         for key in ("table_s", "table_kappa", "table_z", "table_drop"):
             cr[key] = list(cr[key])
@@ -511,8 +517,11 @@ def spec_from_dict(data: dict[str, Any], name: str = "custom") -> CouplingSpec:
         outer_diameter=s.length("outer_diameter", major + 2 * max(3 * m, 0.1 * R)),
     )
     s.done()
+    load = parse_load(root.data.pop("load", {}))
+    material = parse_material(root.data.pop("material", {}))
     root.done()
-    return CouplingSpec(tooth, hub, sleeve, misalignment, name=name, units=units)
+    return CouplingSpec(tooth, hub, sleeve, misalignment, name=name, units=units, load=load,
+                        material=material)
 
 
 def _pointed_radius(tooth: ToothSystem, arc_width: float) -> float:

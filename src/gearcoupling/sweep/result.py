@@ -60,6 +60,9 @@ class SweepResult:
     tolerance_mm: float
     table_error_mm: float
     design: dict[str, Any] = field(default_factory=dict)
+    # (flank, tooth, angle) hub rotation closing each flank, inf where it never touches
+    # (``normal / r_b / rate``, first order in the gap); read by gearcoupling.load
+    gap_angle_rad: NDArray[np.float64] | None = None
 
     kinds: tuple[str, ...] = KINDS
 

@@ -148,4 +148,5 @@ def sweep(spec, misalignment_deg: float, angles_deg: ArrayLike, *,
         tolerance_mm=tolerance_mm,
         table_error_mm=table.max_error_mm,
         design={"crowning_radius_midplane_mm": derived["crowning_radius_midplane_mm"]},
+        gap_angle_rad=np.where(np.isfinite(gap_angle), gap_angle, np.inf),
     )

@@ -1,0 +1,171 @@
+"""Tooth-pair bending compliance: hub and sleeve teeth as tapered cantilevers (Wei et al.).
+
+Each tooth is a Timoshenko cantilever of the real transverse thickness ``S(r)`` (involute
+tooth thickness of hub and sleeve at each radius) clamped at its root circle and loaded at
+the contact radius by the normal force along the line of action, at the load angle
+``beta`` to the tooth's perpendicular. Per unit width the normal deflection at the load is
+
+    c = cos²beta ∫ 12 (y_F - y)² / (E' S³) dy + cos²beta ∫ 1.2 / (G S) dy
+        + sin²beta ∫ 1 / (E' S) dy + cos²beta / E (5.306 (u/S_f)² + 1.534 (1 + 0.4167 tan²beta))
+
+(bending, shear, compression; the last term is the O'Donnell/Weber foundation:
+rotation and translation of the rim under the root, its coupling term omitted). ``E' =
+E / (1 - nu²)`` (plane strain, wide teeth). A load at face position ``z`` spreads at 45°
+toward the root, so the loaded width is ``min(h, b/2 - z) + min(h, b/2 + z)`` (``h`` the
+load height above the root), capped at the face width: a crowned tooth's patch is short.
+Hub and sleeve act in series; :meth:`CantileverCompliance.pair_compliance_mm_per_N`
+converts the normal compliance to Renzo's measure (circumferential at the pitch point per
+tangential load at the pitch radius) by ``1 / cos²phi``.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from ..geometry.involute import inv
+
+FOUNDATION_L, FOUNDATION_P, FOUNDATION_Q = 5.306, 1.534, 0.4167
+SHEAR_FACTOR = 1.2  # 1 / kappa for a rectangular section
+
+
+def beam_compliance(y: NDArray[np.float64], S: NDArray[np.float64], y_F: float, *,
+                    E: float, G: float, beta: float = 0.0) -> float:
+    """Normal deflection per unit load and unit width of a cantilever of thickness ``S(y)``.
+
+    Parameters
+    ----------
+    y : (n,) float
+        Heights from the clamped root to the load height ``y_F`` (increasing).
+    S : (n,) float
+        Section thickness at ``y`` (mm).
+    y_F : float
+        Load height (mm).
+    E, G : float
+        Young's modulus for bending and shear modulus (MPa).
+    beta : float
+        Load angle from the perpendicular to the beam axis (radians).
+
+    Returns
+    -------
+    float
+        Deflection along the load per unit load per unit width (mm²/N), Simpson's rule.
+    """
+    from scipy.integrate import simpson
+
+    cb2, sb2 = math.cos(beta) ** 2, math.sin(beta) ** 2
+    f = cb2 * (12.0 * (y_F - y) ** 2 / (E * S**3) + SHEAR_FACTOR / (G * S)) + sb2 / (E * S)
+    return float(simpson(f, x=y))
+
+
+class CantileverCompliance:
+    """Pair compliance of hub and sleeve teeth from the spec (tapered cantilevers).
+
+    Parameters
+    ----------
+    spec : CouplingSpec
+    n_radii : int
+        Radii tabulated over the active depth (linear interpolation between); 64 keeps the
+        interpolation error below 1e-4 relative (``benchmarks/bench_load.py``).
+    n_quad : int
+        Simpson points per cantilever integral.
+    """
+
+    def __init__(self, spec, *, n_radii: int = 64, n_quad: int = 201):
+        t = spec.tooth
+        self.R, self.r_b, self.phi = t.pitch_radius, t.base_radius, t.pressure_angle
+        self.hub_t = spec.hub.tooth_thickness
+        self.sleeve_t = t.circular_pitch - spec.sleeve.space_width
+        self.r_root_hub = self.R - spec.hub.root.dedendum
+        self.r_root_sleeve = 0.5 * spec.sleeve.major_diameter
+        self.half_face_hub = 0.5 * spec.hub.face_width
+        self.half_face_sleeve = 0.5 * spec.sleeve.face_width
+        self.materials = spec.material
+        r_lo = max(0.5 * spec.sleeve.minor_diameter, self.r_b * (1 + 1e-9))
+        r_hi = min(0.5 * spec.hub.tip.diameter, self.r_root_sleeve)
+        self.r_table = np.linspace(r_lo, r_hi, n_radii)
+        self.n_quad = n_quad
+        hub, sl = spec.material.hub, spec.material.sleeve
+        self.hub_unit = np.array([self._unit(r, "hub", hub) for r in self.r_table])
+        self.sleeve_unit = np.array([self._unit(r, "sleeve", sl) for r in self.r_table])
+
+    # ---------------------------------------------------------------- tooth geometry
+    def half_thickness(self, part: str, r: ArrayLike) -> NDArray[np.float64]:
+        """Half transverse tooth thickness (chord ~ arc) of ``part`` at radius ``r`` (mm);
+        below the base circle the base-circle value (the fillet only adds material)."""
+        r = np.maximum(np.asarray(r, dtype=float), self.r_b)
+        inv_r = inv(np.arccos(np.clip(self.r_b / r, -1.0, 1.0)))
+        inv_phi = float(inv(self.phi))
+        if part == "hub":
+            return r * (0.5 * self.hub_t / self.R + inv_phi - inv_r)
+        return r * (0.5 * self.sleeve_t / self.R - inv_phi + inv_r)
+
+    def load_angle(self, part: str, r: ArrayLike) -> NDArray[np.float64]:
+        """Angle ``beta`` of the normal load to the tooth's perpendicular at radius ``r``."""
+        r = np.maximum(np.asarray(r, dtype=float), self.r_b)
+        alpha = np.arccos(np.clip(self.r_b / r, -1.0, 1.0))
+        return np.abs(alpha - self.half_thickness(part, r) / r)
+
+    def _heights(self, part: str, r_F: float):
+        if part == "hub":
+            return self.r_root_hub, r_F - self.r_root_hub
+        return self.r_root_sleeve, self.r_root_sleeve - r_F
+
+    def _unit(self, r_F: float, part: str, mat) -> float:
+        """Normal compliance times width (mm²/N) of one tooth loaded at radius ``r_F``."""
+        root, y_F = self._heights(part, r_F)
+        y = np.linspace(0.0, y_F, self.n_quad)
+        r = root + y if part == "hub" else root - y
+        S = 2.0 * self.half_thickness(part, r)
+        nu = mat.poisson_ratio
+        E_ps = mat.youngs_modulus_MPa / (1 - nu**2)
+        beta = float(self.load_angle(part, r_F))
+        c = beam_compliance(y, S, y_F, E=E_ps, G=mat.shear_modulus_MPa, beta=beta)
+        S_f = 2.0 * float(self.half_thickness(part, root))
+        u = y_F
+        found = (math.cos(beta) ** 2 / mat.youngs_modulus_MPa
+                 * (FOUNDATION_L * (u / S_f) ** 2
+                    + FOUNDATION_P * (1 + FOUNDATION_Q * math.tan(beta) ** 2)))
+        return c + found
+
+    # ---------------------------------------------------------------- public protocol
+    def loaded_width_mm(self, part: str, z_mm: ArrayLike, r_mm: ArrayLike) -> NDArray:
+        """Width carrying a load at ``(z, r)``: 45° spread toward the root, within the face."""
+        z = np.abs(np.asarray(z_mm, dtype=float))
+        root, _ = self._heights(part, 0.0)
+        h = np.abs(np.asarray(r_mm, dtype=float) - root)
+        half = self.half_face_hub if part == "hub" else self.half_face_sleeve
+        w = np.minimum(h, np.maximum(half - z, 0.0)) + np.minimum(h, half + z)
+        return np.clip(w, 1e-3 * half, 2.0 * half)
+
+    def normal_compliance_mm_per_N(self, z_mm: ArrayLike, r_mm: ArrayLike):
+        """Hub and sleeve normal compliances at the load (mm/N), each broadcast to ``(z, r)``."""
+        r = np.clip(np.asarray(r_mm, dtype=float), self.r_table[0], self.r_table[-1])
+        hub = np.interp(r, self.r_table, self.hub_unit) / self.loaded_width_mm("hub", z_mm, r)
+        sl = (np.interp(r, self.r_table, self.sleeve_unit)
+              / self.loaded_width_mm("sleeve", z_mm, r))
+        return hub, sl
+
+    def pair_compliance_mm_per_N(self, z_mm: ArrayLike, r_mm: ArrayLike) -> NDArray:
+        """Circumferential displacement at the pitch point per tangential load at the pitch
+        radius (mm/N) for a load at hub flank point ``(z, r)``, hub and sleeve in series."""
+        hub, sl = self.normal_compliance_mm_per_N(z_mm, r_mm)
+        return (hub + sl) / math.cos(self.phi) ** 2
+
+    def root_stress_MPa(self, normal_force_N: ArrayLike, z_mm: ArrayLike,
+                        r_mm: ArrayLike) -> NDArray[np.float64]:
+        """Larger root bending stress of hub and sleeve tooth, ``6 F cos(beta) y_F /
+        (w S_root²)`` (the tension side; the compressive ``F sin(beta)`` part is left out)."""
+        F = np.asarray(normal_force_N, dtype=float)
+        out = np.zeros(np.broadcast_shapes(F.shape, np.shape(z_mm), np.shape(r_mm)))
+        r = np.clip(np.asarray(r_mm, dtype=float), self.r_table[0], self.r_table[-1])
+        for part in ("hub", "sleeve"):
+            root, _ = self._heights(part, 0.0)
+            y_F = np.abs(r - root)
+            S = 2.0 * float(self.half_thickness(part, root))
+            w = self.loaded_width_mm(part, z_mm, r)
+            sigma = 6.0 * F * np.cos(self.load_angle(part, r)) * y_F / (w * S**2)
+            out = np.maximum(out, sigma)
+        return out

@@ -1,0 +1,45 @@
+"""The ``linear`` model: Renzo's constant mesh stiffness ``C`` per tooth pair."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numpy.typing import NDArray
+
+from .linear import solve_windup
+
+
+def mesh_stiffness_N_per_mm(spec) -> float:
+    """Renzo's ``C``: ``[load] mesh_stiffness_N_per_mm``, else the cantilever pair stiffness
+    at the pitch point in the midplane."""
+    if spec.load.mesh_stiffness_N_per_mm is not None:
+        return spec.load.mesh_stiffness_N_per_mm
+    from .api import tooth_compliance
+
+    c = tooth_compliance(spec).pair_compliance_mm_per_N(0.0, spec.tooth.pitch_radius)
+    return float(1.0 / c)
+
+
+def solve_linear(spec, gap_rad: NDArray, z_mm: NDArray, r_mm: NDArray,
+                 torque_Nmm: float) -> dict[str, NDArray]:
+    """Tooth loads ``P_k = C R max(0, dpsi - g_k)`` with ``sum P_k R = T`` exactly.
+
+    Returns a dict of ``(N, M)`` arrays named as in :class:`LoadResult` plus ``windup_rad``
+    and ``mesh_stiffness_Nm_per_rad`` ``(M,)``; pressures from :mod:`.contact`.
+    """
+    from .contact import contact_estimates
+
+    R = spec.tooth.pitch_radius
+    C = mesh_stiffness_N_per_mm(spec)
+    K = C * R * R
+    windup = solve_windup(gap_rad, K, torque_Nmm)
+    closure = np.maximum(windup[None, :] - gap_rad, 0.0)
+    P = C * R * closure
+    Fn = P / math.cos(spec.tooth.pressure_angle)
+    active = closure > 0
+    out = {"windup_rad": windup, "deflection_mm": R * closure, "tangential_force_N": P,
+           "normal_force_N": Fn,
+           "mesh_stiffness_Nm_per_rad": K * 1e-3 * np.maximum(np.sum(active, axis=0), 1)}
+    out.update(contact_estimates(spec, Fn, z_mm, r_mm))
+    return out

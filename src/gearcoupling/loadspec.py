@@ -1,0 +1,212 @@
+"""The ``[load]`` and ``[material]`` spec sections (issue 10, DESIGN.md §6).
+
+SI keys and their inch-pound alternatives (``torque_Nm`` | ``torque_lbf_in`` ...): give at
+most one of each pair; inch-pound values are converted at loading, so the dataclasses hold
+N, N·m, N/mm and MPa only. ``[material]`` keys apply to both parts; ``[material.hub]`` and
+``[material.sleeve]`` override them per part. Defaults: through-hardened alloy steel
+(E = 206 000 MPa, nu = 0.3, allowable contact stress 700 MPa, allowable root bending
+stress 280 MPa: ISO 6336-5 MQ limits of a ~300 HB quenched-and-tempered steel).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+from .errors import SpecError
+
+N_PER_LBF = 4.4482216152605
+NM_PER_LBF_IN = N_PER_LBF * 0.0254
+N_PER_MM_PER_LBF_PER_IN = N_PER_LBF / 25.4
+MPA_PER_PSI = N_PER_LBF / 25.4**2
+
+LOAD_MODELS = ("linear", "compliance", "surface")
+STIFFNESS_SOURCES = ("cantilever", "fe")
+STEEL = {"youngs_modulus_MPa": 206_000.0, "poisson_ratio": 0.3,
+         "allowable_contact_stress_MPa": 700.0, "allowable_bending_stress_MPa": 280.0}
+
+
+def _finite_positive(path: str, value: float | None, *, optional: bool = False) -> None:
+    if value is None and optional:
+        return
+    ok = isinstance(value, int | float) and math.isfinite(value) and value > 0
+    if not ok:
+        raise SpecError(path, value, "must be a positive finite number"
+                        + (" (or omitted)" if optional else ""))
+
+
+@dataclass(frozen=True)
+class LoadSpec:
+    """Loaded-contact settings (SI units).
+
+    Attributes
+    ----------
+    torque_Nm : float or None
+        Transmitted torque; the sign picks the loaded flank (positive loads ccw).
+    model : str
+        ``linear`` (Renzo), ``compliance`` (default) or ``surface``.
+    mesh_stiffness_N_per_mm : float or None
+        Renzo's ``C`` for the linear model; ``None`` takes the cantilever pair stiffness at
+        the pitch point in the midplane.
+    allowable_tooth_load_N : float or None
+        Renzo's ``P_i`` (tangential at the pitch radius); ``None`` drops that criterion.
+    friction : float
+        Coulomb coefficient at the flanks (0-1).
+    accuracy_factor : float
+        Renzo's ``K`` (0-1], 1 = perfect teeth.
+    stiffness : str
+        Tooth compliance of the compliance model: ``cantilever`` or ``fe``.
+    """
+
+    torque_Nm: float | None = None
+    model: str = "compliance"
+    mesh_stiffness_N_per_mm: float | None = None
+    allowable_tooth_load_N: float | None = None
+    friction: float = 0.1
+    accuracy_factor: float = 1.0
+    stiffness: str = "cantilever"
+
+    def __post_init__(self):
+        t = self.torque_Nm
+        if t is not None and not (isinstance(t, int | float) and math.isfinite(t)):
+            raise SpecError("load.torque_Nm", t, "must be a finite torque in N·m (sign picks "
+                            "the flank) or omitted")
+        if self.model not in LOAD_MODELS:
+            raise SpecError("load.model", self.model, f"one of {LOAD_MODELS}")
+        if self.stiffness not in STIFFNESS_SOURCES:
+            raise SpecError("load.stiffness", self.stiffness, f"one of {STIFFNESS_SOURCES}")
+        _finite_positive("load.mesh_stiffness_N_per_mm", self.mesh_stiffness_N_per_mm,
+                         optional=True)
+        _finite_positive("load.allowable_tooth_load_N", self.allowable_tooth_load_N,
+                         optional=True)
+        f = self.friction
+        if not (isinstance(f, int | float) and 0 <= f <= 1):
+            raise SpecError("load.friction", f, "must be a coefficient from 0 to 1")
+        k = self.accuracy_factor
+        if not (isinstance(k, int | float) and 0 < k <= 1):
+            raise SpecError("load.accuracy_factor", k, "must be in (0, 1] (1 = perfect teeth)")
+
+
+@dataclass(frozen=True)
+class Material:
+    """Elastic constants and allowable stresses of one part (MPa)."""
+
+    youngs_modulus_MPa: float = STEEL["youngs_modulus_MPa"]
+    poisson_ratio: float = STEEL["poisson_ratio"]
+    allowable_contact_stress_MPa: float = STEEL["allowable_contact_stress_MPa"]
+    allowable_bending_stress_MPa: float = STEEL["allowable_bending_stress_MPa"]
+    part: str = field(default="hub", compare=False, repr=False)
+
+    def __post_init__(self):
+        p = f"material.{self.part}"
+        _finite_positive(f"{p}.youngs_modulus_MPa", self.youngs_modulus_MPa)
+        _finite_positive(f"{p}.allowable_contact_stress_MPa", self.allowable_contact_stress_MPa)
+        _finite_positive(f"{p}.allowable_bending_stress_MPa", self.allowable_bending_stress_MPa)
+        nu = self.poisson_ratio
+        if not (isinstance(nu, int | float) and 0 <= nu < 0.5):
+            raise SpecError(f"{p}.poisson_ratio", nu, "must be in [0, 0.5)")
+
+    @property
+    def shear_modulus_MPa(self) -> float:
+        """``G = E / (2 (1 + nu))``."""
+        return self.youngs_modulus_MPa / (2.0 * (1.0 + self.poisson_ratio))
+
+
+@dataclass(frozen=True)
+class Materials:
+    """Materials of the two parts."""
+
+    hub: Material = field(default_factory=lambda: Material(part="hub"))
+    sleeve: Material = field(default_factory=lambda: Material(part="sleeve"))
+
+    @property
+    def contact_modulus_MPa(self) -> float:
+        """``E* = 1 / ((1 - nu1²)/E1 + (1 - nu2²)/E2)`` (Hertz)."""
+        return 1.0 / sum((1 - m.poisson_ratio**2) / m.youngs_modulus_MPa
+                         for m in (self.hub, self.sleeve))
+
+
+# --------------------------------------------------------------------------- loading
+
+_LOAD_KEYS = {  # SI key -> (inch-pound key, factor to SI)
+    "torque_Nm": ("torque_lbf_in", NM_PER_LBF_IN),
+    "mesh_stiffness_N_per_mm": ("mesh_stiffness_lbf_per_in", N_PER_MM_PER_LBF_PER_IN),
+    "allowable_tooth_load_N": ("allowable_tooth_load_lbf", N_PER_LBF),
+}
+_MATERIAL_KEYS = {
+    "youngs_modulus_MPa": ("youngs_modulus_psi", MPA_PER_PSI),
+    "allowable_contact_stress_MPa": ("allowable_contact_stress_psi", MPA_PER_PSI),
+    "allowable_bending_stress_MPa": ("allowable_bending_stress_psi", MPA_PER_PSI),
+}
+
+
+def _number(path: str, value: Any) -> float:
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        raise SpecError(path, value, "must be a number")
+    return float(value)
+
+
+def _pop_unit_pairs(data: dict, path: str, pairs: dict) -> dict[str, float]:
+    out = {}
+    for si, (imp, factor) in pairs.items():
+        if si in data and imp in data:
+            raise SpecError(f"{path}.{imp}", data[imp], f"give {si} or {imp}, not both")
+        if si in data:
+            out[si] = _number(f"{path}.{si}", data.pop(si))
+        elif imp in data:
+            out[si] = _number(f"{path}.{imp}", data.pop(imp)) * factor
+    return out
+
+
+def _done(data: dict, path: str) -> None:
+    if data:
+        key = sorted(data)[0]
+        raise SpecError(f"{path}.{key}", data[key], "unknown key (see templates/ and "
+                        "docs/load.md for every key)")
+
+
+def _table(value: Any, path: str) -> dict:
+    if not isinstance(value, dict):
+        raise SpecError(path, value, "must be a TOML table")
+    return dict(value)
+
+
+def parse_load(data: Any) -> LoadSpec:
+    """A :class:`LoadSpec` from the ``[load]`` table (SI or inch-pound keys)."""
+    d = _table(data, "load")
+    kw: dict[str, Any] = _pop_unit_pairs(d, "load", _LOAD_KEYS)
+    for key in ("model", "stiffness"):
+        if key in d:
+            kw[key] = d.pop(key)
+            if not isinstance(kw[key], str):
+                raise SpecError(f"load.{key}", kw[key], "must be a string")
+    for key in ("friction", "accuracy_factor"):
+        if key in d:
+            kw[key] = _number(f"load.{key}", d.pop(key))
+    _done(d, "load")
+    return LoadSpec(**kw)
+
+
+def _parse_material(d: dict, path: str) -> dict[str, float]:
+    kw = _pop_unit_pairs(d, path, _MATERIAL_KEYS)
+    if "poisson_ratio" in d:
+        kw["poisson_ratio"] = _number(f"{path}.poisson_ratio", d.pop("poisson_ratio"))
+    return kw
+
+
+def parse_material(data: Any) -> Materials:
+    """:class:`Materials` from ``[material]`` (shared keys, ``hub`` / ``sleeve`` sub-tables)."""
+    d = _table(data, "material")
+    parts = {p: _table(d.pop(p, {}), f"material.{p}") for p in ("hub", "sleeve")}
+    shared = _parse_material(d, "material")
+    _done(d, "material")
+    out = {}
+    for p, sub in parts.items():
+        own = _parse_material(sub, f"material.{p}")
+        _done(sub, f"material.{p}")
+        out[p] = Material(**{**shared, **own}, part=p)
+    return Materials(**out)
+
+
+__all__ = ["LOAD_MODELS", "LoadSpec", "Material", "Materials", "parse_load", "parse_material"]
