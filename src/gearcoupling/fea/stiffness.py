@@ -226,7 +226,7 @@ def part_compliance(vm: VolumeMesh, spec, z_mm, r_mm, *, patch_mm: float, workdi
     prints = [(f"P{i}", c.nodes) for i, c in enumerate(cases)]
     deck = static_deck(vm, youngs_modulus_MPa=E, poisson_ratio=nu,
                        fixed=_fixed_sets(vm, spec), cases=cases, node_print=prints,
-                       stress_sets=fillets)
+                       stress_sets=fillets, solver="ITERATIVE CHOLESKY")
     res = run_ccx(deck, workdir, job)
     comp = np.empty(len(cases))
     stress = np.empty(len(cases))
