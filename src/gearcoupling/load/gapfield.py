@@ -1,0 +1,218 @@
+"""The initial gap field of a hub flank against its sleeve flank, on a grid of the patch.
+
+The grid lies on the **sleeve** flank, developed: the straight internal involute flank is a
+cylinder over the involute, so it develops isometrically onto the plane of the axial
+position ``z`` (sleeve frame) and the arc length along the involute from the base circle
+``s = (r^2 - r_b^2) / (2 r_b)``. Every cell centre ``(z, s)`` is a sleeve flank point; the
+hub flank point facing it (same sleeve radius and axial position) is found on the exact
+hub flank (the hob envelope of :mod:`gearcoupling.geometry.hub`, through the sweep's
+Chebyshev table of it, whose measured error is below 1e-7 mm), posed by ``P(theta)`` as
+the sweep does (DESIGN.md §2), pulled back by ``P(theta)^T`` in three fixed-point steps
+(the polar angle of the hub flank moves by far less than a micrometre per step). The gap
+there is the hub rotation that closes it: ``G = (a_q + sigma(r_q)/2) / rate`` (rad;
+``r_b G`` is the normal gap, as in the sweep).
+
+Cells are **masked** (cannot carry pressure) where the real flanks end: below the sleeve
+flank's first radius (the tip chamfer edge), above the sleeve root fillet, beyond the
+sleeve face ends, and where the facing hub point would lie above the hub tip surface
+(sphere or cylinder), below the hub form radius or beyond the hub face ends.
+
+Arrays are ``(n_teeth, n_face, n_depth)``: one grid per tooth (turning angle), the face
+axis first.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from ..errors import SpecError
+from ..geometry.hub import FLANKS, hub_model, tip_radius
+from ..geometry.involute import inv
+from ..geometry.sleeve import sleeve_model
+from ..sweep.flank_table import flank_table
+from ..sweep.pose import hub_to_sleeve
+
+FIXED_POINT_STEPS = 3
+FLANK_TABLE_TOLERANCE_MM = 1e-7  # the sweep's certified table of the exact flank
+
+
+@dataclass(frozen=True, eq=False)
+class GapField:
+    """Gap of each cell of the developed sleeve flank patch at each tooth's pose.
+
+    Attributes
+    ----------
+    z_mm : (n, n_face) float
+        Axial cell centres (sleeve frame) of each tooth's window.
+    s_mm : (n_depth,) float
+        Cell centres along the developed involute (arc length from the base circle).
+    r_mm : (n_depth,) float
+        Sleeve radius of each depth row.
+    dz, ds : float
+        Cell sizes (mm).
+    gap_rad : (n, n_face, n_depth) float
+        Hub rotation that closes each cell (finite everywhere; meaningful where ``mask``).
+    mask : (n, n_face, n_depth) bool
+        Cells where both flanks exist (contactable).
+    face_cut : (n, n_face, n_depth) bool
+        Masked cells that are masked by a face end (hub or sleeve), not by a profile end.
+    hub_z_mm, hub_r_mm : (n, n_face, n_depth) float
+        Hub-frame flank coordinates of the hub point facing each cell.
+    base_radius : float
+    """
+
+    z_mm: NDArray[np.float64]
+    s_mm: NDArray[np.float64]
+    r_mm: NDArray[np.float64]
+    dz: float
+    ds: float
+    gap_rad: NDArray[np.float64]
+    mask: NDArray[np.bool_]
+    face_cut: NDArray[np.bool_]
+    hub_z_mm: NDArray[np.float64]
+    hub_r_mm: NDArray[np.float64]
+    base_radius: float
+
+
+def developed_s(r: ArrayLike, r_base: float) -> NDArray[np.float64]:
+    """Involute arc length from the base circle at radius ``r``: ``(r^2 - r_b^2) / (2 r_b)``."""
+    r = np.asarray(r, dtype=float)
+    return (r * r - r_base * r_base) / (2.0 * r_base)
+
+
+def depth_range(spec, misalignment: float) -> tuple[float, float]:
+    """Sleeve radii ``(lo, hi)`` the patch spans: from the sleeve flank's first radius (the
+    tip chamfer edge) to the lower of the sleeve root fillet and the hub tip (its largest
+    radius, plus the radial shift a tilt can give it)."""
+    sm = sleeve_model(spec)
+    hm = hub_model(spec)
+    top = float(tip_radius(hm, 0.0)) + hm.half_face * math.sin(misalignment)
+    return sm.r_form, min(sm.r_fillet, top)
+
+
+def face_range(spec, misalignment: float) -> float:
+    """Largest ``|z|`` (sleeve frame) a contactable cell can have: the smaller face, plus
+    what the tilt can move the hub's face end axially."""
+    sm = sleeve_model(spec)
+    hm = hub_model(spec)
+    shift = float(tip_radius(hm, 0.0)) * math.sin(misalignment)
+    return min(sm.half_face, hm.half_face + shift)
+
+
+def windows(spec, misalignment: float, z_centre_mm: ArrayLike, length_mm: float,
+            n_face: int) -> NDArray[np.float64]:
+    """Axial cell centres ``(n, n_face)`` of windows of ``length_mm`` centred on each
+    ``z_centre_mm``, shifted inward so they end at most one cell past the face range
+    (:func:`face_range`); a window that reaches a face end so holds a cell beyond it, which
+    is masked as face cut. Longer windows cover the face range and one cell either side."""
+    zc = np.atleast_1d(np.asarray(z_centre_mm, dtype=float))
+    Z = face_range(spec, misalignment)
+    L = min(float(length_mm), 2.0 * Z * n_face / (n_face - 2))
+    dz = L / n_face
+    lo = np.clip(zc - 0.5 * L, -Z - dz, Z + dz - L)
+    return lo[:, None] + (np.arange(n_face) + 0.5)[None, :] * dz
+
+
+def gap_field(spec, misalignment: float, theta: ArrayLike, flank: str, z_mm: ArrayLike,
+              n_depth: int, *, gap_offset_rad: ArrayLike | None = None) -> GapField:
+    """The gap field of the hub flank ``flank`` of the teeth at turning angles ``theta``.
+
+    Parameters
+    ----------
+    spec : CouplingSpec
+    misalignment : float
+        Tilt ``i`` (radians).
+    theta : (n,) float
+        Turning angle of each tooth (radians).
+    flank : {"cw", "ccw"}
+        The hub flank; the ccw flank at ``theta`` is the cw flank at ``pi - theta``
+        (mirror ``y -> -y``, as in the sweep).
+    z_mm : (n, n_face) float
+        Axial cell centres of each tooth's window (equally spaced, see :func:`windows`).
+    n_depth : int
+        Cells across the active depth (:func:`depth_range`).
+    gap_offset_rad : (n,) float, optional
+        Added to each tooth's gap (index errors etc.).
+    """
+    if flank not in FLANKS:
+        raise SpecError("loaded_flank", flank, f"must be one of {FLANKS}")
+    if n_depth < 2:
+        raise SpecError("grid", n_depth, "needs at least 2 cells across the depth")
+    theta = np.atleast_1d(np.asarray(theta, dtype=float))
+    if flank == "ccw":
+        theta = np.pi - theta
+    z = np.asarray(z_mm, dtype=float).reshape(theta.size, -1)
+    dz = float(z[0, 1] - z[0, 0]) if z.shape[1] > 1 else 2.0 * face_range(spec, misalignment)
+    hm, sm = hub_model(spec), sleeve_model(spec)
+    table = flank_table(spec, FLANK_TABLE_TOLERANCE_MM)
+    r_b = sm.r_base
+    r_lo, r_hi = depth_range(spec, misalignment)
+    s_lo, s_hi = developed_s(r_lo, r_b), developed_s(r_hi, r_b)
+    ds = (s_hi - s_lo) / n_depth
+    s = s_lo + (np.arange(n_depth) + 0.5) * ds
+    r = np.sqrt(r_b * r_b + 2.0 * r_b * s)
+    n, nf = z.shape
+    P = hub_to_sleeve(misalignment, theta)  # (n, 3, 3)
+    zq = np.broadcast_to(z[:, :, None], (n, nf, n_depth))
+    rq = np.broadcast_to(r[None, None, :], (n, nf, n_depth))
+    # sleeve cw flank polar angle at rq (a first guess for the facing hub point)
+    c0 = 0.5 * sm.space_width / sm.R + float(inv(sm.phi))
+    aq = -(c0 - inv(np.arccos(np.minimum(r_b / rq, 1.0))))
+    zh = rh = None
+    for _ in range(FIXED_POINT_STEPS):
+        px, py, zh = _apply(P, rq * np.cos(aq), rq * np.sin(aq), zq, transpose=True)
+        rh = np.hypot(px, py)
+        a = _hub_angle(table, hm, zh, rh)
+        qx, qy, _ = _apply(P, rh * np.cos(a), rh * np.sin(a), zh)
+        aq = np.arctan2(qy, qx)
+    # the hub point facing the cell: its polar angle at the cell's (r, z)
+    delta = aq + c0 - inv(np.arccos(np.minimum(r_b / rq, 1.0)))
+    rate = _turning_rate(P, rq, aq, zq, misalignment)
+    gap = delta / rate
+    if gap_offset_rad is not None:
+        off = np.broadcast_to(np.asarray(gap_offset_rad, dtype=float), (n,))
+        gap = gap + off[:, None, None]
+    eps = 1e-9 * (sm.R + 1.0)
+    hub_face = np.abs(zh) > hm.half_face + eps
+    sleeve_face = np.abs(zq) > sm.half_face + eps
+    zc = np.clip(zh, -hm.half_face, hm.half_face)
+    r_form, r_tip = table.radii(zc)
+    profile = ((rh > r_tip + eps) | (rh < r_form - eps)
+               | (rq < sm.r_form - eps) | (rq > sm.r_fillet + eps))
+    mask = ~(hub_face | sleeve_face | profile)
+    if not np.all(np.isfinite(gap[mask])):
+        raise SpecError("gap field", "non-finite", "the flank geometry gave no finite gap")
+    gap = np.where(np.isfinite(gap), gap, 0.0)
+    return GapField(z, s, r, dz, ds, gap, mask, (hub_face | sleeve_face) & ~mask,
+                    zh, rh, r_b)
+
+
+def _hub_angle(table, hm, zh, rh):
+    """Polar angle of the hub cw flank at ``(zh, rh)``, clipped onto the flank (cells off
+    it are masked by the caller; clipping keeps the evaluation on the flank)."""
+    zc = np.clip(zh, -hm.half_face, hm.half_face)
+    lo, hi = table.radii(zc)
+    t = np.clip((rh - lo) / (hi - lo), 0.0, 1.0)
+    _, alpha = table.evaluate(zc, t)
+    return alpha
+
+
+def _apply(P, x, y, z, transpose=False):
+    """``P @ (x, y, z)`` (or ``P^T``) per tooth: ``P (n, 3, 3)``, coordinates ``(n, ...)``."""
+    M = np.swapaxes(P, -1, -2) if transpose else P
+    c = [[M[:, i, j][:, None, None] for j in range(3)] for i in range(3)]
+    return tuple(c[i][0] * x + c[i][1] * y + c[i][2] * z for i in range(3))
+
+
+def _turning_rate(P, rq, aq, zq, misalignment):
+    """Sleeve polar angle change per unit hub turn about its tilted axis ``k = P e_z``."""
+    k = P[:, :, 2]  # (n, 3)
+    x, y = rq * np.cos(aq), rq * np.sin(aq)
+    kx, ky, kz = (k[:, j][:, None, None] for j in range(3))
+    vx = ky * zq - kz * y
+    vy = kz * x - kx * zq
+    return (x * vy - y * vx) / (rq * rq)

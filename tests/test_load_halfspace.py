@@ -1,0 +1,141 @@
+"""Half-space contact kernel against theory: Love, Hertz, the square-root edge singularity."""
+
+import math
+
+import numpy as np
+import pytest
+
+from gearcoupling.errors import SpecError
+from gearcoupling.load.halfspace import (
+    composite_modulus,
+    half_space,
+    hertz_ellipse,
+    influence,
+    solve_contact,
+)
+
+E_STAR = composite_modulus(206000.0, 0.3, 206000.0, 0.3)
+
+
+def test_composite_modulus_of_steel():
+    assert E_STAR == pytest.approx(206000.0 / (2 * (1 - 0.09)), rel=1e-15)
+    with pytest.raises(SpecError, match="poisson_ratio"):
+        composite_modulus(2e5, 0.5, 2e5, 0.3)
+
+
+def test_love_centre_of_square_cell():
+    # Johnson eq. 3.25: centre of a square 2a x 2a: u = 8 a ln(1 + sqrt 2) p / (pi E*)
+    a = 0.3
+    u = influence(0.0, 0.0, 2 * a, 2 * a, E_STAR)
+    assert float(u) == pytest.approx(8 * a * math.log(1 + math.sqrt(2)) / (math.pi * E_STAR),
+                                     rel=1e-14)
+    # far away the cell acts as a point load: u -> area / (pi E* rho)
+    rho = 100.0
+    far = influence(rho, 0.0, 2 * a, 2 * a, E_STAR)
+    assert float(far) == pytest.approx(4 * a * a / (math.pi * E_STAR * rho), rel=1e-5)
+
+
+def test_dc_fft_equals_direct_sum():
+    hs = half_space((13, 9), 0.1, 0.17, E_STAR)
+    p = np.random.default_rng(1).random((2, 13, 9))
+    direct = hs.direct(p)
+    assert np.max(np.abs(hs.displacement(p) - direct)) <= 1e-12 * np.max(np.abs(direct))
+
+
+def _hertz_grid(n, W, rx, ry, span=2.5):
+    h = hertz_ellipse(W, rx, ry, E_STAR)
+    dx, dy = span * h["a_mm"] / n, span * h["b_mm"] / n
+    x = (np.arange(n) - (n - 1) / 2) * dx
+    y = (np.arange(n) - (n - 1) / 2) * dy
+    gap = x[:, None] ** 2 / (2 * rx) + y[None, :] ** 2 / (2 * ry)
+    return h, half_space((n, n), dx, dy, E_STAR), gap, x, y
+
+
+def _semi_axis(p, coord):
+    """Semi-axis from a least-squares fit of p^2 = p0^2 (1 - s^2/a^2) along the axis."""
+    keep = p > 0.3 * p.max()
+    slope, icpt = np.polyfit(coord[keep] ** 2, p[keep] ** 2, 1)
+    return math.sqrt(-icpt / slope)
+
+
+@pytest.mark.parametrize("ratio", [1.0, 2.0, 5.0, 10.0, 20.0])
+def test_hertz_elliptic_contact_within_2_percent(ratio):
+    """p_max and both semi-axes within 2 % of Hertz (curvature ratio 1-20) on a 65 x 65
+    grid over 2.5 semi-axes; the error falls under refinement (33 -> 65 cells)."""
+    W, ry = 200.0, 15.0
+    errs = []
+    for n in (33, 65):
+        h, hs, gap, x, y = _hertz_grid(n, W, ratio * ry, ry)
+        sol = solve_contact(hs, gap, load_N=W, tolerance=1e-10)
+        p = sol.pressure_MPa
+        c = n // 2
+        a = _semi_axis(p[:, c], x)
+        b = _semi_axis(p[c, :], y)
+        err = max(abs(p.max() / h["p0_MPa"] - 1), abs(a / h["a_mm"] - 1),
+                  abs(b / h["b_mm"] - 1))
+        errs.append(err)
+        assert sol.load_N.sum() == pytest.approx(W, rel=1e-12)
+        assert sol.approach_mm == pytest.approx(h["delta_mm"], rel=0.02)
+        assert np.all(sol.gap_mm >= -1e-6 * h["delta_mm"])
+    assert errs[1] <= 0.02
+    assert errs[1] < errs[0]
+
+
+def test_given_approach_and_spring_agree_with_given_load():
+    W = 150.0
+    h, hs, gap, _, _ = _hertz_grid(41, W, 30.0, 10.0)
+    by_load = solve_contact(hs, gap, load_N=W, tolerance=1e-11)
+    by_approach = solve_contact(hs, gap, approach_mm=by_load.approach_mm, tolerance=1e-11)
+    assert by_approach.load_N == pytest.approx(W, rel=1e-6)
+    # a rigid spring c in series moves the approach by c W and leaves the pressure alone
+    c = 2e-5
+    spring = solve_contact(hs, gap, load_N=W, spring_mm_per_N=c, tolerance=1e-11)
+    assert spring.approach_mm == pytest.approx(by_load.approach_mm + c * W, rel=1e-8)
+    assert np.max(np.abs(spring.pressure_MPa - by_load.pressure_MPa)) <= 1e-6 * h["p0_MPa"]
+    # two grids sharing one approach, one with the spring: loads split so approaches match
+    both = solve_contact(hs, np.stack([gap, gap]), load_N=2 * W,
+                         spring_mm_per_N=np.array([0.0, c]), tolerance=1e-11)
+    free = solve_contact(hs, gap, approach_mm=both.approach_mm, tolerance=1e-11)
+    sprung = solve_contact(hs, gap, approach_mm=both.approach_mm - c * both.load_N[1],
+                           tolerance=1e-11)
+    assert both.load_N[0] > both.load_N[1]
+    assert both.load_N[0] == pytest.approx(free.load_N.sum(), rel=1e-6)
+    assert both.load_N[1] == pytest.approx(sprung.load_N.sum(), rel=1e-6)
+
+
+def test_edge_peak_grows_as_inverse_sqrt_cell_while_intensity_converges():
+    """A quadratic gap cut by a straight edge inside the Hertz circle: the pressure next to
+    the edge is singular like 1/sqrt(distance), so the cell next to the edge grows as
+    1/sqrt(cell size) (ratio -> sqrt 2 per halving) while p sqrt(cell) converges."""
+    W, R = 100.0, 20.0
+    a = hertz_ellipse(W, R, R, E_STAR)["a_mm"]
+    peaks, intensity = [], []
+    for n in (32, 64, 128):
+        dx = 2.6 * a / n
+        x = -1.3 * a + (np.arange(n) + 0.5) * dx
+        gap = (x[:, None] ** 2 + x[None, :] ** 2) / (2 * R)
+        mask = np.broadcast_to((x <= 0.4 * a)[:, None], gap.shape)
+        p = solve_contact(half_space((n, n), dx, dx, E_STAR), gap, load_N=W, mask=mask,
+                          tolerance=1e-9).pressure_MPa
+        peaks.append(p.max())
+        intensity.append(p.max() * math.sqrt(dx))
+    growth = [peaks[i + 1] / peaks[i] for i in range(2)]
+    assert growth[-1] == pytest.approx(math.sqrt(2), rel=0.03)
+    change = [abs(intensity[i + 1] / intensity[i] - 1) for i in range(2)]
+    assert change[1] < change[0] and change[1] < 0.03
+
+
+def test_bad_input_is_refused():
+    hs = half_space((4, 4), 0.1, 0.1, E_STAR)
+    gap = np.zeros((4, 4))
+    with pytest.raises(SpecError, match="exactly one"):
+        solve_contact(hs, gap)
+    with pytest.raises(SpecError, match="load_N"):
+        solve_contact(hs, gap, load_N=-1.0)
+    with pytest.raises(SpecError, match="gap0_mm"):
+        solve_contact(hs, np.zeros((3, 4)), load_N=1.0)
+    with pytest.raises(SpecError, match="cell size"):
+        half_space((4, 4), 0.0, 0.1, E_STAR)
+    # an approach that does not close the gap carries nothing (no NaN)
+    sol = solve_contact(hs, gap + 1.0, approach_mm=0.5)
+    assert sol.load_N.sum() == 0 and np.all(np.isfinite(sol.gap_mm))
