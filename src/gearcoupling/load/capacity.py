@@ -91,7 +91,8 @@ def _root_torque(ratio, T0: float, *, step: float = 8.0, rtol: float = RTOL) -> 
             return 0.0
         r_lo = ratio(lo)
     f = lambda x: math.log(max(ratio(math.exp(x)), 1e-300))  # noqa: E731
-    return math.exp(brentq(f, math.log(lo), math.log(hi), xtol=rtol, rtol=rtol))
+    # on log T an absolute tolerance is a relative one on T (brentq's rtol would scale by ln T)
+    return math.exp(brentq(f, math.log(lo), math.log(hi), xtol=rtol, rtol=1e-15))
 
 
 def capacity_from_sweep(spec, sweep_result, *, model: str | None = None,
