@@ -28,7 +28,7 @@ from .compliance import first_limit_torque_Nmm
 from .contact import contact_model
 
 CRITERIA = ("tooth_load", "contact_stress", "bending_stress")
-RTOL = 1e-7  # relative accuracy of every capacity torque
+RTOL = 1e-7  # relative accuracy of a root-found torque (the closed forms are exact)
 
 
 def limit_loads(spec, z: NDArray, r: NDArray, compliance) -> dict[str, NDArray]:
@@ -116,7 +116,7 @@ def capacity_from_sweep(spec, sweep_result, *, model: str | None = None,
             guess = first_limit_torque_Nmm(spec, g, z, r, W_lim, comp)
             T = _surface_capacity(spec, sweep_result, name, sign, gap_offset_rad, guess, memo)
         torques[name] = T * 1e-3
-    return _summarise(spec, sweep_result, m, torques, g, gap_offset_rad, sign)
+    return _summarise(spec, sweep_result, m, torques, gap_offset_rad, sign)
 
 
 SURFACE_RTOL = 1e-3  # relative accuracy of a surface-model capacity (full solves: costly)
@@ -152,7 +152,7 @@ def _surface_capacity(spec, sw, name: str, sign: int, gap_offset_rad, guess_Nmm:
     return _root_torque(ratio, start, step=1.5, rtol=SURFACE_RTOL)
 
 
-def _summarise(spec, sw, model, torques, g, gap_offset_rad, sign) -> dict[str, Any]:
+def _summarise(spec, sw, model, torques, gap_offset_rad, sign) -> dict[str, Any]:
     K = spec.load.accuracy_factor
     crit = {k: v for k, v in torques.items() if k in CRITERIA}
     gov = min(crit, key=lambda k: crit[k])
