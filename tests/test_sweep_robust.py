@@ -204,3 +204,35 @@ def test_plots_return_figures_draw_into_given_axes_and_keep_the_backend(monkeypa
     assert plots.plot_contact_path(res, spec, ax=pair) is host
     with pytest.raises(ValueError, match="4 Axes"):
         plots.plot_clearance(res, ax=pair)
+
+
+def test_minimise_steps_alone():
+    """The split steps of the kernel on known functions: second_minima keeps a second
+    coarse minimum nearly as low as the best; ZSearch finds the vertex of a parabola and the
+    corner of a V within the tolerance."""
+    from gearcoupling.sweep.clearance import ZSearch, second_minima
+
+    zg = np.linspace(-1.0, 1.0, 17)
+    v = np.stack([(zg - 0.3) ** 2, np.minimum((zg + 0.7) ** 2, (zg - 0.7) ** 2 + 0.01),
+                  (zg - 0.7) ** 2 + 5.0 * (zg + 0.7) ** 2])
+    j, j2, second = second_minima(v)
+    assert second.tolist() == [False, True, False]
+    assert abs(zg[j[1]] + 0.7) < 0.07 and abs(zg[j2[1]] - 0.7) < 0.07
+
+    class Known:  # gaps of a known shape per row: a parabola and a V (a corner)
+        meas = np.array([2, 2])  # pitch-line rows: no corner step (no form circle)
+        centre = np.array([0.1234, -0.4321])
+
+        def __call__(self, z, rows):
+            c = self.centre[rows]
+            val = np.where(rows == 0, 3.0 * (z - c) ** 2 + 1.0, 2.0 * np.abs(z - c) - 0.5)
+            return val, np.zeros(z.size), np.zeros(z.size, np.int8)
+
+    f = Known()
+    vv, tt, kk = f(np.tile(zg, 2), np.repeat([0, 1], zg.size))
+    vv, tt, kk = (x.reshape(2, zg.size) for x in (vv, tt, kk))
+    tol = 1e-9
+    s = ZSearch(f, zg, vv, tt, kk, np.argmin(vv, axis=1), tol, 1.0).run(40)
+    assert s.best_v[0] == pytest.approx(1.0, abs=tol)
+    assert s.best_v[1] == pytest.approx(-0.5, abs=tol)
+    assert s.best_z == pytest.approx(f.centre, abs=1e-4)

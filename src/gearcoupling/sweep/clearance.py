@@ -349,11 +349,360 @@ _WHOLE = [0, 1, 4, 5, 6, 7]
 _FOLD = {0: (0, 4, 6), 1: (1, 5, 7), 2: (2,), 3: (3,)}
 
 
+class _PlaneEvaluator:
+    """Evaluates rows of the z search: each row is a (virtual measure, turning angle) pair
+    (:data:`_FOLD`), evaluated in planes ``z`` by :func:`_plane_minima`.
+
+    ``meas : (m,) int`` virtual measure and ``theta : (m,) float`` turning angle of each row.
+    """
+
+    def __init__(self, table: FlankTable, sl: _Sleeve, misalignment: float, pitch_radius: float,
+                 meas, theta):
+        self.table, self.sl, self.mis, self.R = table, sl, misalignment, pitch_radius
+        self.meas, self.theta = meas, theta
+
+    def __call__(self, z, rows):
+        """Minima ``(value, t, kind)``, each ``(len(rows),)``, of each row's own measure in
+        the planes ``z`` (whole-flank rows and pitch-line rows evaluated apart)."""
+        m = self.meas[rows]
+        out = np.empty(rows.size), np.empty(rows.size), np.empty(rows.size, np.int8)
+        pitch = (m == 2) | (m == 3)
+        ends = m >= 4  # profile-end branch rows: no interior search
+        for need, sel in (((True, False), ~pitch), ((False, True), pitch)):
+            idx = np.flatnonzero(sel)
+            if idx.size:
+                Vr, Tr, Kr = _plane_minima(self.table, self.sl, self.mis, z[idx],
+                                           self.theta[rows[idx]], self.R, need=need,
+                                           interior=~ends[idx])
+                c = np.arange(idx.size)
+                for o, X in zip(out, (Vr, Tr, Kr), strict=True):
+                    o[idx] = X[m[idx], c]
+        return out
+
+    def form_gap(self, z, rows):
+        """``rq - r_form`` at the hub form circle (``t = 0``) in the planes ``z``: where the
+        active interval's lower end switches to the sleeve tip edge."""
+        planes = _Planes(self.table, self.sl, self.mis, z, self.theta[rows])
+        return planes.at_end(0)[0] - self.sl.r_form
+
+
+def coarse_grid(table: FlankTable, sl: _Sleeve, misalignment: float, theta, pitch_radius: float,
+                grid: int, wanted: list[int]):
+    """Step 1: minima over ``t`` in ``grid`` planes spanning the face.
+
+    Returns ``zg (grid,)`` and ``v, t, k`` each ``(len(wanted) * n, grid)``: rows are
+    (virtual measure, theta) pairs, measure-major.
+    """
+    n = theta.size
+    zg = np.linspace(-table.half_face, table.half_face, grid)
+    kz_g, lo_g, hi_g = table.plane_coefficients(zg)
+    tile = np.tile(np.arange(grid), n)
+    y_ends = (table.plane_y(kz_g, np.zeros(grid))[tile], table.plane_y(kz_g, np.ones(grid))[tile])
+    planes = (kz_g[:, tile], lo_g[tile], (hi_g - lo_g)[tile], y_ends)
+    need = (any(vm not in (2, 3) for vm in wanted), any(vm in (2, 3) for vm in wanted))
+    V, T, K = _plane_minima(table, sl, misalignment, zg[tile], np.repeat(theta, grid),
+                            pitch_radius, planes, need=need, exact=False)
+    W = len(wanted)
+    return zg, *(X[wanted].reshape(W * n, grid) for X in (V, T, K))
+
+
+def second_minima(v):
+    """Step 2: the best coarse plane of each row, and a second coarse local minimum nearly
+    as low (two nearly equal minima, e.g. tip edge and form circle on a swing tooth), which
+    is refined too, as an extra row.
+
+    ``v : (m, grid)``. Returns ``j (m,)`` best columns, ``j2 (m,)`` the second ones and
+    ``second (m,) bool`` where that second minimum is refined.
+    """
+    m = v.shape[0]
+    rows = np.arange(m)
+    j = np.argmin(v, axis=1)
+    pad = np.full((m, 1), np.inf)
+    left, right = np.hstack([pad, v[:, :-1]]), np.hstack([v[:, 1:], pad])
+    cols = np.arange(v.shape[1])[None, :]
+    local = (v <= left) & (v <= right) & (np.abs(cols - j[:, None]) > 1) & np.isfinite(v)
+    v2 = np.where(local, v, np.inf)
+    j2 = np.argmin(v2, axis=1)
+    vmin = v[rows, j]
+    finite_max = np.max(np.where(np.isfinite(v), v, -np.inf), axis=1)
+    v2min = v2[rows, j2]
+    second = np.isfinite(v2min)  # then vmin is finite too
+    second[second] = (v2min[second] - vmin[second]
+                      <= 0.25 * (finite_max[second] - vmin[second]))
+    return j, j2, second
+
+
+class ZSearch:
+    """Step 3: the search over ``z`` of every row, from its best coarse plane.
+
+    State per row (all ``(m,)``): the best point ``best_v, best_z, best_t, best_k``
+    (``exact_val``: its value was evaluated, not a coarse upper bound) and its bracket
+    ``[a_z, b_z]`` with values ``a_v, b_v``. Each step evaluates a few planes per row
+    (``evaluate(z, rows)``, a :class:`_PlaneEvaluator`) and keeps what improves; the steps
+    can be run and profiled alone.
+    """
+
+    def __init__(self, evaluate: _PlaneEvaluator, zg, v, t, k, j, tolerance_mm: float,
+                 half_face: float):
+        rows = np.arange(v.shape[0])
+        grid = zg.size
+        self.evaluate, self.tol, self.hf = evaluate, tolerance_mm, half_face
+        self.best_v, self.best_z = v[rows, j], zg[j]
+        self.best_t, self.best_k = t[rows, j], k[rows, j]
+        self.exact_val = np.zeros(rows.size, dtype=bool)  # coarse values are upper bounds
+        jl, jr = np.maximum(j - 1, 0), np.minimum(j + 1, grid - 1)
+        self.a_z, self.a_v = zg[jl], v[rows, jl]
+        self.b_z, self.b_v = zg[jr], v[rows, jr]
+
+    def take(self, rows, zz, vv, tt, kk):
+        """Keep the best of the evaluated points ``(len(rows), m)`` where it improves."""
+        r = np.arange(rows.size)
+        jj = np.argmin(vv, axis=1)
+        better = vv[r, jj] < self.best_v[rows]
+        upd = rows[better]
+        self.best_v[upd], self.best_z[upd] = vv[r, jj][better], zz[r, jj][better]
+        self.best_t[upd], self.best_k[upd] = tt[r, jj][better], kk[r, jj][better]
+        self.exact_val[upd] = True
+        return jj, better
+
+    def triple(self, rows, zc, eps):
+        """Evaluate ``zc - eps, zc, zc + eps``; where the middle is lowest it brackets."""
+        zz3 = np.stack([zc - eps, zc, zc + eps], axis=1)
+        out3 = self.evaluate(zz3.ravel(), np.repeat(rows, 3))
+        v3, t3, k3 = (X.reshape(rows.size, 3) for X in out3)
+        jj, better = self.take(rows, zz3, v3, t3, k3)
+        mid = (jj == 1) & better
+        sel = rows[mid]
+        self.a_z[sel], self.a_v[sel] = zz3[mid, 0], v3[mid, 0]
+        self.b_z[sel], self.b_v[sel] = zz3[mid, 2], v3[mid, 2]
+
+    def excess(self, rows):
+        """How much lower than the best a minimum inside each row's bracket could be."""
+        return np.maximum(self.a_v[rows], self.b_v[rows]) - self.best_v[rows]
+
+    def coarse_parabola(self, active):
+        """Smooth minima: step to the vertex of the coarse parabola and bracket it by
+        ``+-delta``, ``delta = sqrt(tol / g'')``, so that a bracket around the true minimum
+        closes at once."""
+        a_z, a_v, b_z, b_v, best_z, best_v = (self.a_z, self.a_v, self.b_z, self.b_v,
+                                              self.best_z, self.best_v)
+        par = active[(a_z[active] < best_z[active]) & (best_z[active] < b_z[active])
+                     & np.isfinite(a_v[active]) & np.isfinite(b_v[active])]
+        if par.size == 0:
+            return
+        h = b_z[par] - best_z[par]  # uniform coarse grid: equal spacing on both sides
+        curv = (a_v[par] + b_v[par] - 2.0 * best_v[par]) / (h * h)
+        ok = curv > 0
+        par, h, curv = par[ok], h[ok], curv[ok]
+        z1 = best_z[par] - 0.5 * (b_v[par] - a_v[par]) / (h * curv)
+        delta = np.minimum(np.sqrt(self.tol / curv), 0.25 * h)
+        z1 = np.clip(z1, a_z[par] + delta, b_z[par] - delta)
+        self.triple(par, z1, delta)
+
+    def parabola_step(self, rows, allz, allv, jb):
+        """Smooth minima: vertex of the parabola through the best point and its neighbours,
+        bracketed by ``+-sqrt(tol / g'')``."""
+        last = allz.shape[1] - 1
+        ok = (jb >= 1) & (jb <= last - 1)
+        rows, zz, vv, j = rows[ok], allz[ok], allv[ok], jb[ok]
+        r = np.arange(rows.size)
+        x0, x1, x2 = zz[r, j - 1], zz[r, j], zz[r, j + 1]
+        y0, y1, y2 = vv[r, j - 1], vv[r, j], vv[r, j + 1]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            d01, d12 = (y1 - y0) / (x1 - x0), (y2 - y1) / (x2 - x1)
+            curv = 2.0 * (d12 - d01) / (x2 - x0)
+            zp = x1 - (d01 * (x2 - x1) + d12 * (x1 - x0)) / (curv * (x2 - x0))
+        good = np.isfinite(zp) & (curv > 0) & (zp > x0) & (zp < x2)
+        if not np.any(good):
+            return
+        eps = np.sqrt(self.tol / curv[good])
+        zc = zp[good]
+        eps = np.clip(eps, 1e-12 * self.hf, 0.25 * np.minimum(zc - x0[good], x2[good] - zc))
+        self.triple(rows[good], zc, eps)
+
+    def v_step(self, rows, allz, allv, jb):
+        """Corner minima (the active interval's end switches, e.g. from the form circle to
+        the sleeve tip edge): intersect the secants of the two branches either side of the
+        best point and bracket the intersection by ``+-eps``, ``eps = tol / slope``."""
+        last = allz.shape[1] - 1
+        ok = (jb >= 2) & (jb <= last - 2)
+        if not np.any(ok):
+            return
+        rows, zz, vv, j = rows[ok], allz[ok], allv[ok], jb[ok]
+        r = np.arange(rows.size)
+        z0, z1, z2, z3 = zz[r, j - 2], zz[r, j - 1], zz[r, j + 1], zz[r, j + 2]
+        v0, v1, v2, v3 = vv[r, j - 2], vv[r, j - 1], vv[r, j + 1], vv[r, j + 2]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            sl = (v1 - v0) / (z1 - z0)
+            sr = (v3 - v2) / (z3 - z2)
+            zk = (v2 - v1 + sl * z1 - sr * z2) / (sl - sr)
+        good = (sl < 0) & (sr > 0) & np.isfinite(zk) & (zk > z1) & (zk < z2)
+        if not np.any(good):
+            return
+        rows, zk = rows[good], zk[good]
+        eps = 0.5 * self.tol / np.maximum(-sl[good], sr[good])
+        eps = np.clip(eps, 1e-12 * self.hf, 0.25 * np.minimum(zk - z1[good], z2[good] - zk))
+        self.triple(rows, zk, eps)
+
+    def corner_step(self, rows):
+        """Corner minima where the active interval's lower end switches from the hub form
+        circle to the sleeve tip edge: solve ``rq(z, t=0) = r_form`` in the bracket
+        (secant) and bracket the corner by ``+-eps``, ``eps = tol / (2 slope)``."""
+        meas = self.evaluate.meas
+        rows = rows[(meas[rows] != 2) & (meas[rows] != 3)]
+        if rows.size == 0:
+            return
+        g = self.evaluate.form_gap
+        za, zb = self.a_z[rows].copy(), self.b_z[rows].copy()
+        ga, gb = g(za, rows), g(zb, rows)
+        ok = np.sign(ga) * np.sign(gb) < 0
+        if not np.any(ok):
+            return
+        rows, za, zb, ga, gb = rows[ok], za[ok], zb[ok], ga[ok], gb[ok]
+        z0, g0, z1, g1 = za, ga, zb, gb
+        r_form = self.evaluate.sl.r_form
+        for _ in range(30):
+            with np.errstate(divide="ignore", invalid="ignore"):
+                zc = z1 - g1 * (z1 - z0) / (g1 - g0)
+            zc = np.where(np.isfinite(zc), np.clip(zc, za, zb), 0.5 * (za + zb))
+            gc_ = g(zc, rows)
+            z0, g0, z1, g1 = z1, g1, zc, gc_
+            if np.all(np.abs(gc_) <= 1e-11 * r_form):
+                break
+        hf = self.hf
+        w_l = np.maximum(self.best_z[rows] - self.a_z[rows], 1e-12 * hf)
+        w_r = np.maximum(self.b_z[rows] - self.best_z[rows], 1e-12 * hf)
+        slope = np.maximum(np.abs(self.a_v[rows] - self.best_v[rows]) / w_l,
+                           np.abs(self.b_v[rows] - self.best_v[rows]) / w_r)
+        eps = 0.5 * self.tol / np.maximum(slope, 1e-12)
+        eps = np.clip(eps, 1e-12 * hf, 0.25 * np.minimum(zc - self.a_z[rows],
+                                                         self.b_z[rows] - zc))
+        good = eps > 0
+        if np.any(good):
+            self.triple(rows[good], zc[good], eps[good])
+
+    def local_newton(self, rows):
+        """Smooth minima next to a kink that spoiled the coarse parabola: a parabola from
+        the best point and two close neighbours (+-1e-3 of the half face), then a triple
+        around its vertex, ``+-sqrt(tol / g'')``."""
+        if rows.size == 0:
+            return
+        a_z, b_z, best_z = self.a_z, self.b_z, self.best_z
+        h = np.minimum(1e-3 * self.hf, 0.25 * np.minimum(best_z[rows] - a_z[rows],
+                                                         b_z[rows] - best_z[rows]))
+        ok = h > 1e-9 * self.hf
+        rows, h = rows[ok], h[ok]
+        if rows.size == 0:
+            return
+        x1 = best_z[rows]
+        y1 = self.best_v[rows]
+        zz = np.stack([x1 - h, x1 + h], axis=1)
+        out = self.evaluate(zz.ravel(), np.repeat(rows, 2))
+        v2, t2, k2 = (X.reshape(rows.size, 2) for X in out)
+        y0, y2 = v2[:, 0], v2[:, 1]
+        self.take(rows, zz, v2, t2, k2)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            curv = (y0 + y2 - 2.0 * y1) / (h * h)
+            zp = x1 - 0.5 * (y2 - y0) / (h * curv)
+        good = np.isfinite(zp) & (curv > 0) & (zp > a_z[rows]) & (zp < b_z[rows])
+        if not np.any(good):
+            return
+        rows, zp, curv = rows[good], zp[good], curv[good]
+        eps = np.sqrt(self.tol / curv)
+        eps = np.clip(eps, 1e-12 * self.hf, 0.25 * np.minimum(zp - a_z[rows], b_z[rows] - zp))
+        self.triple(rows, zp, eps)
+
+    def nested_grids(self, active, max_levels: int, inner: int = 4):
+        """Nested grids of ``inner`` planes in each bracket, with a corner and a parabola
+        step at each level, until the bracket cannot hide more than the tolerance (the
+        first level first tries :meth:`local_newton` and :meth:`corner_step`)."""
+        first = True
+        frac = np.arange(1, inner + 1) / (inner + 1)
+        for _ in range(max_levels):
+            if active.size == 0:
+                break
+            width = self.b_z[active] - self.a_z[active]
+            active = active[(self.excess(active) > self.tol) & (width > 1e-12 * self.hf)]
+            if active.size == 0:
+                break
+            if first:
+                first = False
+                self.local_newton(active)
+                active = active[self.excess(active) > self.tol]
+                self.corner_step(active)
+                active = active[self.excess(active) > self.tol]
+                if active.size == 0:
+                    break
+            m = active.size
+            a_z, b_z = self.a_z, self.b_z
+            zz = a_z[active, None] + frac[None, :] * (b_z - a_z)[active, None]
+            out = self.evaluate(zz.ravel(), np.repeat(active, inner))
+            v2, t2, k2 = (X.reshape(m, inner) for X in out)
+            self.take(active, zz, v2, t2, k2)
+            allz = np.concatenate([a_z[active, None], zz, b_z[active, None]], axis=1)
+            allv = np.concatenate([self.a_v[active, None], v2, self.b_v[active, None]], axis=1)
+            r2 = np.arange(m)
+            jb = np.argmin(allv, axis=1)
+            jl2, jr2 = np.maximum(jb - 1, 0), np.minimum(jb + 1, inner + 1)
+            self.a_z[active], self.a_v[active] = allz[r2, jl2], allv[r2, jl2]
+            self.b_z[active], self.b_v[active] = allz[r2, jr2], allv[r2, jr2]
+            self.v_step(active, allz, allv, jb)
+            self.parabola_step(active, allz, allv, jb)
+
+    def final_parabola(self):
+        """A last parabolic step through each bracket (smooth minima)."""
+        a_z, best_z, b_z = self.a_z, self.best_z, self.b_z
+        fin = np.flatnonzero(np.isfinite(self.best_v) & np.isfinite(self.a_v)
+                             & np.isfinite(self.b_v) & (a_z < best_z) & (best_z < b_z))
+        if fin.size == 0:
+            return
+        x0, x1, x2 = a_z[fin], best_z[fin], b_z[fin]
+        y0, y1, y2 = self.a_v[fin], self.best_v[fin], self.b_v[fin]
+        num = (x1 - x0) ** 2 * (y1 - y2) - (x1 - x2) ** 2 * (y1 - y0)
+        den = (x1 - x0) * (y1 - y2) - (x1 - x2) * (y1 - y0)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            zp = x1 - 0.5 * num / den
+        good = np.isfinite(zp) & (zp > x0) & (zp < x2)
+        fin, zp = fin[good], zp[good]
+        if fin.size:
+            out = self.evaluate(zp, fin)
+            self.take(fin, zp[:, None], *(X[:, None] for X in out))
+
+    def settle(self):
+        """Minima that crept to a face end sit on it (snapped: the value moves by slope *
+        1e-8 hf); the reported minimum is evaluated exactly where it lies (coarse values
+        are upper bounds; a refined value is kept where lower)."""
+        hf = self.hf
+        near_end = np.isfinite(self.best_v) & (np.abs(self.best_z) >= hf * (1.0 - 1e-8))
+        self.best_z = np.where(near_end, np.sign(self.best_z) * hf, self.best_z)
+        self.exact_val &= ~near_end
+        ex = np.flatnonzero(np.isfinite(self.best_v) & ~self.exact_val)
+        if ex.size:
+            ve, te, ke = self.evaluate(self.best_z[ex], ex)
+            use = (ve <= self.best_v[ex] + 1e-7 * self.tol) | near_end[ex]
+            self.best_v[ex] = np.where(use, ve, self.best_v[ex])
+            self.best_t[ex] = np.where(use, te, self.best_t[ex])
+            self.best_k[ex] = np.where(use, ke, self.best_k[ex])
+
+    def run(self, max_levels: int):
+        """All steps, in order."""
+        active = np.flatnonzero(np.isfinite(self.best_v))
+        self.coarse_parabola(active)
+        self.nested_grids(active, max_levels)
+        self.final_parabola()
+        self.settle()
+        return self
+
+
 def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
              pitch_radius: float, tolerance_mm: float = DEFAULT_TOLERANCE_MM,
              grid: int = DEFAULT_GRID, max_levels: int = 40,
              measures: tuple[str, ...] = MEASURES) -> dict[str, Minimum]:
     """Minimum gaps of tooth 0's cw flank to space 0 at turning angles ``theta``.
+
+    Steps: :func:`coarse_grid` (minima over ``t`` in ``grid`` planes), :func:`second_minima`
+    (a second coarse minimum becomes an extra row), :class:`ZSearch` (refinement over
+    ``z``), then each measure folds its branches (:data:`_FOLD`).
 
     Parameters
     ----------
@@ -391,295 +740,18 @@ def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
     n = theta.size
     # the virtual measures (rows of _plane_minima) the requested measures fold from
     wanted = sorted({vm for m in measures for vm in _FOLD[MEASURES.index(m)]})
-    pos = {vm: j for j, vm in enumerate(wanted)}
-    W = len(wanted)
     sl = _Sleeve(sm)
-    hf = table.half_face
-    zg = np.linspace(-hf, hf, grid)
-    kz_g, lo_g, hi_g = table.plane_coefficients(zg)
-    tile = np.tile(np.arange(grid), n)
-    y_ends = (table.plane_y(kz_g, np.zeros(grid))[tile], table.plane_y(kz_g, np.ones(grid))[tile])
-    planes = (kz_g[:, tile], lo_g[tile], (hi_g - lo_g)[tile], y_ends)
-    need = (any(vm not in (2, 3) for vm in wanted), any(vm in (2, 3) for vm in wanted))
-    V, T, K = _plane_minima(table, sl, misalignment, zg[tile], np.repeat(theta, grid),
-                            pitch_radius, planes, need=need, exact=False)
-    # rows = (virtual measure, theta) pairs
-    meas = np.repeat(np.array(wanted), n)
-    th_of = np.tile(np.arange(n), W)
-    v, t, k = (X[wanted].reshape(W * n, grid) for X in (V, T, K))
-    rows_all = np.arange(W * n)
-
-    def evaluate(z, rows):
-        """Minima of each row's own measure in the planes ``z`` (whole-flank rows and
-        pitch-line rows evaluated apart)."""
-        m = meas[rows]
-        out = np.empty(rows.size), np.empty(rows.size), np.empty(rows.size, np.int8)
-        pitch = (m == 2) | (m == 3)
-        ends = m >= 4  # profile-end branch rows: no interior search
-        for need, sel in (((True, False), ~pitch), ((False, True), pitch)):
-            idx = np.flatnonzero(sel)
-            if idx.size:
-                Vr, Tr, Kr = _plane_minima(table, sl, misalignment, z[idx],
-                                           theta[th_of[rows[idx]]], pitch_radius, need=need,
-                                           interior=~ends[idx])
-                c = np.arange(idx.size)
-                for o, X in zip(out, (Vr, Tr, Kr), strict=True):
-                    o[idx] = X[m[idx], c]
-        return out
-
-    j = np.argmin(v, axis=1)
-    # a second coarse local minimum nearly as low as the best is refined too, as an extra
-    # row (two nearly equal minima, e.g. tip edge and form circle on a swing tooth)
-    pad = np.full((W * n, 1), np.inf)
-    left, right = np.hstack([pad, v[:, :-1]]), np.hstack([v[:, 1:], pad])
-    cols = np.arange(grid)[None, :]
-    local = (v <= left) & (v <= right) & (np.abs(cols - j[:, None]) > 1) & np.isfinite(v)
-    v2 = np.where(local, v, np.inf)
-    j2 = np.argmin(v2, axis=1)
-    vmin = v[rows_all, j]
-    finite_max = np.max(np.where(np.isfinite(v), v, -np.inf), axis=1)
-    v2min = v2[rows_all, j2]
-    second = np.isfinite(v2min)  # then vmin is finite too
-    second[second] = (v2min[second] - vmin[second]
-                      <= 0.25 * (finite_max[second] - vmin[second]))
-    extra = rows_all[second]
-    origin = np.concatenate([rows_all, extra])
-    meas, th_of = meas[origin], th_of[origin]
-    v, t, k = v[origin], t[origin], k[origin]
-    j = np.concatenate([j, j2[second]])
-    rows_all = np.arange(origin.size)
-    best_v, best_z = v[rows_all, j], zg[j]
-    best_t, best_k = t[rows_all, j], k[rows_all, j]
-    exact_val = np.zeros(origin.size, dtype=bool)  # coarse values are upper bounds
-    jl, jr = np.maximum(j - 1, 0), np.minimum(j + 1, grid - 1)
-    a_z, a_v = zg[jl], v[rows_all, jl]
-    b_z, b_v = zg[jr], v[rows_all, jr]
-    active = np.flatnonzero(np.isfinite(best_v))
-
-    def take(rows, zz, vv, tt, kk):
-        """Keep the best of the evaluated points ``(len(rows), m)`` where it improves."""
-        r = np.arange(rows.size)
-        jj = np.argmin(vv, axis=1)
-        better = vv[r, jj] < best_v[rows]
-        upd = rows[better]
-        best_v[upd], best_z[upd] = vv[r, jj][better], zz[r, jj][better]
-        best_t[upd], best_k[upd] = tt[r, jj][better], kk[r, jj][better]
-        exact_val[upd] = True
-        return jj, better
-
-    # smooth minima: step to the vertex of the coarse parabola and bracket it by +-delta,
-    # delta = sqrt(tol / g'') so that a bracket around the true minimum closes at once
-    par = active[(a_z[active] < best_z[active]) & (best_z[active] < b_z[active])
-                 & np.isfinite(a_v[active]) & np.isfinite(b_v[active])]
-    if par.size:
-        h = b_z[par] - best_z[par]  # uniform coarse grid: equal spacing on both sides
-        curv = (a_v[par] + b_v[par] - 2.0 * best_v[par]) / (h * h)
-        ok = curv > 0
-        par, h, curv = par[ok], h[ok], curv[ok]
-        z1 = best_z[par] - 0.5 * (b_v[par] - a_v[par]) / (h * curv)
-        delta = np.minimum(np.sqrt(tolerance_mm / curv), 0.25 * h)
-        z1 = np.clip(z1, a_z[par] + delta, b_z[par] - delta)
-        zz = np.stack([z1 - delta, z1, z1 + delta], axis=1)
-        m = par.size
-        out = evaluate(zz.ravel(), np.repeat(par, 3))
-        v3, t3, k3 = (X.reshape(m, 3) for X in out)
-        jj, better = take(par, zz, v3, t3, k3)
-        mid = (jj == 1) & better  # the small triple brackets the minimum
-        sel = par[mid]
-        a_z[sel], a_v[sel] = zz[mid, 0], v3[mid, 0]
-        b_z[sel], b_v[sel] = zz[mid, 2], v3[mid, 2]
-    def _triple(rows, zc, eps):
-        """Evaluate ``zc - eps, zc, zc + eps``; where the middle is lowest it brackets."""
-        zz3 = np.stack([zc - eps, zc, zc + eps], axis=1)
-        out3 = evaluate(zz3.ravel(), np.repeat(rows, 3))
-        v3_, t3_, k3_ = (X.reshape(rows.size, 3) for X in out3)
-        jj, better = take(rows, zz3, v3_, t3_, k3_)
-        mid = (jj == 1) & better
-        sel = rows[mid]
-        a_z[sel], a_v[sel] = zz3[mid, 0], v3_[mid, 0]
-        b_z[sel], b_v[sel] = zz3[mid, 2], v3_[mid, 2]
-
-    def _parabola_step(rows, allz, allv, jb):
-        """Smooth minima: vertex of the parabola through the best point and its neighbours,
-        bracketed by +-sqrt(tol / g'')."""
-        last = allz.shape[1] - 1
-        ok = (jb >= 1) & (jb <= last - 1)
-        rows, zz, vv, j = rows[ok], allz[ok], allv[ok], jb[ok]
-        r = np.arange(rows.size)
-        x0, x1, x2 = zz[r, j - 1], zz[r, j], zz[r, j + 1]
-        y0, y1, y2 = vv[r, j - 1], vv[r, j], vv[r, j + 1]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            d01, d12 = (y1 - y0) / (x1 - x0), (y2 - y1) / (x2 - x1)
-            curv = 2.0 * (d12 - d01) / (x2 - x0)
-            zp = x1 - (d01 * (x2 - x1) + d12 * (x1 - x0)) / (curv * (x2 - x0))
-        good = np.isfinite(zp) & (curv > 0) & (zp > x0) & (zp < x2)
-        if not np.any(good):
-            return
-        eps = np.sqrt(tolerance_mm / curv[good])
-        zc = zp[good]
-        eps = np.clip(eps, 1e-12 * hf, 0.25 * np.minimum(zc - x0[good], x2[good] - zc))
-        _triple(rows[good], zc, eps)
-
-    def _v_step(rows, allz, allv, jb):
-        """Corner minima (the active interval's end switches, e.g. from the form circle to
-        the sleeve tip edge): intersect the secants of the two branches either side of the
-        best point and bracket the intersection by +-eps, eps = tol / slope."""
-        last = allz.shape[1] - 1
-        ok = (jb >= 2) & (jb <= last - 2)
-        if not np.any(ok):
-            return
-        rows, zz, vv, j = rows[ok], allz[ok], allv[ok], jb[ok]
-        r = np.arange(rows.size)
-        z0, z1, z2, z3 = zz[r, j - 2], zz[r, j - 1], zz[r, j + 1], zz[r, j + 2]
-        v0, v1, v2, v3 = vv[r, j - 2], vv[r, j - 1], vv[r, j + 1], vv[r, j + 2]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            sl = (v1 - v0) / (z1 - z0)
-            sr = (v3 - v2) / (z3 - z2)
-            zk = (v2 - v1 + sl * z1 - sr * z2) / (sl - sr)
-        good = (sl < 0) & (sr > 0) & np.isfinite(zk) & (zk > z1) & (zk < z2)
-        if not np.any(good):
-            return
-        rows, zk = rows[good], zk[good]
-        eps = 0.5 * tolerance_mm / np.maximum(-sl[good], sr[good])
-        eps = np.clip(eps, 1e-12 * hf, 0.25 * np.minimum(zk - z1[good], z2[good] - zk))
-        _triple(rows, zk, eps)
-
-    def _corner_step(rows):
-        """Corner minima where the active interval's lower end switches from the hub form
-        circle to the sleeve tip edge: solve ``rq(z, t=0) = r_form`` in the bracket
-        (secant) and bracket the corner by +-eps, eps = tol / (2 slope)."""
-        rows = rows[(meas[rows] != 2) & (meas[rows] != 3)]
-        if rows.size == 0:
-            return
-        th = theta[th_of[rows]]
-
-        def g(z):
-            planes = _Planes(table, sl, misalignment, z, th_sel)
-            return planes.at_end(0)[0] - sl.r_form
-
-        th_sel = th
-        za, zb = a_z[rows].copy(), b_z[rows].copy()
-        ga, gb = g(za), g(zb)
-        ok = np.sign(ga) * np.sign(gb) < 0
-        if not np.any(ok):
-            return
-        rows, za, zb, ga, gb, th_sel = rows[ok], za[ok], zb[ok], ga[ok], gb[ok], th[ok]
-        z0, g0, z1, g1 = za, ga, zb, gb
-        for _ in range(30):
-            with np.errstate(divide="ignore", invalid="ignore"):
-                zc = z1 - g1 * (z1 - z0) / (g1 - g0)
-            zc = np.where(np.isfinite(zc), np.clip(zc, za, zb), 0.5 * (za + zb))
-            gc_ = g(zc)
-            z0, g0, z1, g1 = z1, g1, zc, gc_
-            if np.all(np.abs(gc_) <= 1e-11 * sl.r_form):
-                break
-        w_l = np.maximum(best_z[rows] - a_z[rows], 1e-12 * hf)
-        w_r = np.maximum(b_z[rows] - best_z[rows], 1e-12 * hf)
-        slope = np.maximum(np.abs(a_v[rows] - best_v[rows]) / w_l,
-                           np.abs(b_v[rows] - best_v[rows]) / w_r)
-        eps = 0.5 * tolerance_mm / np.maximum(slope, 1e-12)
-        eps = np.clip(eps, 1e-12 * hf, 0.25 * np.minimum(zc - a_z[rows], b_z[rows] - zc))
-        good = eps > 0
-        if np.any(good):
-            _triple(rows[good], zc[good], eps[good])
-
-    def _local_newton(rows):
-        """Smooth minima next to a kink that spoiled the coarse parabola: a parabola from
-        the best point and two close neighbours (+-1e-3 of the half face), then a triple
-        around its vertex, +-sqrt(tol / g'')."""
-        if rows.size == 0:
-            return
-        h = np.minimum(1e-3 * hf, 0.25 * np.minimum(best_z[rows] - a_z[rows],
-                                                    b_z[rows] - best_z[rows]))
-        ok = h > 1e-9 * hf
-        rows, h = rows[ok], h[ok]
-        if rows.size == 0:
-            return
-        x1 = best_z[rows]
-        y1 = best_v[rows]
-        zz = np.stack([x1 - h, x1 + h], axis=1)
-        out = evaluate(zz.ravel(), np.repeat(rows, 2))
-        v2, t2, k2 = (X.reshape(rows.size, 2) for X in out)
-        y0, y2 = v2[:, 0], v2[:, 1]
-        take(rows, zz, v2, t2, k2)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            curv = (y0 + y2 - 2.0 * y1) / (h * h)
-            zp = x1 - 0.5 * (y2 - y0) / (h * curv)
-        good = np.isfinite(zp) & (curv > 0) & (zp > a_z[rows]) & (zp < b_z[rows])
-        if not np.any(good):
-            return
-        rows, zp, curv = rows[good], zp[good], curv[good]
-        eps = np.sqrt(tolerance_mm / curv)
-        eps = np.clip(eps, 1e-12 * hf, 0.25 * np.minimum(zp - a_z[rows], b_z[rows] - zp))
-        _triple(rows, zp, eps)
-
-    # nested grids until the bracket cannot hide more than the tolerance
-    inner = 4
-    first = True
-    frac = np.arange(1, inner + 1) / (inner + 1)
-    for _ in range(max_levels):
-        if active.size == 0:
-            break
-        excess = np.maximum(a_v[active], b_v[active]) - best_v[active]
-        width = b_z[active] - a_z[active]
-        active = active[(excess > tolerance_mm) & (width > 1e-12 * hf)]
-        if active.size == 0:
-            break
-        if first:
-            first = False
-            _local_newton(active)
-            excess = np.maximum(a_v[active], b_v[active]) - best_v[active]
-            active = active[excess > tolerance_mm]
-            _corner_step(active)
-            excess = np.maximum(a_v[active], b_v[active]) - best_v[active]
-            active = active[excess > tolerance_mm]
-            if active.size == 0:
-                break
-        m = active.size
-        zz = a_z[active, None] + frac[None, :] * (b_z - a_z)[active, None]
-        out = evaluate(zz.ravel(), np.repeat(active, inner))
-        v2, t2, k2 = (X.reshape(m, inner) for X in out)
-        take(active, zz, v2, t2, k2)
-        allz = np.concatenate([a_z[active, None], zz, b_z[active, None]], axis=1)
-        allv = np.concatenate([a_v[active, None], v2, b_v[active, None]], axis=1)
-        r2 = np.arange(m)
-        jb = np.argmin(allv, axis=1)
-        jl2, jr2 = np.maximum(jb - 1, 0), np.minimum(jb + 1, inner + 1)
-        a_z[active], a_v[active] = allz[r2, jl2], allv[r2, jl2]
-        b_z[active], b_v[active] = allz[r2, jr2], allv[r2, jr2]
-        _v_step(active, allz, allv, jb)
-        _parabola_step(active, allz, allv, jb)
-
-    # final parabolic step through the bracket (smooth minima)
-    fin = np.flatnonzero(np.isfinite(best_v) & np.isfinite(a_v) & np.isfinite(b_v)
-                         & (a_z < best_z) & (best_z < b_z))
-    if fin.size:
-        x0, x1, x2 = a_z[fin], best_z[fin], b_z[fin]
-        y0, y1, y2 = a_v[fin], best_v[fin], b_v[fin]
-        num = (x1 - x0) ** 2 * (y1 - y2) - (x1 - x2) ** 2 * (y1 - y0)
-        den = (x1 - x0) * (y1 - y2) - (x1 - x2) * (y1 - y0)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            zp = x1 - 0.5 * num / den
-        good = np.isfinite(zp) & (zp > x0) & (zp < x2)
-        fin, zp = fin[good], zp[good]
-        if fin.size:
-            out = evaluate(zp, fin)
-            take(fin, zp[:, None], *(X[:, None] for X in out))
-    # minima that crept to a face end sit on it: snap (the value moves by slope * 1e-8 hf)
-    near_end = np.isfinite(best_v) & (np.abs(best_z) >= hf * (1.0 - 1e-8))
-    best_z = np.where(near_end, np.sign(best_z) * hf, best_z)
-    exact_val &= ~near_end
-    # the reported minimum is evaluated exactly where it lies (the coarse values are
-    # upper bounds; a refined value is kept where lower)
-    ex = np.flatnonzero(np.isfinite(best_v) & ~exact_val)
-    if ex.size:
-        ve, te, ke = evaluate(best_z[ex], ex)
-        use = (ve <= best_v[ex] + 1e-7 * tolerance_mm) | near_end[ex]
-        best_v[ex] = np.where(use, ve, best_v[ex])
-        best_t[ex] = np.where(use, te, best_t[ex])
-        best_k[ex] = np.where(use, ke, best_k[ex])
+    zg, v, t, k = coarse_grid(table, sl, misalignment, theta, pitch_radius, grid, wanted)
+    j, j2, second = second_minima(v)
+    R = v.shape[0]  # rows: (virtual measure, theta) pairs, then the extra rows
+    origin = np.concatenate([np.arange(R), np.flatnonzero(second)])
+    meas = np.repeat(np.array(wanted), n)[origin]
+    th_of = np.tile(np.arange(n), len(wanted))[origin]
+    evaluate = _PlaneEvaluator(table, sl, misalignment, pitch_radius, meas, theta[th_of])
+    s = ZSearch(evaluate, zg, v[origin], t[origin], k[origin],
+                np.concatenate([j, j2[second]]), tolerance_mm, table.half_face).run(max_levels)
+    best_v, best_z, best_t, best_k = s.best_v, s.best_z, s.best_t, s.best_k
     # each row keeps the better of its own and its extra row's minimum
-    R = W * n
     if origin.size > R:
         ex_rows = np.arange(R, origin.size)
         won = best_v[ex_rows] < best_v[origin[ex_rows]]
@@ -688,11 +760,22 @@ def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
                                                               best_t[src], best_k[src])
         best_v, best_z, best_t, best_k = best_v[:R], best_z[:R], best_t[:R], best_k[:R]
         th_of = th_of[:R]
+    return _fold(table, misalignment, theta, th_of, wanted, measures, best_v, best_z, best_t,
+                 best_k)
+
+
+def _fold(table, misalignment, theta, th_of, wanted, measures, best_v, best_z, best_t,
+          best_k) -> dict[str, Minimum]:
+    """Step 4: each measure's minimum over its branches (:data:`_FOLD`), with the face-end
+    kind, radius and turning rate at it."""
+    n = theta.size
+    hf = table.half_face
     at_end = (np.abs(np.abs(best_z) - hf) <= 1e-12 * hf) & (best_k != NONE)
     best_k = np.where(at_end, FACE_END, best_k).astype(np.int8)
     lo, hi = table.radii(best_z)
     r = lo + best_t * (hi - lo)
     rate = turning_rate(table, misalignment, best_z, best_t, theta[th_of])
+    pos = {vm: j for j, vm in enumerate(wanted)}
     result = {}
     for name in measures:
         fold = [pos[vm] for vm in _FOLD[MEASURES.index(name)]]
