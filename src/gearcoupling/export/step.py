@@ -1,12 +1,14 @@
 """STEP solids of hub and sleeve built by OpenCASCADE from the exact geometry.
 
-Not from triangles: every transverse outline is split into its exact pieces (root and tip
-circles, sleeve fillet circles and chamfer lines as exact circles and lines; hub fillets
-and flanks, sleeve flanks as cubic B-splines interpolating exact kernel points placed by
-the chordal tolerance). The sleeve is that outline extruded; the hub is a B-spline loft
-(``BRepOffsetAPI_ThruSections``) through the outlines in the tolerance-driven planes of
-the mesh grid, fused with the shoulder and cut by the bore. OpenCASCADE comes from the
-``step`` extra (``cadquery-ocp-novtk``) and is imported only here, at the call.
+Not from triangles: every transverse outline is split into its edges; sleeve roots, tips,
+fillets and chamfers are exact circles and lines, every other edge is a cubic B-spline
+fitted to exact kernel points with the fewest control points that keep it within
+``FIT_SHARE`` of the tolerance (:mod:`.fit`), on one knot vector for all sections. The
+sleeve is that outline extruded; the hub is a loft (``BRepOffsetAPI_ThruSections``)
+through outlines at planes of the tolerance grid spaced as widely as keeps the
+interpolation in ``z`` within ``Z_SHARE`` of the tolerance, fused with the shoulder and
+cut by the bore. OpenCASCADE comes from the ``step`` extra (``cadquery-ocp-novtk``) and is
+imported only here, at the call. Method and measurements: ``docs/export.md``.
 """
 
 from __future__ import annotations
@@ -149,18 +151,17 @@ def _tile_ring(pitch: NDArray, teeth: int) -> NDArray:
 
 
 def sampling_tolerance(spec, tol: float) -> float:
-    """Chord tolerance of the exact points the B-splines interpolate.
+    """Chord tolerance of the hub grid whose planes are the candidate loft sections.
 
-    A cubic interpolant is far closer to the curve than the chords through the same
-    points (measured: below 1 % of the chord error on every template), so the points are
-    placed for ``min(10 tol, module / 20)``; the B-spline error stays well inside ``tol``
-    (``tests/test_export.py`` measures it against exact kernel points).
+    A cubic through sections is far closer to the crowned surface than chords between the
+    same planes, so the grid is sized for ``min(10 tol, module / 20)``;
+    :func:`loft_sections` then measures which spacing keeps the tolerance.
     """
     return max(tol, min(10.0 * tol, spec.tooth.module / 20.0))
 
 
 def hub_solid(spec, tol: float):
-    """OpenCASCADE solid of the whole hub (B-spline loft of the exact tooth outlines).
+    """OpenCASCADE solid of the whole hub (B-spline loft of the fitted tooth outlines).
 
     The loft is split at the planes where the feed-path curvature jumps (``end_round``)
     so that no B-spline surface spans a curvature break; the pieces are fused.
