@@ -277,3 +277,41 @@ def test_run_lists_the_step_files_in_parts_json(tmp_path, capsys):
     assert sorted(printed) == sorted(str(tmp_path / n) for n in
                                      ("hub.stl", "sleeve.stl", "parts.json", "hub.step",
                                       "sleeve.step"))
+
+
+def test_profile_fit_uses_the_fewest_poles_within_the_tolerance():
+    """A quarter circle (radius 10) in 3 sections scaled 1, 1.1, 1.2: the fit deviates at
+    most ``tol`` from every exact point, one fewer pole would not, and every section shares
+    the knots; more tolerance never needs more poles."""
+    from scipy.interpolate import BSpline
+
+    from gearcoupling.export.fit import (
+        _knot_vector,
+        _lsq,
+        fit_sections,
+        shared_chord_parameters,
+    )
+
+    a = np.linspace(0, np.pi / 2, 60)
+    arc = 10.0 * np.stack([np.cos(a), np.sin(a)], axis=-1)
+    pts = np.stack([s * arc for s in (1.0, 1.1, 1.2)])
+    counts = []
+    for tol in (1e-2, 1e-3, 1e-4, 1e-5):
+        fit = fit_sections(pts, tol)
+        k = fit.poles.shape[1]
+        counts.append(k)
+        assert fit.deviation <= tol
+        assert fit.mults.sum() == k + 4 and fit.poles.shape == (3, k, 2)
+        # end points kept exactly (the wire's edges must meet)
+        assert np.allclose(fit.poles[:, 0], pts[:, 0], atol=1e-12)
+        assert np.allclose(fit.poles[:, -1], pts[:, -1], atol=1e-12)
+        if k > 4:
+            _, _, fewer = _lsq(pts, shared_chord_parameters(pts), k - 1)
+            assert fewer > tol
+        assert np.allclose(np.repeat(fit.knots, fit.mults), _knot_vector(k))
+    assert counts == sorted(counts) and counts[0] < counts[-1]
+    # the deviation reported is the real distance of the data to the fitted curve's points
+    fit = fit_sections(pts, 1e-4)
+    u = shared_chord_parameters(pts)
+    curve = BSpline(np.repeat(fit.knots, fit.mults), fit.poles[1], 3)
+    assert np.linalg.norm(curve(u) - pts[1], axis=-1).max() <= 1e-4

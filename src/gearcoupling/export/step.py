@@ -1,12 +1,14 @@
 """STEP solids of hub and sleeve built by OpenCASCADE from the exact geometry.
 
-Not from triangles: every transverse outline is split into its exact pieces (root and tip
-circles, sleeve fillet circles and chamfer lines as exact circles and lines; hub fillets
-and flanks, sleeve flanks as cubic B-splines interpolating exact kernel points placed by
-the chordal tolerance). The sleeve is that outline extruded; the hub is a B-spline loft
-(``BRepOffsetAPI_ThruSections``) through the outlines in the tolerance-driven planes of
-the mesh grid, fused with the shoulder and cut by the bore. OpenCASCADE comes from the
-``step`` extra (``cadquery-ocp-novtk``) and is imported only here, at the call.
+Not from triangles: every transverse outline is split into its edges; sleeve roots, tips,
+fillets and chamfers are exact circles and lines, every other edge is a cubic B-spline
+fitted to exact kernel points with the fewest control points that keep it within
+``FIT_SHARE`` of the tolerance (:mod:`.fit`), on one knot vector for all sections. The
+sleeve is that outline extruded; the hub is a loft (``BRepOffsetAPI_ThruSections``)
+through outlines at planes of the tolerance grid spaced as widely as keeps the
+interpolation in ``z`` within ``Z_SHARE`` of the tolerance, fused with the shoulder and
+cut by the bore. OpenCASCADE comes from the ``step`` extra (``cadquery-ocp-novtk``) and is
+imported only here, at the call. Method and measurements: ``docs/export.md``.
 """
 
 from __future__ import annotations
@@ -149,18 +151,17 @@ def _tile_ring(pitch: NDArray, teeth: int) -> NDArray:
 
 
 def sampling_tolerance(spec, tol: float) -> float:
-    """Chord tolerance of the exact points the B-splines interpolate.
+    """Chord tolerance of the hub grid whose planes are the candidate loft sections.
 
-    A cubic interpolant is far closer to the curve than the chords through the same
-    points (measured: below 1 % of the chord error on every template), so the points are
-    placed for ``min(10 tol, module / 20)``; the B-spline error stays well inside ``tol``
-    (``tests/test_export.py`` measures it against exact kernel points).
+    A cubic through sections is far closer to the crowned surface than chords between the
+    same planes, so the grid is sized for ``min(10 tol, module / 20)``;
+    :func:`loft_sections` then measures which spacing keeps the tolerance.
     """
     return max(tol, min(10.0 * tol, spec.tooth.module / 20.0))
 
 
 def hub_solid(spec, tol: float):
-    """OpenCASCADE solid of the whole hub (B-spline loft of the exact tooth outlines).
+    """OpenCASCADE solid of the whole hub (B-spline loft of the fitted tooth outlines).
 
     The loft is split at the planes where the feed-path curvature jumps (``end_round``)
     so that no B-spline surface spans a curvature break; the pieces are fused.
@@ -173,14 +174,9 @@ def hub_solid(spec, tol: float):
     dense = hub_layout(spec, DENSE_SHARE * tol)  # exact points the profiles are fitted to
     n = spec.tooth.teeth
     dense_kinds = np.resize(dense.kinds, n * len(dense.kinds))
-    z_all = _section_planes(lay.grid.z)
     cuts = curvature_breaks(hub_model(spec))
     edges = np.concatenate([[-lay.half_face], -cuts[::-1], cuts, [lay.half_face]])
-    rows = []
-    for z0, z1 in pairwise(edges):
-        inside = z_all[(z_all > z0 + 1e-9 * lay.half_face) & (z_all < z1 - 1e-9 * lay.half_face)]
-        z_rows = np.concatenate([[z0], inside, [z1]])
-        rows.append(np.linspace(z0, z1, 3) if len(z_rows) == 2 else z_rows)
+    rows = loft_sections(lay.grid.z, edges, dense, Z_SHARE * tol)
     # one fit over every section of every piece: the pieces share their cut sections exactly
     z_fit = np.unique(np.concatenate(rows))
     rings = np.stack([_tile_ring(pitch, n) for pitch in dense.grid.points(z_fit)])
@@ -312,18 +308,71 @@ def _origin(kind: str):
     return np.zeros(2) if kind in ("root", "tip") else None
 
 
-SECTION_STRIDE = 3
-"""Loft sections at every this many planes of the hub grid (sized for chords at the
-sampling tolerance): a cubic in ``z`` through them is far closer to the crowned surface."""
+Z_SHARE = 0.45
+"""Share of the tolerance the cubic interpolation between loft sections may deviate."""
 
 
-def _section_planes(z: NDArray) -> NDArray:
-    """Loft sections: every :data:`SECTION_STRIDE`-th grid plane, spread evenly over the
-    face, at least 4 (cubic in ``z``), always with both ends."""
-    count = max(4, math.ceil((len(z) - 1) / SECTION_STRIDE) + 1)
+def _pieces(z_all: NDArray, edges: NDArray, half_face: float) -> list[NDArray]:
+    """Section planes of each loft piece between consecutive ``edges`` (cut planes)."""
+    rows = []
+    for z0, z1 in pairwise(edges):
+        inside = z_all[(z_all > z0 + 1e-9 * half_face) & (z_all < z1 - 1e-9 * half_face)]
+        z_rows = np.concatenate([[z0], inside, [z1]])
+        rows.append(np.linspace(z0, z1, 3) if len(z_rows) == 2 else z_rows)
+    return rows
+
+
+def _every(z: NDArray, stride: int) -> NDArray:
+    """Every ``stride``-th plane of ``z`` spread evenly, at least 4 (a cubic), with both ends."""
+    count = max(4, math.ceil((len(z) - 1) / stride) + 1)
     if len(z) <= count:
         return z
     return z[np.round(np.linspace(0, len(z) - 1, count)).astype(int)]
+
+
+def _polyline_distance(points: NDArray, line: NDArray) -> NDArray:
+    """Distance ``(k,)`` from 2-D ``points (k, 2)`` to the polyline ``line (q, 2)``."""
+    a, d = line[:-1], np.diff(line, axis=0)
+    rel = points[:, None, :] - a[None]
+    dd = np.maximum(np.einsum("qi,qi->q", d, d), 1e-300)
+    t = np.clip(np.einsum("kqi,qi->kq", rel, d) / dd, 0.0, 1.0)
+    gap = rel - t[..., None] * d[None]
+    return np.sqrt(np.einsum("kqi,kqi->kq", gap, gap).min(axis=1))
+
+
+def interpolation_deviation(rows: list[NDArray], dense, refine: int = 8) -> float:
+    """Largest distance (mm) from the cubic interpolation in ``z`` (through the planes
+    ``rows`` of each piece) of the exact profile points of ``dense`` (a hub layout) to the
+    exact profile on its grid planes: what the loft adds to the profile fit (the fit is
+    linear in the points and the loft interpolates the poles across the sections). The
+    exact profile is the dense points refined ``refine`` times by a cubic through them."""
+    from scipy.interpolate import make_interp_spline
+
+    worst = 0.0
+    for z_rows in rows:
+        z = dense.grid.z[(dense.grid.z >= z_rows[0]) & (dense.grid.z <= z_rows[-1])]
+        if z.size == 0:
+            continue
+        across = make_interp_spline(z_rows, dense.grid.points(z_rows), k=min(3, len(z_rows) - 1))
+        exact = dense.grid.points(z)  # (nz, m, 2)
+        m = exact.shape[1]
+        fine = np.linspace(0, m - 1, refine * (m - 1) + 1)
+        lines = make_interp_spline(np.arange(m), exact, k=3, axis=1)(fine)
+        for guess, line in zip(across(z), lines, strict=True):  # per plane: bounded memory
+            worst = max(worst, float(_polyline_distance(guess, line).max()))
+    return worst
+
+
+def loft_sections(z_grid: NDArray, edges: NDArray, dense, tol: float) -> list[NDArray]:
+    """Section planes per loft piece: the widest spacing (every 3rd, 2nd or every plane of
+    the sampling grid ``z_grid``) whose cubic interpolation in ``z`` keeps the exact profile
+    points within ``tol`` (:func:`interpolation_deviation`)."""
+    half = float(edges[-1])
+    for stride in (3, 2):
+        rows = _pieces(_every(z_grid, stride), edges, half)
+        if interpolation_deviation(rows, dense) <= tol:
+            return rows
+    return _pieces(z_grid, edges, half)
 
 
 def sleeve_solid(spec, tol: float):
