@@ -31,6 +31,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import SpecError
+from ..geometry.hub import hub_flank_model
 from ..hob.charts import MeasuringCharts
 from .register import Registration
 from .surface import FlankTable, PointDeviation
@@ -153,7 +154,9 @@ def evaluate(table: FlankTable, charts: MeasuringCharts, dev: PointDeviation, *,
     r_ref = cw_vals["lead_radius_mm"]
     xi_ref = math.sqrt(r_ref**2 - rb**2)
     L_alpha = math.sqrt(table.r_hi**2 - rb**2) - math.sqrt(table.r_lo**2 - rb**2)
-    _, _, n_t, _ = table.evaluate(0.0, r_ref)
+    # exact normal at the reference point: its tangential part turns normal into arc
+    pts, nrm, _ = hub_flank_model(m, "cw", 0.0, r_ref)
+    n_t = (-nrm[0] * pts[1] + nrm[1] * pts[0]) / r_ref
     factor = m.R / (r_ref * abs(float(n_t)))
     xi = np.sqrt(np.maximum(dev.r**2 - rb**2, 0.0)) - xi_ref
     zn = dev.z / half
