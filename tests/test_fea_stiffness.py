@@ -122,3 +122,20 @@ def test_fe_table_drives_the_compliance_load_model(table):
     dc = t.pair_compliance_mm_per_N(z[0], r[0]) - cant.pair_compliance_mm_per_N(z[0], r[0])
     np.testing.assert_allclose(fe["windup_rad"] - ref["windup_rad"], P * dc / R,
                                rtol=0.02, atol=1e-9)
+
+
+def test_stiffness_cli_writes_the_table_from_the_cache(table, tmp_path):
+    import csv
+    import json
+
+    t, cache = table
+    argv = ["stiffness", "industrial-m2", "--size", "1", "--sector", "1", "--nz", "2", "--nr",
+            "2", "--cache", str(cache), "-o", str(tmp_path)]
+    assert main(argv) == 0
+    rows = list(csv.DictReader((tmp_path / "stiffness.csv").read_text().splitlines()))
+    assert len(rows) == 4
+    for row, (h, s) in zip(rows, zip(t.hub_mm_per_N.ravel(), t.sleeve_mm_per_N.ravel(),
+                                     strict=True), strict=True):
+        assert float(row["pair_um_per_N"]) == pytest.approx(1e3 * (h + s), rel=1e-5)
+    summary = json.loads((tmp_path / "stiffness.json").read_text())["pitch_point"]
+    assert summary["mesh_stiffness_N_per_mm"] == pytest.approx(t.mesh_stiffness_N_per_mm)
