@@ -97,3 +97,45 @@ def test_stiffness_cli_refuses_an_even_sector(tmp_path, capsys):
         from gearcoupling.fea import compute_compliance_table
 
         compute_compliance_table(load_spec("industrial-m2"), sector=4)
+
+
+def test_fe_table_drives_the_compliance_load_model(table):
+    """The compliance load model takes the FE table through the protocol: at misalignment 0
+    every tooth carries T / (N R), and the wind-up differs from the cantilever model's by
+    exactly P (c_fe - c_cantilever) / R at the contact point (same gaps and contact law)."""
+    pytest.importorskip("gearcoupling.load.compliance")
+    from gearcoupling.load.cantilever import CantileverCompliance
+    from gearcoupling.load.compliance import solve_compliance
+    from gearcoupling.sweep import sweep
+
+    t, _ = table
+    spec = load_spec("industrial-m2")
+    sw = sweep(spec, 0.0, [0.0, 3.0])
+    g, z, r = sw.gap_angle_rad[1], sw.contact_z_mm[1], sw.contact_r_mm[1]
+    T = 500e3  # N mm
+    cant = CantileverCompliance(spec)
+    fe = solve_compliance(spec, g, z, r, T, t)
+    ref = solve_compliance(spec, g, z, r, T, cant)
+    R, N = spec.tooth.pitch_radius, spec.tooth.teeth
+    P = T / (N * R)
+    np.testing.assert_allclose(fe["tangential_force_N"], P, rtol=1e-6)
+    dc = t.pair_compliance_mm_per_N(z[0], r[0]) - cant.pair_compliance_mm_per_N(z[0], r[0])
+    np.testing.assert_allclose(fe["windup_rad"] - ref["windup_rad"], P * dc / R,
+                               rtol=0.02, atol=1e-9)
+
+
+def test_stiffness_cli_writes_the_table_from_the_cache(table, tmp_path):
+    import csv
+    import json
+
+    t, cache = table
+    argv = ["stiffness", "industrial-m2", "--size", "1", "--sector", "1", "--nz", "2", "--nr",
+            "2", "--cache", str(cache), "-o", str(tmp_path)]
+    assert main(argv) == 0
+    rows = list(csv.DictReader((tmp_path / "stiffness.csv").read_text().splitlines()))
+    assert len(rows) == 4
+    for row, (h, s) in zip(rows, zip(t.hub_mm_per_N.ravel(), t.sleeve_mm_per_N.ravel(),
+                                     strict=True), strict=True):
+        assert float(row["pair_um_per_N"]) == pytest.approx(1e3 * (h + s), rel=1e-5)
+    summary = json.loads((tmp_path / "stiffness.json").read_text())["pitch_point"]
+    assert summary["mesh_stiffness_N_per_mm"] == pytest.approx(t.mesh_stiffness_N_per_mm)

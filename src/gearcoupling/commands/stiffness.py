@@ -43,7 +43,6 @@ def write_table(table, out: Path) -> list[Path]:
     writer.writerows({k: f"{v:.6g}" for k, v in row.items()} for row in rows)
     csv_path = write_text(out / "stiffness.csv", buf.getvalue())
     summary = pitch_point_compliance(table)
-    summary.pop("math_check")
     json_path = write_json(out / "stiffness.json", {"pitch_point": summary, **table.to_dict()})
     return [csv_path, json_path]
 
@@ -70,11 +69,10 @@ def run(args) -> int:
                                        nz=args.nz, nr=args.nr, cache=args.cache,
                                        refresh=args.refresh, advance=advance)
     written = write_table(table, out)
-    pp = table.rows()
     c = table.mesh_stiffness_N_per_mm
     print(f"{spec.name}: mesh stiffness C = {c:.4g} N/mm per tooth pair "
           f"({c / spec.hub.face_width / 1e3:.3g} N/(mm·µm) per hub face width); "
-          f"{len(pp)} load points", file=sys.stderr)
+          f"{table.z_mm.size * table.r_mm.size} load points", file=sys.stderr)
     for path in written:
         print(path)
     return 0

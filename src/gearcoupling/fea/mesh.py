@@ -143,7 +143,7 @@ def _mesh_in_gmsh(gmsh, spec, part, step, labelled, teeth, size, body, order) ->
     gmsh.option.setNumber("Mesh.HighOrderOptimize", 2)  # untangle curved quadratic edges
     gmsh.model.mesh.generate(3)
     t_mesh = time.perf_counter() - t0
-    return _extract(gmsh, part, names, teeth, size, order, t_mesh)
+    return extract_mesh(gmsh, part, names, teeth, size, order, t_mesh)
 
 
 def _size_field(gmsh, faces, size, body, module) -> None:
@@ -230,7 +230,9 @@ def _cut_is_cw(point, teeth, n: int) -> bool:
     return abs(math.remainder(a - a0, 2 * math.pi)) < math.pi / n
 
 
-def _extract(gmsh, part, names, teeth, size, order, t_mesh) -> VolumeMesh:
+def extract_mesh(gmsh, part, names, teeth, size, order, t_mesh) -> VolumeMesh:
+    """The :class:`VolumeMesh` of gmsh's current 3-D mesh; ``names`` maps each surface tag
+    to ``(region name, vote share)``. Refuses inverted elements."""
     tags, xyz, _ = gmsh.model.mesh.getNodes()
     tags = np.asarray(tags, dtype=np.int64)
     nodes = np.asarray(xyz).reshape(-1, 3)
@@ -273,8 +275,3 @@ def _region_order(item) -> tuple:
     if name.startswith("T") and "_" in name and name[1:name.index("_")].isdigit():
         return (0, int(name[1:name.index("_")]), name)
     return (1, 0, name)
-
-
-def node_ids(vm: VolumeMesh, name: str) -> NDArray[np.int64]:
-    """1-based node numbers of a region/aggregate (as written to the INP)."""
-    return vm.node_set(name) + 1

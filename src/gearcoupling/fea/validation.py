@@ -27,7 +27,7 @@ def timoshenko_tip_deflection(force_N: float, length_mm: float, width_mm: float,
 def cantilever_mesh(length_mm: float, width_mm: float, height_mm: float, size_mm: float):
     """Quadratic tet mesh of the box ``[0, L] x [0, b] x [0, h]`` with regions ``ROOT``
     (x = 0) and ``TIP`` (x = L)."""
-    from .mesh import _extract
+    from .mesh import extract_mesh
 
     with gmsh_session() as gmsh:
         gmsh.model.occ.addBox(0, 0, 0, length_mm, width_mm, height_mm)
@@ -42,7 +42,7 @@ def cantilever_mesh(length_mm: float, width_mm: float, height_mm: float, size_mm
         gmsh.option.setNumber("Mesh.ElementOrder", 2)
         gmsh.option.setNumber("Mesh.Optimize", 1)
         gmsh.model.mesh.generate(3)
-        return _extract(gmsh, "box", names, None, size_mm, 2, 0.0)
+        return extract_mesh(gmsh, "box", names, None, size_mm, 2, 0.0)
 
 
 def cantilever_tip_deflection(size_mm: float, *, length_mm: float = 100.0,
