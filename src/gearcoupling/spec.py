@@ -427,7 +427,7 @@ def _replace_dotted(obj, changes: dict[str, Any]):
 # every key a spec file may hold, per table (unknown keys are reported before anything else)
 SPEC_KEYS: dict[str, tuple[str, ...]] = {
     "": ("units", "name", "design_misalignment_deg", "tooth", "hub", "sleeve", "load",
-         "material"),
+         "material", "inspection"),
     "tooth": ("teeth", "module", "diametral_pitch", "pressure_angle_deg"),
     "hub": ("face_width", "tooth_thickness", "backlash", "tip", "root", "crowning", "body"),
     "hub.tip": ("kind", "diameter"),
@@ -437,6 +437,7 @@ SPEC_KEYS: dict[str, tuple[str, ...]] = {
     "hub.body": ("bore_diameter", "length"),
     "sleeve": ("face_width", "minor_diameter", "major_diameter", "space_width", "tip_chamfer",
                "root_fillet_radius", "outer_diameter"),
+    "inspection": INSPECTION_LIMITS,
 }
 
 # how each derived default is chosen (quoted when a derived value is refused)
