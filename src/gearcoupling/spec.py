@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import copy
 import math
+import numbers
 import tomllib
 from dataclasses import asdict, dataclass, field, fields, replace
 from functools import cached_property
@@ -46,7 +47,7 @@ def check_misalignment_deg(value: object, field_name: str = "misalignment_deg") 
     onto it; anything else outside, non-numeric or non-finite raises :class:`SpecError`.
     """
     lo, hi = MISALIGNMENT_RANGE_DEG
-    if isinstance(value, bool) or not isinstance(value, int | float) or not (
+    if isinstance(value, bool) or not isinstance(value, numbers.Real) or not (
             math.isfinite(value) and lo - _ROUNDING_DEG <= value <= hi + _ROUNDING_DEG):
         raise SpecError(field_name, value, f"must be a finite angle from {lo} to {hi} degrees")
     return min(max(float(value), lo), hi)

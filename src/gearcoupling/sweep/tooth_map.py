@@ -10,7 +10,7 @@ from numpy.typing import ArrayLike
 
 from ..errors import SpecError
 from ..geometry.sleeve import sleeve_model
-from ..spec import MISALIGNMENT_RANGE_DEG
+from ..spec import check_misalignment_deg
 from .clearance import DEFAULT_GRID, DEFAULT_TOLERANCE_MM, MEASURES, Minimum, minimise
 from .flank_table import DEFAULT_TABLE_TOLERANCE_MM, flank_table
 from .pose import turning_angles
@@ -24,14 +24,7 @@ _KEYS = {"clearance": "circumferential", "normal": "normal", "pitch": "pitch_cir
 
 def check_misalignment(misalignment_deg: float) -> float:
     """The misalignment in radians, or :class:`SpecError` outside 0-6°."""
-    lo, hi = MISALIGNMENT_RANGE_DEG
-    try:
-        value = float(misalignment_deg)
-    except (TypeError, ValueError) as err:
-        raise SpecError("misalignment_deg", misalignment_deg, "must be a number") from err
-    if not (math.isfinite(value) and lo <= value <= hi):
-        raise SpecError("misalignment_deg", misalignment_deg, f"must be {lo}-{hi} degrees")
-    return math.radians(value)
+    return math.radians(check_misalignment_deg(misalignment_deg))  # the one check
 
 
 def check_angles(angles_deg: ArrayLike) -> np.ndarray:
