@@ -15,14 +15,12 @@ peak contact pressure (at the slave nodes), and the torque of the sector.
 from __future__ import annotations
 
 import math
-import tempfile
 import time
-from pathlib import Path
 
 import numpy as np
 
 from ..errors import SpecError
-from .ccx import run_ccx
+from .ccx import run_ccx, solver_dir
 from .mesh import mesh_part
 from .stiffness import material
 from .volume import VolumeMesh
@@ -93,8 +91,7 @@ def contact_pose(spec, *, misalignment_deg: float, psi_deg: float, windup_rad: f
     penalty = penalty_factor * E / hub.size_mm
     deck = contact_deck(pair, spec, windup_rad=windup_rad, axis=M[:, 2], penalty=penalty,
                         teeth=teeth)
-    with tempfile.TemporaryDirectory(prefix="gearcoupling-contact-") as tmp:
-        work = Path(workdir) if workdir is not None else Path(tmp)
+    with solver_dir(workdir) as work:
         res = run_ccx(deck, work, "contact")
     R = spec.tooth.pitch_radius
     moment = res.get("forces", "ROTN")[-1][0, 1:4]
