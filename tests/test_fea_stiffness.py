@@ -75,10 +75,21 @@ def test_root_stress_is_positive_and_finite(table):
 def test_failed_solver_run_keeps_its_log(tmp_path):
     from gearcoupling.fea.ccx import run_ccx
 
+    bad = "*NODE\n1, 0, 0, 0\n*STEP\n*STATIC\n*BOGUS CARD\n*END STEP\n"
     with pytest.raises(BackendError, match=r"its log is .*bad\.log") as err:
-        run_ccx("*NODE\n1, 0, 0, 0\n*STEP\n*STATIC\n*BOGUS CARD\n*END STEP\n", tmp_path, "bad")
+        run_ccx(bad, tmp_path, "bad")
     assert (tmp_path / "bad.log").read_text().strip()
     assert str(tmp_path / "bad.inp") in str(err.value)
+    # a default (temporary) solver folder survives a failure, and goes after a success
+    from gearcoupling.fea.ccx import solver_dir
+
+    with pytest.raises(BackendError), solver_dir() as work:
+        run_ccx(bad, work, "bad")
+    assert (work / "bad.log").exists() and (work / "bad.inp").exists()
+    __import__("shutil").rmtree(work)
+    with solver_dir() as ok:
+        (ok / "x").write_text("x")
+    assert not ok.exists()
 
 
 def test_missing_solver_names_the_package(monkeypatch, tmp_path):

@@ -4,8 +4,12 @@ from __future__ import annotations
 
 import os
 import re
+import shutil
 import subprocess
+import tempfile
 import time
+from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -29,6 +33,20 @@ class CcxResult:
     def get(self, kind: str, name: str) -> list[NDArray[np.float64]]:
         """Rows of every block of a kind and set, one per step, in order."""
         return [rows for k, s, _, rows in self.blocks if k == kind and s == name.upper()]
+
+
+@contextmanager
+def solver_dir(workdir=None) -> Iterator[Path]:
+    """The folder of a solver run: ``workdir`` (kept), or a new temporary folder that is
+    removed after a successful run and kept (with the deck and log) after a failure."""
+    if workdir is not None:
+        path = Path(workdir)
+        path.mkdir(parents=True, exist_ok=True)
+        yield path
+        return
+    path = Path(tempfile.mkdtemp(prefix="gearcoupling-ccx-"))
+    yield path
+    shutil.rmtree(path, ignore_errors=True)
 
 
 def run_ccx(deck: str, workdir: str | Path, job: str = "job", *,

@@ -24,7 +24,6 @@ from __future__ import annotations
 import hashlib
 import json
 import os
-import tempfile
 import time
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
@@ -34,7 +33,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..atomic import write_json
 from ..errors import GeometryError, SpecError
-from .ccx import run_ccx
+from .ccx import run_ccx, solver_dir
 from .deck import LoadCase, principal_max, static_deck
 from .mesh import DEFAULT_SECTOR_TEETH, mesh_part
 from .volume import VolumeMesh
@@ -263,8 +262,7 @@ def compute_compliance_table(spec, *, size_mm: float | None = None,
     patch = (max(meshes["hub"].size_mm, spec.tooth.module / 4.0) if patch_mm is None
              else float(patch_mm))
     comp, stress, times = {}, {}, {}
-    with tempfile.TemporaryDirectory(prefix="gearcoupling-ccx-") as tmp:
-        work = Path(workdir) if workdir is not None else Path(tmp)
+    with solver_dir(workdir) as work:
         for part, vm in meshes.items():
             comp[part], stress[part], info = part_compliance(vm, spec, z, r, patch_mm=patch,
                                                              workdir=work, job=part)

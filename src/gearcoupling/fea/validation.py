@@ -2,12 +2,10 @@
 
 from __future__ import annotations
 
-import tempfile
-
 import numpy as np
 
 from .backends import gmsh_session
-from .ccx import run_ccx
+from .ccx import run_ccx, solver_dir
 from .deck import LoadCase, static_deck
 
 
@@ -60,8 +58,8 @@ def cantilever_tip_deflection(size_mm: float, *, length_mm: float = 100.0,
     deck = static_deck(vm, youngs_modulus_MPa=youngs_modulus_MPa, poisson_ratio=poisson_ratio,
                        fixed=["ROOT"], cases=[LoadCase(tip, forces)],
                        node_print=[("PTIP", tip)])
-    with tempfile.TemporaryDirectory(prefix="gearcoupling-ccx-") as tmp:
-        res = run_ccx(deck, workdir or tmp, "cantilever")
+    with solver_dir(workdir) as work:
+        res = run_ccx(deck, work, "cantilever")
     u = res.get("displacements", "PTIP")[0]
     fe = float(np.mean(u[:, 3]))
     theory = timoshenko_tip_deflection(force_N, length_mm, width_mm, height_mm,
