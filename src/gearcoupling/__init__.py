@@ -30,6 +30,9 @@ _LAZY = {
     "LoadResult": "gearcoupling.load",
     "capacity": "gearcoupling.load",
     "capacity_curve": "gearcoupling.load",
+    # design studies on dask (issue 12)
+    "load_study": "gearcoupling.study",
+    "run_study": "gearcoupling.study",
 }
 
 
@@ -61,6 +64,8 @@ __all__ = [
     "load",
     "load_from_sweep",
     "load_spec",
+    "load_study",
+    "run_study",
     "sleeve_flank",
     "spec_from_dict",
     "template_names",
