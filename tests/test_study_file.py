@@ -157,3 +157,14 @@ def test_load_outputs_equal_the_load_package(tmp_path):
     assert row["max_tooth_load_N"] == float(np.max(res.tangential_force_N)) > 0
     assert row["q"] == res.q() and row["torque_Nm"] == 1500.0
     assert row["capacity_Nm"] == capacity(spec, 0.5, model="linear")["capacity_Nm"]
+
+
+def test_top_level_api_is_lazy():
+    import subprocess
+    import sys
+
+    code = ("import sys, gearcoupling as gc; assert 'dask' not in sys.modules; "
+            "from gearcoupling.study import load_study, run_study; "
+            "assert gc.load_study is load_study and gc.run_study is run_study; "
+            "assert 'pyarrow' not in sys.modules and 'distributed' not in sys.modules")
+    subprocess.run([sys.executable, "-c", code], check=True)

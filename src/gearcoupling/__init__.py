@@ -35,6 +35,9 @@ _LAZY = {
     "compare_part": "gearcoupling.inspection",
     "capacity": "gearcoupling.load",
     "capacity_curve": "gearcoupling.load",
+    # design studies on dask (issue 12)
+    "load_study": "gearcoupling.study",
+    "run_study": "gearcoupling.study",
 }
 
 
@@ -69,7 +72,9 @@ __all__ = [
     "load",
     "load_from_sweep",
     "load_spec",
+    "load_study",
     "measuring_charts",
+    "run_study",
     "sleeve_flank",
     "spec_from_dict",
     "template_names",

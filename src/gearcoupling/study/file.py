@@ -78,10 +78,6 @@ class Parameter:
     steps: int | None = None
     integer: bool = False
 
-    @property
-    def is_condition(self) -> bool:
-        return self.key in CONDITIONS
-
     def grid(self) -> tuple[Any, ...]:
         """The grid values: ``values`` or ``steps`` evenly spaced over the range."""
         if self.values:
@@ -113,15 +109,11 @@ class Study:
     seed: int
     chunk: int
     outputs: tuple[str, ...]
-    conditions: dict[str, float]
+    conditions: dict[str, Any]
     accuracy: dict[str, float]
     plots: tuple[dict[str, Any], ...] = field(default=())
     tolerances: dict[str, Any] | None = None  # Monte Carlo: Tolerances fields, path, draws
     optimise: dict[str, Any] | None = None  # crown optimisation options (see .optimise)
-
-    @property
-    def spec_keys(self) -> tuple[str, ...]:
-        return tuple(p.key for p in self.parameters if not p.is_condition)
 
     def payload(self) -> dict[str, Any]:
         """Plain data a dask worker needs to evaluate samples (no file access)."""
@@ -140,8 +132,9 @@ class Study:
 
 
 def _line_of(text: str, needle: str, default: int = 0) -> int:
+    """First line (1-based) at or after ``default`` that contains ``needle``."""
     for n, line in enumerate(text.splitlines(), 1):
-        if needle in line:
+        if n >= default and needle in line:
             return n
     return default
 
@@ -198,10 +191,8 @@ def build_spec(base_name: str, base_text: str, overrides: dict[str, Any]):
 
 
 def _parameter(entry: Any, index: int, text: str, path: str) -> Parameter:
-    line = _line_of(text, "[[vary]]", 0)
     starts = [n for n, s in enumerate(text.splitlines(), 1) if s.strip() == "[[vary]]"]
-    if index < len(starts):
-        line = starts[index]
+    line = starts[index] if index < len(starts) else 0
     r = _Reader(entry, f"vary[{index}]", text, path, line)
     key = r.get("key", str, required=True)
     line = _line_of(text, f'"{key}"', line)
