@@ -4,6 +4,7 @@ closed form on the specs whose flank table stalled before it was cut at curvatur
 
 from __future__ import annotations
 
+import json
 import math
 
 import numpy as np
@@ -236,3 +237,23 @@ def test_minimise_steps_alone():
     assert s.best_v[0] == pytest.approx(1.0, abs=tol)
     assert s.best_v[1] == pytest.approx(-0.5, abs=tol)
     assert s.best_z == pytest.approx(f.centre, abs=1e-4)
+
+
+def test_sweep_command_at_6_deg_on_the_issue_example(tmp_path):
+    """Was "All-NaN slice encountered" in the clearance map (the swing tooth faces no
+    sleeve flank at 6°): now exit 0, every file written, no NaN in them."""
+    from gearcoupling.cli import main
+
+    spec_file = tmp_path / "straight120.toml"
+    spec_file.write_text('units = "mm"\n[tooth]\nteeth = 120\nmodule = 2.793\n'
+                         "pressure_angle_deg = 21.78\n[hub]\nface_width = 9.44\n"
+                         'backlash = 0.153\n[hub.tip]\nkind = "cylinder"\n'
+                         '[hub.crowning]\nkind = "none"\n')
+    out = tmp_path / "o"
+    assert main(["sweep", str(spec_file), "--misalignment", "6", "--angles", "3",
+                 "--no-design", "--quick-plots", "-o", str(out)]) == 0
+    assert "nan" not in (out / "sweep.csv").read_text().lower()
+    summary = (out / "sweep_summary.json").read_text()
+    assert "NaN" not in summary
+    assert json.loads(summary)["min_backlash_mm"] < -0.5
+    assert (out / "sweep_clearance_map.png").stat().st_size > 10_000
