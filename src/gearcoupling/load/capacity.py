@@ -28,7 +28,7 @@ from .compliance import first_limit_torque_Nmm
 from .contact import contact_model
 
 CRITERIA = ("tooth_load", "contact_stress", "bending_stress")
-RTOL = 1e-7  # relative accuracy of every capacity torque
+RTOL = 1e-7  # relative accuracy of a root-found torque (the closed forms are exact)
 
 
 def limit_loads(spec, z: NDArray, r: NDArray, compliance) -> dict[str, NDArray]:
@@ -72,25 +72,27 @@ def _linear_capacity(spec, g: NDArray, W_lim: NDArray) -> float:
     return float(np.min(T))
 
 
-def _root_torque(ratio, T0: float) -> float:
-    """Smallest torque (N·mm) with ``ratio(T) = 1`` for increasing ``ratio``; inf if none."""
+def _root_torque(ratio, T0: float, *, step: float = 8.0, rtol: float = RTOL) -> float:
+    """Smallest torque (N·mm) with ``ratio(T) = 1`` for increasing ``ratio``, bracketed from
+    ``T0`` by factors ``step``; inf if none."""
     from scipy.optimize import brentq
 
     lo, hi = T0, T0
     r_hi = ratio(hi)
     while r_hi < 1.0:
-        lo, hi = hi, hi * 8.0
+        lo, hi = hi, hi * step
         if hi > 1e18:
             return math.inf
         r_hi = ratio(hi)
     r_lo = ratio(lo)
     while r_lo >= 1.0:
-        hi, lo = lo, lo / 8.0
+        hi, lo = lo, lo / step
         if lo < 1e-12:
             return 0.0
         r_lo = ratio(lo)
     f = lambda x: math.log(max(ratio(math.exp(x)), 1e-300))  # noqa: E731
-    return math.exp(brentq(f, math.log(lo), math.log(hi), xtol=RTOL, rtol=RTOL))
+    # on log T an absolute tolerance is a relative one on T (brentq's rtol would scale by ln T)
+    return math.exp(brentq(f, math.log(lo), math.log(hi), xtol=rtol, rtol=1e-15))
 
 
 def capacity_from_sweep(spec, sweep_result, *, model: str | None = None,
@@ -104,19 +106,26 @@ def capacity_from_sweep(spec, sweep_result, *, model: str | None = None,
     comp = tooth_compliance(spec)
     limits = limit_loads(spec, z, r, comp)
     torques: dict[str, float] = {}
+    memo: dict[float, Any] = {}  # surface solves shared by the criteria
     for name, W_lim in limits.items():
         if m == "linear":
             T = _linear_capacity(spec, g, W_lim)
         elif m == "compliance":
             T = first_limit_torque_Nmm(spec, g, z, r, W_lim, comp)
         else:
-            T = _generic_capacity(spec, sweep_result, name, sign, gap_offset_rad)
+            guess = first_limit_torque_Nmm(spec, g, z, r, W_lim, comp)
+            T = _surface_capacity(spec, sweep_result, name, sign, gap_offset_rad, guess, memo)
         torques[name] = T * 1e-3
-    return _summarise(spec, sweep_result, m, torques, g, gap_offset_rad, sign)
+    return _summarise(spec, sweep_result, m, torques, gap_offset_rad, sign)
 
 
-def _generic_capacity(spec, sw, name: str, sign: int, gap_offset_rad) -> float:
-    """Root find on full solves (the surface model), criterion ``name``."""
+SURFACE_RTOL = 1e-3  # relative accuracy of a surface-model capacity (full solves: costly)
+
+
+def _surface_capacity(spec, sw, name: str, sign: int, gap_offset_rad, guess_Nmm: float,
+                      memo: dict) -> float:
+    """Root find on full surface-model solves for criterion ``name``, bracketed from the
+    compliance model's torque ``guess_Nmm`` (factors of 1.5) to ``SURFACE_RTOL``."""
     from .api import load_from_sweep
 
     mat = spec.material
@@ -127,8 +136,10 @@ def _generic_capacity(spec, sw, name: str, sign: int, gap_offset_rad) -> float:
                                    mat.sleeve.allowable_bending_stress_MPa)}
 
     def ratio(T):
-        res = load_from_sweep(spec, sw, torque_Nm=sign * T * 1e-3, model="surface",
-                              gap_offset_rad=gap_offset_rad)
+        if T not in memo:
+            memo[T] = load_from_sweep(spec, sw, torque_Nm=sign * T * 1e-3, model="surface",
+                                      gap_offset_rad=gap_offset_rad)
+        res = memo[T]
         if name == "face_end":
             return 2.0 if np.any(res.edge_contact) else 0.5
         field = {"tooth_load": res.tangential_force_N,
@@ -136,10 +147,12 @@ def _generic_capacity(spec, sw, name: str, sign: int, gap_offset_rad) -> float:
                  "bending_stress": res.root_stress_MPa}[name]
         return float(np.max(field)) / limit[name]
 
-    return _root_torque(ratio, 1e3 * spec.tooth.pitch_radius)
+    start = guess_Nmm if math.isfinite(guess_Nmm) and guess_Nmm > 0 else \
+        1e3 * spec.tooth.pitch_radius
+    return _root_torque(ratio, start, step=1.5, rtol=SURFACE_RTOL)
 
 
-def _summarise(spec, sw, model, torques, g, gap_offset_rad, sign) -> dict[str, Any]:
+def _summarise(spec, sw, model, torques, gap_offset_rad, sign) -> dict[str, Any]:
     K = spec.load.accuracy_factor
     crit = {k: v for k, v in torques.items() if k in CRITERIA}
     gov = min(crit, key=lambda k: crit[k])
