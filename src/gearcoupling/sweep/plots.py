@@ -23,7 +23,7 @@ from pathlib import Path
 import numpy as np
 
 from ..atomic import atomic_path
-from ..errors import ArgumentError
+from ..errors import SpecError
 from ..geometry.sleeve import sleeve_model
 from .clearance import _Sleeve
 from .design import binding_angle_deg, critical_misalignment_deg, min_backlash_rad
@@ -44,7 +44,7 @@ def _axes(ax, shape: tuple[int, int], **kwargs):
     axes = np.asarray(ax, dtype=object)
     count = shape[0] * shape[1]
     if axes.size != count:
-        raise ArgumentError(f"ax must hold {count} Axes for this plot, got {axes.size}")
+        raise SpecError("ax", f"{axes.size} Axes", f"must hold {count} Axes for this plot")
     axes = axes.reshape(shape).squeeze() if count > 1 else axes.ravel()[0]  # as subplots
     return np.ravel(axes)[0].figure, axes
 
