@@ -95,7 +95,7 @@ def contact_pose(spec, *, misalignment_deg: float, psi_deg: float, windup_rad: f
         res = run_ccx(deck, work, "contact")
     R = spec.tooth.pitch_radius
     moment = res.get("forces", "ROTN")[-1][0, 1:4]
-    torque = float(-moment @ M[:, 2]) * 1e-3  # N mm -> N m, reaction -> applied
+    torque = float(moment @ M[:, 2]) * 1e-3  # N mm -> N m: moment the rigid body applies
     rows = _tooth_rows(res, pair, teeth, M, R)
     total = sum(r["tangential_force_N"] for r in rows)
     for r in rows:
