@@ -24,7 +24,7 @@ from .ccx import run_ccx, solver_dir
 from .mesh import mesh_part
 from .stiffness import material
 from .volume import VolumeMesh
-from .write import _fmt, inp_mesh_lines
+from .write import _fmt, _id_lines, inp_mesh_lines
 
 
 def merge(hub: VolumeMesh, sleeve: VolumeMesh, hub_rotation: np.ndarray) -> VolumeMesh:
@@ -42,6 +42,8 @@ def merge(hub: VolumeMesh, sleeve: VolumeMesh, hub_rotation: np.ndarray) -> Volu
 
 def contact_deck(pair: VolumeMesh, spec, *, windup_rad: float, axis: np.ndarray,
                  penalty: float, teeth: list[int], increments: int = 10) -> str:
+    """The contact deck of a merged pair: rigid hub bore + cuts turned by ``windup_rad``
+    about ``axis`` (3,), sleeve fixed, one penalty contact pair per tooth in ``teeth``."""
     E, nu = material(spec, "hub")
     n = len(pair.nodes)
     ref, rot = n + 1, n + 2
@@ -50,7 +52,7 @@ def contact_deck(pair: VolumeMesh, spec, *, windup_rad: float, axis: np.ndarray,
     lines = inp_mesh_lines(pair)
     lines += ["*NODE", f"{ref}, 0.0, 0.0, 0.0", f"{rot}, 0.0, 0.0, 0.0",
               "*NSET, NSET=ROTN", f"{rot}", "*NSET, NSET=HRIGID"]
-    lines += [", ".join(map(str, rigid[i:i + 16] + 1)) for i in range(0, len(rigid), 16)]
+    lines += _id_lines(rigid + 1)
     lines += ["*MATERIAL, NAME=STEEL", "*ELASTIC", f"{_fmt(E)}, {_fmt(nu)}",
               "*SOLID SECTION, ELSET=EALL, MATERIAL=STEEL",
               f"*RIGID BODY, NSET=HRIGID, REF NODE={ref}, ROT NODE={rot}",
@@ -95,7 +97,7 @@ def contact_pose(spec, *, misalignment_deg: float, psi_deg: float, windup_rad: f
         res = run_ccx(deck, work, "contact")
     R = spec.tooth.pitch_radius
     moment = res.get("forces", "ROTN")[-1][0, 1:4]
-    torque = float(-moment @ M[:, 2]) * 1e-3  # N mm -> N m, reaction -> applied
+    torque = float(moment @ M[:, 2]) * 1e-3  # N mm -> N m: moment the rigid body applies
     rows = _tooth_rows(res, pair, teeth, M, R)
     total = sum(r["tangential_force_N"] for r in rows)
     for r in rows:
