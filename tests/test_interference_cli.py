@@ -46,8 +46,8 @@ def test_hub_turned_past_backlash_exits_1(tmp_path):
 
 
 @pytest.mark.parametrize("argv, words", [
-    (["--tolerance", "-1"], "tolerance_mm"),
-    (["--misalignment", "9"], "misalignment_deg"),
+    (["--tolerance", "-1"], "--tolerance: '-1'"),
+    (["--misalignment", "9"], "--misalignment = 9.0"),
     (["--hub-rotation", "20"], "hub_rotation_deg"),
     (["--teeth", "40"], "teeth = 40"),
 ])

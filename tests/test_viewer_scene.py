@@ -279,7 +279,7 @@ def test_cli_view_html_and_bad_input(tmp_path, capsys, viser):
                  "--cutaway", "half", "--color-by", "separation", "--frame", "ground"]) == 0
     assert out.stat().st_size > 100_000 and "MB" in capsys.readouterr().out
     assert main(["view", "renzo-1967", "--html", str(out), "--misalignment", "9"]) == 2
-    assert "misalignment_deg" in capsys.readouterr().err
+    assert "--misalignment = 9.0" in capsys.readouterr().err
 
 
 def test_missing_viser_names_the_extra(monkeypatch):

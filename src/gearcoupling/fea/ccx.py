@@ -34,6 +34,11 @@ class CcxResult:
         """Rows of every block of a kind and set, one per step, in order."""
         return [rows for k, s, _, rows in self.blocks if k == kind and s == name.upper()]
 
+    def last(self, kind: str) -> NDArray[np.float64] | None:
+        """Rows of the last block whose kind starts with ``kind`` (``None`` if none)."""
+        found = [rows for k, _, _, rows in self.blocks if k.startswith(kind)]
+        return found[-1] if found else None
+
 
 @contextmanager
 def solver_dir(workdir=None) -> Iterator[Path]:
@@ -81,25 +86,42 @@ def run_ccx(deck: str, workdir: str | Path, job: str = "job", *,
     return CcxResult(work / job, parse_dat(dat.read_text()), seconds)
 
 
-_HEADER = re.compile(r"^\s*(\w[\w ]*?)\s*\(.*\)\s*for set\s+(\S+)\s+and time\s+(\S+)", re.I)
+_HEADER = re.compile(r"^\s*([a-z][\w ]*?)\s*\(.*\)\s*for (.*?)\s+and time\s+(\S+)", re.I)
+
+
+def _set_name(text: str) -> str:
+    """``set X`` -> ``X``; ``slave set A and master set B`` -> ``A``; else the text."""
+    m = re.search(r"set\s+(\S+)", text, re.I)
+    return (m.group(1) if m else text).upper()
+
+
+_STATS = re.compile(r"^\s*statistics for slave set\s+([^,\s]+).*and time\s+(\S+)", re.I)
 
 
 def parse_dat(text: str) -> list[tuple[str, str, float, NDArray[np.float64]]]:
-    """Blocks of a ccx ``.dat`` file (see :class:`CcxResult`)."""
+    """Blocks of a ccx ``.dat`` file (see :class:`CcxResult`); rows of unequal length
+    (contact statistics) are padded with NaN."""
     blocks = []
     current = None
     rows: list[list[float]] = []
 
     def close():
         if current is not None:
-            blocks.append((*current, np.array(rows, dtype=float).reshape(len(rows), -1)))
+            width = max((len(r) for r in rows), default=0)
+            arr = np.full((len(rows), width), np.nan)
+            for i, r in enumerate(rows):
+                arr[i, :len(r)] = r
+            blocks.append((*current, arr))
 
     for line in text.splitlines():
-        head = _HEADER.match(line)
-        if head:
+        head, stats = _HEADER.match(line), _STATS.match(line)
+        if head or stats:
             close()
-            current = (head.group(1).strip().lower(), head.group(2).upper(),
-                       float(head.group(3)))
+            if stats:
+                current = ("statistics", stats.group(1).upper(), float(stats.group(2)))
+            else:
+                current = (head.group(1).strip().lower(), _set_name(head.group(2)),
+                           float(head.group(3)))
             rows = []
             continue
         parts = line.split()

@@ -23,12 +23,15 @@ class LoadCase:
 def static_deck(vm: VolumeMesh, *, youngs_modulus_MPa: float, poisson_ratio: float,
                 fixed: Sequence[str], cases: Sequence[LoadCase],
                 node_print: Sequence[tuple[str, NDArray]] = (),
-                stress_sets: Sequence[str] = ()) -> str:
+                stress_sets: Sequence[str] = (), solver: str = "SPOOLES") -> str:
     """A deck of one linear static ``*STEP`` per load case.
 
     ``fixed`` regions/aggregates have all three displacements fixed; ``node_print`` gives
     ``(name, 0-based nodes)`` sets whose displacements are printed, ``stress_sets`` the
     element sets whose integration-point stresses are printed (to ``<job>.dat``).
+    ``solver``: ``"SPOOLES"`` (direct) or ``"ITERATIVE CHOLESKY"`` (preconditioned
+    conjugate gradients: measured 2.6x less CPU on a 3-tooth hub sector, displacements
+    equal to 1e-4 relative).
     """
     lines = inp_mesh_lines(vm)
     for name, nodes in node_print:
@@ -39,7 +42,7 @@ def static_deck(vm: VolumeMesh, *, youngs_modulus_MPa: float, poisson_ratio: flo
               "*SOLID SECTION, ELSET=EALL, MATERIAL=STEEL", "*BOUNDARY"]
     lines += [f"{name}, 1, 3, 0.0" for name in fixed]
     for case in cases:
-        lines += ["*STEP", "*STATIC", "*CLOAD, OP=NEW"]
+        lines += ["*STEP", f"*STATIC, SOLVER={solver}", "*CLOAD, OP=NEW"]
         for node, f in zip(case.nodes, case.forces, strict=True):
             lines += [f"{node + 1}, {d + 1}, {_fmt(f[d])}" for d in range(3) if f[d] != 0]
         for name, _ in node_print:
