@@ -6,9 +6,7 @@ works whether the attribute resolves to the package or to the function).
 
 from __future__ import annotations
 
-import sys
-import types
-
+from .._callable import make_callable
 from .api import load, load_from_sweep
 from .cantilever import CantileverCompliance
 from .capacity import capacity, capacity_curve, capacity_from_sweep
@@ -17,10 +15,4 @@ from .result import CSV_COLUMNS, LoadResult
 __all__ = ["CSV_COLUMNS", "CantileverCompliance", "LoadResult", "capacity", "capacity_curve",
            "capacity_from_sweep", "load", "load_from_sweep"]
 
-
-class _CallableModule(types.ModuleType):
-    def __call__(self, *args, **kwargs):
-        return load(*args, **kwargs)
-
-
-sys.modules[__name__].__class__ = _CallableModule
+make_callable(__name__, load)

@@ -52,20 +52,20 @@ def contact_travel(spec, misalignment_deg: float, *, tolerance_mm: float = DEFAU
     }
 
 
-def min_backlash_rad(spec, misalignment: float, *, steps: int = DEFAULT_STEPS,
+def min_backlash_rad(spec, misalignment_rad: float, *, steps: int = DEFAULT_STEPS,
                      tolerance_mm: float = DEFAULT_TOLERANCE_MM) -> float:
-    """Smallest backlash (rad) over a full turn at misalignment ``i`` (radians)."""
+    """Smallest backlash (rad) over a full turn at misalignment ``misalignment_rad``."""
     theta = pitch_turning_angles(spec.tooth.teeth, steps)
     both = np.stack([theta, np.pi - theta])
-    mins, _ = flank_minima(spec, misalignment, both, tolerance_mm=tolerance_mm,
+    mins, _ = flank_minima(spec, misalignment_rad, both, tolerance_mm=tolerance_mm,
                            measures=("normal",))
     gap = mins["normal"] / spec.tooth.base_radius / mins["rate"]
     return float(np.min(np.min(gap[0], axis=0) + np.min(gap[1], axis=0)))
 
 
-def pivot_on_face_end(spec, misalignment: float) -> bool:
+def pivot_on_face_end(spec, misalignment_rad: float) -> bool:
     """Whether the pivot teeth (theta = 0 and 180°) touch first at a face end."""
-    mins, _ = flank_minima(spec, misalignment, np.array([0.0, np.pi]),
+    mins, _ = flank_minima(spec, misalignment_rad, np.array([0.0, np.pi]),
                            tolerance_mm=DEFAULT_TOLERANCE_MM, measures=("normal",))
     return bool(np.any(mins["kind"] == FACE_END))
 

@@ -36,7 +36,7 @@ def check_angles(angles_deg: ArrayLike) -> np.ndarray:
     return a
 
 
-def flank_minima(spec, misalignment: float, theta, *, tolerance_mm: float,
+def flank_minima(spec, misalignment_rad: float, theta, *, tolerance_mm: float,
                  grid: int = DEFAULT_GRID, periodic: bool = True,
                  measures: tuple[str, ...] = MEASURES):
     """Minima of tooth 0's cw flank at turning angles ``theta`` (any shape), all measures.
@@ -46,7 +46,7 @@ def flank_minima(spec, misalignment: float, theta, *, tolerance_mm: float,
     ``theta`` and ``theta + pi``: mirroring ``z -> -z`` maps ``P(theta)`` to
     ``P(theta - pi)`` (``Mz Rx(i) Mz = Rz(pi) Rx(i) Rz(-pi)``) and the sleeve onto itself,
     so the gaps, ``r``, kind and rate are equal and the contact ``z`` changes sign. Aligned
-    (``misalignment == 0``) the pose is the identity at every ``theta``: one evaluation.
+    (``misalignment_rad == 0``) the pose is the identity at every ``theta``: one evaluation.
 
     ``measures`` (of :data:`~.clearance.MEASURES`) limits the work to what is wanted.
 
@@ -62,7 +62,7 @@ def flank_minima(spec, misalignment: float, theta, *, tolerance_mm: float,
     theta = np.asarray(theta, dtype=float)
     flat = np.mod(theta.ravel(), 2.0 * np.pi)
     mirror = np.zeros(flat.shape, dtype=bool)
-    if misalignment == 0.0:  # P(theta) is the identity: every turning angle alike
+    if misalignment_rad == 0.0:  # P(theta) is the identity: every turning angle alike
         th, inverse = flat[:1] * 0.0, np.zeros(flat.size, dtype=np.intp)
     elif periodic:
         if table.even_in_z():
@@ -73,7 +73,7 @@ def flank_minima(spec, misalignment: float, theta, *, tolerance_mm: float,
         th = flat[first]
     else:
         th, inverse = flat, np.arange(flat.size)
-    parts = [minimise(table, sm, misalignment, th[j:j + CHUNK_ANGLES],
+    parts = [minimise(table, sm, misalignment_rad, th[j:j + CHUNK_ANGLES],
                       pitch_radius=spec.tooth.pitch_radius, tolerance_mm=tolerance_mm,
                       grid=grid, measures=measures) for j in range(0, th.size, CHUNK_ANGLES)]
     res = {m: Minimum(*(np.concatenate([getattr(p[m], f.name) for p in parts])
