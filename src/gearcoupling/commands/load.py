@@ -11,10 +11,14 @@ from ..atomic import write_json
 from ..errors import SpecError
 from ..loadspec import LOAD_MODELS
 from .common import (
+    MAX_ANGLES,
     add_misalignment_argument,
     add_spec_arguments,
+    count,
+    finite_float,
     misalignment_deg,
     output_dir,
+    positive_length,
     progress,
     spec_from_args,
     write_rows_csv,
@@ -28,12 +32,13 @@ def register(sub) -> None:
     add_misalignment_argument(p)
     p.add_argument("--model", choices=LOAD_MODELS, default=None,
                    help="load model (default: the spec's [load] model)")
-    p.add_argument("--torque", type=float, default=None, metavar="NM",
-                   help="torque in N·m, sign picks the flank (default: the spec's)")
-    p.add_argument("--angles", type=int, default=360, metavar="N",
-                   help="rotations over one turn (default 360)")
-    p.add_argument("--tolerance", type=float, default=1e-7, metavar="MM",
-                   help="sweep accuracy of every gap in mm (default 1e-7)")
+    p.add_argument("--torque", type=finite_float, default=None, metavar="NM",
+                   help="torque in N·m, finite; the sign picks the loaded flank "
+                        "(default: the spec's)")
+    p.add_argument("--angles", type=count(1, MAX_ANGLES), default=360, metavar="N",
+                   help=f"rotations over one turn, 1-{MAX_ANGLES} (default 360)")
+    p.add_argument("--tolerance", type=positive_length, default=1e-7, metavar="MM",
+                   help="sweep accuracy of every gap in mm, > 0 (default 1e-7)")
     p.add_argument("--no-plots", action="store_true", help="write only the CSV and JSON")
     p.add_argument("--quick-plots", action="store_true",
                    help="only the tooth-load and patch plots (skip the misalignment studies)")
