@@ -143,7 +143,7 @@ def write_outputs(spec, result, out: Path) -> list[Path]:
         reference = np.min(swept.normal_clearance_mm, axis=(0, 1))
         backlash = swept.backlash_mm
     summary = result.summary()
-    if reference is not None:
+    if reference is not None and backlash is not None:
         summary["sweep_min_normal_clearance_mm"] = [float(v) for v in reference]
         summary["sweep_backlash_mm"] = [float(v) for v in backlash]
     # validated before anything is written: no NaN in the CSV or the JSON

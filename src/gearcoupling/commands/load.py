@@ -68,8 +68,8 @@ def studies(spec, torque_Nm: float, model: str | None, out: Path) -> list[Path]:
 
     mis = study_misalignments(spec)
     torques = [0.5 * torque_Nm, torque_Nm, 2.0 * torque_Nm]
-    peak = {f"T = {t:.4g} N·m": [] for t in torques}
-    moment = {f"T = {t:.4g} N·m": [] for t in torques}
+    peak: dict[str, list[float]] = {f"T = {t:.4g} N·m": [] for t in torques}
+    moment: dict[str, list[float]] = {f"T = {t:.4g} N·m": [] for t in torques}
     q_pts: list[tuple[float, float]] = []
     ld = spec.load
     with progress("load studies", mis.size) as advance:
@@ -90,10 +90,10 @@ def studies(spec, torque_Nm: float, model: str | None, out: Path) -> list[Path]:
             advance(f"load studies i = {i:.3g}°")
     label = model or spec.load.model
     paths = [
-        save_figure(plot_vs_misalignment(mis, peak, "max tooth load P (N)",
+        save_figure(plot_vs_misalignment(mis, dict(peak), "max tooth load P (N)",
                                          f"{spec.name}: {label}, max tooth load"),
                     out / "load_max_vs_misalignment.png"),
-        save_figure(plot_vs_misalignment(mis, moment, "additional (tilting) moment (N·m)",
+        save_figure(plot_vs_misalignment(mis, dict(moment), "additional (tilting) moment (N·m)",
                                          f"{spec.name}: {label}, mean over the turn"),
                     out / "load_moment_vs_misalignment.png"),
     ]
