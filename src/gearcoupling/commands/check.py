@@ -61,9 +61,9 @@ def register(sub) -> None:
     p.add_argument("--teeth", type=_teeth, default="sweep", metavar="sweep|all|K",
                    help="model: tooth pairs chosen by the sweep (default), windows of 2K+1 "
                         "teeth there, or the full parts")
-    p.add_argument("--hub-rotation", type=number_in(-360.0, 360.0, "degrees"), default=0.0,
-                   metavar="DEG", help="extra turn of the hub about its axis, -360 to 360 "
-                   "degrees (+ closes ccw flanks)")
+    p.add_argument("--hub-rotation", type=number_in(-30.0, 30.0, "degrees"), default=0.0,
+                   metavar="DEG", help="extra turn of the hub about its axis in degrees, "
+                   "below half a tooth pitch (+ closes ccw flanks)")
     p.add_argument("--backlash", action="store_true",
                    help="also measure the free turn of the hub on the meshes (backlash)")
     p.add_argument("--worst", type=count(1, MAX_CHECK_ANGLES), default=10, metavar="N",

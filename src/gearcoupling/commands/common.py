@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import argparse
 import math
-import os
 from collections.abc import Callable
 from contextlib import contextmanager
 from pathlib import Path
@@ -51,16 +50,6 @@ def number_in(lo: float, hi: float, unit: str = "", *,
 
     parse.__name__ = "number"
     return parse
-
-
-def input_file(text: str) -> Path:
-    """argparse type: an existing, readable file (not a folder)."""
-    path = Path(text)
-    if not path.is_file():
-        raise argparse.ArgumentTypeError(f"{text!r}: no such file")
-    if not os.access(path, os.R_OK):
-        raise argparse.ArgumentTypeError(f"{text!r}: file not readable")
-    return path
 
 
 def count(lo: int, hi: int) -> Callable[[str], int]:

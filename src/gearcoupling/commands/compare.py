@@ -16,7 +16,6 @@ from ..errors import SpecError
 from .common import (
     add_spec_arguments,
     count,
-    input_file,
     output_dir,
     progress,
     spec_from_args,
@@ -30,7 +29,7 @@ def register(sub) -> None:
 
     p = sub.add_parser("compare", help="measured hub (mesh / point cloud) vs nominal, per tooth")
     add_spec_arguments(p)
-    p.add_argument("files", nargs="+", type=input_file, metavar="FILE",
+    p.add_argument("files", nargs="+", metavar="FILE",
                    help="scan or mesh (STL/PLY/OBJ, CSV/XYZ); two files: compare B with A")
     p.add_argument("--units", default="mm", choices=("mm", "in", "m"),
                    help="units of the file coordinates (default mm)")
@@ -73,6 +72,9 @@ def run(args) -> int:
         raise SpecError("FILE", args.files, "one scan, or two (A B) to compare")
     spec = spec_from_args(args)
     limits = parse_limits(args.limit)
+    for f in args.files:  # before the output folder is made (the reader checks the rest)
+        if not Path(f).is_file():
+            raise SpecError("file", f, "a scan or mesh (STL/PLY/OBJ, CSV/XYZ): no such file")
     out = output_dir(args, spec)
     with progress("compare", 2 + STAGES * len(args.files)) as advance:
         result = compare_part(spec, args.files[0],
