@@ -19,6 +19,7 @@ import numpy as np
 
 from ..atomic import atomic_path, write_json, write_text
 from .common import (
+    MAX_TEETH,
     add_misalignment_argument,
     add_spec_arguments,
     count,
@@ -32,7 +33,7 @@ from .common import (
 
 EXIT_INTERFERENCE = 1
 MAX_CHECK_ANGLES = 3600  # every pose is a mesh boolean: about 3600 x 10-100 ms at most
-MAX_HALF_WINDOW = 150  # 2K+1 teeth cover the largest coupling (300 teeth)
+MAX_HALF_WINDOW = MAX_TEETH // 2  # 2K+1 teeth cover the largest coupling
 
 
 def _teeth(text: str) -> str | int:

@@ -13,6 +13,7 @@ from ..errors import SpecError
 from ..spec import CouplingSpec, check_misalignment_deg, load_spec, parse_override
 
 MAX_ANGLES = 100_000  # rotation angles per turn a command accepts (memory grows with it)
+MAX_TEETH = 300  # the documented range of teeth is 6-300
 
 
 def positive_length(text: str) -> float:
@@ -105,18 +106,18 @@ def output_dir(args: argparse.Namespace, spec: CouplingSpec) -> Path:
     return ensure_dir(Path(given) if given else default_output_dir(spec.name))
 
 
-def ensure_dir(out: Path, field: str = "-o") -> Path:
+def ensure_dir(out: Path) -> Path:
     """Create the output folder ``out``; a file in the way or an unwritable place is a
-    :class:`~gearcoupling.errors.SpecError` naming ``field``."""
+    :class:`~gearcoupling.errors.SpecError` naming ``-o``."""
     try:
         out.mkdir(parents=True, exist_ok=True)
     except FileExistsError:
-        raise SpecError(field, str(out), "names an existing file: give a folder") from None
+        raise SpecError("-o", str(out), "names an existing file: give a folder") from None
     except OSError as err:
-        raise SpecError(field, str(out), f"cannot create the output folder: {err.strerror}") \
+        raise SpecError("-o", str(out), f"cannot create the output folder: {err.strerror}") \
             from None
     if not out.is_dir():
-        raise SpecError(field, str(out), "names an existing file: give a folder")
+        raise SpecError("-o", str(out), "names an existing file: give a folder")
     return out
 
 

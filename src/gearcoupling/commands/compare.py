@@ -13,13 +13,7 @@ from pathlib import Path
 
 from ..atomic import write_json
 from ..errors import SpecError
-from .common import (
-    add_spec_arguments,
-    count,
-    output_dir,
-    progress,
-    spec_from_args,
-)
+from .common import add_spec_arguments, count, output_dir, progress, spec_from_args
 
 MAX_FIT_POINTS = 1_000_000
 

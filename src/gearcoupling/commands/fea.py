@@ -12,6 +12,7 @@ from pathlib import Path
 
 from ..atomic import write_json
 from .common import (
+    MAX_TEETH,
     add_spec_arguments,
     count,
     output_dir,
@@ -27,7 +28,7 @@ def register(sub) -> None:
     add_spec_arguments(p)
     p.add_argument("--parts", default="hub,sleeve", metavar="LIST",
                    help="comma-separated parts: hub, sleeve (default: both)")
-    p.add_argument("--sector", type=count(1, 300), default=3, metavar="K",
+    p.add_argument("--sector", type=count(1, MAX_TEETH), default=3, metavar="K",
                    help="teeth in the sector, 1 to the number of teeth (default 3)")
     p.add_argument("--whole", action="store_true", help="mesh the whole parts")
     p.add_argument("--size", type=positive_length, default=None, metavar="MM",

@@ -15,6 +15,7 @@ from pathlib import Path
 
 from ..atomic import write_json, write_text
 from .common import (
+    MAX_TEETH,
     add_spec_arguments,
     count,
     output_dir,
@@ -29,7 +30,7 @@ def register(sub) -> None:
     add_spec_arguments(p)
     p.add_argument("--size", type=positive_length, default=None, metavar="MM",
                    help="element size on the teeth in mm, > 0 (default module / 4)")
-    p.add_argument("--sector", type=count(1, 299), default=3, metavar="K",
+    p.add_argument("--sector", type=count(1, MAX_TEETH), default=3, metavar="K",
                    help="teeth per sector, odd, at most the number of teeth; the middle one "
                         "is loaded (default 3)")
     p.add_argument("--nz", type=count(2, 9), default=3, metavar="N",

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from ..atomic import default_output_dir
 from .common import count, ensure_dir, number_in, progress
 
 MAX_WORKERS = 256
@@ -30,7 +31,6 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
-    from ..atomic import default_output_dir
     from ..study import load_study, read_table, run_study
     from ..study.plots import study_plots
 
@@ -97,7 +97,6 @@ def _optimise(study, out: Path, *, plots: bool) -> int:
     options = optimise_options(study)
     with progress(f"optimise {study.name} (evaluations)", options["max_evaluations"]) as adv:
         result = optimise_crown(study, on_row=lambda r: adv())
-    out.mkdir(parents=True, exist_ok=True)
     write_rows(result.rows, out / "study.parquet")
     print(out / "study.parquet")
     if result.best is None:
