@@ -113,6 +113,7 @@ BAD = [
     (["stiffness", T, "--nz", "1"], "--nz"),
     (["stiffness", T, "--nr", "10"], "--nr"),
     (["stiffness", T, "--sector", "2"], "--sector"),
+    (["stiffness", T, "--cache", "{d}/a_file"], "--cache"),
     (["study", "{d}/missing.toml"], "no such file"),
     (["study", "renzo-tolerances", "--connect-timeout", "0"], "--connect-timeout"),
     (["study", "renzo-tolerances", "--connect-timeout", "nan"], "--connect-timeout"),

@@ -106,18 +106,18 @@ def output_dir(args: argparse.Namespace, spec: CouplingSpec) -> Path:
     return ensure_dir(Path(given) if given else default_output_dir(spec.name))
 
 
-def ensure_dir(out: Path) -> Path:
-    """Create the output folder ``out``; a file in the way or an unwritable place is a
-    :class:`~gearcoupling.errors.SpecError` naming ``-o``."""
+def ensure_dir(out: Path, field: str = "-o") -> Path:
+    """Create the folder ``out``; a file in the way or an unwritable place is a
+    :class:`~gearcoupling.errors.SpecError` naming ``field``."""
     try:
         out.mkdir(parents=True, exist_ok=True)
     except FileExistsError:
-        raise SpecError("-o", str(out), "names an existing file: give a folder") from None
+        raise SpecError(field, str(out), "names an existing file: give a folder") from None
     except OSError as err:
-        raise SpecError("-o", str(out), f"cannot create the output folder: {err.strerror}") \
+        raise SpecError(field, str(out), f"cannot create the output folder: {err.strerror}") \
             from None
     if not out.is_dir():
-        raise SpecError("-o", str(out), "names an existing file: give a folder")
+        raise SpecError(field, str(out), "names an existing file: give a folder")
     return out
 
 

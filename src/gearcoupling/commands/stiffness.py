@@ -18,6 +18,7 @@ from .common import (
     MAX_TEETH,
     add_spec_arguments,
     count,
+    ensure_dir,
     output_dir,
     positive_length,
     progress,
@@ -69,6 +70,8 @@ def run(args) -> int:
     if args.sector < 1 or args.sector % 2 == 0 or args.sector > spec.tooth.teeth:
         raise SpecError("--sector", args.sector, f"an odd number of teeth from 1 to "
                         f"{spec.tooth.teeth} (the middle tooth is loaded)")
+    if args.cache is not None:  # before the FE runs, which write the cache at the end
+        ensure_dir(Path(args.cache), "--cache")
     gmsh_module()
     ccx_path()
     out = output_dir(args, spec)
