@@ -166,6 +166,16 @@ def test_there_are_at_least_40_bad_inputs():
     assert len(BAD) >= 40
 
 
+def test_every_command_with_options_has_bad_inputs():
+    import argparse
+
+    from gearcoupling.cli import build_parser
+
+    sub = next(a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction))
+    per_command = {name: sum(1 for argv, _ in BAD if argv[:1] == [name]) for name in sub.choices}
+    assert {n: k for n, k in per_command.items() if k < 2 and n != "templates"} == {}
+
+
 @pytest.mark.parametrize("name", ["../../escape", "/tmp/absolute-escape", "..", "a/b\\c", ""])
 def test_a_spec_name_never_chooses_where_files_go(name, tmp_path, monkeypatch, capsys):
     work = tmp_path / "work"
