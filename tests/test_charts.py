@@ -97,7 +97,7 @@ def test_plot_accepts_axes_and_cli_writes_files(tmp_path, capsys):
     for f in ("charts.png", "nominal_traces.csv", "charts.json"):
         assert (tmp_path / f).stat().st_size > 0
     assert main(["charts", "industrial-m2", "-o", str(tmp_path), "--points", "2"]) == 2
-    assert "points = 2" in capsys.readouterr().err
+    assert "argument --points: 2: must be from 5" in capsys.readouterr().err
 
 
 def test_lead_range_stops_where_a_tip_sphere_cuts_the_lead_radius():

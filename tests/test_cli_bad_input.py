@@ -88,6 +88,61 @@ BAD = [
     (["check", T, "--angles", "0"], "--angles"),
     (["check", T, "--tolerance", "nan"], "--tolerance"),
     (["check", T, "--teeth", "foo"], "--teeth"),
+    # commands added with the load, FE, study, hob and inspection work: every error comes
+    # from the argument types or the first checks, before any heavy work
+    (["load", T, "--angles", "3000000"], "--angles"),
+    (["load", T, "--angles", "0"], "--angles"),
+    (["load", T, "--torque", "nan"], "--torque"),
+    (["load", T, "--torque=-inf"], "--torque"),
+    (["load", T, "--torque", "1e300"], "--torque"),
+    (["load", T, "--tolerance", "0"], "--tolerance"),
+    (["load", T, "--misalignment", "7"], "--misalignment"),
+    (["load", T, "-o", "{d}/a_file"], "-o"),
+    (["capacity", T, "--max", "7"], "--max"),
+    (["capacity", T, "--max", "0"], "--max"),
+    (["capacity", T, "--count", "1"], "--count"),
+    (["capacity", T, "--count", "100000"], "--count"),
+    (["capacity", T, "--compare", "nope"], "--compare"),
+    (["capacity", T, "--compare", "{d}/missing.toml"], "--compare"),
+    (["capacity", T, "-o", "{d}/a_file"], "-o"),
+    (["fea", T, "--size", "0"], "--size"),
+    (["fea", T, "--size", "nan"], "--size"),
+    (["fea", T, "--sector", "0"], "--sector"),
+    (["fea", T, "--sector", "100000"], "--sector"),
+    (["fea", T, "--format", "stl"], "--format"),
+    (["stiffness", T, "--size", "-1"], "--size"),
+    (["stiffness", T, "--nz", "1"], "--nz"),
+    (["stiffness", T, "--nr", "10"], "--nr"),
+    (["stiffness", T, "--sector", "2"], "--sector"),
+    (["stiffness", T, "--cache", "{d}/a_file"], "--cache"),
+    (["study", "{d}/missing.toml"], "no such file"),
+    (["study", "renzo-tolerances", "--connect-timeout", "0"], "--connect-timeout"),
+    (["study", "renzo-tolerances", "--connect-timeout", "nan"], "--connect-timeout"),
+    (["study", "renzo-tolerances", "--workers", "0"], "--workers"),
+    (["study", "renzo-tolerances", "-o", "{d}/a_file"], "-o"),
+    (["hob", T], "--hob-diameter"),
+    (["hob", T, "--hob-diameter", "0"], "--hob-diameter"),
+    (["hob", T, "--hob-diameter", "inf"], "--hob-diameter"),
+    (["hob", T, "--hob-diameter", "80", "--tolerance", "-1"], "--tolerance"),
+    (["hob", T, "--hob-diameter", "80", "--feed", "0"], "--feed"),
+    (["charts", T, "--points", "2"], "--points"),
+    (["charts", T, "--points", "100000000"], "--points"),
+    (["charts", T, "--tip-exclusion", "0.9"], "--tip-exclusion"),
+    (["charts", T, "--tip-exclusion", "nan"], "--tip-exclusion"),
+    (["compare", T, "{d}/missing.stl"], "no such file"),
+    (["compare", T, "{d}/html_folder"], "no such file"),
+    (["compare", T, "{d}/a_file", "{d}/a_file", "{d}/a_file"], "FILE"),
+    (["compare", T, "{d}/a_file", "--limit", "fpt=abc"], "--limit"),
+    (["compare", T, "{d}/a_file", "--limit", "bogus=0.1"], "--limit"),
+    (["compare", T, "{d}/a_file", "--limit", "fpt"], "--limit"),
+    (["compare", T, "{d}/a_file", "--fit-points", "0"], "--fit-points"),
+    (["check", T, "--angles", "3000000"], "--angles"),
+    (["check", T, "--hub-rotation", "nan"], "--hub-rotation"),
+    (["check", T, "--hub-rotation", "1000"], "--hub-rotation"),
+    (["check", T, "--teeth", "999"], "--teeth"),
+    (["check", T, "--worst", "0"], "--worst"),
+    (["generate", T, "--tolerance", "0"], "--tolerance"),
+    (["generate", T, "--tolerance", "nan"], "--tolerance"),
     (["templates", "extra"], "unrecognized arguments"),
     ([], "required"),
     (["frobnicate", T], "invalid choice"),
@@ -109,6 +164,16 @@ def test_bad_input_exits_2_with_one_line_naming_the_field(argv, words, files, ca
 
 def test_there_are_at_least_40_bad_inputs():
     assert len(BAD) >= 40
+
+
+def test_every_command_with_options_has_bad_inputs():
+    import argparse
+
+    from gearcoupling.cli import build_parser
+
+    sub = next(a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction))
+    per_command = {name: sum(1 for argv, _ in BAD if argv[:1] == [name]) for name in sub.choices}
+    assert {n: k for n, k in per_command.items() if k < 2 and n != "templates"} == {}
 
 
 @pytest.mark.parametrize("name", ["../../escape", "/tmp/absolute-escape", "..", "a/b\\c", ""])

@@ -391,14 +391,14 @@ class CouplingSpec:
 
 def json_safe(data: Any) -> Any:
     """Plain data with infinite floats as the strings ``"inf"``/``"-inf"`` (as TOML writes
-    them); NaN is a bug and raises ``ValueError``."""
+    them); NaN is a bug and raises ``SpecError``."""
     if isinstance(data, dict):
         return {k: json_safe(v) for k, v in data.items()}
     if isinstance(data, list | tuple):
         return [json_safe(v) for v in data]
     if isinstance(data, float):
         if math.isnan(data):
-            raise ValueError("NaN in spec data")
+            raise SpecError("spec data", data, "finite numbers only")
         if math.isinf(data):
             return "inf" if data > 0 else "-inf"
     return data

@@ -10,7 +10,17 @@ import numpy as np
 from ..errors import SpecError
 from ..loadspec import LOAD_MODELS
 from ..spec import load_spec, parse_override
-from .common import add_spec_arguments, output_dir, progress, spec_from_args, write_rows_csv
+from .common import (
+    add_spec_arguments,
+    count,
+    number_in,
+    output_dir,
+    progress,
+    spec_from_args,
+    write_rows_csv,
+)
+
+MAX_COUNT = 200  # misalignments of a curve (each one is a sweep over a tooth pitch)
 
 COLUMNS = ("spec", "misalignment_deg", "capacity_Nm", "governing", "tooth_load_Nm",
            "contact_stress_Nm", "bending_stress_Nm", "face_end_torque_Nm", "q",
@@ -25,10 +35,11 @@ def register(sub) -> None:
                    help="more specs (templates or files) to overlay, same --set applied")
     p.add_argument("--model", choices=LOAD_MODELS, default=None,
                    help="load model (default: each spec's [load] model)")
-    p.add_argument("--max", type=float, default=None, metavar="DEG",
-                   help="largest misalignment (default: the spec's design angle, >= 0.5)")
-    p.add_argument("--count", type=int, default=25, metavar="N",
-                   help="misalignments from 0 to --max (default 25)")
+    p.add_argument("--max", type=number_in(0.0, 6.0, "degrees", open_lo=True), default=None,
+                   metavar="DEG", help="largest misalignment, in (0, 6] degrees (default: the "
+                   "spec's design angle, >= 0.5)")
+    p.add_argument("--count", type=count(2, MAX_COUNT), default=25, metavar="N",
+                   help=f"misalignments from 0 to --max, 2-{MAX_COUNT} (default 25)")
     p.add_argument("--no-plots", action="store_true", help="write only the CSV")
     p.set_defaults(func=run)
 
@@ -68,15 +79,20 @@ def capacity_files(specs: list, out: Path, misalignments_deg: np.ndarray, *,
     return paths
 
 
+def _compared_spec(text: str, overrides: dict):
+    """A ``--compare`` spec; its errors name ``--compare``."""
+    try:
+        return load_spec(text, **overrides)
+    except SpecError as err:
+        raise SpecError("--compare", text, err.allowed if err.field == "spec" else str(err)) \
+            from None
+
+
 def run(args) -> int:
     spec = spec_from_args(args)
     overrides = dict(parse_override(t) for t in args.overrides)
-    others = [load_spec(s, **overrides) for s in args.compare]
+    others = [_compared_spec(s, overrides) for s in args.compare]
     top = args.max if args.max is not None else max(math.degrees(spec.design_misalignment), 0.5)
-    if not (math.isfinite(top) and 0 < top <= 6):
-        raise SpecError("--max", args.max, "must be a misalignment in (0, 6] degrees")
-    if args.count < 2:
-        raise SpecError("--count", args.count, "must be at least 2")
     out = output_dir(args, spec)
     for path in capacity_files([spec, *others], out, np.linspace(0.0, top, args.count),
                                model=args.model, plots=not args.no_plots):

@@ -8,17 +8,17 @@ Writes ``charts.png`` (profile and lead traces per flank with the evaluation ran
 from __future__ import annotations
 
 from ..atomic import write_json
-from .common import add_spec_arguments, output_dir, spec_from_args
+from .common import add_spec_arguments, count, number_in, output_dir, spec_from_args
 
 
 def register(sub) -> None:
     p = sub.add_parser("charts", help="nominal profile/lead measuring charts and trace CSV")
     add_spec_arguments(p)
-    p.add_argument("--points", type=int, default=101, metavar="N",
-                   help="points per trace (default 101)")
-    p.add_argument("--tip-exclusion", type=float, default=0.08, metavar="SHARE",
-                   help="share of the profile length left out of L_alpha at the tip "
-                        "(default 0.08)")
+    p.add_argument("--points", type=count(5, 10_001), default=101, metavar="N",
+                   help="points per trace, 5-10001 (default 101)")
+    p.add_argument("--tip-exclusion", type=number_in(0.0, 0.5), default=0.08, metavar="SHARE",
+                   help="share of the profile length left out of L_alpha at the tip, "
+                        "0-0.5 (default 0.08)")
     p.set_defaults(func=run)
 
 

@@ -9,19 +9,22 @@ table of the worst angles, and exits with status 1 when any pose overlaps.
 
 from __future__ import annotations
 
+import argparse
 import csv
 import io
 import math
-import sys
 from pathlib import Path
 
 import numpy as np
 
 from ..atomic import atomic_path, write_json, write_text
 from .common import (
+    MAX_TEETH,
     add_misalignment_argument,
     add_spec_arguments,
+    count,
     misalignment_deg,
+    number_in,
     output_dir,
     positive_length,
     progress,
@@ -29,30 +32,18 @@ from .common import (
 )
 
 EXIT_INTERFERENCE = 1
+MAX_CHECK_ANGLES = 3600  # every pose is a mesh boolean: about 3600 x 10-100 ms at most
+MAX_HALF_WINDOW = MAX_TEETH // 2  # 2K+1 teeth cover the largest coupling
 
 
-def _teeth(text: str):
+def _teeth(text: str) -> str | int:
     if text in ("sweep", "all"):
         return text
     try:
-        return int(text)
-    except ValueError as err:
-        import argparse
-
-        raise argparse.ArgumentTypeError(f"--teeth {text!r}: use 'sweep', 'all' or a half "
-                                         "window k (integer)") from err
-
-
-def _positive_int(text: str) -> int:
-    import argparse
-
-    try:
-        value = int(text)
-    except ValueError as err:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a whole number") from err
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"{value} must be at least 1")
-    return value
+        return count(0, MAX_HALF_WINDOW)(text)
+    except argparse.ArgumentTypeError as err:
+        raise argparse.ArgumentTypeError(f"{text!r}: use 'sweep', 'all' or a half window K "
+                                         f"from 0 to {MAX_HALF_WINDOW}") from err
 
 
 def register(sub) -> None:
@@ -60,8 +51,9 @@ def register(sub) -> None:
                        "over rotation (exit status 1 when they overlap)")
     add_spec_arguments(p)
     add_misalignment_argument(p)
-    p.add_argument("--angles", type=_positive_int, default=72, metavar="N",
-                   help="rotation angles evenly spaced over a turn (default 72)")
+    p.add_argument("--angles", type=count(1, MAX_CHECK_ANGLES), default=72, metavar="N",
+                   help=f"rotation angles evenly spaced over a turn, 1-{MAX_CHECK_ANGLES} "
+                        "(default 72)")
     p.add_argument("--method", choices=("boolean", "distance"), default="boolean",
                    help="overlap by manifold3d booleans (exact volume, default) or by "
                         "signed distances (faster, estimated volume)")
@@ -70,12 +62,13 @@ def register(sub) -> None:
     p.add_argument("--teeth", type=_teeth, default="sweep", metavar="sweep|all|K",
                    help="model: tooth pairs chosen by the sweep (default), windows of 2K+1 "
                         "teeth there, or the full parts")
-    p.add_argument("--hub-rotation", type=float, default=0.0, metavar="DEG",
-                   help="extra turn of the hub about its axis (degrees, + closes ccw flanks)")
+    p.add_argument("--hub-rotation", type=number_in(-30.0, 30.0, "degrees"), default=0.0,
+                   metavar="DEG", help="extra turn of the hub about its axis in degrees, "
+                   "below half a tooth pitch (+ closes ccw flanks)")
     p.add_argument("--backlash", action="store_true",
                    help="also measure the free turn of the hub on the meshes (backlash)")
-    p.add_argument("--worst", type=_positive_int, default=10, metavar="N",
-                   help="rows of the worst-angle table (default 10)")
+    p.add_argument("--worst", type=count(1, MAX_CHECK_ANGLES), default=10, metavar="N",
+                   help=f"rows of the worst-angle table, 1-{MAX_CHECK_ANGLES} (default 10)")
     p.set_defaults(func=run)
 
 
@@ -151,7 +144,7 @@ def write_outputs(spec, result, out: Path) -> list[Path]:
         reference = np.min(swept.normal_clearance_mm, axis=(0, 1))
         backlash = swept.backlash_mm
     summary = result.summary()
-    if reference is not None:
+    if reference is not None and backlash is not None:
         summary["sweep_min_normal_clearance_mm"] = [float(v) for v in reference]
         summary["sweep_backlash_mm"] = [float(v) for v in backlash]
     # validated before anything is written: no NaN in the CSV or the JSON
@@ -179,16 +172,11 @@ def run(args) -> int:
     mis = misalignment_deg(args, spec)
     angles = 360.0 * np.arange(args.angles) / args.angles
     out = output_dir(args, spec)
-    try:
-        with progress(f"check {spec.name}", args.angles) as advance:
-            result = check_interference(spec, mis, angles, method=args.method,
-                                        tolerance_mm=args.tolerance, teeth=args.teeth,
-                                        hub_rotation_deg=args.hub_rotation,
-                                        backlash=args.backlash,
-                                        progress=lambda j: advance())
-    except ValueError as err:  # bad option values: say which, no traceback
-        print(f"error: {err}", file=sys.stderr)
-        return 2
+    with progress(f"check {spec.name}", args.angles) as advance:
+        result = check_interference(spec, mis, angles, method=args.method,
+                                    tolerance_mm=args.tolerance, teeth=args.teeth,
+                                    hub_rotation_deg=args.hub_rotation,
+                                    backlash=args.backlash, progress=lambda j: advance())
     written = write_outputs(spec, result, out)
     print_table(result, args.worst)
     for path in written:

@@ -13,6 +13,7 @@ from ..errors import SpecError
 from ..spec import CouplingSpec, check_misalignment_deg, load_spec, parse_override
 
 MAX_ANGLES = 100_000  # rotation angles per turn a command accepts (memory grows with it)
+MAX_TEETH = 300  # the documented range of teeth is 6-300
 
 
 def positive_length(text: str) -> float:
@@ -35,6 +36,21 @@ def finite_float(text: str) -> float:
     if not math.isfinite(value):
         raise argparse.ArgumentTypeError(f"{text!r}: must be finite")
     return value
+
+
+def number_in(lo: float, hi: float, unit: str = "", *,
+              open_lo: bool = False) -> Callable[[str], float]:
+    """argparse type: a finite number from ``lo`` to ``hi`` (``lo`` excluded if ``open_lo``)."""
+    what = f"{'(' if open_lo else '['}{lo:g}, {hi:g}]" + (f" {unit}" if unit else "")
+
+    def parse(text: str) -> float:
+        value = finite_float(text)
+        if not ((lo < value if open_lo else lo <= value) and value <= hi):
+            raise argparse.ArgumentTypeError(f"{text!r}: must be in {what}")
+        return value
+
+    parse.__name__ = "number"
+    return parse
 
 
 def count(lo: int, hi: int) -> Callable[[str], int]:
@@ -87,16 +103,21 @@ def output_dir(args: argparse.Namespace, spec: CouplingSpec) -> Path:
     """``-o DIR`` if given, else ``outputs/<sanitised spec name>``: a spec's ``name`` never
     chooses where files go (see :func:`~gearcoupling.atomic.default_output_dir`)."""
     given = getattr(args, "output", None)
-    out = Path(given) if given else default_output_dir(spec.name)
+    return ensure_dir(Path(given) if given else default_output_dir(spec.name))
+
+
+def ensure_dir(out: Path, field: str = "-o") -> Path:
+    """Create the folder ``out``; a file in the way or an unwritable place is a
+    :class:`~gearcoupling.errors.SpecError` naming ``field``."""
     try:
         out.mkdir(parents=True, exist_ok=True)
     except FileExistsError:
-        raise SpecError("-o", str(out), "names an existing file: give a folder") from None
+        raise SpecError(field, str(out), "names an existing file: give a folder") from None
     except OSError as err:
-        raise SpecError("-o", str(out), f"cannot create the output folder: {err.strerror}") \
+        raise SpecError(field, str(out), f"cannot create the output folder: {err.strerror}") \
             from None
     if not out.is_dir():
-        raise SpecError("-o", str(out), "names an existing file: give a folder")
+        raise SpecError(field, str(out), "names an existing file: give a folder")
     return out
 
 

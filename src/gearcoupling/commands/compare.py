@@ -13,7 +13,9 @@ from pathlib import Path
 
 from ..atomic import write_json
 from ..errors import SpecError
-from .common import add_spec_arguments, output_dir, progress, spec_from_args
+from .common import add_spec_arguments, count, output_dir, progress, spec_from_args
+
+MAX_FIT_POINTS = 1_000_000
 
 
 def register(sub) -> None:
@@ -30,18 +32,25 @@ def register(sub) -> None:
                         "table; NAME one of " + ", ".join(LIMITS))
     p.add_argument("--coarse", default="auto", choices=("auto", "none"),
                    help="auto: find axis and teeth; none: the file is in the hub frame")
-    p.add_argument("--fit-points", type=int, default=20_000, metavar="N",
-                   help="points used by the fine registration (default 20000)")
+    p.add_argument("--fit-points", type=count(100, MAX_FIT_POINTS), default=20_000,
+                   metavar="N", help=f"points used by the fine registration, "
+                   f"100-{MAX_FIT_POINTS} (default 20000)")
     p.set_defaults(func=run)
 
 
-def parse_limits(items: list[str]) -> dict[str, str]:
-    out = {}
+def parse_limits(items: list[str]) -> dict[str, float]:
+    """``NAME=MM`` items -> limits, each checked (known name, finite length > 0)."""
+    from ..inspection.report import check_limits
+
+    out: dict[str, float] = {}
     for item in items:
         key, sep, value = item.partition("=")
         if not sep:
             raise SpecError("--limit", item, "NAME=MM, e.g. fpt=0.012")
-        out[key.strip()] = value.strip()
+        try:
+            out.update(check_limits({key.strip(): value.strip()}))
+        except SpecError as err:
+            raise SpecError("--limit", item, err.allowed) from None
     return out
 
 
@@ -56,12 +65,16 @@ def run(args) -> int:
     if len(args.files) > 2:
         raise SpecError("FILE", args.files, "one scan, or two (A B) to compare")
     spec = spec_from_args(args)
+    limits = parse_limits(args.limit)
+    for f in args.files:  # before the output folder is made (the reader checks the rest)
+        if not Path(f).is_file():
+            raise SpecError("file", f, "a scan or mesh (STL/PLY/OBJ, CSV/XYZ): no such file")
+    out = output_dir(args, spec)
     with progress("compare", 2 + STAGES * len(args.files)) as advance:
         result = compare_part(spec, args.files[0],
                               args.files[1] if len(args.files) == 2 else None,
-                              units=args.units, limits=parse_limits(args.limit),
+                              units=args.units, limits=limits,
                               coarse=args.coarse, fit_points=args.fit_points, advance=advance)
-    out = output_dir(args, spec)
     units = ["lengths in mm, + = material excess / toward increasing polar angle"]
     if len(args.files) == 2:
         files = [write_csv(out / "comparison.csv", result.rows(), units)]

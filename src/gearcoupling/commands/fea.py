@@ -11,7 +11,15 @@ import sys
 from pathlib import Path
 
 from ..atomic import write_json
-from .common import add_spec_arguments, output_dir, progress, spec_from_args
+from .common import (
+    MAX_TEETH,
+    add_spec_arguments,
+    count,
+    output_dir,
+    positive_length,
+    progress,
+    spec_from_args,
+)
 from .generate import PART_NAMES, parse_list
 
 
@@ -20,11 +28,11 @@ def register(sub) -> None:
     add_spec_arguments(p)
     p.add_argument("--parts", default="hub,sleeve", metavar="LIST",
                    help="comma-separated parts: hub, sleeve (default: both)")
-    p.add_argument("--sector", type=int, default=3, metavar="K",
-                   help="teeth in the sector (default 3)")
+    p.add_argument("--sector", type=count(1, MAX_TEETH), default=3, metavar="K",
+                   help="teeth in the sector, 1 to the number of teeth (default 3)")
     p.add_argument("--whole", action="store_true", help="mesh the whole parts")
-    p.add_argument("--size", type=float, default=None, metavar="MM",
-                   help="element size on the teeth in mm (default module / 4)")
+    p.add_argument("--size", type=positive_length, default=None, metavar="MM",
+                   help="element size on the teeth in mm, > 0 (default module / 4)")
     p.add_argument("--format", dest="formats", default="inp,msh,vtu", metavar="LIST",
                    help="comma-separated: inp, msh, vtu (default: all three)")
     p.set_defaults(func=run)

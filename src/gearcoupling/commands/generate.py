@@ -12,7 +12,7 @@ from pathlib import Path
 
 from ..atomic import write_json
 from ..errors import SpecError
-from .common import add_spec_arguments, output_dir, progress, spec_from_args
+from .common import add_spec_arguments, output_dir, positive_length, progress, spec_from_args
 
 PART_NAMES = ("hub", "sleeve")
 
@@ -22,8 +22,8 @@ def register(sub) -> None:
     add_spec_arguments(p)
     p.add_argument("--parts", default="hub,sleeve", metavar="LIST",
                    help="comma-separated parts: hub, sleeve (default: both)")
-    p.add_argument("--tolerance", type=float, default=None, metavar="MM",
-                   help="chordal tolerance in mm (default: module / 200)")
+    p.add_argument("--tolerance", type=positive_length, default=None, metavar="MM",
+                   help="chordal tolerance in mm, > 0 (default: module / 200)")
     p.add_argument("--format", dest="formats", default="stl", metavar="LIST",
                    help="comma-separated file formats: stl, ply, obj, glb, 3mf, vtu, vtk, "
                         "msh, inp, step (default: stl)")

@@ -8,29 +8,27 @@ chordal deviation, start/end positions, crown drop at the tooth ends).
 from __future__ import annotations
 
 from ..atomic import write_json, write_text
-from .common import add_spec_arguments, output_dir, spec_from_args
+from .common import add_spec_arguments, output_dir, positive_length, spec_from_args
 
 
 def register(sub) -> None:
     p = sub.add_parser("hob", help="hob centre path and feed program (CSV, G-code)")
     add_spec_arguments(p)
-    p.add_argument("--hob-diameter", type=float, required=True, metavar="MM",
-                   help="hob outside diameter in mm")
-    p.add_argument("--tolerance", type=float, default=None, metavar="MM",
-                   help="largest chordal deviation of the program (default: module / 1000)")
-    p.add_argument("--feed", type=float, default=1.0, metavar="MM_PER_REV",
-                   help="axial feed per workpiece revolution written as F (default 1)")
+    p.add_argument("--hob-diameter", type=positive_length, required=True, metavar="MM",
+                   help="hob outside diameter in mm, > 0")
+    p.add_argument("--tolerance", type=positive_length, default=None, metavar="MM",
+                   help="largest chordal deviation of the program in mm, > 0 "
+                        "(default: module / 1000)")
+    p.add_argument("--feed", type=positive_length, default=1.0, metavar="MM_PER_REV",
+                   help="axial feed per workpiece revolution written as F, > 0 (default 1)")
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
-    from ..errors import SpecError
     from ..hob import hob_program
     from ..hob.writers import write_csv
 
     spec = spec_from_args(args)
-    if not args.feed > 0:
-        raise SpecError("--feed", args.feed, "a positive feed in mm per revolution")
     prog = hob_program(spec, args.hob_diameter, args.tolerance)
     out = output_dir(args, spec)
     files = [

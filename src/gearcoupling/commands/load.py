@@ -11,14 +11,20 @@ from ..atomic import write_json
 from ..errors import SpecError
 from ..loadspec import LOAD_MODELS
 from .common import (
+    MAX_ANGLES,
     add_misalignment_argument,
     add_spec_arguments,
+    count,
     misalignment_deg,
+    number_in,
     output_dir,
+    positive_length,
     progress,
     spec_from_args,
     write_rows_csv,
 )
+
+MAX_TORQUE_NM = 1e9  # far above any coupling; beyond ~1e150 the contact law overflows
 
 
 def register(sub) -> None:
@@ -28,12 +34,14 @@ def register(sub) -> None:
     add_misalignment_argument(p)
     p.add_argument("--model", choices=LOAD_MODELS, default=None,
                    help="load model (default: the spec's [load] model)")
-    p.add_argument("--torque", type=float, default=None, metavar="NM",
-                   help="torque in N·m, sign picks the flank (default: the spec's)")
-    p.add_argument("--angles", type=int, default=360, metavar="N",
-                   help="rotations over one turn (default 360)")
-    p.add_argument("--tolerance", type=float, default=1e-7, metavar="MM",
-                   help="sweep accuracy of every gap in mm (default 1e-7)")
+    p.add_argument("--torque", type=number_in(-MAX_TORQUE_NM, MAX_TORQUE_NM, "N·m"),
+                   default=None, metavar="NM",
+                   help=f"torque in N·m, |T| <= {MAX_TORQUE_NM:g}; the sign picks the loaded "
+                        "flank; write a negative one as --torque=-5e3 (default: the spec's)")
+    p.add_argument("--angles", type=count(1, MAX_ANGLES), default=360, metavar="N",
+                   help=f"rotations over one turn, 1-{MAX_ANGLES} (default 360)")
+    p.add_argument("--tolerance", type=positive_length, default=1e-7, metavar="MM",
+                   help="sweep accuracy of every gap in mm, > 0 (default 1e-7)")
     p.add_argument("--no-plots", action="store_true", help="write only the CSV and JSON")
     p.add_argument("--quick-plots", action="store_true",
                    help="only the tooth-load and patch plots (skip the misalignment studies)")
@@ -63,8 +71,8 @@ def studies(spec, torque_Nm: float, model: str | None, out: Path) -> list[Path]:
 
     mis = study_misalignments(spec)
     torques = [0.5 * torque_Nm, torque_Nm, 2.0 * torque_Nm]
-    peak = {f"T = {t:.4g} N·m": [] for t in torques}
-    moment = {f"T = {t:.4g} N·m": [] for t in torques}
+    peak: dict[str, list[float]] = {f"T = {t:.4g} N·m": [] for t in torques}
+    moment: dict[str, list[float]] = {f"T = {t:.4g} N·m": [] for t in torques}
     q_pts: list[tuple[float, float]] = []
     ld = spec.load
     with progress("load studies", mis.size) as advance:
@@ -85,10 +93,10 @@ def studies(spec, torque_Nm: float, model: str | None, out: Path) -> list[Path]:
             advance(f"load studies i = {i:.3g}°")
     label = model or spec.load.model
     paths = [
-        save_figure(plot_vs_misalignment(mis, peak, "max tooth load P (N)",
+        save_figure(plot_vs_misalignment(mis, dict(peak), "max tooth load P (N)",
                                          f"{spec.name}: {label}, max tooth load"),
                     out / "load_max_vs_misalignment.png"),
-        save_figure(plot_vs_misalignment(mis, moment, "additional (tilting) moment (N·m)",
+        save_figure(plot_vs_misalignment(mis, dict(moment), "additional (tilting) moment (N·m)",
                                          f"{spec.name}: {label}, mean over the turn"),
                     out / "load_moment_vs_misalignment.png"),
     ]

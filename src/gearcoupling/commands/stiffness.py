@@ -14,18 +14,30 @@ import sys
 from pathlib import Path
 
 from ..atomic import write_json, write_text
-from .common import add_spec_arguments, output_dir, progress, spec_from_args
+from .common import (
+    MAX_TEETH,
+    add_spec_arguments,
+    count,
+    ensure_dir,
+    output_dir,
+    positive_length,
+    progress,
+    spec_from_args,
+)
 
 
 def register(sub) -> None:
     p = sub.add_parser("stiffness", help="FE tooth compliance and mesh stiffness (CalculiX)")
     add_spec_arguments(p)
-    p.add_argument("--size", type=float, default=None, metavar="MM",
-                   help="element size on the teeth in mm (default module / 4)")
-    p.add_argument("--sector", type=int, default=3, metavar="K",
-                   help="teeth per sector, odd; the middle one is loaded (default 3)")
-    p.add_argument("--nz", type=int, default=3, help="axial load positions (default 3)")
-    p.add_argument("--nr", type=int, default=3, help="load radii (default 3)")
+    p.add_argument("--size", type=positive_length, default=None, metavar="MM",
+                   help="element size on the teeth in mm, > 0 (default module / 4)")
+    p.add_argument("--sector", type=count(1, MAX_TEETH), default=3, metavar="K",
+                   help="teeth per sector, odd, at most the number of teeth; the middle one "
+                        "is loaded (default 3)")
+    p.add_argument("--nz", type=count(2, 9), default=3, metavar="N",
+                   help="axial load positions, 2-9 (default 3)")
+    p.add_argument("--nr", type=count(2, 9), default=3, metavar="N",
+                   help="load radii, 2-9 (default 3)")
     p.add_argument("--cache", default=None, metavar="DIR",
                    help="cache folder (default ~/.cache/gearcoupling/fea)")
     p.add_argument("--refresh", action="store_true", help="recompute, ignoring the cache")
@@ -58,9 +70,8 @@ def run(args) -> int:
     if args.sector < 1 or args.sector % 2 == 0 or args.sector > spec.tooth.teeth:
         raise SpecError("--sector", args.sector, f"an odd number of teeth from 1 to "
                         f"{spec.tooth.teeth} (the middle tooth is loaded)")
-    for n, name in ((args.nz, "--nz"), (args.nr, "--nr")):
-        if not 2 <= n <= 9:
-            raise SpecError(name, n, "from 2 to 9 load positions")
+    if args.cache is not None:  # before the FE runs, which write the cache at the end
+        ensure_dir(Path(args.cache), "--cache")
     gmsh_module()
     ccx_path()
     out = output_dir(args, spec)

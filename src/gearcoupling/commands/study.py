@@ -4,6 +4,11 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from ..atomic import default_output_dir
+from .common import count, ensure_dir, number_in, progress
+
+MAX_WORKERS = 256
+
 
 def register(sub) -> None:
     p = sub.add_parser("study", help="design study over sampled spec keys and conditions on "
@@ -13,10 +18,12 @@ def register(sub) -> None:
                    help="output folder (default: outputs/study-<name>)")
     p.add_argument("--scheduler", metavar="tcp://HOST:PORT", default=None,
                    help="use a running dask scheduler instead of a local cluster")
-    p.add_argument("--connect-timeout", type=float, default=10.0, metavar="S",
-                   help="seconds to wait for --scheduler before giving up (default 10)")
-    p.add_argument("--workers", type=int, default=None, metavar="N",
-                   help="local cluster worker processes (default: one per core)")
+    p.add_argument("--connect-timeout", type=number_in(0.0, 3600.0, "s", open_lo=True),
+                   default=10.0, metavar="S", help="seconds to wait for --scheduler before "
+                   "giving up, in (0, 3600] (default 10)")
+    p.add_argument("--workers", type=count(1, MAX_WORKERS), default=None, metavar="N",
+                   help=f"local cluster worker processes, 1-{MAX_WORKERS} "
+                   "(default: one per core)")
     p.add_argument("--fresh", action="store_true",
                    help="discard finished chunks in the output folder and start over")
     p.add_argument("--no-plots", action="store_true", help="write only the table")
@@ -26,10 +33,10 @@ def register(sub) -> None:
 def run(args) -> int:
     from ..study import load_study, read_table, run_study
     from ..study.plots import study_plots
-    from .common import progress
 
     study = load_study(args.file)
-    out = Path(args.output) if args.output else Path("outputs") / f"study-{study.name}"
+    out = ensure_dir(Path(args.output) if args.output
+                     else default_output_dir(f"study-{study.name}"))
     if study.optimise is not None:
         return _optimise(study, out, plots=not args.no_plots)
     from ..study.runner import chunks
@@ -86,12 +93,10 @@ def _optimise(study, out: Path, *, plots: bool) -> int:
         plot_capacity_curves,
         write_rows,
     )
-    from .common import progress
 
     options = optimise_options(study)
     with progress(f"optimise {study.name} (evaluations)", options["max_evaluations"]) as adv:
         result = optimise_crown(study, on_row=lambda r: adv())
-    out.mkdir(parents=True, exist_ok=True)
     write_rows(result.rows, out / "study.parquet")
     print(out / "study.parquet")
     if result.best is None:

@@ -7,6 +7,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
+from ..errors import ArgumentError
+
 # corner nodes of the four faces of a C3D10 (Abaqus/CalculiX face numbers S1..S4)
 TET_FACES = np.array([[0, 1, 2], [0, 3, 1], [1, 3, 2], [2, 3, 0]])
 
@@ -118,5 +120,5 @@ def match_faces(tets: NDArray, tris: NDArray) -> NDArray[np.int64]:
     pos = np.minimum(pos, len(key) - 1)
     hit = order[pos]
     if not np.all(key[hit] == want):
-        raise ValueError("boundary triangles do not match element faces")
+        raise ArgumentError("tris: boundary triangles do not match element faces of tets")
     return np.stack([hit // 4, hit % 4 + 1], axis=1)

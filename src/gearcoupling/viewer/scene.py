@@ -373,7 +373,7 @@ def flank_colors(state: PoseState, mode: str, scale_mm: float, spec) -> NDArray[
     if mode != "pressure":
         return clearance_colors(flank_values(state, mode), scale_mm)
     if state.pressure_MPa is None:
-        raise ValueError("pressure colours need pose_state(..., pressure=True)")
+        raise ArgumentError(f"mode = {mode!r}: needs a state from pose_state(..., pressure=True)")
     return pressure_colors(state.pressure_MPa,
                            spec.material.hub.allowable_contact_stress_MPa)
 
