@@ -194,7 +194,7 @@ class ContactModel:
         W = np.maximum(W, 0.0)
         hertz = W < law["w_star"]
         with np.errstate(divide="ignore"):
-            dh = law["a_h"] * np.cbrt(W * W)
+            dh = law["a_h"] * np.cbrt(W) ** 2  # not cbrt(W * W): no overflow at huge loads
             sh = np.where(W > 0, (2 / 3) * law["a_h"] / np.cbrt(np.maximum(W, 1e-300)), np.inf)
         dl, sl = self._line_approach(W, law)
         delta = np.where(hertz, dh, law["d_star"] + dl - law["l_star"])
