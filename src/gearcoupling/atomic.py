@@ -110,3 +110,21 @@ def _jsonable(obj: Any) -> Any:
     if hasattr(obj, "tolist"):
         return obj.tolist()
     raise TypeError(f"not JSON serialisable: {type(obj).__name__}")
+
+
+def write_csv_rows(path: str | os.PathLike, columns, rows) -> Path:
+    """A CSV written atomically: floats as ``%.9g``, booleans ``true``/``false``, None empty."""
+    import csv
+
+    def cell(v):
+        if v is None:
+            return ""
+        if isinstance(v, bool):
+            return str(v).lower()
+        return f"{v:.9g}" if isinstance(v, float) else v
+
+    with atomic_path(path) as tmp, open(tmp, "w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(columns)
+        w.writerows([cell(v) for v in row] for row in rows)
+    return Path(path)

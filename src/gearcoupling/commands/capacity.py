@@ -8,6 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import SpecError
+from ..load.capacity import write_capacity_csv
 from ..loadspec import LOAD_MODELS
 from ..spec import load_spec, parse_override
 from .common import (
@@ -17,15 +18,9 @@ from .common import (
     output_dir,
     progress,
     spec_from_args,
-    write_rows_csv,
 )
 
 MAX_COUNT = 200  # misalignments of a curve (each one is a sweep over a tooth pitch)
-
-COLUMNS = ("spec", "misalignment_deg", "capacity_Nm", "governing", "tooth_load_Nm",
-           "contact_stress_Nm", "bending_stress_Nm", "face_end_torque_Nm", "q",
-           "load_sharing_factor", "max_tooth_load_N")
-
 
 def register(sub) -> None:
     p = sub.add_parser("capacity", help="torque capacity and q vs misalignment per criterion "
@@ -44,20 +39,6 @@ def register(sub) -> None:
     p.set_defaults(func=run)
 
 
-def rows(name: str, curve: list[dict]):
-    """CSV rows of one capacity curve in :data:`COLUMNS` order."""
-    for c in curve:
-        crit = c["criteria_Nm"]
-        yield (name, c["misalignment_deg"], c["capacity_Nm"], c["governing"],
-               crit.get("tooth_load"), crit.get("contact_stress"), crit.get("bending_stress"),
-               c["face_end_torque_Nm"], c["q"], c["load_sharing_factor"], c["max_tooth_load_N"])
-
-
-def write_csv(curves: dict[str, list[dict]], path: Path) -> Path:
-    return write_rows_csv(path, COLUMNS, (row for name, curve in curves.items()
-                                          for row in rows(name, curve)))
-
-
 def capacity_files(specs: list, out: Path, misalignments_deg: np.ndarray, *,
                    model: str | None = None, plots: bool = True) -> list[Path]:
     """Capacity curves of ``specs`` (first one names the folder) to CSV and plot."""
@@ -70,7 +51,7 @@ def capacity_files(specs: list, out: Path, misalignments_deg: np.ndarray, *,
             curves[spec.name] = capacity_curve(
                 spec, misalignments_deg, model=model,
                 progress=lambda i, _n, s=spec: advance(f"{s.name} {i}/{_n}"))
-    paths = [write_csv(curves, out / "capacity.csv")]
+    paths = [write_capacity_csv(curves, out / "capacity.csv")]
     if plots:
         from ..load.plots import plot_capacity
         from ..plots import save_figure

@@ -10,14 +10,12 @@ table of the worst angles, and exits with status 1 when any pose overlaps.
 from __future__ import annotations
 
 import argparse
-import csv
-import io
 import math
 from pathlib import Path
 
 import numpy as np
 
-from ..atomic import atomic_path, write_json, write_text
+from ..atomic import atomic_path, write_json
 from .common import (
     MAX_TEETH,
     add_misalignment_argument,
@@ -70,20 +68,6 @@ def register(sub) -> None:
     p.add_argument("--worst", type=count(1, MAX_CHECK_ANGLES), default=10, metavar="N",
                    help=f"rows of the worst-angle table, 1-{MAX_CHECK_ANGLES} (default 10)")
     p.set_defaults(func=run)
-
-
-def write_csv(result, path: Path) -> Path:
-    rows = result.rows()
-    buf = io.StringIO()
-    fields = [k for k in rows[0] if not k.endswith("point_mm")] + [
-        "hub_x_mm", "hub_y_mm", "hub_z_mm", "sleeve_x_mm", "sleeve_y_mm", "sleeve_z_mm"]
-    w = csv.DictWriter(buf, fieldnames=fields, lineterminator="\n")
-    w.writeheader()
-    for row in rows:
-        hub, sl = row.pop("hub_point_mm"), row.pop("sleeve_point_mm")
-        row.update(zip(fields[-6:], [*hub, *sl], strict=True))
-        w.writerow({k: (f"{v:.9g}" if isinstance(v, float) else v) for k, v in row.items()})
-    return write_text(path, buf.getvalue())
 
 
 def plot(result, reference_mm, path: Path, backlash_mm=None) -> Path:
@@ -150,7 +134,7 @@ def write_outputs(spec, result, out: Path) -> list[Path]:
     # validated before anything is written: no NaN in the CSV or the JSON
     require_finite(result.rows(), "interference.csv")
     require_finite(summary, "interference.json")
-    written = [write_csv(result, out / "interference.csv"),
+    written = [result.write_csv(out / "interference.csv"),
                write_json(out / "interference.json", summary),
                plot(result, reference, out / "interference.png", backlash)]
     return written + write_meshes(result, int(result.worst(1)[0]), out)

@@ -136,23 +136,3 @@ def progress(description: str, total: int):
             bar.update(task, advance=1, description=label or description)
 
         yield advance
-
-
-def write_rows_csv(path: str | Path, columns, rows) -> Path:
-    """A CSV written atomically: floats as ``%.9g``, booleans ``true``/``false``, None empty."""
-    import csv
-
-    from ..atomic import atomic_path
-
-    def cell(v):
-        if v is None:
-            return ""
-        if isinstance(v, bool):
-            return str(v).lower()
-        return f"{v:.9g}" if isinstance(v, float) else v
-
-    with atomic_path(path) as tmp, open(tmp, "w", newline="") as fh:
-        w = csv.writer(fh)
-        w.writerow(columns)
-        w.writerows([cell(v) for v in row] for row in rows)
-    return Path(path)

@@ -21,7 +21,6 @@ from .common import (
     positive_length,
     progress,
     spec_from_args,
-    write_rows_csv,
 )
 
 MAX_TORQUE_NM = 1e9  # far above any coupling; beyond ~1e150 the contact law overflows
@@ -46,13 +45,6 @@ def register(sub) -> None:
     p.add_argument("--quick-plots", action="store_true",
                    help="only the tooth-load and patch plots (skip the misalignment studies)")
     p.set_defaults(func=run)
-
-
-def write_csv(result, path: str | Path) -> Path:
-    """The long-form ``load.csv`` of a LoadResult, written atomically."""
-    from ..load import CSV_COLUMNS
-
-    return write_rows_csv(path, CSV_COLUMNS, result.rows())
 
 
 def study_misalignments(spec, count: int = 7) -> np.ndarray:
@@ -120,7 +112,7 @@ def load_files(spec, out: Path, misalignment_deg: float, angles: int, *,
     res = load(spec, misalignment_deg, psi, torque_Nm=torque_Nm, model=model,
                tolerance_mm=tolerance_mm)
     summary = res.summary()
-    paths = [write_csv(res, out / "load.csv"), write_json(out / "load_summary.json", summary)]
+    paths = [res.write_csv(out / "load.csv"), write_json(out / "load_summary.json", summary)]
     if plots:
         from ..load.plots import plot_patches, plot_tooth_load
         from ..plots import save_figure

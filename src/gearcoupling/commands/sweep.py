@@ -2,12 +2,11 @@
 
 from __future__ import annotations
 
-import csv
 from pathlib import Path
 
 import numpy as np
 
-from ..atomic import atomic_path, write_json
+from ..atomic import write_json
 from ..errors import SpecError
 from .common import (
     MAX_ANGLES,
@@ -38,18 +37,6 @@ def register(sub) -> None:
     p.set_defaults(func=run)
 
 
-def write_csv(result, path: str | Path) -> Path:
-    """The long-form CSV of a sweep, written atomically."""
-    from ..sweep import CSV_COLUMNS
-
-    with atomic_path(path) as tmp, open(tmp, "w", newline="") as fh:
-        w = csv.writer(fh)
-        w.writerow(CSV_COLUMNS)
-        for row in result.rows():
-            w.writerow([f"{v:.9g}" if isinstance(v, float) else v for v in row])
-    return Path(path)
-
-
 def sweep_files(spec, out: Path, misalignment_deg: float, angles: int, *,
                 tolerance_mm: float = 1e-7, design: bool = True, plots: bool = True,
                 studies: bool = True) -> list[Path]:
@@ -66,7 +53,7 @@ def sweep_files(spec, out: Path, misalignment_deg: float, angles: int, *,
     extra = design_quantities(spec, misalignment_deg) if design else {}
     summary.update(extra)
     require_finite(summary, "sweep_summary.json")  # nothing is written before this
-    paths = [write_csv(result, out / "sweep.csv"),
+    paths = [result.write_csv(out / "sweep.csv"),
              write_json(out / "sweep_summary.json", summary)]
     if plots:
         from ..sweep.plots import plot_all

@@ -158,6 +158,25 @@ class InterferenceResult:
         order = np.lexsort((-self.overlap_volume_mm3, self.min_gap_mm))
         return order[:count]
 
+    def write_csv(self, path):
+        """Write :meth:`rows` as CSV atomically (points split into x/y/z columns)."""
+        import csv
+        import io
+
+        from ..atomic import write_text
+
+        rows = self.rows()
+        buf = io.StringIO()
+        fields = [k for k in rows[0] if not k.endswith("point_mm")] + [
+            "hub_x_mm", "hub_y_mm", "hub_z_mm", "sleeve_x_mm", "sleeve_y_mm", "sleeve_z_mm"]
+        w = csv.DictWriter(buf, fieldnames=fields, lineterminator="\n")
+        w.writeheader()
+        for row in rows:
+            hub, sl = row.pop("hub_point_mm"), row.pop("sleeve_point_mm")
+            row.update(zip(fields[-6:], [*hub, *sl], strict=True))
+            w.writerow({k: (f"{v:.9g}" if isinstance(v, float) else v) for k, v in row.items()})
+        return write_text(path, buf.getvalue())
+
     def rows(self) -> list[dict[str, Any]]:
         """One plain row per angle (for CSV/JSON)."""
         out = []

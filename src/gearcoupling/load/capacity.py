@@ -17,6 +17,7 @@ compliance model, and the same root find on full solves for the surface model.
 from __future__ import annotations
 
 import math
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -243,3 +244,26 @@ def capacity_curve(spec, misalignments_deg: ArrayLike | None = None, *,
         if progress is not None:
             progress(i + 1, mis.size)
     return out
+
+
+CAPACITY_COLUMNS = ("spec", "misalignment_deg", "capacity_Nm", "governing", "tooth_load_Nm",
+                    "contact_stress_Nm", "bending_stress_Nm", "face_end_torque_Nm", "q",
+                    "load_sharing_factor", "max_tooth_load_N")
+
+
+def capacity_rows(name: str, curve: list[dict]):
+    """CSV rows of one capacity curve in :data:`CAPACITY_COLUMNS` order."""
+    for c in curve:
+        crit = c["criteria_Nm"]
+        yield (name, c["misalignment_deg"], c["capacity_Nm"], c["governing"],
+               crit.get("tooth_load"), crit.get("contact_stress"), crit.get("bending_stress"),
+               c["face_end_torque_Nm"], c["q"], c["load_sharing_factor"], c["max_tooth_load_N"])
+
+
+def write_capacity_csv(curves: dict[str, list[dict]], path) -> Path:
+    """``capacity.csv``: one row per spec name and misalignment of :func:`capacity_curve`
+    results, written atomically."""
+    from ..atomic import write_csv_rows
+
+    return write_csv_rows(path, CAPACITY_COLUMNS, (row for name, curve in curves.items()
+                                                   for row in capacity_rows(name, curve)))

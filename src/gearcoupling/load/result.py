@@ -79,6 +79,12 @@ class LoadResult:
 
         return summarise(self)
 
+    def write_csv(self, path):
+        """Write :meth:`rows` under :data:`CSV_COLUMNS` atomically; returns the path."""
+        from ..atomic import write_csv_rows
+
+        return write_csv_rows(path, CSV_COLUMNS, self.rows())
+
     def rows(self):
         """Long-form rows (tuples in :data:`CSV_COLUMNS` order), tooth-major per angle."""
         g_deg = np.degrees(self.gap_angle_rad)

@@ -167,6 +167,12 @@ class SweepResult:
     def _crown_radius(self) -> float:
         return float(self.design.get("crowning_radius_midplane_mm", math.inf))
 
+    def write_csv(self, path):
+        """Write :meth:`rows` under :data:`CSV_COLUMNS` atomically; returns the path."""
+        from ..atomic import write_csv_rows
+
+        return write_csv_rows(path, CSV_COLUMNS, self.rows())
+
     def rows(self):
         """Long-form rows (tuples in :data:`CSV_COLUMNS` order), tooth-major per angle."""
         names = np.asarray(KINDS)
