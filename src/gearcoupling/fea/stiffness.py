@@ -31,7 +31,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..atomic import write_json
+from ..atomic import safe_name, write_json
 from ..errors import GeometryError, SpecError
 from .ccx import run_ccx, solver_dir
 from .deck import LoadCase, principal_max, static_deck
@@ -301,7 +301,7 @@ def tooth_compliance_table(spec, *, size_mm: float | None = None,
     check_size(spec, "sleeve", size_mm)
     key = spec_hash(spec, size_mm=size_mm, sector=sector, nz=nz, nr=nr)
     path = Path(cache) if cache is not None else cache_dir()
-    path = path / f"{spec.name}-{key}.json"
+    path = path / f"{safe_name(spec.name)}-{key}.json"  # a spec name cannot escape
     if path.exists() and not refresh:
         return ComplianceTable.from_dict(json.loads(path.read_text()))
     table = compute_compliance_table(spec, size_mm=size_mm, sector=sector, nz=nz, nr=nr,
