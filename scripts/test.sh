@@ -25,4 +25,5 @@ if [ ! -d .cache/npm/node_modules/gltf-validator ]; then
     npm install --silent --prefix .cache/npm gltf-validator
 fi
 python3 -m ruff check src tests benchmarks
+python3 -m mypy
 python3 -m pytest "$@"

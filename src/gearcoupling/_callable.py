@@ -10,7 +10,7 @@ from __future__ import annotations
 import sys
 import types
 from collections.abc import Callable
-from typing import Any
+from typing import Any, cast
 
 
 def make_callable(module_name: str, func: Callable[..., Any]) -> None:
@@ -18,8 +18,11 @@ def make_callable(module_name: str, func: Callable[..., Any]) -> None:
 
     class _CallableModule(types.ModuleType):
         __call__ = staticmethod(func)
+        __signature__: None
+        __wrapped__: Callable[..., Any]
 
     module = sys.modules[module_name]
     module.__class__ = _CallableModule
-    module.__signature__ = None  # inspect.signature(module) follows __wrapped__ instead
-    module.__wrapped__ = func
+    callable_module = cast(_CallableModule, module)
+    callable_module.__signature__ = None  # inspect.signature(module) follows __wrapped__
+    callable_module.__wrapped__ = func

@@ -13,6 +13,7 @@ import argparse
 import os
 import sys
 from collections.abc import Sequence
+from typing import NoReturn
 
 from .errors import GearCouplingError
 
@@ -22,7 +23,7 @@ EXIT_BAD_INPUT = 2
 class _Parser(argparse.ArgumentParser):
     """Argument errors on one line (argparse prints the usage first by default)."""
 
-    def error(self, message: str):  # type: ignore[override]
+    def error(self, message: str) -> NoReturn:
         self.exit(EXIT_BAD_INPUT, f"gearcoupling: error: {self.prog}: {message} "
                   f"(see {self.prog} --help)\n")
 

@@ -48,7 +48,7 @@ def check_misalignment_deg(value: object, field_name: str = "misalignment_deg") 
     """
     lo, hi = MISALIGNMENT_RANGE_DEG
     if isinstance(value, bool) or not isinstance(value, numbers.Real) or not (
-            math.isfinite(value) and lo - _ROUNDING_DEG <= value <= hi + _ROUNDING_DEG):
+            math.isfinite(value) and lo - _ROUNDING_DEG <= float(value) <= hi + _ROUNDING_DEG):
         raise SpecError(field_name, value, f"must be a finite angle from {lo} to {hi} degrees")
     return min(max(float(value), lo), hi)
 

@@ -23,6 +23,7 @@ from __future__ import annotations
 import io
 import zipfile
 from pathlib import Path
+from typing import cast
 
 import numpy as np
 from numpy.typing import NDArray
@@ -261,7 +262,7 @@ def read_mesh(path: str | Path):
     path = Path(path)
     ext = path.suffix.lower().lstrip(".")
     if ext in ("stl", "ply", "obj", "glb", "3mf"):
-        m = trimesh.load(str(path), force="mesh", file_type=ext)
+        m = cast("trimesh.Trimesh", trimesh.load(str(path), force="mesh", file_type=ext))
         if ext == "glb":
             m.apply_transform(np.linalg.inv(GLB_FROM_MM))
             m.merge_vertices(merge_tex=True, merge_norm=True)

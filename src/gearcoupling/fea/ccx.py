@@ -73,7 +73,7 @@ def run_ccx(deck: str, workdir: str | Path, job: str = "job", *,
         proc = subprocess.run([exe, "-i", job], cwd=work, capture_output=True, text=True,
                               timeout=timeout_s, env=env, check=False)
     except subprocess.TimeoutExpired as err:
-        log.write_text(f"{err.stdout or ''}\n{err.stderr or ''}\ntimed out after {timeout_s} s\n")
+        log.write_text(f"{_text(err.stdout)}\n{_text(err.stderr)}\ntimed out after {timeout_s} s\n")
         raise BackendError(f"ccx timed out after {timeout_s:.0f} s; its log is {log}") from err
     log.write_text(proc.stdout + "\n" + proc.stderr)
     seconds = time.perf_counter() - t0
@@ -84,6 +84,14 @@ def run_ccx(deck: str, workdir: str | Path, job: str = "job", *,
         raise BackendError(f"ccx failed (exit {proc.returncode}) {first}; its log is {log} "
                            f"and the deck {work / f'{job}.inp'}")
     return CcxResult(work / job, parse_dat(dat.read_text()), seconds)
+
+
+def _text(output: str | bytes | None) -> str:
+    """Captured output of a timed-out run: ``TimeoutExpired`` keeps bytes even with
+    ``text=True``."""
+    if isinstance(output, bytes):
+        return output.decode(errors="replace")
+    return output or ""
 
 
 _HEADER = re.compile(r"^\s*([a-z][\w ]*?)\s*\(.*\)\s*for (.*?)\s+and time\s+(\S+)", re.I)
@@ -101,11 +109,11 @@ _STATS = re.compile(r"^\s*statistics for slave set\s+([^,\s]+).*and time\s+(\S+)
 def parse_dat(text: str) -> list[tuple[str, str, float, NDArray[np.float64]]]:
     """Blocks of a ccx ``.dat`` file (see :class:`CcxResult`); rows of unequal length
     (contact statistics) are padded with NaN."""
-    blocks = []
-    current = None
+    blocks: list[tuple[str, str, float, NDArray[np.float64]]] = []
+    current: tuple[str, str, float] | None = None
     rows: list[list[float]] = []
 
-    def close():
+    def close() -> None:
         if current is not None:
             width = max((len(r) for r in rows), default=0)
             arr = np.full((len(rows), width), np.nan)
@@ -119,7 +127,7 @@ def parse_dat(text: str) -> list[tuple[str, str, float, NDArray[np.float64]]]:
             close()
             if stats:
                 current = ("statistics", stats.group(1).upper(), float(stats.group(2)))
-            else:
+            elif head:
                 current = (head.group(1).strip().lower(), _set_name(head.group(2)),
                            float(head.group(3)))
             rows = []

@@ -77,12 +77,16 @@ class FeedPath:
         qv = qv0 - ds * np.sin(mid) * sinc
         qz = qz0 + ds * np.cos(mid) * sinc
         if not np.all(arc):
+            smooth = self.smooth
+            if smooth is None:
+                raise ArgumentError("FeedPath segments with kappa None need `smooth`: "
+                                    "none was given")
             sm = ~arc
             s0 = self.breaks[k][sm]
             a = s0 + ds[sm]
-            kap[sm], e[sm] = self.smooth(a)
+            kap[sm], e[sm] = smooth(a)
             nodes = s0[:, None] + ds[sm][:, None] * (0.5 * (_GL_X + 1.0))
-            _, en = self.smooth(nodes)
+            _, en = smooth(nodes)
             qv[sm] = qv0[sm] - 0.5 * ds[sm] * (np.sin(en) @ _GL_W)
             qz[sm] = qz0[sm] + 0.5 * ds[sm] * (np.cos(en) @ _GL_W)
         return kap, e, qv, qz
@@ -165,7 +169,9 @@ def _spline_path(R: float, s_knots, kappa_knots, kind: str) -> FeedPath:
     def smooth(s):
         return spline(s), anti(s)
 
-    segments = [(float(b - a), None) for a, b in pairwise(s_knots)]
+    segments: list[tuple[float, float | None]] = [
+        (float(b - a), None) for a, b in pairwise(s_knots)
+    ]
     segments.append((np.inf, float(kappa_knots[-1])))
     return FeedPath(R, segments, smooth, kind=kind)
 

@@ -22,7 +22,7 @@ from itertools import pairwise
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import SpecError
+from ..errors import ArgumentError, SpecError
 from ..geometry.hub import HubModel, hub_model, plane_rack, tip_radius
 
 _DENSE = 65  # exact-curve samples per move when its chordal deviation is measured
@@ -120,6 +120,8 @@ class HobProgram:
             if m.kind == "line":
                 lines.append(f"G1 X{x:.5f} Z{z:.5f}")
             else:
+                if m.centre is None:
+                    raise ArgumentError(f"arc move {m} has no centre")
                 cz, cx = m.centre
                 code = "G2" if m.clockwise else "G3"
                 lines.append(f"{code} X{x:.5f} Z{z:.5f} I{cx - m.start[1]:.5f} "
@@ -191,7 +193,7 @@ def _pieces(m: HubModel, s_gen: float) -> list[tuple[float, float, float]]:
     smooth segments merged)."""
     inner = [b for b in m.path.breaks[1:] if 0.0 < b < s_gen]
     edges = [-s_gen, *(-b for b in reversed(inner)), *inner, s_gen]
-    out = []
+    out: list[tuple[float, float, float]] = []
     for a, b in pairwise(edges):
         mid = 0.5 * abs(a + b)
         k = int(np.clip(np.searchsorted(m.path.breaks, mid, side="right") - 1, 0,
@@ -280,7 +282,7 @@ def hob_program(spec, hob_diameter_mm: float, tolerance_mm: float | None = None,
     _, e, _, qz = m.path.evaluate(s)
     c = hob_centre(m, r_h, s)
     x_mid = m.R + r_h
-    notes = ()
+    notes: tuple[str, ...] = ()
     if m.revolved:
         notes = ("the spec's crowning.generation is 'revolved', which a hob does not cut: "
                  "this program cuts the enveloped crown of the same feed path",)

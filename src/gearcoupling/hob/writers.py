@@ -7,6 +7,7 @@ import io
 import math
 from collections.abc import Iterable, Mapping
 from pathlib import Path
+from typing import SupportsFloat, cast
 
 from ..atomic import write_text
 from ..errors import GearCouplingError
@@ -34,7 +35,7 @@ def _fmt(key: str, value: object) -> object:
     numeric = isinstance(value, float | int) or hasattr(value, "dtype")
     if isinstance(value, bool) or not numeric:
         return value
-    v = float(value)
+    v = float(cast(SupportsFloat, value))  # a number or a numpy scalar/0-d array
     if not math.isfinite(v):
         raise GearCouplingError(f"refusing to write a non-finite {key} = {v} to CSV")
     return int(v) if isinstance(value, int) else f"{v:.10g}"

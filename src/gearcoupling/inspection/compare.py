@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from pathlib import Path
+from typing import cast
 
 import numpy as np
 
@@ -43,11 +44,11 @@ class PartComparison:
 
     def summary(self) -> dict:
         rows = self.rows()
-        worst = {}
+        worst: dict[str, float] = {}
         for row in rows:
             for key, v in row.items():
-                if key != "tooth":
-                    worst[key] = max(worst.get(key, 0.0), abs(v))
+                if key != "tooth":  # the others are the float differences of rows()
+                    worst[key] = max(worst.get(key, 0.0), abs(cast(float, v)))
         return {"a": self.a.summary(), "b": self.b.summary(),
                 "common_teeth": [r["tooth"] for r in rows], "max_abs_diff": worst}
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import warnings
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -65,7 +66,8 @@ def _load_mesh(p: Path) -> NDArray[np.float64]:
         raise SpecError("file", str(p), f"{ALLOWED}; trimesh could not read it "
                         f"({type(err).__name__}: {err})") from err
     if isinstance(obj, trimesh.Scene):
-        geoms = list(obj.dump()) if obj.geometry else []
+        # trimesh's Geometry declares no vertices; meshes, paths and point clouds all have them
+        geoms: list[Any] = list(obj.dump()) if obj.geometry else []
         verts = [np.asarray(g.vertices, dtype=float) for g in geoms]
         return np.concatenate(verts) if verts else np.zeros((0, 3))
     return np.asarray(getattr(obj, "vertices", np.zeros((0, 3))), dtype=float)
@@ -102,7 +104,7 @@ def _is_number(text: str) -> bool:
 
 
 def _load_text_lines(p: Path) -> NDArray[np.float64]:
-    rows = []
+    rows: list[list[float]] = []
     try:
         with p.open(encoding="utf-8", errors="strict") as fh:
             for line in fh:

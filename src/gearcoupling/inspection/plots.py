@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import cast
+
 import numpy as np
 
 from .report import FLANK_NAMES, InspectionReport
@@ -38,10 +40,11 @@ def plot_inspection(report: InspectionReport, ax=None):
     axes[2].bar(k + 0.5 * w, um * report.tooth["thickness_dev_mm"], w, label="thickness dev.")
     cnom = report.nominal["cw"]["C_beta_mm"]
     axes[3].axhline(um * cnom, color="k", lw=0.8, label="nominal C_beta")
-    part = report.part
-    titles = [f"cumulative pitch F_pk (F_p = {um * part['F_p_mm']:.2f} µm)",
+    F_p = cast(float, report.part["F_p_mm"])
+    F_r = cast("float | None", report.part["F_r_mm"])
+    titles = [f"cumulative pitch F_pk (F_p = {um * F_p:.2f} µm)",
               "single pitch f_pt", "runout / tooth thickness deviation"
-              + (f" (F_r = {um * part['F_r_mm']:.2f} µm)" if part["F_r_mm"] is not None else ""),
+              + (f" (F_r = {um * F_r:.2f} µm)" if F_r is not None else ""),
               "crown height C_beta"]
     limits = {0: "Fp", 1: "fpt"}
     for i, a in enumerate(axes):

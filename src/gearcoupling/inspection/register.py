@@ -140,6 +140,8 @@ def coarse_place(points, table: FlankTable, mode: str = "auto", sample: int = 10
                     default=0.0)
             if best is None or s > best[0]:
                 best = (s, F)
+        if best is None:
+            raise RegistrationError("no candidate axis for the scan's tooth pattern")
         Rm, t = best[1], -best[1] @ c
     else:
         raise SpecError("coarse", mode, "'auto' (find axis and teeth) or 'none' (keep frame)")
@@ -165,7 +167,7 @@ def coarse_place(points, table: FlankTable, mode: str = "auto", sample: int = 10
     strength = abs(z_n)
     step = max(1, len(alpha) // 20_000)
     counts = _spectrum(alpha[::step], rr[::step], m.R, N)
-    best_M = max(counts, key=counts.get)
+    best_M = max(counts, key=counts.__getitem__)
     if best_M != N and strength < 0.5 * counts[best_M]:
         raise RegistrationError(f"scan does not match the spec: its angular tooth pattern "
                                 f"repeats {best_M} times per turn (strength {counts[best_M]:.2f})"

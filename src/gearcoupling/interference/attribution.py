@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 from ..geometry.hub import FLANKS
 
@@ -25,7 +25,7 @@ def nearest_tooth(points: NDArray, teeth: int) -> NDArray[np.int64]:
     return np.rint(ang / (2.0 * math.pi / teeth)).astype(np.int64)
 
 
-def flank_index(points: NDArray, tooth: NDArray, teeth: int) -> NDArray[np.int64]:
+def flank_index(points: NDArray, tooth: ArrayLike, teeth: int) -> NDArray[np.int64]:
     """``1`` (ccw) where ``points (..., 3)`` lie counter-clockwise of the centre of
     ``tooth (...)``, else ``0`` (cw)."""
     ang = np.arctan2(points[..., 1], points[..., 0]) - 2.0 * math.pi * np.asarray(tooth) / teeth

@@ -227,7 +227,7 @@ def _check_method(method: str) -> str:
     return method
 
 
-def _check_teeth(teeth, N: int) -> int | str | None:
+def _check_teeth(teeth, N: int) -> int | None:
     """``"sweep"`` -> 0 windows at the sweep's teeth; int k; ``"all"`` -> None."""
     if teeth == "all":
         return None
@@ -407,7 +407,7 @@ def check_interference(spec, misalignment_deg: float, angles_deg: ArrayLike, *,
     elif model.half_window != k or abs(model.hub.tolerance_mm - tol) > 1e-12 * tol:
         raise ArgumentError(f"the given model ({model.label}, tolerance {model.hub.tolerance_mm}"
                          f" mm) does not match teeth = {teeth!r}, tolerance_mm = {tol}")
-    if model.full:
+    if k is None:  # model.full
         every = frozenset(range(N))
         sides = (every, every) if backlash else (frozenset(), frozenset())
         plan = [[Window(0, every, every, sides)] for _ in psi]
@@ -492,8 +492,9 @@ def _collect(acc: _PoseAcc, ev: _WindowResult, w: Window, A: NDArray, j: int, an
         tooth = (rel + c) % N
         if tooth not in w.overlap:
             continue
+        x, y, z = window_to_sleeve(cen, c, N)
         acc.pieces.append(Overlap(j, angle, tooth, flank, vol, dep,
-                                  tuple(float(x) for x in window_to_sleeve(cen, c, N))))
+                                  (float(x), float(y), float(z))))
         f = FLANKS.index(flank)
         acc.side[f] = min(acc.side[f], -dep / (r_b * abs(dist.turning_rate(A, deep[0]))))
         if dep > acc.depth:

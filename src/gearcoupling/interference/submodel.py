@@ -15,6 +15,7 @@ overlap volumes add up.
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass
 
 import numpy as np
@@ -52,7 +53,7 @@ class Model:
     @property
     def window_teeth(self) -> int:
         """Teeth one window covers (``N`` for the full parts)."""
-        return self.teeth if self.full else 2 * self.half_window + 1
+        return self.teeth if self.half_window is None else 2 * self.half_window + 1
 
     @property
     def triangles(self) -> tuple[int, int]:
@@ -170,11 +171,12 @@ def side_teeth(clearance: NDArray, margin_mm: float) -> list[tuple[NDArray, NDAr
     """
     c = np.where(np.isfinite(clearance), clearance, np.inf)
     low = np.min(c, axis=1)  # (flank, angle)
-    return [tuple(np.flatnonzero(c[f, :, j] <= low[f, j] + margin_mm) for f in range(2))
+    near = c <= low[:, None, :] + margin_mm  # (flank, tooth, angle)
+    return [(np.flatnonzero(near[0, :, j]), np.flatnonzero(near[1, :, j]))
             for j in range(c.shape[2])]
 
 
-def windows(teeth: NDArray, count: int, half_window: int) -> list[tuple[int, frozenset]]:
+def windows(teeth: Iterable[int], count: int, half_window: int) -> list[tuple[int, frozenset]]:
     """Windows of ``2k + 1`` teeth that cover ``teeth``, each owning a disjoint part of them.
 
     Each cyclic run of consecutive selected teeth is tiled from its first tooth; a window
@@ -197,7 +199,8 @@ def windows(teeth: NDArray, count: int, half_window: int) -> list[tuple[int, fro
             while (start + n) % count in present:
                 n += 1
             runs.append((start, n))
-    out, taken = [], set()
+    out: list[tuple[int, frozenset]] = []
+    taken: set[int] = set()
     for start, n in runs:
         for j in range(-(-n // width)):
             first = start + width * j

@@ -68,7 +68,7 @@ def tooth_compliance(spec):
     """The compliance object of ``[load] stiffness``: cantilever, or the FE table."""
     if spec.load.stiffness == "fe":
         try:
-            from ..fea import tooth_compliance_table  # type: ignore[attr-defined]
+            from ..fea import tooth_compliance_table
         except ImportError as err:
             from ..errors import BackendError
 
@@ -141,7 +141,7 @@ def load_from_sweep(spec, sweep_result, *, torque_Nm: float | None = None,
 
         out = solve_compliance(spec, g, z, r, abs(T) * 1e3, tooth_compliance(spec))
     else:
-        from .surface import solve_surface  # type: ignore[import-not-found]
+        from .surface import solve_surface
 
         out = solve_surface(spec, sweep_result, torque_Nm=T,
                             loaded_flank=FLANK_NAMES[flank], compliance=tooth_compliance(spec),

@@ -104,9 +104,9 @@ class CantileverCompliance:
 
     def load_angle(self, part: str, r: ArrayLike) -> NDArray[np.float64]:
         """Angle ``beta`` of the normal load to the tooth's perpendicular at radius ``r``."""
-        r = np.maximum(np.asarray(r, dtype=float), self.r_b)
-        alpha = np.arccos(np.clip(self.r_b / r, -1.0, 1.0))
-        return np.abs(alpha - self.half_thickness(part, r) / r)
+        rr = np.maximum(np.asarray(r, dtype=float), self.r_b)
+        alpha = np.arccos(np.clip(self.r_b / rr, -1.0, 1.0))
+        return np.abs(alpha - self.half_thickness(part, rr) / rr)
 
     def _heights(self, part: str, r_F: float):
         if part == "hub":

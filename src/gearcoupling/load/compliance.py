@@ -106,6 +106,7 @@ def solve_compliance(spec, gap_rad: NDArray, z_mm: NDArray, r_mm: NDArray, torqu
     gr = np.where(touch, g - g_min[None, :], np.inf)  # gaps above the first, exact at 0
     T = float(torque_Nmm)
     x = np.zeros(g_min.shape)  # wind-up beyond g_min
+    W: NDArray | None  # None: _solve_load's own start
     W = dW = np.zeros(g.shape)
     if T > 0:
         # bracket top: each tooth alone carrying T; the smallest is an upper bound

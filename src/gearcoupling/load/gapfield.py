@@ -160,8 +160,7 @@ def gap_field(spec, misalignment: float, theta: ArrayLike, flank: str, z_mm: Arr
     rq = np.broadcast_to(r[None, None, :], (n, nf, n_depth))
     half = sm.half_angle(rq)  # the sleeve cw flank lies at polar angle -half
     aq = -half  # first guess for the facing hub point
-    zh = rh = None
-    for _ in range(FIXED_POINT_STEPS):
+    for _ in range(FIXED_POINT_STEPS):  # FIXED_POINT_STEPS >= 1 sets zh, rh
         px, py, zh = _apply(P, rq * np.cos(aq), rq * np.sin(aq), zq, transpose=True)
         rh = np.hypot(px, py)
         a = _hub_angle(table, hm, zh, rh)
@@ -183,7 +182,7 @@ def gap_field(spec, misalignment: float, theta: ArrayLike, flank: str, z_mm: Arr
     if not np.all(np.isfinite(gap[mask])):
         raise SpecError("gap field", "non-finite", "the flank geometry gave no finite gap")
     gap = np.where(np.isfinite(gap), gap, 0.0)
-    return GapField(z, s, r, dz, ds, gap, mask, (hub_face | sleeve_face) & ~mask,
+    return GapField(z, s, r, dz, float(ds), gap, mask, (hub_face | sleeve_face) & ~mask,
                     zh, rh, r_b)
 
 

@@ -208,18 +208,19 @@ def solve_contact(hs: HalfSpace, gap0_mm: ArrayLike, *, load_N: float | None = N
     g_w = np.where(m, g0, np.inf)
     gmin = float(np.min(g_w)) if np.any(m) else 0.0
     given_load = load_N is not None
-    if given_load:
+    W = approach = 0.0  # exactly one is given (checked above) and used
+    if load_N is not None:
         if not (math.isfinite(load_N) and load_N > 0):
             raise SpecError("load_N", load_N, "must be finite and > 0 N")
         W = float(load_N)
-    else:
+    elif approach_mm is not None:
         if not math.isfinite(approach_mm):
             raise SpecError("approach_mm", approach_mm, "must be finite")
         if approach_mm <= gmin or not np.any(m):
             z = np.zeros(g0.shape)
             return ContactSolution(z, np.where(m, g0 - approach_mm, 0.0), approach_mm,
                                    np.zeros(batch), np.zeros(batch), 0, 0.0)
-        W = None
+        approach = float(approach_mm)
     if not np.any(m):
         raise SpecError("mask", "empty", "no contactable cell carries the load")
 
@@ -244,7 +245,7 @@ def solve_contact(hs: HalfSpace, gap0_mm: ArrayLike, *, load_N: float | None = N
         # scale a first guess so the gap at the start cells roughly closes
         u1 = operator(p)
         on = p > 0
-        s = max(approach_mm - gmin, 0.0) / max(float(np.max(u1[on])), 1e-300)
+        s = max(approach - gmin, 0.0) / max(float(np.max(u1[on])), 1e-300)
         p *= s
     scale_len = max(float(np.max(np.abs(g0[m] - gmin))), 1e-12)
     delta, G_old = 0.0, 1.0
@@ -252,7 +253,7 @@ def solve_contact(hs: HalfSpace, gap0_mm: ArrayLike, *, load_N: float | None = N
     t = np.zeros_like(p)
     u = operator(p)
     res = math.inf
-    alpha = approach_mm if not given_load else 0.0
+    alpha = approach if not given_load else 0.0
     it = 0
     while True:
         it += 1
@@ -266,7 +267,7 @@ def solve_contact(hs: HalfSpace, gap0_mm: ArrayLike, *, load_N: float | None = N
         if given_load:
             alpha = float(np.mean(g[on]))
         else:
-            alpha = float(approach_mm)
+            alpha = approach
         g = np.where(m, g - alpha, 0.0)
         G = float(np.sum(g[on] ** 2))
         t = np.where(on, g + (delta * G / G_old if G_old > 0 else 0.0) * t, 0.0)

@@ -138,6 +138,7 @@ def plot_patches(res, rotation: int = 0, ax=None):
         w, h = res.patch_length_mm[k, rotation], res.patch_width_mm[k, rotation]
         xy = (x0 + res.contact_z_mm[k, rotation], s)
         edge = "red" if res.edge_contact[k, rotation] else "none"
+        patch: mpatches.Patch
         if res.contact_regime[k, rotation] == 1:
             patch = mpatches.Ellipse(xy, w, h, facecolor=cmap(norm(p[k])), edgecolor=edge)
         else:  # line contact: a band over the whole active profile at that z

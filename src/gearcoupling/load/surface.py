@@ -384,7 +384,7 @@ def solve_surface(spec, sweep_result, *, torque_Nm: float, loaded_flank: str | N
     e_star = contact_modulus(spec)
     mis = math.radians(sw.misalignment_deg)
     load_N = abs(T) * 1e3 / r_b
-    res = {name: np.zeros((N, M)) for name in ARRAYS}
+    res: dict[str, Any] = {name: np.zeros((N, M)) for name in ARRAYS}
     res["edge_contact"] = np.zeros((N, M), dtype=bool)
     res["patches"] = np.zeros((N, M), dtype=int)
     windup = np.zeros(M)

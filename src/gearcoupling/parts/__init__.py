@@ -11,6 +11,8 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 
@@ -20,7 +22,9 @@ from .builder import SURFACE_KINDS, MeshBuilder, tooth_runs
 from .hub import build_hub_run, hub_layout
 from .sleeve import build_sleeve_run, sleeve_layout
 
-_BUILDERS = {"hub": (hub_layout, build_hub_run), "sleeve": (sleeve_layout, build_sleeve_run)}
+# part -> (layout(spec, tol), add_run(builder, layout, run))
+_BUILDERS: dict[str, tuple[Callable[..., Any], Callable[..., None]]] = {
+    "hub": (hub_layout, build_hub_run), "sleeve": (sleeve_layout, build_sleeve_run)}
 
 
 def default_tolerance(spec) -> float:

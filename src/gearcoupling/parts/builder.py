@@ -195,7 +195,7 @@ def add_cap(b: MeshBuilder, cap: NDArray, outer: NDArray, inner: NDArray, run: R
 class MeshBuilder:
     """Collects vertices and labelled triangles of one part."""
 
-    def __init__(self):
+    def __init__(self) -> None:
         self._verts: list[NDArray] = []
         self._faces: list[NDArray] = []
         self._kind: list[NDArray] = []

@@ -104,9 +104,9 @@ def evaluate(payload: dict[str, Any], inputs: dict[str, Any], sample: int = 0) -
                                 tolerance_mm=acc["tolerance_mm"])
             row.update({k: v for k, v in got.items() if k in wanted})
         if any(k in wanted for k in LOAD_OUTPUTS):
-            got = load_outputs(spec, mis, torque, angles=int(acc["load_angles"]),
-                               model=payload["conditions"].get("load_model"))
-            row.update({k: v for k, v in got.items() if k in wanted})
+            loads = load_outputs(spec, mis, torque, angles=int(acc["load_angles"]),
+                                 model=payload["conditions"].get("load_model"))
+            row.update({k: v for k, v in loads.items() if k in wanted})
     except GearCouplingError as err:
         row["error"] = f"{type(err).__name__}: {err}"
         row.update({k: None for k in names if k in wanted})

@@ -83,15 +83,24 @@ class Parameter:
         if self.values:
             return self.values
         n = self.steps or 1
-        pts = [self.low + (self.high - self.low) * k / max(n - 1, 1) for k in range(n)]
+        low, high = self.bounds()
+        pts = [low + (high - low) * k / max(n - 1, 1) for k in range(n)]
         return tuple(round(p) if self.integer else p for p in pts)
 
     def at(self, u: float) -> Any:
         """The value at unit coordinate ``u`` in [0, 1) (random and Latin-hypercube)."""
         if self.values:
             return self.values[min(int(u * len(self.values)), len(self.values) - 1)]
-        value = self.low + (self.high - self.low) * u
+        low, high = self.bounds()
+        value = low + (high - low) * u
         return round(value) if self.integer else value
+
+    def bounds(self) -> tuple[float, float]:
+        """``(low, high)`` of a parameter given by a range."""
+        if self.low is None or self.high is None:
+            raise SpecError(f"line {self.line} vary '{self.key}'", None,
+                            "needs values or a range [low, high]")
+        return self.low, self.high
 
 
 @dataclass(frozen=True)
@@ -224,7 +233,7 @@ def _parameter(entry: Any, index: int, text: str, path: str) -> Parameter:
 def _check_values(p: Parameter, study_path: str, base_name: str, base_text: str,
                   fixed: dict[str, Any]) -> None:
     """Every explicit value and both range ends must pass the spec's validation alone."""
-    probes = list(p.values) if p.values else [p.low, p.high]
+    probes = list(p.values) if p.values else list(p.bounds())
     if p.integer:
         probes = [round(v) for v in probes]
     for value in probes:
@@ -333,8 +342,8 @@ def load_study(path: str | Path) -> Study:
     n = sample_count(study)
     if not 1 <= n <= MAX_SAMPLES:
         raise SpecError(f"{src} samples", n, f"must be 1-{MAX_SAMPLES}")
-    for k, plot in enumerate(plots):
-        _check_plot(plot, k, study, text)
+    for i, plot in enumerate(plots):
+        _check_plot(plot, i, study, text)
     return study
 
 

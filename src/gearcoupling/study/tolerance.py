@@ -353,10 +353,11 @@ def tolerance_sample(spec, misalignment_deg: float, tol: Tolerances, seed: int, 
         nominal = linear_outputs(spec, ideal, T)["capacity_Nm"]
     else:
         out = model_outputs(spec, maps.skeleton, gap, T, model)
-        key = ("nominal", model, id(ideal), T)
-        if key not in _CACHE:
-            _CACHE[key] = model_outputs(spec, maps.skeleton, ideal, T, model)["capacity_Nm"]
-        nominal = _CACHE[key]
+        nominal_key = ("nominal", model, id(ideal), T)
+        if nominal_key not in _CACHE:
+            _CACHE[nominal_key] = model_outputs(spec, maps.skeleton, ideal, T,
+                                                model)["capacity_Nm"]
+        nominal = _CACHE[nominal_key]
     out["nominal_capacity_Nm"] = nominal
     out["K"] = out["capacity_Nm"] / nominal
     return out

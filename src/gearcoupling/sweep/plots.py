@@ -76,7 +76,7 @@ def plot_clearance(result: SweepResult, *, ax=None):
             ax = axes[row, f]
             y = np.where(np.isfinite(data[f][:, order]), data[f][:, order] * 1e3, np.nan)
             segments = np.stack(np.broadcast_arrays(psi[order][None, :], y), axis=-1)
-            ax.add_collection(LineCollection(segments, colors=colours, lw=0.6))  # one per tooth
+            ax.add_collection(LineCollection(list(segments), colors=colours, lw=0.6))  # per tooth
             ax.plot(psi[order], np.min(data[f], axis=0)[order] * 1e3, color="k", lw=1.5,
                     label="contacting tooth")
             ax.set_title(f"{flank} flank, {label} (circumferential)")

@@ -6,7 +6,7 @@ import math
 from dataclasses import fields
 
 import numpy as np
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, NDArray
 
 from ..errors import SpecError
 from ..geometry.sleeve import sleeve_model
@@ -78,7 +78,7 @@ def flank_minima(spec, misalignment_rad: float, theta, *, tolerance_mm: float,
                       grid=grid, measures=measures) for j in range(0, th.size, CHUNK_ANGLES)]
     res = {m: Minimum(*(np.concatenate([getattr(p[m], f.name) for p in parts])
                         for f in fields(Minimum))) for m in parts[0]}
-    out = {key: res[m].value_mm for key, m in _KEYS.items() if m in res}
+    out: dict[str, NDArray] = {key: res[m].value_mm for key, m in _KEYS.items() if m in res}
     if "normal" in res:
         full = res["normal"]
         out.update(z=full.z_mm, r=full.r_mm, kind=full.kind, rate=full.rate)

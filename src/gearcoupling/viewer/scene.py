@@ -19,6 +19,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from functools import cached_property
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -30,6 +31,9 @@ from ..interference.posed import PreparedPart, affine
 from ..parts import SURFACE_KINDS, build_part, check_tolerance
 from ..sweep import sweep
 from ..sweep.pose import hub_to_sleeve, rot_z
+
+if TYPE_CHECKING:
+    import trimesh
 
 LOD_DIVISORS = {"coarse": 20.0, "medium": 100.0, "fine": 400.0}
 """Levels of detail: chordal tolerance = module / divisor."""
@@ -122,8 +126,8 @@ class SceneMeshes:
 
     spec: object
     tolerance_mm: float
-    hub: object  # trimesh.Trimesh, hub frame
-    sleeve: object  # trimesh.Trimesh, sleeve frame
+    hub: trimesh.Trimesh  # hub frame
+    sleeve: trimesh.Trimesh  # sleeve frame
     _cuts: dict = field(default_factory=dict)
 
     @cached_property
@@ -197,10 +201,11 @@ def cut_sleeve(sleeve_manifold, cutaway: str) -> Patch:
     if cutaway not in CUTAWAYS:
         raise ArgumentError(f"cutaway = {cutaway!r}: must be one of {CUTAWAYS}")
     man = sleeve_manifold
-    if cutaway == "quarter":  # keep x >= 0 or y >= 0
+    planes = _CUT_PLANES[cutaway]
+    if planes is None:  # quarter: keep x >= 0 or y >= 0
         man = man.trim_by_plane((1.0, 0.0, 0.0), 0.0) + man.trim_by_plane((0.0, 1.0, 0.0), 0.0)
     else:
-        for normal, offset in _CUT_PLANES[cutaway]:
+        for normal, offset in planes:
             man = man.trim_by_plane(normal, offset)
     return _patch_from_manifold(man)
 
@@ -417,7 +422,7 @@ def legend(scale_mm: float, steps: int = 4,
         frac = np.linspace(0.0, 1.0, steps + 1)[1:]
         cols = pressure_colors(frac, 1.0)
         return ([(f"{f:.2f} x allowable contact stress" + (" and above" if f == 1 else ""),
-                  tuple(int(x) for x in c)) for f, c in zip(frac, cols, strict=True)]
+                  _rgb(c)) for f, c in zip(frac, cols, strict=True)]
                 + [("no load", NO_CONTACT_RGB)])
     values = np.linspace(0.0, scale_mm, steps + 1)
     cols = clearance_colors(values, scale_mm)
@@ -426,9 +431,14 @@ def legend(scale_mm: float, steps: int = 4,
     for v, c in zip(values, cols, strict=True):
         label = f"{v:.4f} mm" + (zero if v == 0 else "") + \
             (" and above" if v == scale_mm else "")
-        out.append((label, tuple(int(x) for x in c)))
+        out.append((label, _rgb(c)))
     out.append(("no sleeve flank opposite", NO_CONTACT_RGB))
     return out
+
+
+def _rgb(c: NDArray[np.uint8]) -> tuple[int, int, int]:
+    r, g, b = (int(x) for x in c)
+    return r, g, b
 
 
 def legend_title(mode: str = "clearance") -> str:

@@ -24,6 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from ..atomic import default_output_dir
+from ..errors import GearCouplingError
 from .nodes import FRAMES, CouplingScene, ViewSettings, import_viser
 from .scene import (
     COLOR_MODES,
@@ -251,6 +252,8 @@ class ViewerApp:
         sc = self.scene
         self.mesh_info.content = (f"tolerance {sc.meshes.tolerance_mm:.4g} mm, "
                                   f"{sc.meshes.triangles} triangles")
+        if sc.state is None:  # CouplingScene sets a pose when it is built
+            raise GearCouplingError("the viewer scene has no pose")
         text = sc.state.summary().replace("\n", "<br/>")
         if sc.interference_volume_mm3 > 0:
             text += f"<br/>**interference volume {sc.interference_volume_mm3:.3f} mm³**"
