@@ -17,9 +17,23 @@ def frozen():
         return dict(data)
 
 
+@pytest.fixture(params=["numba", "numpy"])
+def backend(request, monkeypatch):
+    """Both point evaluations of :mod:`gearcoupling.sweep.fast`: compiled and numpy."""
+    from gearcoupling.sweep import clearance
+
+    if request.param == "numba":
+        pytest.importorskip("numba", reason="extra 'fast' not installed")
+        if clearance.gaps_kernel() is None:
+            pytest.skip("GEARCOUPLING_NUMBA=0")
+    else:
+        monkeypatch.setattr(clearance, "gaps_kernel", lambda: None)
+    return request.param
+
+
 @pytest.mark.parametrize("deg", MISALIGNMENTS_DEG)
 @pytest.mark.parametrize("name", TEMPLATES)
-def test_minima_equal_frozen_kernel(frozen, name, deg):
+def test_minima_equal_frozen_kernel(frozen, name, deg, backend):
     got = minima(name, deg)
     for key in VALUES:
         ref = frozen[f"{name}|{deg:g}|{key}"]
