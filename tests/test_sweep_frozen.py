@@ -24,10 +24,10 @@ def backend(request, monkeypatch):
 
     if request.param == "numba":
         pytest.importorskip("numba", reason="extra 'fast' not installed")
-        if clearance.gaps_kernel() is None:
+        if clearance.kernels() is None:
             pytest.skip("GEARCOUPLING_NUMBA=0")
     else:
-        monkeypatch.setattr(clearance, "gaps_kernel", lambda: None)
+        monkeypatch.setattr(clearance, "kernels", lambda: None)
     return request.param
 
 

@@ -34,7 +34,7 @@ from numpy.typing import NDArray
 from ..errors import ArgumentError
 from ..geometry.involute import inv
 from ..geometry.sleeve import SleeveModel
-from .fast import gaps_kernel
+from .fast import kernels
 from .flank_table import FlankTable
 from .pose import map_polar
 
@@ -181,17 +181,26 @@ class _Planes:
     def f(self, t, idx=None):
         """``(circumferential, normal)`` gaps at heights ``t`` (compiled where numba is
         installed and the table is in power form, :mod:`.fast`)."""
-        kernel = gaps_kernel()
-        if kernel is None or self.table._power is None:
+        kernel = self._kernels()
+        if kernel is None:
             rq, aq, _ = self.at(t, idx)
             return self.sl.gaps(rq, aq)
         rows = np.arange(self.z.size) if idx is None else np.asarray(idx, dtype=np.intp)
         t2 = np.ascontiguousarray(np.broadcast_to(t, np.shape(t)[:-1] + rows.shape)
                                   .reshape(-1, rows.size), dtype=float)
-        circ, normal = kernel(t2, rows, self.kz, self.lo, self.span, self.z, self.ct,
-                              self.st, self.sl.consts(self.ci, self.si))
+        circ, normal = kernel.gaps(t2, rows, *self._point_args())
         shape = np.shape(t)[:-1] + rows.shape
         return circ.reshape(shape), normal.reshape(shape)
+
+    def _kernels(self):
+        """:func:`.fast.kernels` where they apply (the table in power form), else None."""
+        k = kernels()
+        return None if k is None or self.table._power is None else k
+
+    def _point_args(self):
+        """The per-row arrays and constants the compiled kernels evaluate points from."""
+        return (self.kz, self.lo, self.span, self.z, self.ct, self.st,
+                self.sl.consts(self.ci, self.si))
 
     def cross(self, which: str, target: float, a, b, fa, fb, idx, rel: float = 1e-11):
         """``t`` in ``[a, b]`` where ``rq`` (or ``zq``) equals ``target``; ``fa``, ``fb``
@@ -200,6 +209,10 @@ class _Planes:
         ``rq`` is nearly linear in ``t``, so 3-4 steps reach 1e-11 relative."""
         x0, f0 = a, fa
         x1, f1 = b, fb
+        kernel = self._kernels()
+        if kernel is not None:
+            return kernel.cross(which == "z", float(target), a, b, fa, fb, idx, rel,
+                                *self._point_args())
         tol = rel * (abs(target) + 1.0)
         t = a
         for _ in range(60):
@@ -341,6 +354,18 @@ class _Planes:
             return T, F
         idx, a, b = idx0[pos], a0[pos], b0[pos]
         x0, g0, x1, g1 = a, GA[mis, pos], b, GB[mis, pos]
+        kernel = self._kernels()
+        if kernel is None:
+            res = self._slope_roots(idx, mis, a, b, x0, g0, x1, g1, iters, d)
+        else:
+            res = kernel.slope_roots(idx, mis, a, b, x0, g0, x1, g1, iters, d,
+                                     *self._point_args())
+        T[mis, idx] = res
+        F[mis, idx] = np.stack(self.f(res, idx))[mis, np.arange(idx.size)]
+        return T, F
+
+    def _slope_roots(self, idx, mis, a, b, x0, g0, x1, g1, iters: int, d: float):
+        """The secant search of :meth:`_interior` on gap ``mis[j]`` of row ``idx[j]``."""
         res = np.empty(idx.size)
         live = np.arange(idx.size)  # rows still iterating (positions in idx)
         for _ in range(iters):
@@ -363,9 +388,7 @@ class _Planes:
             if live.size == 0:
                 break
         res[live] = x1
-        T[mis, idx] = res
-        F[mis, idx] = np.stack(self.f(res, idx))[mis, np.arange(idx.size)]
-        return T, F
+        return res
 
     def pitch_line(self, R: float):
         """Both gaps on the pitch circle ``r = R`` of each plane: ``V, T, K`` ``(2, n)``."""
