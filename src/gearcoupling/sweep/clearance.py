@@ -80,7 +80,7 @@ class _Sleeve:
         self.gc = math.atan2(cy, cx)
 
     def consts(self, ci: float, si: float) -> tuple[float, ...]:
-        """The constants of :func:`.fast.gaps_kernel`."""
+        """The sleeve constants of the compiled kernels (:mod:`._compiled`)."""
         return (ci, si, self.r_b, self.c0, self.r_fillet, float(self.rho), self.cn, self.gc,
                 self.cx, self.cy)
 
@@ -207,12 +207,12 @@ class _Planes:
         are the values minus target at the ends (opposite signs). Secant steps on the two
         latest points, kept inside the shrinking bracket (regula falsi when they leave it);
         ``rq`` is nearly linear in ``t``, so 3-4 steps reach 1e-11 relative."""
-        x0, f0 = a, fa
-        x1, f1 = b, fb
         kernel = self._kernels()
         if kernel is not None:
             return kernel.cross(which == "z", float(target), a, b, fa, fb, idx, rel,
                                 *self._point_args())
+        x0, f0 = a, fa
+        x1, f1 = b, fb
         tol = rel * (abs(target) + 1.0)
         t = a
         for _ in range(60):

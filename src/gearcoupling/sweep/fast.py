@@ -1,12 +1,13 @@
-"""Optional compiled point evaluation of the clearance kernel (extra ``fast``: numba).
+"""Optional compiled point work of the clearance kernel (extra ``fast``: numba).
 
 :func:`kernels` returns the numba kernels (:mod:`._compiled`) that fuse what the numpy
 path does in ~30 array passes per point - flank ``y`` by Horner's rule, the pose, the
-involute and root-fillet gaps - into one loop, and run the interior secant search of
-:meth:`~.clearance._Planes._interior` row by row; or None when numba is not installed
-(then numpy is used). Both perform the same floating-point operations in the same order:
-the minima agree (``tests/test_sweep_frozen.py`` runs both). ``GEARCOUPLING_NUMBA=0``
-forces numpy.
+involute and root-fillet gaps - into one loop, and run the searches over the profile
+height (:meth:`~.clearance._Planes.cross`, the slope roots of
+:meth:`~.clearance._Planes._interior`) in compiled loops; or None when numba is not
+installed (then numpy is used). Both perform the same floating-point operations in the
+same order: the minima are equal (``tests/test_sweep_frozen.py`` runs both; see
+``docs/sweep-speed.md``). ``GEARCOUPLING_NUMBA=0`` forces numpy.
 """
 
 from __future__ import annotations
