@@ -8,7 +8,8 @@ brute-force evaluation of the exact flank (``hub_flank_model``) on a dense grid.
 Run: ``python benchmarks/bench_sweep.py [--quick] [--against /work/main]``. Times are the
 best of several runs of CPU time of this process (the machine is shared; wall time is
 printed beside it). ``--against DIR`` times the same full maps with the kernel of another
-checkout (``DIR/src``, in a subprocess) in the same run, for old-vs-new figures.
+checkout (``DIR/src``, in a subprocess) in the same run, for old-vs-new figures; with
+numba installed (extra ``fast``) the numpy path of this checkout is timed beside it.
 """
 
 from __future__ import annotations
@@ -58,9 +59,10 @@ print(best(lambda: sweep(s, 1.0, a, tolerance_mm=1e-6), {k}),
 """
 
 
-def other_checkout(path: str, repeats: int):
+def other_checkout(path: str, repeats: int, **env_extra: str):
     """(periodic, per-tooth) full-map CPU seconds of renzo-1967 with another checkout."""
-    env = dict(os.environ, PYTHONPATH=os.path.join(path, "src"), OPENBLAS_NUM_THREADS="1")
+    env = dict(os.environ, PYTHONPATH=os.path.join(path, "src"), OPENBLAS_NUM_THREADS="1",
+               **env_extra)
     out = subprocess.run([sys.executable, "-c", _OTHER.replace("{k}", str(repeats))],
                          env=env, capture_output=True, text=True, check=True)
     return [float(v) for v in out.stdout.split()]
@@ -90,6 +92,13 @@ def main(argv=None):
                       max(1, repeats // 3))
     print(f"  per tooth (periodic=False, {n} evaluations): {cpu * 1e3:.1f} ms CPU "
           f"({wall * 1e3:.1f} ms wall)")
+    from gearcoupling.sweep.fast import kernels
+
+    if kernels() is not None:  # the same source without numba (extra 'fast')
+        here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+        np_p, np_pt = other_checkout(here, repeats, GEARCOUPLING_NUMBA="0")
+        print(f"  numpy path (GEARCOUPLING_NUMBA=0): periodic {np_p * 1e3:.1f} ms CPU, per "
+              f"tooth {np_pt * 1e3:.1f} ms CPU (same run, subprocess)")
     if args.against:
         old, old_pt = other_checkout(args.against, repeats)
         print(f"  {args.against}: periodic {old * 1e3:.1f} ms CPU, per tooth "

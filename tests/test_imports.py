@@ -6,7 +6,7 @@ import sys
 import pytest
 
 HEAVY = ("trimesh", "manifold3d", "viser", "OCP", "meshio", "matplotlib", "dask",
-         "distributed", "pyarrow", "gmsh")
+         "distributed", "pyarrow", "gmsh", "numba")
 
 
 @pytest.mark.parametrize("module", [

@@ -34,8 +34,9 @@ from numpy.typing import NDArray
 from ..errors import ArgumentError
 from ..geometry.involute import inv
 from ..geometry.sleeve import SleeveModel
+from .fast import kernels
 from .flank_table import FlankTable
-from .pose import map_point_cs, map_polar
+from .pose import map_polar
 
 KINDS = ("interior", "face end", "tip edge", "form edge", "sleeve tip edge",
          "sleeve root fillet", "sleeve face end", "no contact")
@@ -78,18 +79,35 @@ class _Sleeve:
         self.cn = math.hypot(cx, cy)
         self.gc = math.atan2(cy, cx)
 
+    def consts(self, ci: float, si: float) -> tuple[float, ...]:
+        """The sleeve constants of the compiled kernels (:mod:`._compiled`)."""
+        return (ci, si, self.r_b, self.c0, self.r_fillet, float(self.rho), self.cn, self.gc,
+                self.cx, self.cy)
+
     def delta(self, rq, aq):
         """Angular gap ``aq + sigma(rq)/2`` to the involute (its extension off the flank)."""
         # inv(arccos(r_b / rq)) = tan - angle, with tan = sqrt(rq^2 - r_b^2) / r_b
-        x = np.minimum(self.r_b / rq, 1.0)
-        return aq + self.c0 - (np.sqrt(np.maximum(rq * rq - self.r_b**2, 0.0)) / self.r_b
-                               - np.arccos(x))
+        # in place, the same operations in the same order (one pass less per temporary)
+        acos = np.divide(self.r_b, rq)
+        np.minimum(acos, 1.0, out=acos)
+        np.arccos(acos, out=acos)
+        tan = rq * rq
+        tan -= self.r_b**2
+        np.maximum(tan, 0.0, out=tan)
+        np.sqrt(tan, out=tan)
+        tan /= self.r_b
+        tan -= acos
+        d = aq + self.c0
+        d -= tan
+        return d
 
     def gaps(self, rq, aq):
         """``(circumferential, normal)`` gaps (mm) at sleeve radius ``rq``, polar angle
         ``aq``; above ``r_fillet`` against the root fillet."""
         d = self.delta(rq, aq)
-        circ, normal = rq * d, self.r_b * d
+        circ = rq * d
+        d *= self.r_b
+        normal = d
         fil = rq > self.r_fillet
         if self.rho > 0 and np.any(fil):
             r, a = rq[fil], aq[fil]
@@ -98,6 +116,30 @@ class _Sleeve:
             circ[fil] = r * (a - beta)
             normal[fil] = self.rho - np.hypot(r * np.cos(a) - self.cx, r * np.sin(a) - self.cy)
         return circ, normal
+
+
+def _map_cs(r, y, z, ci: float, si: float, ct, st):
+    """:func:`~.pose.map_point_cs` of the flank point at radius ``r``, ``y`` (``x =
+    sqrt(r^2 - y^2)``), in place: the same operations in the same order, so the same
+    values, with fewer temporaries. ``r``, ``y`` carry the full shape; ``z``, ``ct``,
+    ``st`` broadcast against them."""
+    x = r * r
+    x -= y * y
+    np.sqrt(x, out=x)
+    u = x * st  # y after Rz(theta)
+    u += y * ct
+    v = u * (ci - 1.0)  # its change by the tilt
+    v -= z * si
+    qx = v * st
+    qx += x
+    v *= ct
+    v += y  # qy
+    zq = u * si
+    zq += z * ci
+    rq = qx * qx
+    rq += v * v
+    np.sqrt(rq, out=rq)
+    return rq, np.arctan2(v, qx), zq
 
 
 class _Planes:
@@ -122,8 +164,7 @@ class _Planes:
             return self.at(np.full(self.z.shape, float(end)))
         r = self.lo + end * self.span
         y = self.y_ends[end]
-        return map_point_cs(np.sqrt(r * r - y * y), y, self.z, self.ci, self.si, self.ct,
-                            self.st)
+        return _map_cs(r, y, self.z, self.ci, self.si, self.ct, self.st)
 
     def at(self, t, idx=None):
         """``(rq, aq, zq)`` at heights ``t`` (for the rows ``idx``, all when None); ``t``
@@ -135,18 +176,41 @@ class _Planes:
             lo, sp = self.lo[idx], self.span[idx]
         r = lo + t * sp
         y = self.table.plane_y(kz, t)
-        return map_point_cs(np.sqrt(r * r - y * y), y, z, self.ci, self.si, ct, st)
+        return _map_cs(r, y, z, self.ci, self.si, ct, st)
 
     def f(self, t, idx=None):
-        """``(circumferential, normal)`` gaps at heights ``t``."""
-        rq, aq, _ = self.at(t, idx)
-        return self.sl.gaps(rq, aq)
+        """``(circumferential, normal)`` gaps at heights ``t`` (compiled where numba is
+        installed and the table is in power form, :mod:`.fast`)."""
+        kernel = self._kernels()
+        if kernel is None:
+            rq, aq, _ = self.at(t, idx)
+            return self.sl.gaps(rq, aq)
+        rows = np.arange(self.z.size) if idx is None else np.asarray(idx, dtype=np.intp)
+        t2 = np.ascontiguousarray(np.broadcast_to(t, np.shape(t)[:-1] + rows.shape)
+                                  .reshape(-1, rows.size), dtype=float)
+        circ, normal = kernel.gaps(t2, rows, *self._point_args())
+        shape = np.shape(t)[:-1] + rows.shape
+        return circ.reshape(shape), normal.reshape(shape)
+
+    def _kernels(self):
+        """:func:`.fast.kernels` where they apply (the table in power form), else None."""
+        k = kernels()
+        return None if k is None or self.table._power is None else k
+
+    def _point_args(self):
+        """The per-row arrays and constants the compiled kernels evaluate points from."""
+        return (self.kz, self.lo, self.span, self.z, self.ct, self.st,
+                self.sl.consts(self.ci, self.si))
 
     def cross(self, which: str, target: float, a, b, fa, fb, idx, rel: float = 1e-11):
         """``t`` in ``[a, b]`` where ``rq`` (or ``zq``) equals ``target``; ``fa``, ``fb``
         are the values minus target at the ends (opposite signs). Secant steps on the two
         latest points, kept inside the shrinking bracket (regula falsi when they leave it);
         ``rq`` is nearly linear in ``t``, so 3-4 steps reach 1e-11 relative."""
+        kernel = self._kernels()
+        if kernel is not None:
+            return kernel.cross(which == "z", float(target), a, b, fa, fb, idx, rel,
+                                *self._point_args())
         x0, f0 = a, fa
         x1, f1 = b, fb
         tol = rel * (abs(target) + 1.0)
@@ -290,6 +354,18 @@ class _Planes:
             return T, F
         idx, a, b = idx0[pos], a0[pos], b0[pos]
         x0, g0, x1, g1 = a, GA[mis, pos], b, GB[mis, pos]
+        kernel = self._kernels()
+        if kernel is None:
+            res = self._slope_roots(idx, mis, a, b, x0, g0, x1, g1, iters, d)
+        else:
+            res = kernel.slope_roots(idx, mis, a, b, x0, g0, x1, g1, iters, d,
+                                     *self._point_args())
+        T[mis, idx] = res
+        F[mis, idx] = np.stack(self.f(res, idx))[mis, np.arange(idx.size)]
+        return T, F
+
+    def _slope_roots(self, idx, mis, a, b, x0, g0, x1, g1, iters: int, d: float):
+        """The secant search of :meth:`_interior` on gap ``mis[j]`` of row ``idx[j]``."""
         res = np.empty(idx.size)
         live = np.arange(idx.size)  # rows still iterating (positions in idx)
         for _ in range(iters):
@@ -312,9 +388,7 @@ class _Planes:
             if live.size == 0:
                 break
         res[live] = x1
-        T[mis, idx] = res
-        F[mis, idx] = np.stack(self.f(res, idx))[mis, np.arange(idx.size)]
-        return T, F
+        return res
 
     def pitch_line(self, R: float):
         """Both gaps on the pitch circle ``r = R`` of each plane: ``V, T, K`` ``(2, n)``."""

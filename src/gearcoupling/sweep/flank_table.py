@@ -166,9 +166,11 @@ class FlankTable:
         if self._power is None:
             return clenshaw(coef, t)
         s = 2.0 * t - 1.0
-        b = coef[-1]
-        for k in range(coef.shape[0] - 2, -1, -1):
-            b = b * s + coef[k]
+        b = coef[-1] * s  # in place below: the same operations, fewer temporaries
+        for k in range(coef.shape[0] - 2, 0, -1):
+            b += coef[k]
+            b *= s
+        b += coef[0]
         return b
 
     def even_in_z(self, rel: float = 1e-12) -> bool:
