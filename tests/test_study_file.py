@@ -168,3 +168,26 @@ def test_top_level_api_is_lazy():
             "assert gc.load_study is load_study and gc.run_study is run_study; "
             "assert 'pyarrow' not in sys.modules and 'distributed' not in sys.modules")
     subprocess.run([sys.executable, "-c", code], check=True)
+
+
+@pytest.mark.parametrize("name", study_names())
+def test_every_bundled_study_runs_one_evaluation(name):
+    """The first sample of each bundled study (the optimiser: the middle of its bounds)
+    evaluates without error, every requested output present and finite or None (no limit
+    reached within the range); a tolerance study's K lies in (0, 1]."""
+    from gearcoupling.study.optimise import crown_row, optimise_options
+
+    s = load_study(name)
+    if s.optimise is not None:
+        row = crown_row(s, {q.key: 0.5 * (q.low + q.high) for q in s.parameters},
+                        optimise_options(s))
+        wanted = ["capacity_mean_Nm", "capacity_min_Nm", "critical_misalignment_deg"]
+    else:
+        row = evaluate(s.payload(), samples(s)[0])
+        wanted = list(s.outputs)
+    assert row.get("error") is None, row.get("error")
+    for key in wanted:
+        v = row[key]
+        assert v is None or math.isfinite(v), (key, v)
+    if s.tolerances:
+        assert 0.0 < row["K"] <= 1.0
