@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .atomic import atomic_path
-from .errors import ArgumentError, BackendError
+from .errors import ArgumentError, BackendError, SpecError
 from .geometry.hub import hub_flank_model, hub_model, plane_rack
 from .geometry.section import transverse_section
 
@@ -48,6 +48,20 @@ def new_figure(*args: Any, **kwargs: Any) -> tuple[Figure, Any]:
 
     fig = Figure(**{k: kwargs.pop(k) for k in _FIGURE_KEYS if k in kwargs})
     return fig, fig.subplots(*args, **kwargs)
+
+
+def figure_axes(ax: Any, shape: tuple[int, int], **kwargs: Any) -> tuple[Figure, Any]:
+    """``(figure, axes)`` for a plot of ``shape = (rows, cols)`` panels: the caller's Axes
+    (one, or rows x cols of them in any nesting) shaped as :func:`new_figure` returns them,
+    or a new figure (``kwargs`` as for :func:`new_figure`) when ``ax`` is None."""
+    if ax is None:
+        return new_figure(*shape, **kwargs)
+    axes = np.asarray(ax, dtype=object)
+    count = shape[0] * shape[1]
+    if axes.size != count:
+        raise SpecError("ax", f"{axes.size} Axes", f"must hold {count} Axes for this plot")
+    axes = axes.reshape(shape).squeeze() if count > 1 else axes.ravel()[0]  # as subplots
+    return np.ravel(axes)[0].figure, axes
 
 
 def save_figure(fig: Figure, path: str | Path, dpi: int = 130) -> Path:

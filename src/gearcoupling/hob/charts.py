@@ -256,17 +256,10 @@ def plot_measuring_charts(charts: MeasuringCharts, ax=None):
     -------
     matplotlib.figure.Figure
     """
-    from ..plots import new_figure
+    from ..plots import figure_axes
 
-    if ax is None:
-        fig, axes = new_figure(2, 2, figsize=(11, 8))
-        axes = list(np.ravel(axes))
-    else:
-        axes = list(ax)
-        if len(axes) != 4:
-            raise SpecError("ax", len(axes), "four Axes: profile cw, lead cw, profile ccw, "
-                                             "lead ccw")
-        fig = axes[0].figure
+    fig, axes = figure_axes(ax, (2, 2), figsize=(11, 8))
+    axes = list(np.ravel(axes))
     for row, flank in enumerate(FLANKS):
         vals = charts.values[flank]
         pa, la = axes[2 * row], axes[2 * row + 1]

@@ -19,14 +19,10 @@ def plot_inspection(report: InspectionReport, ax=None):
     -------
     matplotlib.figure.Figure
     """
-    from ..plots import new_figure
+    from ..plots import figure_axes
 
-    if ax is None:
-        fig, axes = new_figure(2, 2, figsize=(12, 8))
-        axes = list(np.ravel(axes))
-    else:
-        axes = list(ax)
-        fig = axes[0].figure
+    fig, axes = figure_axes(ax, (2, 2), figsize=(12, 8))
+    axes = list(np.ravel(axes))
     k = report.teeth
     um = 1e3
     w = 0.4
@@ -72,14 +68,10 @@ def plot_deviation_map(report: InspectionReport, ax=None, limit_mm: float | None
     ``x`` = tooth + axial position across the face, ``y`` = roll length; colour = normal
     deviation (µm, + material). ``ax``: sequence of 2 Axes (cw, ccw), optional.
     """
-    from ..plots import new_figure
+    from ..plots import figure_axes
 
-    if ax is None:
-        fig, axes = new_figure(2, 1, figsize=(14, 7), sharex=True)
-        axes = list(np.ravel(axes))
-    else:
-        axes = list(ax)
-        fig = axes[0].figure
+    fig, axes = figure_axes(ax, (2, 1), figsize=(14, 7), sharex=True)
+    axes = list(np.ravel(axes))
     s = report.sample
     half = 0.5 * report.nominal["lead_evaluation_mm"]["L_beta"]
     d = 1e3 * s["d"]

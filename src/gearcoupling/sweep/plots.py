@@ -23,30 +23,14 @@ from pathlib import Path
 import numpy as np
 
 from ..atomic import atomic_path
-from ..errors import SpecError
 from ..geometry.sleeve import sleeve_model
+from ..plots import figure_axes
 from .clearance import _Sleeve
 from .design import binding_angle_deg, critical_misalignment_deg, min_backlash_rad
 from .flank_table import flank_table
 from .pose import map_polar
 from .result import SweepResult
 from .tooth_map import check_misalignment, flank_minima
-
-
-def _axes(ax, shape: tuple[int, int], **kwargs):
-    """``(figure, axes)``: the given Axes (one, or ``shape`` of them) or a new Figure."""
-    from matplotlib.figure import Figure
-
-    if ax is None:
-        fig = Figure(figsize=kwargs.pop("figsize", None))
-        axes = fig.subplots(*shape, **kwargs)
-        return fig, axes
-    axes = np.asarray(ax, dtype=object)
-    count = shape[0] * shape[1]
-    if axes.size != count:
-        raise SpecError("ax", f"{axes.size} Axes", f"must hold {count} Axes for this plot")
-    axes = axes.reshape(shape).squeeze() if count > 1 else axes.ravel()[0]  # as subplots
-    return np.ravel(axes)[0].figure, axes
 
 
 def _colours(name: str, count: int):
@@ -66,7 +50,7 @@ def plot_clearance(result: SweepResult, *, ax=None):
     """Clearance of every tooth against the coupling rotation, per flank (2 x 2 panels)."""
     from matplotlib.collections import LineCollection
 
-    fig, axes = _axes(ax, (2, 2), figsize=(13, 8), sharex=True)
+    fig, axes = figure_axes(ax, (2, 2), figsize=(13, 8), sharex=True)
     colours = _colours("twilight", result.teeth)
     psi = result.angles_deg
     order = np.argsort(psi)
@@ -98,7 +82,7 @@ def plot_contact_path(result: SweepResult, spec, *, ax=None):
     hf = table.half_face
     z = np.linspace(-hf, hf, 201)
     lo, hi = table.radii(z)
-    fig, axes = _axes(ax, (1, 2), figsize=(13, 5.5), sharey=True)
+    fig, axes = figure_axes(ax, (1, 2), figsize=(13, 5.5), sharey=True)
     for f, flank in enumerate(("cw", "ccw")):
         ax = axes[f]
         ax.fill_between(z, lo, hi, color="0.92", label="hub flank")
@@ -148,7 +132,7 @@ def plot_clearance_map(result: SweepResult, spec, *, ax=None):
     (2 panels); a flank that faces no sleeve flank (tilted out of the sleeve face at large
     misalignment) is said so instead of drawn."""
     th = result.contacting_theta_deg("normal")[0]
-    fig, axes = _axes(ax, (1, 2), figsize=(13, 5), sharey=True)
+    fig, axes = figure_axes(ax, (1, 2), figsize=(13, 5), sharey=True)
     for ax_, theta in zip(axes, (th, 90.0), strict=True):
         z, r, c = clearance_field(spec, result.misalignment_deg, theta)
         ax_.set_title(f"cw flank at θ = {theta:.1f}°")
@@ -181,7 +165,7 @@ def plot_backlash(spec, *, max_deg: float = 6.0, count: int = 25,
     """Smallest backlash over a turn against misalignment, with the binding angle."""
     a = np.linspace(0.0, max_deg, count)
     b = backlash_curve(spec, a)
-    fig, ax = _axes(ax, (1, 1), figsize=(8, 5))
+    fig, ax = figure_axes(ax, (1, 1), figsize=(8, 5))
     ax.plot(a, b * 1e3, "o-", ms=3, label="smallest backlash over a turn")
     ax.axhline(0.0, color="k", lw=0.8)
     ax.axvline(math.degrees(spec.design_misalignment), color="g", ls="--",
@@ -215,7 +199,7 @@ def plot_critical_vs_radius(spec, *, radius_ratios=(0.6, 0.8, 1.0, 1.5, 2.0, 3.0
     hf = 0.5 * spec.hub.face_width
     q = np.linspace(ratios.min(), ratios.max(), 100)
     est = np.degrees(hf / (q * R / math.tan(spec.tooth.pressure_angle)))
-    fig, ax = _axes(ax, (1, 1), figsize=(8, 5))
+    fig, ax = figure_axes(ax, (1, 1), figsize=(8, 5))
     ax.plot(ratios, crit, "o-", label="sweep (contact reaches the face end)")
     ax.plot(q, est, "--", color="0.4", label="b/2 = R_c cot φ · i (Renzo)")
     ax.set_xlabel("crowning radius R_c / R")
@@ -230,7 +214,7 @@ def plot_generation(spec, misalignment_deg: float, *, count: int = 721, ax=None)
     (2 panels)."""
     i = check_misalignment(misalignment_deg)
     theta = np.linspace(0.0, 2 * np.pi, count)
-    fig, axes = _axes(ax, (2, 1), figsize=(9, 7), sharex=True)
+    fig, axes = figure_axes(ax, (2, 1), figsize=(9, 7), sharex=True)
     curves = {}
     for gen in ("enveloped", "revolved"):
         s = spec.replace(**{"hub.crowning.generation": gen})
