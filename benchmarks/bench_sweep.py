@@ -5,7 +5,7 @@ clearance measures - for ``renzo-1967`` at 1°, and (2) the speed/accuracy table
 grid and tolerance against the time of the full map and the error of its minima against a
 brute-force evaluation of the exact flank (``hub_flank_model``) on a dense grid.
 
-Run: ``python benchmarks/bench_sweep.py [--quick] [--against /work/main]``. Times are the
+Run: ``python benchmarks/bench_sweep.py [--quick] [--against OLD_TREE]``. Times are the
 best of several runs of CPU time of this process (the machine is shared; wall time is
 printed beside it). ``--against DIR`` times the same full maps with the kernel of another
 checkout (``DIR/src``, in a subprocess) in the same run, for old-vs-new figures; with
