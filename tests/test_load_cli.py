@@ -109,3 +109,12 @@ def test_plots_return_figures_and_accept_ax():
     assert plot_vs_misalignment([0.5, 1.0], {"a": [1.0, 2.0]}, "y", ax=ax) is fig
     rows = [{"misalignment_deg": 0.0, "capacity_Nm": 10.0, "criteria_Nm": {"tooth_load": 10.0}}]
     assert plot_capacity({"s": rows}, ax=ax) is fig
+
+
+def test_run_skips_the_load_step_of_a_spec_without_torque(tmp_path, capsys):
+    spec = tmp_path / "no-torque.toml"
+    spec.write_text("[tooth]\nteeth = 38\nmodule = 2\n[hub]\nface_width = 20\n"
+                    "[hub.crowning]\nkind = \"circular\"\nradius = 38\n")
+    assert main(["run", str(spec), "--only", "load", "-o", str(tmp_path / "out")]) == 0
+    assert "skipped: no [load] torque_Nm" in capsys.readouterr().err
+    assert not (tmp_path / "out" / "load.csv").exists()

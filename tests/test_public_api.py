@@ -35,6 +35,18 @@ assert abs(gc.min_backlash_rad(spec, 0.0) * spec.tooth.pitch_radius
     subprocess.run([sys.executable, "-c", code], check=True)
 
 
+def test_callable_packages_show_their_functions_signature():
+    import inspect
+
+    import gearcoupling.load
+    import gearcoupling.sweep
+
+    for package, func in ((gearcoupling.sweep, gearcoupling.sweep.sweep),
+                          (gearcoupling.load, gearcoupling.load.load)):
+        assert inspect.signature(package) == inspect.signature(func)
+        assert next(iter(inspect.signature(package).parameters)) == "spec"
+
+
 def test_unknown_attribute_is_an_attribute_error():
     with pytest.raises(AttributeError, match="no_such_name"):
         gc.no_such_name  # noqa: B018

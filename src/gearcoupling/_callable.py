@@ -7,22 +7,19 @@ the package once anything imported it; making the package callable keeps
 
 from __future__ import annotations
 
+import inspect
 import sys
 import types
 from collections.abc import Callable
-from typing import Any, cast
+from typing import Any
 
 
 def make_callable(module_name: str, func: Callable[..., Any]) -> None:
-    """Calling the module ``module_name`` calls ``func`` (same signature and docstring)."""
+    """Calling the module ``module_name`` calls ``func`` (``inspect.signature`` and ``help``
+    show ``func``'s signature)."""
 
     class _CallableModule(types.ModuleType):
         __call__ = staticmethod(func)
-        __signature__: None
-        __wrapped__: Callable[..., Any]
+        __signature__ = inspect.signature(func)
 
-    module = sys.modules[module_name]
-    module.__class__ = _CallableModule
-    callable_module = cast(_CallableModule, module)
-    callable_module.__signature__ = None  # inspect.signature(module) follows __wrapped__
-    callable_module.__wrapped__ = func
+    sys.modules[module_name].__class__ = _CallableModule

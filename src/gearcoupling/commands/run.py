@@ -17,6 +17,10 @@ from .common import add_spec_arguments, output_dir, progress, spec_from_args
 Step = Callable[[object, Path], list[Path]]
 
 
+class SkipStep(Exception):
+    """A step that does not apply to this spec (said on stderr; the other steps run)."""
+
+
 def _spec(spec, out: Path) -> list[Path]:
     from ..atomic import write_json
     from .spec import resolved
@@ -52,7 +56,7 @@ def _load(spec, out: Path) -> list[Path]:
     from .load import load_files
 
     if spec.load.torque_Nm is None:
-        raise BackendError("no [load] torque_Nm in the spec")  # reported as skipped
+        raise SkipStep("no [load] torque_Nm in the spec")
     return load_files(spec, out, spec.design_misalignment_deg, 360)
 
 
@@ -108,7 +112,7 @@ def run(args) -> int:
         for _, label, step in chosen:
             try:
                 written.extend(step(spec, out))
-            except BackendError as err:  # optional extra missing: the other outputs stand
+            except (BackendError, SkipStep) as err:  # an extra missing: the others stand
                 print(f"gearcoupling: {label} skipped: {err}", file=sys.stderr)
             advance(label)
     for path in written:

@@ -11,7 +11,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq
 
 from ..errors import SpecError
 from ..geometry.sleeve import sleeve_model
@@ -101,6 +100,8 @@ def binding_angle_deg(spec, *, tolerance_deg: float = ANGLE_TOLERANCE_DEG,
                       steps: int = DEFAULT_STEPS) -> float | None:
     """Misalignment (degrees) at which the smallest backlash over a turn reaches zero
     (Brent's method to ``tolerance_deg``); ``None`` if the coupling does not bind by 6°."""
+    from scipy.optimize import brentq  # at the call: importing the sweep stays light
+
     hi = math.radians(MISALIGNMENT_RANGE_DEG[1])
     known: dict[float, float] = {}
 
