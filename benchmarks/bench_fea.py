@@ -9,7 +9,7 @@ Run: ``python benchmarks/bench_fea.py [cantilever] [convergence] [compare] [cont
   hub tooth compliance at the pitch point (mid-face, one load case) for three element sizes
   (ratio sqrt 2); Richardson extrapolation gives the converged value and each size's error.
 - ``compare``: renzo-1967 and industrial-m2 at the default size: FE pair compliance and C
-  at the pitch point against the tapered cantilever (``gearcoupling.load.cantilever``, when
+  at the pitch point against the tapered cantilever (``gearcoupling.loading.cantilever``, when
   available) and ISO 6336's c' (single-pair stiffness 14 N/(mm µm) of face width).
 - ``contact``: renzo-1967 at 1° and psi = 20°: the ``surface`` load model (branch
   load-surface) at the spec torque gives the wind-up; CalculiX surface-to-surface contact
@@ -92,7 +92,7 @@ def convergence(sizes=(1.0, 0.7, 0.5)) -> None:
 
 def _cantilever_pair(spec):
     try:
-        from gearcoupling.load.cantilever import CantileverCompliance
+        from gearcoupling.loading.cantilever import CantileverCompliance
     except ImportError:
         return None
     return float(CantileverCompliance(spec).pair_compliance_mm_per_N(0.0,
@@ -129,7 +129,7 @@ def contact(misalignment_deg=1.0, psi_deg=20.0, size_mm=1.0) -> None:
     """renzo-1967 at its spec torque: the surface load model's wind-up, then CalculiX contact
     of a 3-tooth hub sector in a 3-tooth sleeve sector turned by that wind-up."""
     from gearcoupling.fea.contact import contact_pose
-    from gearcoupling.load import load
+    from gearcoupling.loading import load
 
     spec = load_spec("renzo-1967")
     t0 = time.perf_counter()

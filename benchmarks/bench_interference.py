@@ -23,8 +23,8 @@ import time
 import numpy as np
 
 import gearcoupling as gc
+from gearcoupling.clearance import sweep
 from gearcoupling.interference import build_model, check_interference
-from gearcoupling.sweep import sweep
 
 
 def _gap_error(res, exact) -> float:

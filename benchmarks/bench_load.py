@@ -16,12 +16,12 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import numpy as np
 
-from gearcoupling.load import capacity, capacity_curve, capacity_from_sweep, load_from_sweep
-from gearcoupling.load.cantilever import CantileverCompliance
-from gearcoupling.load.contact import ContactModel
-from gearcoupling.load.plots import renzo_q
+from gearcoupling.clearance import sweep
+from gearcoupling.loading import capacity, capacity_curve, capacity_from_sweep, load_from_sweep
+from gearcoupling.loading.cantilever import CantileverCompliance
+from gearcoupling.loading.contact import ContactModel
+from gearcoupling.loading.plots import renzo_q
 from gearcoupling.spec import load_spec, template_names
-from gearcoupling.sweep import sweep
 
 LBF = 4.4482216152605
 IN = 25.4
@@ -43,14 +43,14 @@ def speed(quick):
     psi = np.arange(360.0)
     t_sw = timed(lambda: sweep(spec, 1.0, psi), 1 if quick else 3)
     sw = t_sw[2]
-    load_from_sweep(spec, sw, model="compliance")  # warm caches (cantilever, curvatures)
+    load_from_sweep(sw, model="compliance")  # warm caches (cantilever, curvatures)
     print("## Speed (renzo-1967, 1°, 360 rotations x 50 teeth, after the sweep)\n")
     print("| step | CPU median s | wall median s |\n|---|---|---|")
     print(f"| sweep (for reference) | {t_sw[0]:.3f} | {t_sw[1]:.3f} |")
     for model in ("linear", "compliance"):
-        c, w, _ = timed(lambda m=model: load_from_sweep(spec, sw, model=m), 5)
+        c, w, _ = timed(lambda m=model: load_from_sweep(sw, model=m), 5)
         print(f"| {model} model, full turn | {c:.3f} | {w:.3f} |")
-    c, w, _ = timed(lambda: load_from_sweep(spec, sw).summary(), 3)
+    c, w, _ = timed(lambda: load_from_sweep(sw).summary(), 3)
     print(f"| compliance + summary (machine loads, wear) | {c:.3f} | {w:.3f} |")
     c, w, _ = timed(lambda: capacity_curve(spec, np.linspace(0, 1.0, 25), model="compliance"),
                     1)
@@ -76,17 +76,17 @@ def knobs(quick):
           " (max tooth load and max interior pressure over a pitch):\n")
     print("| n_z x n_r | build s | max tooth load rel. err | max pressure rel. err |")
     print("|---|---|---|---|")
-    import gearcoupling.load.contact as contact
+    import gearcoupling.loading.contact as contact
 
     def run_with(nz, nr):
         cm = ContactModel(spec, n_z=nz, n_r=nr)
         old = contact.contact_model
         contact.contact_model = lambda s, cm=cm: cm
-        import gearcoupling.load.compliance as comp
+        import gearcoupling.loading.compliance as comp
 
         comp.contact_model = contact.contact_model
         try:
-            res = load_from_sweep(spec, sw, model="compliance")
+            res = load_from_sweep(sw, model="compliance")
         finally:
             contact.contact_model = old
             comp.contact_model = old
@@ -105,12 +105,12 @@ def knobs(quick):
     print("|---|---|---|---|")
     psi = np.linspace(0, 7.2, 13, endpoint=False)
     ref_sw = sweep(spec, 1.0, psi, tolerance_mm=1e-9)
-    ref_P = load_from_sweep(spec, ref_sw).tangential_force_N.max()
-    ref_C = capacity_from_sweep(spec, ref_sw)["capacity_Nm"]
+    ref_P = load_from_sweep(ref_sw).tangential_force_N.max()
+    ref_C = capacity_from_sweep(ref_sw).capacity_Nm
     for tol in (1e-3, 1e-4, 1e-5, 1e-7):
         c, _, s = timed(lambda t=tol: sweep(spec, 1.0, psi, tolerance_mm=t), 1)
-        e1 = abs(load_from_sweep(spec, s).tangential_force_N.max() / ref_P - 1)
-        e2 = abs(capacity_from_sweep(spec, s)["capacity_Nm"] / ref_C - 1)
+        e1 = abs(load_from_sweep(s).tangential_force_N.max() / ref_P - 1)
+        e2 = abs(capacity_from_sweep(s).capacity_Nm / ref_C - 1)
         print(f"| {tol:g} | {c:.3f} | {e1:.1e} | {e2:.1e} |")
     print("\nRotations per tooth pitch searched by `capacity` (compliance, 1°), against 97:\n")
     print("| rotations | time s | capacity rel. err |\n|---|---|---|")
@@ -157,8 +157,8 @@ def renzo_examples():
         a = K * renzo_q(zc / z0r) * N * P_i
         b = K * discrete_q(N, zc / z0) * N * P_i
         R = spec.tooth.pitch_radius
-        lin = capacity(spec, i, model="linear")["criteria_Nm"]["tooth_load"] * 1e3 / R / LBF
-        com = capacity(spec, i, model="compliance")["criteria_Nm"]["tooth_load"] * 1e3 / R / LBF
+        lin = capacity(spec, i, model="linear").criteria_Nm["tooth_load"] * 1e3 / R / LBF
+        com = capacity(spec, i, model="compliance").criteria_Nm["tooth_load"] * 1e3 / R / LBF
         sw = sweep(spec, i, np.arange(0, 360.0, 2.0))
         summ = sw.summary()
         z0_sweep = summ["pitch_line_peak_to_peak_normal_mm"]["ccw"] / IN
@@ -182,7 +182,7 @@ def crowns(quick):
         for a in angles:
             c = capacity(spec, a, model="compliance")
             caps[(n, a)] = c
-            fe = c["face_end_torque_Nm"]
+            fe = c.face_end_torque_Nm
             cells.append(f"{c['capacity_Nm']:.0f} ({c['governing'][:4]}) / "
                          f"{c['criteria_Nm']['tooth_load']:.0f} / {fe:.0f}")
         print(f"| {n} | " + " | ".join(cells) + " |")
@@ -217,7 +217,7 @@ def regimes():
     print("| torque N·m | hertz | line | edge contact | q | max p0 MPa |")
     print("|---|---|---|---|---|---|")
     for T in (1.0, 30.0, 300.0, 2260.0, 20000.0, 200000.0):
-        r = load_from_sweep(spec, sw, torque_Nm=T)
+        r = load_from_sweep(sw, torque_Nm=T)
         print(f"| {T:g} | {int(np.sum(r.contact_regime == 1))} | "
               f"{int(np.sum(r.contact_regime == 2))} | {int(np.sum(r.edge_contact))} | "
               f"{r.q():.3f} | {r.interior_pressure_MPa.max():.0f} |")

@@ -38,7 +38,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 import gearcoupling as gc
-from gearcoupling.sweep import sweep
+from gearcoupling.clearance import sweep
 from random_specs import STRATA, random_spec_data
 
 

@@ -27,10 +27,10 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import numpy as np
 
-from gearcoupling.load.api import tooth_compliance
-from gearcoupling.load.surface import DEFAULT_GRID, solve_surface
+from gearcoupling.clearance import sweep
+from gearcoupling.loading.inputs import tooth_compliance
+from gearcoupling.loading.surface import DEFAULT_GRID, solve_surface
 from gearcoupling.spec import load_spec
-from gearcoupling.sweep import sweep
 
 LADDER = ((16, 12), (24, 16), (32, 24), (48, 32), (64, 48), (96, 64), (128, 96))
 
@@ -65,13 +65,13 @@ def theory():
 
     from gearcoupling.geometry.hub import hub_flank
     from gearcoupling.geometry.sleeve import sleeve_model
-    from gearcoupling.load.halfspace import (
+    from gearcoupling.loading.halfspace import (
         composite_modulus,
         half_space,
         hertz_ellipse,
         solve_contact,
     )
-    from gearcoupling.load.surface import contact_modulus
+    from gearcoupling.loading.surface import contact_modulus
 
     E = composite_modulus(206000.0, 0.3, 206000.0, 0.3)
     print("Hertz ellipse, W = 200 N, ry = 15 mm, grid over 2.5 semi-axes; errors of p0, a, b "
@@ -143,8 +143,8 @@ def theory():
 def figures(out_dir):
     from pathlib import Path
 
+    from gearcoupling.clearance.design import critical_misalignment_deg
     from gearcoupling.plots import new_figure, save_figure
-    from gearcoupling.sweep.design import critical_misalignment_deg
 
     spec = load_spec("renzo-1967")
     comp = tooth_compliance(spec)

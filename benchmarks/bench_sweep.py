@@ -25,12 +25,12 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import numpy as np
 
+from gearcoupling.clearance import sweep
+from gearcoupling.clearance.flank_table import flank_table
+from gearcoupling.clearance.kernel import minimise
+from gearcoupling.clearance.reference import brute_force
 from gearcoupling.geometry.sleeve import sleeve_model
 from gearcoupling.spec import load_spec
-from gearcoupling.sweep import sweep
-from gearcoupling.sweep.clearance import minimise
-from gearcoupling.sweep.flank_table import flank_table
-from gearcoupling.sweep.reference import brute_force
 
 
 def timed(fn, repeats):
@@ -46,7 +46,7 @@ def timed(fn, repeats):
 _OTHER = """
 import time, numpy as np
 from gearcoupling.spec import load_spec
-from gearcoupling.sweep import sweep
+from gearcoupling.clearance import sweep
 def best(fn, k):
     out = []
     for _ in range(k):
@@ -92,7 +92,7 @@ def main(argv=None):
                       max(1, repeats // 3))
     print(f"  per tooth (periodic=False, {n} evaluations): {cpu * 1e3:.1f} ms CPU "
           f"({wall * 1e3:.1f} ms wall)")
-    from gearcoupling.sweep.fast import kernels
+    from gearcoupling.clearance.fast import kernels
 
     if kernels() is not None:  # the same source without numba (extra 'fast')
         here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -121,7 +121,7 @@ def main(argv=None):
     ref = np.array([[brute_force(spec, mis, th, normal) for normal in (False, True)]
                     for th in thetas])  # (n_ref, 2)
     t_ref = (time.process_time() - c0) / n_ref
-    print(f"\nbrute force (gearcoupling.sweep.reference: 401 x 121 exact flank points per "
+    print(f"\nbrute force (gearcoupling.clearance.reference: 401 x 121 exact flank points per "
           f"plane grid, polished): {t_ref:.2f} s CPU per turning angle, both gaps "
           f"({t_ref * 900 / 60:.0f} min for the 900 distinct angles of the map)")
     print("\nspeed/accuracy (full map time; error = kernel minus brute force over "

@@ -1,7 +1,7 @@
 """Frozen outputs of the sweep kernel, to pin its speed-ups to the kernel they replace.
 
 ``tests/golden/sweep_kernel.npz`` holds, per template and misalignment (0, 1, 3, 6°), the
-minima of tooth 0's cw flank (:func:`~gearcoupling.sweep.tooth_map.flank_minima`,
+minima of tooth 0's cw flank (:func:`~gearcoupling.clearance.tooth_map.flank_minima`,
 ``periodic=False``, default tolerance) at :data:`THETA_DEG`, computed with the kernel of
 main on 2026-11-23 (commit 6466353, before the sweep-speed changes). Regenerate only after
 an intended change of the kernel's results: ``PYTHONPATH=src python tests/golden_sweep_kernel.py``
@@ -15,8 +15,8 @@ from pathlib import Path
 
 import numpy as np
 
+from gearcoupling.clearance.tooth_map import flank_minima
 from gearcoupling.spec import load_spec
-from gearcoupling.sweep.tooth_map import flank_minima
 
 FILE = Path(__file__).parent / "golden" / "sweep_kernel.npz"
 TEMPLATES = ("renzo-1967", "renzo-1967-end-round", "renzo-1967-vari-crown", "industrial-m2",

@@ -34,7 +34,7 @@ def golden(spec) -> dict:
 
 
 # --- sweep design angles (issue 14 item 5; key "sweep", written by ``--sweep``) ---
-SWEEP_SOURCE = ("gearcoupling.sweep.design: critical_misalignment_deg (bisection) and "
+SWEEP_SOURCE = ("gearcoupling.clearance.design: critical_misalignment_deg (bisection) and "
                 "binding_angle_deg (Brent), each to 1e-4 deg, 16 rotations per tooth pitch, "
                 "default kernel tolerance 1e-7 mm; computed by this code and cross-checked "
                 "where theory gives a value (renzo-1967: critical vs Renzo's b/2 = R_c cot(phi) i "
@@ -43,7 +43,7 @@ SWEEP_SOURCE = ("gearcoupling.sweep.design: critical_misalignment_deg (bisection
 
 def golden_sweep(spec) -> dict:
     """The sweep's critical and binding angles (deg, ``None`` = not reached by 6°)."""
-    from gearcoupling.sweep.design import binding_angle_deg, critical_misalignment_deg
+    from gearcoupling.clearance.design import binding_angle_deg, critical_misalignment_deg
 
     return {"critical_misalignment_deg": critical_misalignment_deg(spec),
             "binding_angle_deg": binding_angle_deg(spec),

@@ -114,10 +114,10 @@ def test_fe_table_drives_the_compliance_load_model(table):
     """The compliance load model takes the FE table through the protocol: at misalignment 0
     every tooth carries T / (N R), and the wind-up differs from the cantilever model's by
     exactly P (c_fe - c_cantilever) / R at the contact point (same gaps and contact law)."""
-    pytest.importorskip("gearcoupling.load.compliance")
-    from gearcoupling.load.cantilever import CantileverCompliance
-    from gearcoupling.load.compliance import solve_compliance
-    from gearcoupling.sweep import sweep
+    pytest.importorskip("gearcoupling.loading.compliance")
+    from gearcoupling.clearance import sweep
+    from gearcoupling.loading.cantilever import CantileverCompliance
+    from gearcoupling.loading.compliance import solve_compliance
 
     t, _ = table
     spec = load_spec("industrial-m2")

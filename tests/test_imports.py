@@ -14,7 +14,7 @@ HEAVY = ("trimesh", "manifold3d", "viser", "OCP", "meshio", "matplotlib", "dask"
     "gearcoupling.geometry",
     "gearcoupling.spec",
     "gearcoupling.cli",
-    "gearcoupling.load",
+    "gearcoupling.loading",
     "gearcoupling.hob",
     "gearcoupling.inspection",
     "gearcoupling.study",
@@ -44,7 +44,6 @@ def test_import_gearcoupling_loads_no_scipy():
 # the data flow of docs/conventions.md (DESIGN.md §4): each unit may import only these
 LAYERS = {
     "errors": set(),
-    "_callable": set(),
     "atomic": {"errors"},
     "loadspec": {"errors"},
     "geometry": {"errors"},
@@ -52,16 +51,16 @@ LAYERS = {
     "plots": {"atomic", "errors", "geometry", "spec"},
     "parts": {"atomic", "errors", "geometry", "spec"},
     "export": {"atomic", "errors", "geometry", "spec", "parts"},
-    "sweep": {"_callable", "atomic", "errors", "geometry", "spec", "plots"},
-    "interference": {"atomic", "errors", "geometry", "spec", "plots", "parts", "sweep"},
-    "fea": {"atomic", "errors", "geometry", "spec", "parts", "export", "sweep"},
-    "load": {"_callable", "atomic", "errors", "geometry", "spec", "loadspec", "plots", "sweep",
+    "clearance": {"atomic", "errors", "geometry", "spec", "plots"},
+    "interference": {"atomic", "errors", "geometry", "spec", "plots", "parts", "clearance"},
+    "fea": {"atomic", "errors", "geometry", "spec", "parts", "export", "clearance"},
+    "loading": {"atomic", "errors", "geometry", "spec", "loadspec", "plots", "clearance",
              "fea"},
-    "study": {"__init__", "atomic", "errors", "geometry", "spec", "plots", "sweep", "load"},
+    "study": {"__init__", "atomic", "errors", "geometry", "spec", "plots", "clearance", "loading"},
     "hob": {"atomic", "errors", "geometry", "spec", "plots"},
     "inspection": {"atomic", "errors", "geometry", "spec", "plots", "parts", "hob"},
-    "viewer": {"atomic", "errors", "geometry", "spec", "parts", "export", "sweep",
-               "interference", "load", "inspection"},
+    "viewer": {"atomic", "errors", "geometry", "spec", "parts", "export", "clearance",
+               "interference", "loading", "inspection"},
 }
 
 

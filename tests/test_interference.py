@@ -8,12 +8,12 @@ import numpy as np
 import pytest
 
 import gearcoupling as gc
+from gearcoupling.clearance import sweep
 from gearcoupling.errors import SpecError
 from gearcoupling.interference import build_model, check_interference, posed_meshes
 from gearcoupling.interference.distance import positive_integral
 from gearcoupling.interference.posed import hub_pose, window_pose, window_to_sleeve
 from gearcoupling.interference.submodel import hot_teeth, windows
-from gearcoupling.sweep import sweep
 
 FLANKS = ("cw", "ccw")
 

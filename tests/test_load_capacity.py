@@ -6,10 +6,10 @@ import numpy as np
 import pytest
 
 import gearcoupling as gc
-from gearcoupling.load import load_from_sweep
-from gearcoupling.load.capacity import _root_torque, capacity, capacity_from_sweep
-from gearcoupling.load.linear import solve_windup
-from gearcoupling.sweep import sweep
+from gearcoupling.clearance import sweep
+from gearcoupling.loading import load_from_sweep
+from gearcoupling.loading.capacity import _root_torque, capacity, capacity_from_sweep
+from gearcoupling.loading.linear import solve_windup
 
 IN = 25.4
 
@@ -89,44 +89,44 @@ def test_exact_geometry_carries_more_than_renzos_idealisation(renzo, i_deg):
     zc = ld.allowable_tooth_load_N / ld.mesh_stiffness_N_per_mm / IN
     q_ideal = discrete_q(renzo.tooth.teeth, zc / renzo_z0_in(renzo, i_deg))
     c = capacity(renzo, i_deg, model="linear")
-    q_exact = c["criteria_Nm"]["tooth_load"] / c["aligned_capacity_Nm"]
+    q_exact = c.criteria_Nm["tooth_load"] / c.aligned_capacity_Nm
     assert q_ideal < q_exact < 2.0 * q_ideal
 
 
 @pytest.mark.parametrize("model", ["linear", "compliance"])
 def test_capacity_torque_brings_the_worst_tooth_to_its_limit(renzo, model):
     sw = sweep(renzo, 1.0, np.linspace(0, 7.2, 25, endpoint=False))
-    c = capacity_from_sweep(renzo, sw, model=model)
+    c = capacity_from_sweep(sw, model=model)
     K = renzo.load.accuracy_factor
-    T = c["criteria_Nm"]["tooth_load"] / K
-    res = load_from_sweep(renzo, sw, torque_Nm=T, model=model)
+    T = c.criteria_Nm["tooth_load"] / K
+    res = load_from_sweep(sw, torque_Nm=T, model=model)
     assert np.max(res.tangential_force_N) == pytest.approx(
         renzo.load.allowable_tooth_load_N, rel=1e-6)
-    Tb = c["criteria_Nm"]["bending_stress"] / K
-    res = load_from_sweep(renzo, sw, torque_Nm=Tb, model=model)
+    Tb = c.criteria_Nm["bending_stress"] / K
+    res = load_from_sweep(sw, torque_Nm=Tb, model=model)
     assert np.max(res.root_stress_MPa) == pytest.approx(280.0, rel=1e-6)
-    assert c["governing"] == min(c["criteria_Nm"], key=c["criteria_Nm"].get)
-    assert c["load_sharing_factor"] == pytest.approx(1 / c["q"])
+    assert c.governing == min(c.criteria_Nm, key=c.criteria_Nm.get)
+    assert c.load_sharing_factor == pytest.approx(1 / c.q)
 
 
 def test_closed_form_capacity_matches_a_root_find_on_full_solves(renzo):
     sw = sweep(renzo, 1.5, np.linspace(0, 7.2, 9, endpoint=False))
-    c = capacity_from_sweep(renzo, sw, model="compliance")
+    c = capacity_from_sweep(sw, model="compliance")
     P_i = renzo.load.allowable_tooth_load_N
 
     def ratio(T_Nmm):
-        r = load_from_sweep(renzo, sw, torque_Nm=T_Nmm * 1e-3, model="compliance")
+        r = load_from_sweep(sw, torque_Nm=T_Nmm * 1e-3, model="compliance")
         return float(np.max(r.tangential_force_N)) / P_i
 
     T = _root_torque(ratio, 1e5) * 1e-3 * renzo.load.accuracy_factor
-    assert c["criteria_Nm"]["tooth_load"] == pytest.approx(T, rel=1e-6)
+    assert c.criteria_Nm["tooth_load"] == pytest.approx(T, rel=1e-6)
 
 
 def test_face_end_torque_is_where_a_patch_first_reaches_a_face_end(renzo):
     sw = sweep(renzo, 1.0, np.linspace(0, 7.2, 9, endpoint=False))
-    T = capacity_from_sweep(renzo, sw, model="compliance")["face_end_torque_Nm"]
-    below = load_from_sweep(renzo, sw, torque_Nm=0.999 * T, model="compliance")
-    above = load_from_sweep(renzo, sw, torque_Nm=1.001 * T, model="compliance")
+    T = capacity_from_sweep(sw, model="compliance").face_end_torque_Nm
+    below = load_from_sweep(sw, torque_Nm=0.999 * T, model="compliance")
+    above = load_from_sweep(sw, torque_Nm=1.001 * T, model="compliance")
     assert not np.any(below.edge_contact) and np.any(above.edge_contact)
 
 
@@ -137,12 +137,12 @@ def test_vari_crown_claim(renzo):
     within 20 % of each other: the claim is NOT reproduced (docs/load.md says why)."""
     uni = capacity(renzo, 3.0, model="compliance")
     vc = capacity(gc.load_spec("renzo-1967-vari-crown"), 3.0, model="compliance")
-    ratio = vc["capacity_Nm"] / uni["capacity_Nm"]
+    ratio = vc.capacity_Nm / uni.capacity_Nm
     assert 0.8 < ratio < 1.2, ratio
-    assert uni["face_end_torque_Nm"] == 0.0 and vc["face_end_torque_Nm"] == 0.0
+    assert uni.face_end_torque_Nm == 0.0 and vc.face_end_torque_Nm == 0.0
 
 
 def test_zero_misalignment_capacity_is_equal_sharing(renzo):
-    c = capacity(renzo, 0.0, model="compliance", angles=[0.0])
-    assert c["criteria_Nm"]["tooth_load"] == pytest.approx(c["aligned_capacity_Nm"], rel=1e-9)
-    assert c["q"] == pytest.approx(1.0, rel=1e-9)
+    c = capacity(renzo, 0.0, model="compliance", angles_deg=[0.0])
+    assert c.criteria_Nm["tooth_load"] == pytest.approx(c.aligned_capacity_Nm, rel=1e-9)
+    assert c.q == pytest.approx(1.0, rel=1e-9)

@@ -7,10 +7,10 @@ import numpy as np
 import pytest
 
 import gearcoupling as gc
+from gearcoupling.clearance import sweep
 from gearcoupling.cli import main
-from gearcoupling.load import load_from_sweep
-from gearcoupling.load.summary import machine_loads
-from gearcoupling.sweep import sweep
+from gearcoupling.loading import load_from_sweep
+from gearcoupling.loading.summary import machine_loads
 
 ISSUE_COLUMNS = ("theta_deg", "tooth", "flank", "gap_angle_deg", "deflection_mm",
                  "tangential_force_N", "normal_force_N", "contact_z_mm", "contact_r_mm",
@@ -68,7 +68,7 @@ def test_bad_load_arguments_exit_2_with_one_line(tmp_path, capsys, argv, field):
 def test_machine_loads_balance_when_aligned_without_friction():
     spec = gc.load_spec("renzo-1967", **{"load.friction": 0.0})
     sw = sweep(spec, 0.0, [0.0, 3.6])
-    res = load_from_sweep(spec, sw, torque_Nm=2000.0)
+    res = load_from_sweep(sw, torque_Nm=2000.0)
     ml = machine_loads(res)
     # the sleeve pushes back with exactly -T about the axis, no net radial force, no moment
     np.testing.assert_allclose(ml["torque_about_axis_Nm"], -2000.0, rtol=1e-9)
@@ -82,16 +82,17 @@ def test_additional_moment_grows_with_misalignment_and_friction():
     dry = spec.replace(**{"load.friction": 0.0})
     moments, frictionless = [], []
     for i in (0.25, 0.5, 1.0):
-        sw = sweep(spec, i, np.linspace(0, 7.2, 4, endpoint=False))
-        moments.append(np.mean(machine_loads(load_from_sweep(spec, sw))["tilting_moment_Nm"]))
-        frictionless.append(np.mean(machine_loads(load_from_sweep(dry, sw))
+        angles = np.linspace(0, 7.2, 4, endpoint=False)
+        moments.append(np.mean(machine_loads(load_from_sweep(sweep(spec, i, angles)))
+                               ["tilting_moment_Nm"]))
+        frictionless.append(np.mean(machine_loads(load_from_sweep(sweep(dry, i, angles)))
                                     ["tilting_moment_Nm"]))
     assert moments[0] < moments[1] < moments[2]
     assert all(f < m for f, m in zip(frictionless, moments, strict=True))
 
 
 def test_plots_return_figures_and_accept_ax():
-    from gearcoupling.load.plots import (
+    from gearcoupling.loading.plots import (
         plot_capacity,
         plot_patches,
         plot_q_graph,
@@ -101,13 +102,13 @@ def test_plots_return_figures_and_accept_ax():
     from gearcoupling.plots import new_figure
 
     spec = gc.load_spec("renzo-1967")
-    res = load_from_sweep(spec, sweep(spec, 1.0, [0.0, 3.6]))
+    res = load_from_sweep(sweep(spec, 1.0, [0.0, 3.6]))
     fig, ax = new_figure()
     assert plot_tooth_load(res, ax=ax) is fig
     assert plot_patches(res).axes
     assert plot_q_graph({"x": [(0.25, 0.22)]}, ax=ax) is fig
     assert plot_vs_misalignment([0.5, 1.0], {"a": [1.0, 2.0]}, "y", ax=ax) is fig
-    rows = [{"misalignment_deg": 0.0, "capacity_Nm": 10.0, "criteria_Nm": {"tooth_load": 10.0}}]
+    rows = gc.capacity_curve(gc.load_spec("renzo-1967"), [0.0, 0.5], angles_deg=[0.0])
     assert plot_capacity({"s": rows}, ax=ax) is fig
 
 

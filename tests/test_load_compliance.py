@@ -6,10 +6,10 @@ import numpy as np
 import pytest
 
 import gearcoupling as gc
+from gearcoupling.clearance import sweep
 from gearcoupling.errors import BackendError, SpecError
-from gearcoupling.load import load_from_sweep
-from gearcoupling.load.cantilever import CantileverCompliance, beam_compliance
-from gearcoupling.sweep import sweep
+from gearcoupling.loading import load_from_sweep
+from gearcoupling.loading.cantilever import CantileverCompliance, beam_compliance
 
 
 @pytest.mark.parametrize("slender", [1.0, 3.0, 10.0])
@@ -73,7 +73,7 @@ def renzo():
 @pytest.mark.parametrize("T", [1.0, 2000.0, -2000.0, 5e4])
 def test_compliance_model_balances_torque(renzo, T):
     spec, sw = renzo
-    r = load_from_sweep(spec, sw, torque_Nm=T, model="compliance")
+    r = load_from_sweep(sw, torque_Nm=T, model="compliance")
     R = spec.tooth.pitch_radius
     np.testing.assert_allclose(r.tangential_force_N.sum(0) * R * 1e-3, abs(T), rtol=1e-9)
     assert r.loaded_flank == ("ccw" if T > 0 else "cw")
@@ -85,15 +85,15 @@ def test_compliance_model_balances_torque(renzo, T):
 def test_compliance_model_shares_equally_when_aligned():
     spec = gc.load_spec("renzo-1967")
     sw = sweep(spec, 0.0, [0.0, 2.0])
-    r = load_from_sweep(spec, sw, torque_Nm=1500.0, model="compliance")
+    r = load_from_sweep(sw, torque_Nm=1500.0, model="compliance")
     expect = 1500e3 / (spec.tooth.pitch_radius * spec.tooth.teeth)
     np.testing.assert_allclose(r.tangential_force_N, expect, rtol=1e-9)
 
 
 def test_more_torque_more_teeth_and_stiffer_mesh(renzo):
     spec, sw = renzo
-    lo = load_from_sweep(spec, sw, torque_Nm=200.0, model="compliance")
-    hi = load_from_sweep(spec, sw, torque_Nm=5000.0, model="compliance")
+    lo = load_from_sweep(sw, torque_Nm=200.0, model="compliance")
+    hi = load_from_sweep(sw, torque_Nm=5000.0, model="compliance")
     assert hi.in_contact.sum() > lo.in_contact.sum()
     assert hi.q() > lo.q()
     # Hertz-dominated at light load: a softening law, so the mesh stiffens with load
@@ -102,8 +102,8 @@ def test_more_torque_more_teeth_and_stiffer_mesh(renzo):
 
 def test_regimes_reported_per_tooth(renzo):
     spec, sw = renzo
-    light = load_from_sweep(spec, sw, torque_Nm=5.0, model="compliance")
-    heavy = load_from_sweep(spec, sw, torque_Nm=5000.0, model="compliance")
+    light = load_from_sweep(sw, torque_Nm=5.0, model="compliance")
+    heavy = load_from_sweep(sw, torque_Nm=5000.0, model="compliance")
     assert np.any(light.contact_regime == 1)  # elliptic Hertz at light load
     assert np.all(heavy.contact_regime[heavy.in_contact] == 2)  # ellipse outgrows the flank
     assert np.all(heavy.contact_regime[~heavy.in_contact] == 0)
@@ -111,7 +111,7 @@ def test_regimes_reported_per_tooth(renzo):
 
 def test_huge_torque_stays_finite_and_flags_edge_contact(renzo):
     spec, sw = renzo
-    r = load_from_sweep(spec, sw, torque_Nm=1e7, model="compliance")
+    r = load_from_sweep(sw, torque_Nm=1e7, model="compliance")
     assert np.all(np.isfinite(r.max_pressure_MPa)) and np.any(r.edge_contact)
     assert np.all((r.edge_load_share >= 0) & (r.edge_load_share < 1))
 
@@ -127,7 +127,7 @@ def test_fe_stiffness_without_the_fe_branch_is_a_clear_error(renzo):
     if has:
         pytest.skip("the FE tooth-compliance table is installed")
     with pytest.raises(BackendError, match="tooth_compliance_table"):
-        load_from_sweep(fe, sw, torque_Nm=100.0, model="compliance")
+        load_from_sweep(sw, torque_Nm=100.0, model="compliance")
 
 
 def test_bad_load_spec_values_are_refused():
@@ -154,7 +154,7 @@ def _synthetic(cm, A_f, A_p, L, r):
 
 def test_contact_law_is_hertz_for_a_sphere_and_continuous_at_the_switch():
     spec = gc.load_spec("renzo-1967")
-    from gearcoupling.load.contact import contact_model
+    from gearcoupling.loading.contact import contact_model
 
     cm = contact_model(spec)
     Rs = 20.0  # sphere of radius 20 mm on a plane: curvature 1/Rs both ways
@@ -189,7 +189,7 @@ def test_max_tooth_load_grows_with_misalignment_and_crowning_radius():
     psi = np.linspace(0, 7.2, 5, endpoint=False)
 
     def peak(s, i):
-        return float(np.max(load_from_sweep(s, sweep(s, i, psi)).tangential_force_N))
+        return float(np.max(load_from_sweep(sweep(s, i, psi)).tangential_force_N))
 
     peaks = [peak(spec, i) for i in (0.25, 0.5, 1.0, 2.0)]
     assert np.all(np.diff(peaks) > 0), peaks

@@ -5,9 +5,9 @@ import numpy as np
 import pytest
 
 import gearcoupling as gc
-from gearcoupling.errors import SpecError
-from gearcoupling.load import capacity_from_sweep, load_from_sweep
-from gearcoupling.sweep import sweep
+from gearcoupling.clearance import sweep
+from gearcoupling.errors import ArgumentError, SpecError
+from gearcoupling.loading import capacity_from_sweep, load_from_sweep
 
 MINIMAL = {  # specs from the defaults, to reach the edges of the allowed ranges
     "6-teeth": dict(tooth=dict(teeth=6, module=2.0, pressure_angle_deg=30),
@@ -48,7 +48,7 @@ def test_finite_and_balanced_everywhere(name, over, mis):
     R = spec.tooth.pitch_radius
     for model in ("linear", "compliance"):
         for T in (0.0, 1e-3, 500.0, -500.0, 1e7):
-            r = load_from_sweep(spec, sw, torque_Nm=T, model=model)
+            r = load_from_sweep(sw, torque_Nm=T, model=model)
             for f in ("tangential_force_N", "max_pressure_MPa", "interior_pressure_MPa",
                       "root_stress_MPa", "patch_length_mm", "windup_rad", "edge_load_share",
                       "mesh_stiffness_Nm_per_rad"):
@@ -57,14 +57,14 @@ def test_finite_and_balanced_everywhere(name, over, mis):
             np.testing.assert_allclose(tq, abs(T), rtol=1e-9, atol=1e-300)
             s = r.summary()
             assert s["q"] is not None and 0 < s["q"] <= 1 + 1e-12
-        c = capacity_from_sweep(spec, sw, model=model)
-        assert c["capacity_Nm"] is not None and c["capacity_Nm"] >= 0
+        c = capacity_from_sweep(sw, model=model)
+        assert c.capacity_Nm is not None and c.capacity_Nm >= 0
 
 
 def test_huge_torque_is_reported_as_a_limit_not_hidden():
     spec = gc.load_spec("renzo-1967")
     sw = sweep(spec, 1.0, [0.0])
-    s = load_from_sweep(spec, sw, torque_Nm=1e7).summary()
+    s = load_from_sweep(sw, torque_Nm=1e7).summary()
     assert any("edge contact" in n for n in s["limits"])
     assert any("root bending" in n for n in s["limits"])
 
@@ -75,7 +75,7 @@ def test_absurd_torque_stays_finite_and_scales(torque_Nm):
     still carry the torque to 1e-9."""
     spec = gc.load_spec("renzo-1967")
     sw = sweep(spec, 1.0, [0.0])
-    res = load_from_sweep(spec, sw, torque_Nm=torque_Nm)
+    res = load_from_sweep(sw, torque_Nm=torque_Nm)
     P = res.tangential_force_N
     assert np.all(np.isfinite(P)) and np.all(np.isfinite(res.windup_rad))
     np.testing.assert_allclose(P.sum() * spec.tooth.pitch_radius * 1e-3, abs(torque_Nm),
@@ -87,10 +87,10 @@ def test_zero_stiffness_and_bad_offsets_are_refused():
         gc.load_spec("renzo-1967", **{"load.mesh_stiffness_lbf_per_in": 0.0})
     spec = gc.load_spec("renzo-1967")
     sw = sweep(spec, 1.0, [0.0])
-    with pytest.raises(SpecError, match="gap_offset_rad"):
-        load_from_sweep(spec, sw, gap_offset_rad=np.zeros(7))
-    with pytest.raises(SpecError, match="gap_offset_rad"):
-        load_from_sweep(spec, sw, gap_offset_rad=np.full(50, np.nan))
+    with pytest.raises(ArgumentError, match="gap_offset_rad"):
+        load_from_sweep(sw, gap_offset_rad=np.zeros(7))
+    with pytest.raises(ArgumentError, match="gap_offset_rad"):
+        load_from_sweep(sw, gap_offset_rad=np.full(50, np.nan))
 
 
 def test_material_defaults_and_per_part_overrides():

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from gearcoupling.errors import SpecError
-from gearcoupling.load.halfspace import (
+from gearcoupling.loading.halfspace import (
     composite_modulus,
     half_space,
     hertz_ellipse,

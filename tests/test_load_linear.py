@@ -6,10 +6,10 @@ import numpy as np
 import pytest
 
 import gearcoupling as gc
+from gearcoupling.clearance import sweep
 from gearcoupling.errors import SpecError
-from gearcoupling.load import load_from_sweep
-from gearcoupling.load.linear import solve_windup
-from gearcoupling.sweep import sweep
+from gearcoupling.loading import load_from_sweep
+from gearcoupling.loading.linear import solve_windup
 
 
 def brute_windup(g, K, T):
@@ -51,7 +51,7 @@ def test_equilibrium_and_sign_convention(renzo):
     spec, sw = renzo
     R = spec.tooth.pitch_radius
     for T in (1500.0, -1500.0):
-        r = load_from_sweep(spec, sw, torque_Nm=T, model="linear")
+        r = load_from_sweep(sw, torque_Nm=T, model="linear")
         assert r.loaded_flank == ("ccw" if T > 0 else "cw")
         assert np.sign(r.windup_rad).min() == np.sign(T)
         tq = r.tangential_force_N.sum(axis=0) * R * 1e-3
@@ -63,7 +63,7 @@ def test_equilibrium_and_sign_convention(renzo):
 def test_aligned_perfect_teeth_share_equally():
     spec = gc.load_spec("renzo-1967")
     sw = sweep(spec, 0.0, [0.0, 3.0])
-    r = load_from_sweep(spec, sw, torque_Nm=2000.0, model="linear")
+    r = load_from_sweep(sw, torque_Nm=2000.0, model="linear")
     P = r.tangential_force_N
     expect = 2000e3 / (spec.tooth.pitch_radius * spec.tooth.teeth)
     np.testing.assert_allclose(P, expect, rtol=1e-9)
@@ -78,7 +78,7 @@ def test_gap_offset_moves_load_like_a_spacing_error(renzo):
     R = spec.tooth.pitch_radius
     off = np.zeros(N)
     off[0] = 1e-4 / R  # tooth 0 stands 0.1 µm back at the pitch circle
-    r = load_from_sweep(spec, sw, torque_Nm=2000.0, model="linear", gap_offset_rad=off)
+    r = load_from_sweep(sw, torque_Nm=2000.0, model="linear", gap_offset_rad=off)
     P = r.tangential_force_N[:, 0]
     # the others close 0.1 µm more than tooth 0 (which still touches)
     assert P[0] > 0 and P[1] - P[0] == pytest.approx(C * 1e-4, rel=1e-9)
@@ -86,7 +86,7 @@ def test_gap_offset_moves_load_like_a_spacing_error(renzo):
 
 def test_zero_torque_is_finite(renzo):
     spec, sw = renzo
-    r = load_from_sweep(spec, sw, torque_Nm=0.0, model="linear")
+    r = load_from_sweep(sw, torque_Nm=0.0, model="linear")
     assert np.all(r.tangential_force_N == 0) and 0 < r.q() <= 1
     assert math.isfinite(float(np.max(r.max_pressure_MPa)))
 
@@ -95,15 +95,15 @@ def test_missing_torque_is_a_clear_error():
     spec = gc.load_spec("renzo-1967").replace(**{"load.torque_Nm": None})
     sw = sweep(spec, 1.0, [0.0])
     with pytest.raises(SpecError, match="torque"):
-        load_from_sweep(spec, sw, model="linear")
+        load_from_sweep(sw, model="linear")
 
 
 def test_public_api_from_the_top_level():
     spec = gc.load_spec("renzo-1967")
     res = gc.load(spec, 1.0, [0.0, 1.0], model="linear", tolerance_mm=1e-6)
     assert isinstance(res, gc.LoadResult) and res.tangential_force_N.shape == (50, 2)
-    import gearcoupling.load as pkg  # the package is callable too: gc.load works either way
-
-    again = pkg(spec, 1.0, [0.0, 1.0], model="linear", tolerance_mm=1e-6)
+    # the same as sweeping first and loading that sweep
+    sw = gc.sweep(spec, 1.0, [0.0, 1.0], tolerance_mm=1e-6)
+    again = gc.load_from_sweep(sw, model="linear")
     np.testing.assert_array_equal(again.tangential_force_N, res.tangential_force_N)
     assert callable(gc.capacity) and callable(gc.capacity_curve)

@@ -5,16 +5,16 @@ import math
 import numpy as np
 import pytest
 
+from gearcoupling.clearance import sweep
+from gearcoupling.clearance.design import critical_misalignment_deg
 from gearcoupling.errors import SpecError
 from gearcoupling.geometry.hub import hub_flank
 from gearcoupling.geometry.sleeve import sleeve_model
-from gearcoupling.load import CantileverCompliance
-from gearcoupling.load.gapfield import gap_field, windows
-from gearcoupling.load.halfspace import half_space, solve_contact
-from gearcoupling.load.surface import contact_modulus, patch_measures, solve_surface
+from gearcoupling.loading import CantileverCompliance
+from gearcoupling.loading.gapfield import gap_field, windows
+from gearcoupling.loading.halfspace import half_space, solve_contact
+from gearcoupling.loading.surface import contact_modulus, patch_measures, solve_surface
 from gearcoupling.spec import load_spec
-from gearcoupling.sweep import sweep
-from gearcoupling.sweep.design import critical_misalignment_deg
 
 
 @pytest.fixture(scope="module")
@@ -125,7 +125,7 @@ def test_crowned_patch_length_matches_line_contact_from_lead_curvature(renzo):
 
 
 def gap_width(spec):
-    from gearcoupling.load.gapfield import depth_range, developed_s
+    from gearcoupling.loading.gapfield import depth_range, developed_s
 
     lo, hi = depth_range(spec, 0.0)
     r_b = spec.tooth.base_radius
@@ -198,7 +198,7 @@ def test_bad_input(renzo):
 
 
 def test_load_dispatches_to_the_surface_model(renzo):
-    from gearcoupling.load import load
+    from gearcoupling.loading import load
 
     res = load(renzo, 1.0, [0.0], model="surface", torque_Nm=-1500.0)
     assert res.model == "surface" and res.loaded_flank == "cw"

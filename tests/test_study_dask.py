@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import itertools
 import json
-import math
 import os
 import signal
 import socket
@@ -106,7 +105,7 @@ def uninterrupted(cluster, study_file, tmp_path_factory):
 
 
 def test_rows_equal_single_spec_runs(uninterrupted):
-    from gearcoupling.sweep.design import critical_misalignment_deg, min_backlash_rad
+    from gearcoupling.clearance.design import critical_misalignment_deg, min_backlash_rad
 
     assert len(uninterrupted) == 12 and [r["sample"] for r in uninterrupted] == list(range(12))
     crit = {}
@@ -118,7 +117,7 @@ def test_rows_equal_single_spec_runs(uninterrupted):
         assert row["error"] is None and row["spec_hash"] == spec_hash(spec)
         assert row["critical_misalignment_deg"] == crit[rc]
         assert row["min_backlash_mm"] == min_backlash_rad(
-            spec, math.radians(row["misalignment_deg"]), steps=4) * spec.tooth.pitch_radius
+            spec, row["misalignment_deg"], steps=4) * spec.tooth.pitch_radius
     # crowning radius up -> the contact reaches the face end earlier (DESIGN.md §5)
     values = [crit[rc] for rc in sorted(crit)]
     assert all(a > b for a, b in itertools.pairwise(values))

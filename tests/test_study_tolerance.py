@@ -87,20 +87,20 @@ def test_crown_interpolation_against_exact_geometry(spec):
 
 
 def test_linear_capacity_matches_the_load_solver(spec):
-    from gearcoupling.load import load_from_sweep
-    from gearcoupling.sweep import sweep
+    from gearcoupling.clearance import sweep
+    from gearcoupling.loading import load_from_sweep
 
     sw = sweep(spec, 1.0, np.degrees(rotations(spec, 1)))
     off = gap_offsets_rad(spec, draw_errors(Tolerances(index_sd_mm=0.005), N,
                                             np.random.default_rng(1)))
     gap = sw.gap_angle_rad + off[:, :, None]
     out = linear_outputs(spec, gap, 2000.0)
-    res = load_from_sweep(spec, sw, torque_Nm=out["capacity_Nm"], model="linear",
+    res = load_from_sweep(sw, torque_Nm=out["capacity_Nm"], model="linear",
                           gap_offset_rad=off)
     # at the capacity the most-loaded tooth over the turn carries exactly P_i
     assert np.max(res.tangential_force_N) == pytest.approx(spec.load.allowable_tooth_load_N,
                                                            rel=1e-9)
-    res = load_from_sweep(spec, sw, torque_Nm=2000.0, model="linear", gap_offset_rad=off)
+    res = load_from_sweep(sw, torque_Nm=2000.0, model="linear", gap_offset_rad=off)
     assert out["max_tooth_load_N"] == pytest.approx(np.max(res.tangential_force_N), rel=1e-12)
 
 
@@ -131,11 +131,11 @@ def test_bad_tolerances_refused(spec):
 
 
 def test_renzo_capacity_is_the_load_packages_tooth_load_criterion(spec):
-    from gearcoupling.load.capacity import capacity_from_sweep
-    from gearcoupling.sweep import sweep
+    from gearcoupling.clearance import sweep
+    from gearcoupling.loading.capacity import capacity_from_sweep
 
     sw = sweep(spec, 1.0, np.degrees(rotations(spec, 1)))
-    cap = capacity_from_sweep(spec, sw, model="linear")["criteria_Nm"]["tooth_load"]
+    cap = capacity_from_sweep(sw, model="linear").criteria_Nm["tooth_load"]
     mine = linear_outputs(spec, sw.gap_angle_rad, 2000.0)["capacity_Nm"]
     assert cap == pytest.approx(spec.load.accuracy_factor * mine, rel=1e-9)
 

@@ -7,9 +7,9 @@ import json
 
 import pytest
 
+from gearcoupling.clearance import CSV_COLUMNS
 from gearcoupling.cli import main
 from gearcoupling.commands.run import STEP_KEYS
-from gearcoupling.sweep import CSV_COLUMNS
 
 
 def test_sweep_command_writes_csv_json_and_plots(tmp_path, capsys):

@@ -7,7 +7,7 @@ the kernel against theory and a brute-force exact search is in ``test_sweep_kern
 The minimum *values* are well conditioned and are compared directly. *Where* a minimum
 lies is not: along a flat valley of the gap a change of 1e-12 mm in the value (a
 different rounding in a newer numpy) moves the location by micrometres. The location is
-therefore checked by what it is for: the exact gap (:func:`~gearcoupling.sweep.reference.
+therefore checked by what it is for: the exact gap (:func:`~gearcoupling.clearance.reference.
 exact_gap`, on the exact flank, not the kernel's table) at the point found equals the exact
 gap at the frozen point within 1e-9 mm, and it equals the reported minimum within the
 kernel's tolerance plus its flank table error.
@@ -20,9 +20,9 @@ import math
 import numpy as np
 import pytest
 
+from gearcoupling.clearance.flank_table import flank_table
+from gearcoupling.clearance.reference import exact_gap
 from gearcoupling.spec import load_spec
-from gearcoupling.sweep.flank_table import flank_table
-from gearcoupling.sweep.reference import exact_gap
 from golden_sweep_kernel import FILE, MISALIGNMENTS_DEG, TEMPLATES, THETA_DEG, minima
 
 VALUES = ("clearance", "normal", "pitch", "pitch_normal")
@@ -37,8 +37,8 @@ def frozen():
 
 @pytest.fixture(params=["numba", "numpy"])
 def backend(request, monkeypatch):
-    """Both point evaluations of :mod:`gearcoupling.sweep.fast`: compiled and numpy."""
-    from gearcoupling.sweep import clearance
+    """Both point evaluations of :mod:`gearcoupling.clearance.fast`: compiled and numpy."""
+    from gearcoupling.clearance import kernel as clearance
 
     if request.param == "numba":
         pytest.importorskip("numba", reason="extra 'fast' not installed")

@@ -13,7 +13,7 @@ import json
 import pytest
 
 import gearcoupling as gc
-from gearcoupling.sweep.design import binding_angle_deg, critical_misalignment_deg
+from gearcoupling.clearance.design import binding_angle_deg, critical_misalignment_deg
 
 from golden_values import GOLDEN
 

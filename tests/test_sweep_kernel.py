@@ -7,14 +7,14 @@ import math
 import numpy as np
 import pytest
 
+from gearcoupling.clearance import sweep
+from gearcoupling.clearance.flank_table import exact_alpha, flank_table
+from gearcoupling.clearance.kernel import minimise
+from gearcoupling.clearance.reference import brute_force, exact_gap
 from gearcoupling.geometry.hub import hub_flank_model, hub_model
+from gearcoupling.geometry.pose import hub_to_sleeve, map_polar, rot_z
 from gearcoupling.geometry.sleeve import sleeve_model
 from gearcoupling.spec import load_spec
-from gearcoupling.sweep import sweep
-from gearcoupling.sweep.clearance import minimise
-from gearcoupling.sweep.flank_table import exact_alpha, flank_table
-from gearcoupling.sweep.pose import hub_to_sleeve, map_polar, rot_z
-from gearcoupling.sweep.reference import brute_force, exact_gap
 
 
 @pytest.fixture(scope="module")

@@ -11,12 +11,12 @@ import numpy as np
 import pytest
 
 import gearcoupling as gc
+from gearcoupling.clearance import KINDS, sweep
+from gearcoupling.clearance.flank_table import DEFAULT_TABLE_TOLERANCE_MM, flank_table
+from gearcoupling.clearance.kernel import _Planes, _Sleeve
+from gearcoupling.clearance.reference import brute_force
 from gearcoupling.errors import GeometryError
 from gearcoupling.geometry.sleeve import sleeve_model
-from gearcoupling.sweep import KINDS, sweep
-from gearcoupling.sweep.clearance import _Planes, _Sleeve
-from gearcoupling.sweep.flank_table import DEFAULT_TABLE_TOLERANCE_MM, flank_table
-from gearcoupling.sweep.reference import brute_force
 
 #: issue 14 item 1: 120 straight teeth, NaN and "All-NaN slice" at 6°
 ISSUE_EXAMPLE = {"units": "mm",
@@ -184,7 +184,7 @@ def test_plots_return_figures_draw_into_given_axes_and_keep_the_backend(monkeypa
     import matplotlib
     from matplotlib.figure import Figure
 
-    from gearcoupling.sweep import plots
+    from gearcoupling.clearance import plots
 
     def refuse(*args, **kwargs):
         raise AssertionError("matplotlib.use called")
@@ -211,7 +211,7 @@ def test_minimise_steps_alone():
     """The split steps of the kernel on known functions: second_minima keeps a second
     coarse minimum nearly as low as the best; ZSearch finds the vertex of a parabola and the
     corner of a V within the tolerance."""
-    from gearcoupling.sweep.clearance import ZSearch, second_minima
+    from gearcoupling.clearance.kernel import ZSearch, second_minima
 
     zg = np.linspace(-1.0, 1.0, 17)
     v = np.stack([(zg - 0.3) ** 2, np.minimum((zg + 0.7) ** 2, (zg - 0.7) ** 2 + 0.01),

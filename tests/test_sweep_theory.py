@@ -7,10 +7,10 @@ import math
 import numpy as np
 import pytest
 
+from gearcoupling.clearance import sweep
+from gearcoupling.clearance.design import contact_travel, critical_misalignment_deg
+from gearcoupling.clearance.tooth_map import flank_minima
 from gearcoupling.spec import load_spec
-from gearcoupling.sweep import sweep
-from gearcoupling.sweep.design import contact_travel, critical_misalignment_deg
-from gearcoupling.sweep.tooth_map import flank_minima
 
 GENERATIONS = ("enveloped", "revolved")
 

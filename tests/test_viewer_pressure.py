@@ -2,9 +2,9 @@
 
 import numpy as np
 
-from gearcoupling.load.api import tooth_compliance
-from gearcoupling.load.surface import solve_surface
-from gearcoupling.sweep import sweep
+from gearcoupling.clearance import sweep
+from gearcoupling.loading.inputs import tooth_compliance
+from gearcoupling.loading.surface import solve_surface
 from gearcoupling.viewer import scene as vs
 
 

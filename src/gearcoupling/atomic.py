@@ -8,6 +8,7 @@ once its process is gone (:func:`remove_stale_temporaries`).
 from __future__ import annotations
 
 import json
+import math
 import os
 import re
 import tempfile
@@ -15,6 +16,8 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
+
+import numpy as np
 
 
 @contextmanager
@@ -128,3 +131,20 @@ def write_csv_rows(path: str | os.PathLike, columns, rows) -> Path:
         w.writerow(columns)
         w.writerows([cell(v) for v in row] for row in rows)
     return Path(path)
+
+
+def finite_json(data: Any) -> Any:
+    """Plain JSON data: numpy scalars to Python, non-finite floats to None."""
+    if isinstance(data, dict):
+        return {k: finite_json(v) for k, v in data.items()}
+    if isinstance(data, list | tuple):
+        return [finite_json(v) for v in data]
+    if isinstance(data, np.ndarray):
+        return finite_json(data.tolist())
+    if isinstance(data, np.bool_):
+        return bool(data)
+    if isinstance(data, np.integer):
+        return int(data)
+    if isinstance(data, float | np.floating):
+        return float(data) if math.isfinite(data) else None
+    return data

@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import SpecError
-from ..load.capacity import write_capacity_csv
+from ..loading.capacity import write_capacity_csv
 from ..loadspec import LOAD_MODELS
 from ..spec import load_spec, parse_override
 from .common import (
@@ -42,9 +42,9 @@ def register(sub) -> None:
 def capacity_files(specs: list, out: Path, misalignments_deg: np.ndarray, *,
                    model: str | None = None, plots: bool = True) -> list[Path]:
     """Capacity curves of ``specs`` (first one names the folder) to CSV and plot."""
-    from ..load import capacity_curve
+    from ..loading import Capacity, capacity_curve
 
-    curves: dict[str, list[dict]] = {}
+    curves: dict[str, list[Capacity]] = {}
     n = len(specs) * misalignments_deg.size
     with progress("capacity", n) as advance:
         for spec in specs:
@@ -53,7 +53,7 @@ def capacity_files(specs: list, out: Path, misalignments_deg: np.ndarray, *,
                 progress=lambda i, _n, s=spec: advance(f"{s.name} {i}/{_n}"))
     paths = [write_capacity_csv(curves, out / "capacity.csv")]
     if plots:
-        from ..load.plots import plot_capacity
+        from ..loading.plots import plot_capacity
         from ..plots import save_figure
 
         paths.append(save_figure(plot_capacity(curves), out / "capacity.png"))

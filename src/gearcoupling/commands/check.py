@@ -119,8 +119,8 @@ def print_table(result, count: int) -> None:
 
 def write_outputs(spec, result, out: Path) -> list[Path]:
     """CSV, JSON (with the sweep's exact clearance), plot and worst posed meshes."""
-    from ..sweep import sweep
-    from ..sweep.result import require_finite
+    from ..clearance import sweep
+    from ..clearance.result import require_finite
 
     reference = backlash = None
     if result.hub_rotation_deg == 0.0:

@@ -55,11 +55,11 @@ def study_misalignments(spec, count: int = 7) -> np.ndarray:
 
 def studies(spec, torque_Nm: float, model: str | None, out: Path) -> list[Path]:
     """Wei Figs. 12-13 and Renzo's q-graph (Fig. 12) for the spec, over one tooth pitch."""
-    from ..load import load_from_sweep
-    from ..load.capacity import capacity_from_sweep, default_angles
-    from ..load.plots import plot_q_graph, plot_vs_misalignment
+    from ..clearance import sweep
+    from ..loading import load_from_sweep
+    from ..loading.capacity import capacity_from_sweep, default_angles
+    from ..loading.plots import plot_q_graph, plot_vs_misalignment
     from ..plots import save_figure
-    from ..sweep import sweep
 
     mis = study_misalignments(spec)
     torques = [0.5 * torque_Nm, torque_Nm, 2.0 * torque_Nm]
@@ -71,17 +71,17 @@ def studies(spec, torque_Nm: float, model: str | None, out: Path) -> list[Path]:
         for i in mis:
             sw = sweep(spec, float(i), default_angles(spec, None))
             for t, key in zip(torques, peak, strict=True):
-                res = load_from_sweep(spec, sw, torque_Nm=t, model=model)
+                res = load_from_sweep(sw, torque_Nm=t, model=model)
                 peak[key].append(float(np.max(res.tangential_force_N)))
                 moment[key].append(res.summary()["tilting_moment_Nm"]["mean"])
             if ld.allowable_tooth_load_N is not None and ld.mesh_stiffness_N_per_mm is not None:
-                c = capacity_from_sweep(spec, sw, model="linear")
+                c = capacity_from_sweep(sw, model="linear")
                 rc = spec.derived["crowning_radius_midplane_mm"]
                 z0 = 0.5 * rc * math.tan(math.radians(i)) ** 2 / math.tan(spec.tooth.pressure_angle)
                 zc = ld.allowable_tooth_load_N / ld.mesh_stiffness_N_per_mm
-                if z0 > 0 and c["criteria_Nm"]["tooth_load"] is not None:
-                    q_pts.append((zc / z0, c["criteria_Nm"]["tooth_load"]
-                                  / c["aligned_capacity_Nm"]))
+                if z0 > 0 and c.criteria_Nm["tooth_load"] and c.aligned_capacity_Nm:
+                    q_pts.append((zc / z0, c.criteria_Nm["tooth_load"]
+                                  / c.aligned_capacity_Nm))
             advance(f"load studies i = {i:.3g}°")
     label = model or spec.load.model
     paths = [
@@ -103,8 +103,8 @@ def load_files(spec, out: Path, misalignment_deg: float, angles: int, *,
                tolerance_mm: float = 1e-7, plots: bool = True,
                with_studies: bool = True) -> list[Path]:
     """Run the loaded analysis and write ``load.csv``, ``load_summary.json`` and plots."""
-    from ..load import load
-    from ..load.api import resolve_torque_Nm
+    from ..loading import load
+    from ..loading.inputs import resolve_torque_Nm
 
     if angles < 1:
         raise SpecError("--angles", angles, "must be at least 1")
@@ -114,7 +114,7 @@ def load_files(spec, out: Path, misalignment_deg: float, angles: int, *,
     summary = res.summary()
     paths = [res.write_csv(out / "load.csv"), write_json(out / "load_summary.json", summary)]
     if plots:
-        from ..load.plots import plot_patches, plot_tooth_load
+        from ..loading.plots import plot_patches, plot_tooth_load
         from ..plots import save_figure
 
         paths.append(save_figure(plot_tooth_load(res), out / "load_tooth_load.png"))

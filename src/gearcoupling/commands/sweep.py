@@ -41,9 +41,9 @@ def sweep_files(spec, out: Path, misalignment_deg: float, angles: int, *,
                 tolerance_mm: float = 1e-7, design: bool = True, plots: bool = True,
                 studies: bool = True) -> list[Path]:
     """Run a sweep and write ``sweep.csv``, ``sweep_summary.json`` and the plots."""
-    from ..sweep import sweep
-    from ..sweep.design import design_quantities
-    from ..sweep.result import require_finite
+    from ..clearance import sweep
+    from ..clearance.design import design_quantities
+    from ..clearance.result import require_finite
 
     if angles < 1:
         raise SpecError("--angles", angles, "must be at least 1")
@@ -56,7 +56,7 @@ def sweep_files(spec, out: Path, misalignment_deg: float, angles: int, *,
     paths = [result.write_csv(out / "sweep.csv"),
              write_json(out / "sweep_summary.json", summary)]
     if plots:
-        from ..sweep.plots import plot_all
+        from ..clearance.plots import plot_all
 
         paths += plot_all(result, spec, out, design=extra if design else None, studies=studies)
     return paths

@@ -77,7 +77,7 @@ def contact_pose(spec, *, misalignment_deg: float, psi_deg: float, windup_rad: f
                  sector: int = 3, size_mm: float | None = None, penalty_factor: float = 20.0,
                  workdir=None) -> dict:
     """Solve one loaded pose with contact (module docstring); returns the per-tooth table."""
-    from ..sweep.pose import hub_to_sleeve
+    from ..geometry.pose import hub_to_sleeve
 
     if not (math.isfinite(windup_rad) and windup_rad > 0):
         raise SpecError("windup_rad", windup_rad, "a positive wind-up angle (rad)")

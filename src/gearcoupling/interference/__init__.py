@@ -3,7 +3,7 @@
 Sits after the part meshes and the sweep in the data flow: :func:`check_interference`
 poses :func:`gearcoupling.parts.build_part` meshes (DESIGN.md §2), measures overlap by
 manifold3d booleans or signed distances and the minimum gap by python-fcl, on sector
-submodels chosen from :func:`gearcoupling.sweep.sweep` or on the full parts.
+submodels chosen from :func:`gearcoupling.clearance.sweep` or on the full parts.
 """
 
 from .check import METHODS, InterferenceResult, Overlap, check_interference, posed_meshes

@@ -378,9 +378,9 @@ def check_interference(spec, misalignment_deg: float, angles_deg: ArrayLike, *,
     -------
     InterferenceResult
     """
+    from ..clearance import sweep
+    from ..clearance.tooth_map import check_angles, check_misalignment
     from ..parts import check_tolerance
-    from ..sweep import sweep
-    from ..sweep.tooth_map import check_angles, check_misalignment
 
     method = _check_method(method)
     mis = check_misalignment(misalignment_deg)

@@ -195,7 +195,7 @@ def free_turn(hub: PreparedPart, matrix: NDArray, sleeve: PreparedPart, flank: s
     involutes), bisecting between the last free turn and the first touching one when a
     step overshoots; stops when the remaining step is below ``tol_angle``.
     """
-    from ..sweep.pose import rot_z
+    from ..geometry.pose import rot_z
 
     sign = 1.0 if flank == "ccw" else -1.0
     lo, hi = 0.0, math.inf

@@ -22,7 +22,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import BackendError
-from ..sweep.pose import hub_to_sleeve, rot_z
+from ..geometry.pose import hub_to_sleeve, rot_z
 
 
 def hub_pose(misalignment: float, psi: float, hub_rotation: float = 0.0) -> NDArray:

@@ -6,7 +6,7 @@ consecutive teeth: posed by :func:`~.posed.window_pose` for a centre tooth ``c``
 exactly hub teeth ``c - k .. c + k`` in their sleeve spaces. A pose therefore costs a few
 windows of a few hundred triangles each instead of the full parts.
 
-Which teeth a pose needs comes from the semi-analytic sweep (:func:`gearcoupling.sweep.
+Which teeth a pose needs comes from the semi-analytic sweep (:func:`gearcoupling.clearance.
 sweep`): every tooth whose smallest normal clearance lies within ``margin_mm`` of the
 pose's smallest, and every tooth whose clearance is below ``2 * tolerance_mm`` (a tooth
 that could overlap on the meshes). The windows tile those teeth without overlapping, so

@@ -21,6 +21,7 @@ from ..geometry.section import PARTS
 from .builder import SURFACE_KINDS, MeshBuilder, tooth_runs
 from .hub import build_hub_run, hub_layout
 from .sleeve import build_sleeve_run, sleeve_layout
+from .validity import PartCheck, check_part
 
 # part -> (layout(spec, tol), add_run(builder, layout, run))
 _BUILDERS: dict[str, tuple[Callable[..., Any], Callable[..., None]]] = {
@@ -94,4 +95,5 @@ def build_part(spec, part: str, tolerance_mm: float | None = None, teeth=None):
     return mesh
 
 
-__all__ = ["PARTS", "SURFACE_KINDS", "build_part", "check_tolerance", "default_tolerance"]
+__all__ = ["PARTS", "SURFACE_KINDS", "PartCheck", "build_part", "check_part", "check_tolerance",
+           "default_tolerance"]

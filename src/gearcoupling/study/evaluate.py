@@ -36,8 +36,8 @@ def angle_outputs(spec, misalignment_deg: float, *, steps: int, tolerance_mm: fl
     """Smallest backlash over a turn and the axial range of the first-touch point of the
     contacting tooth of each flank, from one clearance map over a tooth pitch (``steps``
     rotations; every tooth, so the whole turn)."""
-    from ..sweep.design import pitch_turning_angles
-    from ..sweep.tooth_map import check_misalignment, flank_minima
+    from ..clearance.design import pitch_turning_angles
+    from ..clearance.tooth_map import check_misalignment, flank_minima
 
     i = check_misalignment(misalignment_deg)
     theta = pitch_turning_angles(spec.tooth.teeth, steps)
@@ -52,17 +52,17 @@ def angle_outputs(spec, misalignment_deg: float, *, steps: int, tolerance_mm: fl
 
 def load_outputs(spec, misalignment_deg: float, torque_Nm: float | None, *, angles: int,
                  model: str | None = None) -> dict[str, float | None]:
-    """Largest tooth load and q over a turn at the torque (:func:`gearcoupling.load.load`),
-    and the governing capacity (:func:`gearcoupling.load.capacity.capacity`, times the
+    """Largest tooth load and q over a turn at the torque (:func:`gearcoupling.loading.load`),
+    and the governing capacity (:func:`gearcoupling.loading.capacity.capacity`, times the
     spec's accuracy factor), from the load analysis."""
-    from ..load import load
-    from ..load.capacity import capacity
+    from ..loading import load
+    from ..loading.capacity import capacity
 
     psi = np.arange(angles) * 360.0 / angles
     res = load(spec, misalignment_deg, psi, torque_Nm=torque_Nm, model=model)
     cap = capacity(spec, misalignment_deg, model=model)
     return {"max_tooth_load_N": float(np.max(res.tangential_force_N)), "q": float(res.q()),
-            "capacity_Nm": cap["capacity_Nm"]}
+            "capacity_Nm": cap.capacity_Nm}
 
 
 def evaluate(payload: dict[str, Any], inputs: dict[str, Any], sample: int = 0) -> dict[str, Any]:
@@ -90,12 +90,12 @@ def evaluate(payload: dict[str, Any], inputs: dict[str, Any], sample: int = 0) -
             row.update(_tolerance_row(payload, spec, mis, torque, sample))
             return row
         if "critical_misalignment_deg" in wanted:
-            from ..sweep.design import critical_misalignment_deg
+            from ..clearance.design import critical_misalignment_deg
 
             row["critical_misalignment_deg"] = critical_misalignment_deg(
                 spec, tolerance_deg=acc["angle_tolerance_deg"])
         if "binding_angle_deg" in wanted:
-            from ..sweep.design import binding_angle_deg
+            from ..clearance.design import binding_angle_deg
 
             row["binding_angle_deg"] = binding_angle_deg(
                 spec, tolerance_deg=acc["angle_tolerance_deg"], steps=int(acc["steps"]))

@@ -45,15 +45,15 @@ class Optimum:
 def capacity_curve_Nm(spec, angles_deg, *, model: str | None = None, steps: int = 4,
                       tolerance_mm: float = 1e-7) -> np.ndarray:
     """Capacity (N m) at each misalignment in ``angles_deg``: the load analysis' governing
-    capacity (:func:`gearcoupling.load.capacity.capacity`, ``model`` default the spec's,
+    capacity (:func:`gearcoupling.loading.capacity.capacity`, ``model`` default the spec's,
     times the spec's accuracy factor), or with ``model = "renzo"`` Renzo's closed form
     (linear model, tooth-load criterion, K = 1, ``steps`` rotations per pitch)."""
     from .tolerance import ideal_map, linear_outputs, rotations
 
     if model != "renzo":
-        from ..load.capacity import capacity
+        from ..loading.capacity import capacity
 
-        caps = [capacity(spec, a, model=model, tolerance_mm=tolerance_mm)["capacity_Nm"]
+        caps = [capacity(spec, a, model=model, tolerance_mm=tolerance_mm).capacity_Nm
                 for a in angles_deg]
         if any(c is None for c in caps):
             raise SpecError("capacity", None, "no criterion is reached at some angle")
@@ -66,7 +66,7 @@ def capacity_curve_Nm(spec, angles_deg, *, model: str | None = None, steps: int 
 
 def crown_row(study: Study, inputs: dict[str, Any], options: dict[str, Any]) -> dict[str, Any]:
     """Evaluate one candidate crown: capacities, constraints, objective (a study row)."""
-    from ..sweep.design import critical_misalignment_deg, min_backlash_rad
+    from ..clearance.design import critical_misalignment_deg, min_backlash_rad
 
     angles = options["angles_deg"]
     acc = study.accuracy
@@ -85,7 +85,7 @@ def crown_row(study: Study, inputs: dict[str, Any], options: dict[str, Any]) -> 
         crit = critical_misalignment_deg(spec, tolerance_deg=acc["angle_tolerance_deg"])
         row["critical_misalignment_deg"] = crit
         top = max(angles)
-        backlash = min_backlash_rad(spec, math.radians(top), steps=int(acc["steps"]))
+        backlash = min_backlash_rad(spec, top, steps=int(acc["steps"]))
         row["min_backlash_mm"] = backlash * spec.tooth.pitch_radius
         crit_ok = crit is None or crit >= top
         row["feasible"] = bool(crit_ok and backlash > 0)

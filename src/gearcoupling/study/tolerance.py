@@ -35,7 +35,7 @@ Capacity, ``model = "renzo"`` (default, closed form, fastest): Renzo's linear mo
 wind-up that brings the most-loaded tooth to ``P_i`` gives the torque
 ``sum_k C R^2 max(0, dpsi - g_k)``; the capacity is its minimum over the turn
 (``P_c = q N P_i R`` with errors included). ``"linear"`` or ``"compliance"``: the load
-analysis' :func:`~gearcoupling.load.capacity.capacity_from_sweep` on the per-tooth map
+analysis' :func:`~gearcoupling.loading.capacity.capacity_from_sweep` on the per-tooth map
 (every criterion: tooth load, contact and root stress; the governing one). ``K`` is the
 ratio to the same spec and model without errors.
 """
@@ -176,7 +176,7 @@ def _theta(spec, psi):
 
 
 def _gap_map(spec, mis: float, theta_both, tolerance_mm: float, periodic: bool = True):
-    from ..sweep.tooth_map import flank_minima
+    from ..clearance.tooth_map import flank_minima
 
     mins, _ = flank_minima(spec, mis, theta_both, tolerance_mm=tolerance_mm, periodic=periodic)
     with np.errstate(invalid="ignore", divide="ignore"):
@@ -238,9 +238,9 @@ class CrownMaps:
 
     @cached_property
     def skeleton(self):
-        """The ideal :class:`~gearcoupling.sweep.SweepResult` on these rotations (contact
+        """The ideal :class:`~gearcoupling.clearance.SweepResult` on these rotations (contact
         points and shapes for the load analysis; its gap angles are replaced per sample)."""
-        from ..sweep import sweep
+        from ..clearance import sweep
 
         return sweep(self.spec, math.degrees(self.mis), np.degrees(self.psi),
                      tolerance_mm=self.tolerance_mm)
@@ -263,28 +263,29 @@ def model_outputs(spec, skeleton, gap: NDArray[np.float64], torque_Nm: float, mo
                   ) -> dict[str, float]:
     """:func:`linear_outputs` through the load analysis (``model`` linear or compliance) on
     the ideal sweep ``skeleton`` with the gap angles ``gap`` ``(2, N, M)``."""
-    from ..load import load_from_sweep
-    from ..load.capacity import capacity_from_sweep
+    from ..loading import load_from_sweep
+    from ..loading.capacity import capacity_from_sweep
 
     sw = replace(skeleton, gap_angle_rad=gap)
-    res = load_from_sweep(spec, sw, torque_Nm=torque_Nm, model=model)
-    cap = capacity_from_sweep(spec, sw, model=model, sign=1 if torque_Nm >= 0 else -1)
+    res = load_from_sweep(sw, torque_Nm=torque_Nm, model=model)
+    cap = capacity_from_sweep(sw, model=model,
+                              loaded_flank="ccw" if torque_Nm >= 0 else "cw")
     contact = np.sum(res.in_contact, axis=0)
     backlash = float(np.min(np.min(gap[0], axis=0) + np.min(gap[1], axis=0)))
-    if cap["capacity_Nm"] is None:
+    if cap.capacity_Nm is None:
         raise SpecError("capacity", None, "no finite capacity (no criterion is reached)")
     return {"backlash_mm": backlash * spec.tooth.pitch_radius,
             "teeth_in_contact_min": int(np.min(contact)),
             "teeth_in_contact_mean": float(np.mean(contact)),
             "max_tooth_load_N": float(np.max(res.tangential_force_N)),
-            "capacity_Nm": float(cap["capacity_Nm"])}
+            "capacity_Nm": float(cap.capacity_Nm)}
 
 
 def linear_outputs(spec, gap: NDArray[np.float64], torque_Nm: float) -> dict[str, float]:
     """Backlash, teeth in contact, largest tooth load at ``torque_Nm`` and the capacity of
     one gap map ``(2, N, M)`` under Renzo's linear model (module docstring)."""
-    from ..load.linear import solve_windup
-    from ..load.linear_model import mesh_stiffness_N_per_mm
+    from ..loading.linear import solve_windup
+    from ..loading.linear_model import mesh_stiffness_N_per_mm
 
     P_i = spec.load.allowable_tooth_load_N
     if P_i is None:
@@ -327,7 +328,7 @@ def tolerance_sample(spec, misalignment_deg: float, tol: Tolerances, seed: int, 
         raise SpecError("path", path, f"one of {PATHS}")
     if model not in MODELS:
         raise SpecError("tolerances.model", model, f"one of {MODELS}")
-    from ..sweep.tooth_map import check_misalignment
+    from ..clearance.tooth_map import check_misalignment
 
     check_misalignment(misalignment_deg)
     T = spec.load.torque_Nm if torque_Nm is None else torque_Nm

@@ -25,7 +25,7 @@ import numpy as np
 
 from ..errors import ArgumentError, BackendError
 from ..geometry.hub import FLANKS
-from ..sweep.pose import rot_z
+from ..geometry.pose import rot_z
 from .scene import (
     COLOR_MODES,
     CUTAWAYS,

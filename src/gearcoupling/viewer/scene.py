@@ -7,7 +7,7 @@ turn these into scene nodes).
 - :func:`hub_rotation` / :func:`quaternion_wxyz` pose the hub (DESIGN.md §2: a hub body
   point ``p`` lies in the sleeve frame at ``Rz(-psi) Rx(i) Rz(psi) p``);
 - :func:`pose_state` evaluates the exact clearance of every tooth and flank at one pose
-  (one :func:`gearcoupling.sweep.sweep` call), the contact points and interfering teeth;
+  (one :func:`gearcoupling.clearance.sweep` call), the contact points and interfering teeth;
 - :func:`clearance_colors` and :func:`legend` map clearance (mm) to colours;
 - :func:`clearance_curve` and :func:`plot_series` give the clearance-vs-θ plot;
 - :func:`interference_mesh` is the hub ∩ sleeve volume at a pose (manifold3d);
@@ -24,13 +24,14 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ..clearance import sweep
 from ..errors import ArgumentError, SpecError
 from ..geometry.hub import FLANKS, hub_flank_model, hub_model
+from ..geometry.pose import hub_to_sleeve, rot_z
 from ..interference.attribution import flank_index, nearest_tooth
 from ..interference.posed import PreparedPart, affine
+from ..loading import load_from_sweep
 from ..parts import SURFACE_KINDS, build_part, check_tolerance
-from ..sweep import sweep
-from ..sweep.pose import hub_to_sleeve, rot_z
 
 if TYPE_CHECKING:
     import trimesh
@@ -310,7 +311,7 @@ def pose_state(spec, misalignment_deg: float, psi_deg: float, *, band_mm: float 
         A tooth counts as in contact when its normal clearance is within this of the
         smallest on its flank (Renzo's separation ``z`` below the band), or negative.
     tolerance_mm : float
-        Accuracy of the clearance minima (see :func:`gearcoupling.sweep.sweep`).
+        Accuracy of the clearance minima (see :func:`gearcoupling.clearance.sweep`).
     pressure : bool
         Also solve the contact pressure at the spec's ``[load]`` torque (the ``surface``
         model, about a second): ``pressure_MPa``.
@@ -344,13 +345,9 @@ def pose_state(spec, misalignment_deg: float, psi_deg: float, *, band_mm: float 
 def _pressure(spec, res) -> NDArray[np.float64]:
     """Interior contact pressure ``(2, N)`` of the loaded flank's teeth at the spec's torque
     (the ``surface`` load model; 0 on the other flank and on unloaded teeth)."""
-    from ..load.api import resolve_torque_Nm, tooth_compliance
-    from ..load.surface import solve_surface
-
-    out = solve_surface(spec, res, torque_Nm=resolve_torque_Nm(spec, None),
-                        compliance=tooth_compliance(spec))
+    loads = load_from_sweep(res, model="surface")
     p = np.zeros((2, res.teeth))
-    p[FLANKS.index(out["loaded_flank"])] = out["interior_pressure_MPa"][:, 0]
+    p[FLANKS.index(loads.loaded_flank)] = loads.interior_pressure_MPa[:, 0]
     return p
 
 

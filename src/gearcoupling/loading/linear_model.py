@@ -7,6 +7,8 @@ import math
 import numpy as np
 from numpy.typing import NDArray
 
+from .contact import contact_estimates
+from .inputs import tooth_compliance
 from .linear import solve_windup
 
 
@@ -15,8 +17,6 @@ def mesh_stiffness_N_per_mm(spec) -> float:
     at the pitch point in the midplane."""
     if spec.load.mesh_stiffness_N_per_mm is not None:
         return spec.load.mesh_stiffness_N_per_mm
-    from .api import tooth_compliance
-
     c = tooth_compliance(spec).pair_compliance_mm_per_N(0.0, spec.tooth.pitch_radius)
     return float(1.0 / c)
 
@@ -28,8 +28,6 @@ def solve_linear(spec, gap_rad: NDArray, z_mm: NDArray, r_mm: NDArray,
     Returns a dict of ``(N, M)`` arrays named as in :class:`LoadResult` plus ``windup_rad``
     and ``mesh_stiffness_Nm_per_rad`` ``(M,)``; pressures from :mod:`.contact`.
     """
-    from .contact import contact_estimates
-
     R = spec.tooth.pitch_radius
     C = mesh_stiffness_N_per_mm(spec)
     K = C * R * R

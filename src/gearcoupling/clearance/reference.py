@@ -16,9 +16,9 @@ import math
 import numpy as np
 
 from ..geometry.hub import hub_flank_model, hub_model
+from ..geometry.pose import hub_to_sleeve
 from ..geometry.sleeve import sleeve_model
 from .flank_table import exact_alpha
-from .pose import hub_to_sleeve
 
 
 def exact_gap(spec, mis: float, theta: float, z, r, normal: bool):

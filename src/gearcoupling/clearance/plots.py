@@ -23,12 +23,12 @@ from pathlib import Path
 import numpy as np
 
 from ..atomic import atomic_path
+from ..geometry.pose import map_polar
 from ..geometry.sleeve import sleeve_model
 from ..plots import figure_axes
-from .clearance import _Sleeve
 from .design import binding_angle_deg, critical_misalignment_deg, min_backlash_rad
 from .flank_table import flank_table
-from .pose import map_polar
+from .kernel import _Sleeve
 from .result import SweepResult
 from .tooth_map import check_misalignment, flank_minima
 
@@ -156,7 +156,7 @@ def plot_clearance_map(result: SweepResult, spec, *, ax=None):
 def backlash_curve(spec, misalignment_deg, *, steps: int = 8):
     """Smallest backlash over a turn (mm at the pitch radius) at each misalignment."""
     R = spec.tooth.pitch_radius
-    return np.array([R * min_backlash_rad(spec, math.radians(a), steps=steps)
+    return np.array([R * min_backlash_rad(spec, a, steps=steps)
                      for a in misalignment_deg])
 
 

@@ -2,18 +2,20 @@
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
+from ..atomic import write_csv_rows
+from .contact import REGIMES
+from .summary import summarise
+
 CSV_COLUMNS = ("theta_deg", "tooth", "flank", "gap_angle_deg", "deflection_mm",
                "tangential_force_N", "normal_force_N", "contact_z_mm", "contact_r_mm",
                "max_pressure_MPa", "interior_pressure_MPa", "edge_load_share", "patch_length_mm",
                "patch_width_mm", "edge_contact", "contact_regime", "root_stress_MPa")
-REGIMES = ("none", "hertz", "line")  # contact_regime codes: no load, elliptic, truncated line
 
 
 @dataclass(frozen=True, eq=False)
@@ -75,14 +77,10 @@ class LoadResult:
 
     def summary(self) -> dict[str, Any]:
         """The ``load_summary.json`` keys (issue 10), plain data with units in the keys."""
-        from .summary import summarise
-
         return summarise(self)
 
     def write_csv(self, path):
         """Write :meth:`rows` under :data:`CSV_COLUMNS` atomically; returns the path."""
-        from ..atomic import write_csv_rows
-
         return write_csv_rows(path, CSV_COLUMNS, self.rows())
 
     def rows(self):
@@ -101,18 +99,3 @@ class LoadResult:
                        float(self.root_stress_MPa[k, j]))
 
 
-def finite_json(data: Any) -> Any:
-    """Plain JSON data: numpy scalars to Python, non-finite floats to None."""
-    if isinstance(data, dict):
-        return {k: finite_json(v) for k, v in data.items()}
-    if isinstance(data, list | tuple):
-        return [finite_json(v) for v in data]
-    if isinstance(data, np.ndarray):
-        return finite_json(data.tolist())
-    if isinstance(data, np.bool_):
-        return bool(data)
-    if isinstance(data, np.integer):
-        return int(data)
-    if isinstance(data, float | np.floating):
-        return float(data) if math.isfinite(data) else None
-    return data

@@ -41,9 +41,9 @@ from scipy import ndimage
 
 from ..errors import SpecError
 from ..geometry.hub import FLANKS
-from .api import loaded_gaps
 from .gapfield import GapField, depth_range, developed_s, face_range, gap_field, windows
 from .halfspace import composite_modulus, half_space, solve_contact
+from .inputs import loaded_gaps
 
 DEFAULT_GRID = (48, 32)  # cells (along the face, across the depth); see bench_surface.py
 COARSE_GRID = (32, 12)

@@ -35,9 +35,12 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..geometry.hub import form_radius, hub_flank_model, hub_model, tip_radius
+from .cantilever import CantileverCompliance
+from .inputs import tooth_compliance
 
 LN_FLOOR = 1.0
-REGIME = {"none": 0, "hertz": 1, "line": 2}
+REGIMES = ("none", "hertz", "line")  # contact_regime codes: no load, elliptic, truncated line
+REGIME = {name: code for code, name in enumerate(REGIMES)}
 
 
 class ContactModel:
@@ -151,8 +154,6 @@ class ContactModel:
         return b, p0
 
     def _half_thickness(self, r):
-        from .cantilever import CantileverCompliance
-
         c = _geometry_only(self.spec, CantileverCompliance)
         return c.half_thickness("hub", r), c.half_thickness("sleeve", r)
 
@@ -267,8 +268,6 @@ def contact_estimates(spec, normal_force_N: NDArray, z_mm: NDArray,
     cm = contact_model(spec)
     g = cm.geometry(z_mm, r_mm)
     out = cm.estimates(normal_force_N, g)
-    from .api import tooth_compliance
-
     c = tooth_compliance(spec)
     if hasattr(c, "root_stress_MPa"):
         out["root_stress_MPa"] = c.root_stress_MPa(normal_force_N, z_mm, r_mm)

@@ -17,8 +17,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from ..atomic import finite_json
 from ..geometry.hub import form_radius, hub_flank_model, hub_model, tip_radius
-from .result import REGIMES, finite_json
+from .contact import REGIMES
 
 
 def contact_frames(res) -> tuple[NDArray, NDArray]:

@@ -9,11 +9,11 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import SpecError
+from ..geometry.pose import turning_angles
 from ..geometry.sleeve import sleeve_model
 from ..spec import check_misalignment_deg
-from .clearance import DEFAULT_GRID, DEFAULT_TOLERANCE_MM, MEASURES, Minimum, minimise
 from .flank_table import DEFAULT_TABLE_TOLERANCE_MM, flank_table
-from .pose import turning_angles
+from .kernel import DEFAULT_GRID, DEFAULT_TOLERANCE_MM, MEASURES, Minimum, minimise
 from .result import SweepResult
 
 CHUNK_ANGLES = 1024  # turning angles per kernel call: bounds its memory (~30 kB per angle)
@@ -131,7 +131,7 @@ def sweep(spec, misalignment_deg: float, angles_deg: ArrayLike, *,
     backlash = np.min(gap_angle[0], axis=0) + np.min(gap_angle[1], axis=0)
     derived = spec.derived
     return SweepResult(
-        spec_name=spec.name,
+        spec=spec,
         misalignment_deg=float(misalignment_deg),
         teeth=N,
         pitch_radius_mm=R,

@@ -15,7 +15,7 @@ import numpy as np
 from ..errors import SpecError
 from ..geometry.sleeve import sleeve_model
 from ..spec import MISALIGNMENT_RANGE_DEG
-from .clearance import DEFAULT_TOLERANCE_MM, FACE_END, minimise
+from .kernel import DEFAULT_TOLERANCE_MM, FACE_END, minimise
 from .tooth_map import check_misalignment, flank_minima
 
 ANGLE_TOLERANCE_DEG = 1e-4
@@ -51,9 +51,15 @@ def contact_travel(spec, misalignment_deg: float, *, tolerance_mm: float = DEFAU
     }
 
 
-def min_backlash_rad(spec, misalignment_rad: float, *, steps: int = DEFAULT_STEPS,
+def min_backlash_rad(spec, misalignment_deg: float, *, steps: int = DEFAULT_STEPS,
                      tolerance_mm: float = DEFAULT_TOLERANCE_MM) -> float:
-    """Smallest backlash (rad) over a full turn at misalignment ``misalignment_rad``."""
+    """Smallest backlash (rad) over a full turn at ``misalignment_deg`` (0-6°); negative
+    where the teeth bind. ``steps`` rotations per tooth pitch are searched."""
+    return _min_backlash(spec, check_misalignment(misalignment_deg), steps, tolerance_mm)
+
+
+def _min_backlash(spec, misalignment_rad: float, steps: int = DEFAULT_STEPS,
+                  tolerance_mm: float = DEFAULT_TOLERANCE_MM) -> float:
     theta = pitch_turning_angles(spec.tooth.teeth, steps)
     both = np.stack([theta, np.pi - theta])
     mins, _ = flank_minima(spec, misalignment_rad, both, tolerance_mm=tolerance_mm,
@@ -107,7 +113,7 @@ def binding_angle_deg(spec, *, tolerance_deg: float = ANGLE_TOLERANCE_DEG,
 
     def f(i):  # brentq evaluates the ends again: each value once
         if i not in known:
-            known[i] = min_backlash_rad(spec, i, steps=steps)
+            known[i] = _min_backlash(spec, i, steps)
         return known[i]
 
     # bracket from below (small angles are cheap: few rows need deep refinement), so the

@@ -11,7 +11,7 @@ from numpy.typing import NDArray
 
 from ..errors import ArgumentError, GeometryError
 from ..geometry.hub import FLANKS
-from .clearance import KINDS, NONE
+from .kernel import KINDS, NONE
 
 CSV_COLUMNS = ("theta_deg", "tooth", "flank", "clearance_mm", "normal_clearance_mm",
                "pitch_clearance_mm", "contact_z_mm", "contact_r_mm", "contact_kind")
@@ -39,7 +39,7 @@ class SweepResult:
         Free turning of the hub about its axis (angle, and arc at the pitch radius).
     """
 
-    spec_name: str
+    spec: Any = field(repr=False)  # the CouplingSpec swept: loads on this sweep use it
     misalignment_deg: float
     teeth: int
     pitch_radius_mm: float
@@ -58,14 +58,18 @@ class SweepResult:
     contact_kind: NDArray[np.int8]
     backlash_rad: NDArray[np.float64]
     backlash_mm: NDArray[np.float64]
+    # (flank, tooth, angle) hub rotation closing each flank, inf where it never touches
+    # (``normal / r_b / rate``, first order in the gap); read by gearcoupling.loading
+    gap_angle_rad: NDArray[np.float64]
     tolerance_mm: float
     table_error_mm: float
     design: dict[str, Any] = field(default_factory=dict)
-    # (flank, tooth, angle) hub rotation closing each flank, inf where it never touches
-    # (``normal / r_b / rate``, first order in the gap); read by gearcoupling.load
-    gap_angle_rad: NDArray[np.float64] | None = None
 
     kinds: tuple[str, ...] = KINDS
+
+    @property
+    def spec_name(self) -> str:
+        return str(self.spec.name)
 
     def check_finite(self) -> SweepResult:
         """This result, after checking that no value is NaN and that values are infinite

@@ -17,16 +17,23 @@ compliance model, and the same root find on full solves for the surface model.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+from scipy.optimize import brentq
 
-from ..errors import SpecError
-from .api import contact_points, loaded_gaps, resolve_model, tooth_compliance
+from ..atomic import write_csv_rows
+from ..clearance import SweepResult, sweep
+from ..errors import ArgumentError
+from ..geometry.hub import FLANKS
+from .api import load_from_sweep
 from .compliance import first_limit_torque_Nmm
 from .contact import contact_model
+from .inputs import LoadProblem, load_problem, resolve_model
+from .linear_model import mesh_stiffness_N_per_mm
 
 CRITERIA = ("tooth_load", "contact_stress", "bending_stress")
 RTOL = 1e-7  # relative accuracy of a root-found torque (the closed forms are exact)
@@ -56,8 +63,6 @@ def limit_loads(spec, z: NDArray, r: NDArray, compliance) -> dict[str, NDArray]:
 def _linear_capacity(spec, g: NDArray, W_lim: NDArray) -> float:
     """Closed form: smallest torque (N·mm) at which a tooth of the linear model reaches
     ``W_lim`` (normal load)."""
-    from .linear_model import mesh_stiffness_N_per_mm
-
     R = spec.tooth.pitch_radius
     C = mesh_stiffness_N_per_mm(spec)
     P_lim = W_lim * math.cos(spec.tooth.pressure_angle)
@@ -76,8 +81,6 @@ def _linear_capacity(spec, g: NDArray, W_lim: NDArray) -> float:
 def _root_torque(ratio, T0: float, *, step: float = 8.0, rtol: float = RTOL) -> float:
     """Smallest torque (N·mm) with ``ratio(T) = 1`` for increasing ``ratio``, bracketed from
     ``T0`` by factors ``step``; inf if none."""
-    from scipy.optimize import brentq
-
     lo, hi = T0, T0
     r_hi = ratio(hi)
     while r_hi < 1.0:
@@ -96,15 +99,62 @@ def _root_torque(ratio, T0: float, *, step: float = 8.0, rtol: float = RTOL) -> 
     return math.exp(brentq(f, math.log(lo), math.log(hi), xtol=rtol, rtol=1e-15))
 
 
-def capacity_from_sweep(spec, sweep_result, *, model: str | None = None,
+@dataclass(frozen=True, eq=False)
+class Capacity:
+    """Torque capacity at one misalignment, per criterion (torques in N·m, magnitudes).
+
+    ``capacity_Nm`` is the governing criterion's torque times the accuracy factor K
+    (``None``: no limit is reached); ``criteria_Nm`` each criterion's (times K);
+    ``face_end_torque_Nm`` the torque at which a patch reaches a face end (not times K);
+    ``q``, ``load_sharing_factor`` and ``max_tooth_load_N`` at the governing torque;
+    ``aligned_capacity_Nm`` Renzo's ``K N P_i R``; ``solves`` the full model solves used.
+    """
+
+    spec: Any = field(repr=False)
+    misalignment_deg: float
+    model: str
+    loaded_flank: str
+    accuracy_factor: float
+    capacity_Nm: float | None
+    governing: str
+    criteria_Nm: dict[str, float | None]
+    face_end_torque_Nm: float | None
+    aligned_capacity_Nm: float | None
+    q: float | None
+    load_sharing_factor: float | None
+    max_tooth_load_N: float | None
+    solves: int = 0
+
+    def as_dict(self) -> dict[str, Any]:
+        """Plain data (JSON) with the field names as keys, the spec by name."""
+        names = [f for f in self.__dataclass_fields__ if f != "spec"]
+        return {"spec": self.spec.name, **{k: getattr(self, k) for k in names}}
+
+    def row(self) -> tuple:
+        """This result as a row of :data:`CAPACITY_COLUMNS`."""
+        crit = self.criteria_Nm
+        return (self.spec.name, self.misalignment_deg, self.capacity_Nm, self.governing,
+                crit.get("tooth_load"), crit.get("contact_stress"), crit.get("bending_stress"),
+                self.face_end_torque_Nm, self.q, self.load_sharing_factor, self.max_tooth_load_N)
+
+
+def _flank_problem(sweep_result: SweepResult, loaded_flank: str,
+                   gap_offset_rad: ArrayLike | None) -> LoadProblem:
+    """The load problem of ``loaded_flank`` (a unit torque of that sign picks the flank)."""
+    if loaded_flank not in FLANKS:
+        raise ArgumentError(f"loaded_flank = {loaded_flank!r}: must be 'ccw' (positive torque) "
+                            "or 'cw' (negative torque)")
+    return load_problem(sweep_result, 1.0 if loaded_flank == "ccw" else -1.0, gap_offset_rad)
+
+
+def capacity_from_sweep(sweep_result: SweepResult, *, model: str | None = None,
                         gap_offset_rad: ArrayLike | None = None,
-                        sign: int = 1) -> dict[str, Any]:
-    """:func:`capacity` on an existing sweep (``sign`` picks the flank: +1 ccw, -1 cw)."""
+                        loaded_flank: str = "ccw") -> Capacity:
+    """:func:`capacity` on an existing sweep (its spec gives the limits)."""
+    problem = _flank_problem(sweep_result, loaded_flank, gap_offset_rad)
+    spec, g, z, r, comp = (problem.spec, problem.gap_rad, problem.z_mm, problem.r_mm,
+                           problem.compliance)
     m = resolve_model(spec, model)
-    flank = 1 if sign >= 0 else 0
-    g = loaded_gaps(sweep_result, flank, gap_offset_rad)
-    z, r = contact_points(spec, sweep_result, flank)
-    comp = tooth_compliance(spec)
     limits = limit_loads(spec, z, r, comp)
     torques: dict[str, float] = {}
     memo: dict[float, Any] = {}  # surface solves shared by the criteria
@@ -115,20 +165,19 @@ def capacity_from_sweep(spec, sweep_result, *, model: str | None = None,
             T = first_limit_torque_Nmm(spec, g, z, r, W_lim, comp)
         else:
             guess = first_limit_torque_Nmm(spec, g, z, r, W_lim, comp)
-            T = _surface_capacity(spec, sweep_result, name, sign, gap_offset_rad, guess, memo)
+            T = _surface_capacity(problem, name, guess, memo)
         torques[name] = T * 1e-3
-    return _summarise(spec, sweep_result, m, torques, gap_offset_rad, sign)
+    return _summarise(problem, m, torques, len(memo))
 
 
 SURFACE_RTOL = 1e-3  # relative accuracy of a surface-model capacity (full solves: costly)
 
 
-def _surface_capacity(spec, sw, name: str, sign: int, gap_offset_rad, guess_Nmm: float,
-                      memo: dict) -> float:
+def _surface_capacity(problem: LoadProblem, name: str, guess_Nmm: float, memo: dict) -> float:
     """Root find on full surface-model solves for criterion ``name``, bracketed from the
     compliance model's torque ``guess_Nmm`` (factors of 1.5) to ``SURFACE_RTOL``."""
-    from .api import load_from_sweep
-
+    spec = problem.spec
+    sign = 1.0 if problem.torque_Nm >= 0 else -1.0
     mat = spec.material
     limit = {"tooth_load": spec.load.allowable_tooth_load_N,
              "contact_stress": min(mat.hub.allowable_contact_stress_MPa,
@@ -138,8 +187,8 @@ def _surface_capacity(spec, sw, name: str, sign: int, gap_offset_rad, guess_Nmm:
 
     def ratio(T):
         if T not in memo:
-            memo[T] = load_from_sweep(spec, sw, torque_Nm=sign * T * 1e-3, model="surface",
-                                      gap_offset_rad=gap_offset_rad)
+            memo[T] = load_from_sweep(problem.sweep, torque_Nm=sign * T * 1e-3, model="surface",
+                                      gap_offset_rad=problem.gap_offset_rad)
         res = memo[T]
         if name == "face_end":
             return 2.0 if np.any(res.edge_contact) else 0.5
@@ -153,36 +202,35 @@ def _surface_capacity(spec, sw, name: str, sign: int, gap_offset_rad, guess_Nmm:
     return _root_torque(ratio, start, step=1.5, rtol=SURFACE_RTOL)
 
 
-def _summarise(spec, sw, model, torques, gap_offset_rad, sign) -> dict[str, Any]:
+def _summarise(problem: LoadProblem, model: str, torques: dict[str, float],
+               solves: int) -> Capacity:
+    spec, sw = problem.spec, problem.sweep
     K = spec.load.accuracy_factor
     crit = {k: v for k, v in torques.items() if k in CRITERIA}
     gov = min(crit, key=lambda k: crit[k])
     T_gov = crit[gov]
-    out: dict[str, Any] = {
-        "misalignment_deg": float(sw.misalignment_deg), "model": model,
-        "accuracy_factor": K,
-        "capacity_Nm": K * T_gov if math.isfinite(T_gov) else None,
-        "governing": gov,
-        "criteria_Nm": {k: (K * v if math.isfinite(v) else None) for k, v in crit.items()},
-        "face_end_torque_Nm": torques["face_end"] if math.isfinite(torques["face_end"])
-        else None,
-        "aligned_capacity_Nm": None,
-    }
     R, N = spec.tooth.pitch_radius, spec.tooth.teeth
-    if spec.load.allowable_tooth_load_N is not None:
-        out["aligned_capacity_Nm"] = K * N * spec.load.allowable_tooth_load_N * R * 1e-3
-    # q at the governing torque (Renzo: T = q N P_max R)
-    if math.isfinite(T_gov) and T_gov > 0:
-        from .api import load_from_sweep
+    P_i = spec.load.allowable_tooth_load_N
+    q = P_max = None
+    if math.isfinite(T_gov) and T_gov > 0:  # q at the governing torque (T = q N P_max R)
+        sign = 1.0 if problem.torque_Nm >= 0 else -1.0
+        res = load_from_sweep(sw, torque_Nm=sign * T_gov, model=model,
+                              gap_offset_rad=problem.gap_offset_rad)
+        q, P_max = res.q(), float(np.max(res.tangential_force_N))
+        solves += 1
+    return Capacity(
+        spec=spec, misalignment_deg=float(sw.misalignment_deg), model=model,
+        loaded_flank=problem.loaded_flank, accuracy_factor=K,
+        capacity_Nm=_finite_or_none(K * T_gov), governing=gov,
+        criteria_Nm={k: _finite_or_none(K * v) for k, v in crit.items()},
+        face_end_torque_Nm=_finite_or_none(torques["face_end"]),
+        aligned_capacity_Nm=None if P_i is None else K * N * P_i * R * 1e-3,
+        q=q, load_sharing_factor=None if q is None else 1.0 / q, max_tooth_load_N=P_max,
+        solves=solves)
 
-        res = load_from_sweep(spec, sw, torque_Nm=sign * T_gov, model=model,
-                              gap_offset_rad=gap_offset_rad)
-        out["q"] = res.q()
-        out["load_sharing_factor"] = 1.0 / out["q"]
-        out["max_tooth_load_N"] = float(np.max(res.tangential_force_N))
-    else:
-        out["q"] = out["load_sharing_factor"] = out["max_tooth_load_N"] = None
-    return out
+
+def _finite_or_none(v: float) -> float | None:
+    return float(v) if math.isfinite(v) else None
 
 
 def default_angles(spec, gap_offset_rad, n: int = 25) -> NDArray:
@@ -193,8 +241,8 @@ def default_angles(spec, gap_offset_rad, n: int = 25) -> NDArray:
 
 
 def capacity(spec, misalignment_deg: float, *, model: str | None = None,
-             gap_offset_rad: ArrayLike | None = None, angles: ArrayLike | None = None,
-             sign: int = 1, **accuracy: Any) -> dict[str, Any]:
+             loaded_flank: str = "ccw", angles_deg: ArrayLike | None = None,
+             gap_offset_rad: ArrayLike | None = None, **accuracy: Any) -> Capacity:
     """Torque capacity at a misalignment, per criterion, with the governing one and q.
 
     Parameters
@@ -202,45 +250,40 @@ def capacity(spec, misalignment_deg: float, *, model: str | None = None,
     spec : CouplingSpec
     misalignment_deg : float
     model : {"linear", "compliance", "surface"}, optional
+        Default ``spec.load.model``.
+    loaded_flank : {"ccw", "cw"}
+        The flank the torque loads: ``ccw`` for positive torque, ``cw`` for negative.
+    angles_deg : (M,) float, optional
+        Rotations searched for the worst pose; default 25 over one tooth pitch (a full
+        turn with ``gap_offset_rad``).
     gap_offset_rad : (N,) or (2, N) float, optional
-    angles : (M,) float, optional
-        Rotations (degrees) searched for the worst pose; default 25 over one tooth pitch
-        (a full turn with ``gap_offset_rad``).
-    sign : {1, -1}
-        Torque direction (+1 loads the ccw flanks).
     **accuracy
         Passed to the sweep (``tolerance_mm``, ``grid``).
 
     Returns
     -------
-    dict
-        ``capacity_Nm`` (governing, times K), ``governing``, ``criteria_Nm`` (each times K),
-        ``face_end_torque_Nm`` (not times K), ``q`` and ``load_sharing_factor`` at the
-        governing torque, ``aligned_capacity_Nm`` (``K N P_i R``).
+    Capacity
     """
-    from ..sweep import sweep
-
-    if sign not in (1, -1):
-        raise SpecError("sign", sign, "must be 1 (ccw flanks) or -1 (cw flanks)")
-    a = default_angles(spec, gap_offset_rad) if angles is None else angles
+    a = default_angles(spec, gap_offset_rad) if angles_deg is None else angles_deg
     sw = sweep(spec, misalignment_deg, a, **accuracy)
-    return capacity_from_sweep(spec, sw, model=model, gap_offset_rad=gap_offset_rad, sign=sign)
+    return capacity_from_sweep(sw, model=model, gap_offset_rad=gap_offset_rad,
+                               loaded_flank=loaded_flank)
 
 
 def capacity_curve(spec, misalignments_deg: ArrayLike | None = None, *,
-                   model: str | None = None, gap_offset_rad: ArrayLike | None = None,
-                   angles: ArrayLike | None = None, progress=None,
-                   **accuracy: Any) -> list[dict[str, Any]]:
+                   model: str | None = None, loaded_flank: str = "ccw",
+                   angles_deg: ArrayLike | None = None, gap_offset_rad: ArrayLike | None = None,
+                   progress=None, **accuracy: Any) -> list[Capacity]:
     """:func:`capacity` at each misalignment (default 25 from 0 to the design angle, at
-    least 0.5°); ``progress(i, n)`` is called after each."""
+    least 0.5°); ``progress(done, total)`` is called after each."""
     if misalignments_deg is None:
         top = max(math.degrees(spec.design_misalignment), 0.5)
         misalignments_deg = np.linspace(0.0, top, 25)
     mis = np.atleast_1d(np.asarray(misalignments_deg, dtype=float))
     out = []
     for i, m in enumerate(mis):
-        out.append(capacity(spec, float(m), model=model, gap_offset_rad=gap_offset_rad,
-                            angles=angles, **accuracy))
+        out.append(capacity(spec, float(m), model=model, loaded_flank=loaded_flank,
+                            angles_deg=angles_deg, gap_offset_rad=gap_offset_rad, **accuracy))
         if progress is not None:
             progress(i + 1, mis.size)
     return out
@@ -251,19 +294,9 @@ CAPACITY_COLUMNS = ("spec", "misalignment_deg", "capacity_Nm", "governing", "too
                     "load_sharing_factor", "max_tooth_load_N")
 
 
-def capacity_rows(name: str, curve: list[dict]):
-    """CSV rows of one capacity curve in :data:`CAPACITY_COLUMNS` order."""
-    for c in curve:
-        crit = c["criteria_Nm"]
-        yield (name, c["misalignment_deg"], c["capacity_Nm"], c["governing"],
-               crit.get("tooth_load"), crit.get("contact_stress"), crit.get("bending_stress"),
-               c["face_end_torque_Nm"], c["q"], c["load_sharing_factor"], c["max_tooth_load_N"])
-
-
-def write_capacity_csv(curves: dict[str, list[dict]], path) -> Path:
+def write_capacity_csv(curves: dict[str, list[Capacity]], path) -> Path:
     """``capacity.csv``: one row per spec name and misalignment of :func:`capacity_curve`
     results, written atomically."""
-    from ..atomic import write_csv_rows
-
-    return write_csv_rows(path, CAPACITY_COLUMNS, (row for name, curve in curves.items()
-                                                   for row in capacity_rows(name, curve)))
+    return write_csv_rows(path, CAPACITY_COLUMNS, ((name, *c.row()[1:])
+                                                   for name, curve in curves.items()
+                                                   for c in curve))

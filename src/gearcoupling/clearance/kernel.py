@@ -33,10 +33,10 @@ from numpy.typing import NDArray
 
 from ..errors import ArgumentError
 from ..geometry.involute import inv
+from ..geometry.pose import map_polar
 from ..geometry.sleeve import SleeveModel
 from .fast import kernels
 from .flank_table import FlankTable
-from .pose import map_polar
 
 KINDS = ("interior", "face end", "tip edge", "form edge", "sleeve tip edge",
          "sleeve root fillet", "sleeve face end", "no contact")

@@ -83,17 +83,17 @@ def plot_vs_misalignment(misalignments_deg, series: dict[str, Sequence[float]], 
     return fig
 
 
-def plot_capacity(curves: dict[str, list[dict]], ax=None):
+def plot_capacity(curves: dict[str, list], ax=None):
     """Capacity vs misalignment per criterion (dashed) and governing (solid), per spec."""
     fig, ax = _axes(ax, figsize=(8, 4.8))
     for k, (name, rows) in enumerate(curves.items()):
         colour = f"C{k}"
-        mis = [r["misalignment_deg"] for r in rows]
-        gov = [r["capacity_Nm"] if r["capacity_Nm"] is not None else np.nan for r in rows]
+        mis = [r.misalignment_deg for r in rows]
+        gov = [r.capacity_Nm if r.capacity_Nm is not None else np.nan for r in rows]
         ax.plot(mis, gov, "-", color=colour, lw=2, label=f"{name} (governing)")
         styles = {"tooth_load": "--", "contact_stress": ":", "bending_stress": "-."}
         for crit, style in styles.items():
-            ys = [r["criteria_Nm"].get(crit) for r in rows]
+            ys = [r.criteria_Nm.get(crit) for r in rows]
             if any(y is not None for y in ys):
                 ax.plot(mis, [np.nan if y is None else y for y in ys], style, color=colour,
                         lw=1, label=f"{name}: {crit}")

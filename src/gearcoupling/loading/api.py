@@ -1,0 +1,74 @@
+"""The entry points: :func:`load` (sweep, then load sharing) and :func:`load_from_sweep`."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ..clearance import SweepResult, sweep
+from ..errors import SpecError
+from .inputs import LoadProblem, load_problem, resolve_model, resolve_torque_Nm
+from .models import ModelOutput, solve
+from .result import LoadResult
+
+
+def load(spec, misalignment_deg: float, angles_deg: ArrayLike, *,
+         torque_Nm: float | None = None, model: str | None = None,
+         gap_offset_rad: ArrayLike | None = None, **accuracy: Any) -> LoadResult:
+    """Load sharing of every tooth over rotations ``angles_deg`` at a misalignment.
+
+    Parameters
+    ----------
+    spec : CouplingSpec
+    misalignment_deg : float
+        0-6 degrees.
+    angles_deg : (M,) float
+        Coupling rotations ``psi`` (degrees).
+    torque_Nm : float, optional
+        Signed torque (positive loads the ccw flanks); default ``spec.load.torque_Nm``.
+    model : {"linear", "compliance", "surface"}, optional
+        Default ``spec.load.model``.
+    gap_offset_rad : (N,) or (2, N) float, optional
+        Per-tooth additions to the gap angles (index errors, docs/conventions.md).
+    **accuracy
+        Passed to :func:`gearcoupling.sweep` (``tolerance_mm``, ``grid``).
+
+    Examples
+    --------
+    >>> import gearcoupling as gc
+    >>> spec = gc.load_spec("renzo-1967")
+    >>> res = gc.load(spec, 1.0, range(0, 360, 30), torque_Nm=2000.0)
+    >>> round(res.q(), 2)
+    0.32
+    """
+    resolve_torque_Nm(spec, torque_Nm)
+    resolve_model(spec, model)
+    sw = sweep(spec, misalignment_deg, angles_deg, **accuracy)
+    return load_from_sweep(sw, torque_Nm=torque_Nm, model=model, gap_offset_rad=gap_offset_rad)
+
+
+def load_from_sweep(sweep_result: SweepResult, *, torque_Nm: float | None = None,
+                    model: str | None = None,
+                    gap_offset_rad: ArrayLike | None = None) -> LoadResult:
+    """Load sharing on an existing sweep (its spec gives the teeth, materials and defaults);
+    arguments as :func:`load`."""
+    problem = load_problem(sweep_result, torque_Nm, gap_offset_rad)
+    m = resolve_model(problem.spec, model)
+    return _result(problem, m, solve(problem, m))
+
+
+def _result(problem: LoadProblem, model: str, out: ModelOutput) -> LoadResult:
+    bad = out.non_finite()
+    if bad:
+        raise SpecError("torque_Nm", problem.torque_Nm, f"the {model} model gave non-finite "
+                        f"{bad}; the load is outside what the model covers")
+    sw = problem.sweep
+    sign = 1.0 if problem.torque_Nm >= 0 else -1.0
+    return LoadResult(
+        spec=problem.spec, misalignment_deg=float(sw.misalignment_deg),
+        torque_Nm=problem.torque_Nm, model=model, loaded_flank=problem.loaded_flank,
+        angles_deg=np.asarray(sw.angles_deg), theta_deg=np.asarray(sw.theta_deg),
+        windup_rad=sign * out.windup_rad, gap_angle_rad=problem.gap_rad,
+        mesh_stiffness_Nm_per_rad=out.mesh_stiffness_Nm_per_rad, **out.arrays)

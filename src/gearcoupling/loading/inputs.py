@@ -1,0 +1,142 @@
+"""What every load model starts from: one spec's sweep, the torque and the loaded flank.
+
+The leaf of :mod:`gearcoupling.loading`: the models, capacity and the entry points import
+it; it imports none of them.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from functools import lru_cache
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from ..clearance import SweepResult
+from ..errors import ArgumentError, SpecError
+from ..fea import tooth_compliance_table
+from ..geometry.hub import FLANKS
+from ..loadspec import LOAD_MODELS
+from .cantilever import CantileverCompliance
+
+
+def resolve_torque_Nm(spec, torque_Nm: float | None) -> float:
+    """The torque to apply: the argument, else ``[load] torque_Nm``; finite or SpecError."""
+    t = spec.load.torque_Nm if torque_Nm is None else torque_Nm
+    if t is None:
+        raise SpecError("load.torque_Nm", None, "no torque: give [load] torque_Nm (or "
+                        "torque_lbf_in) in the spec or torque_Nm= / --torque")
+    try:
+        t = float(t)
+    except (TypeError, ValueError) as err:
+        raise ArgumentError(f"torque_Nm = {t!r}: must be a number (N·m)") from err
+    if not math.isfinite(t):
+        raise ArgumentError(f"torque_Nm = {t!r}: must be a finite torque in N·m")
+    return t
+
+
+def resolve_model(spec, model: str | None) -> str:
+    """The model name: the argument, else ``[load] model``; one of :data:`LOAD_MODELS`."""
+    m = spec.load.model if model is None else model
+    if m not in LOAD_MODELS:
+        raise ArgumentError(f"model = {m!r}: must be one of {', '.join(LOAD_MODELS)}")
+    return m
+
+
+def loaded_gaps(sweep_result: SweepResult, flank: int,
+                gap_offset_rad: ArrayLike | None) -> NDArray[np.float64]:
+    """Gap angles ``(N, M)`` of the loaded flank plus the per-tooth offsets."""
+    g = sweep_result.gap_angle_rad[flank]
+    if gap_offset_rad is None:
+        return g
+    off = np.asarray(gap_offset_rad, dtype=float)
+    N = g.shape[0]
+    if off.shape == (2, N):
+        off = off[flank]
+    if off.shape != (N,) or not np.all(np.isfinite(off)):
+        raise ArgumentError(f"gap_offset_rad has shape {off.shape}: must be finite, shaped "
+                            f"({N},) or (2, {N})")
+    return g + off[:, None]
+
+
+def contact_points(spec, sweep_result: SweepResult,
+                   flank: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """First-touch ``(z, r)`` of the loaded flank, ``(N, M)``; where nothing faces the sleeve
+    (no finite point) the midplane pitch point stands in (those teeth carry no load)."""
+    z = sweep_result.contact_z_mm[flank]
+    r = sweep_result.contact_r_mm[flank]
+    ok = np.isfinite(z) & np.isfinite(r)
+    return np.where(ok, z, 0.0), np.where(ok, r, spec.tooth.pitch_radius)
+
+
+def tooth_compliance(spec):
+    """The tooth-pair compliance of ``[load] stiffness``: the tapered cantilever, or the FE
+    table (:func:`gearcoupling.fea.tooth_compliance_table`, cached per spec)."""
+    if spec.load.stiffness == "fe":
+        return tooth_compliance_table(spec)
+    return _cantilever(spec)
+
+
+@lru_cache(maxsize=32)
+def _cantilever(spec) -> CantileverCompliance:
+    return CantileverCompliance(spec)
+
+
+@dataclass(frozen=True, eq=False)
+class LoadProblem:
+    """One load problem: a sweep, the signed torque and what follows from them.
+
+    Attributes
+    ----------
+    sweep : SweepResult
+        The sweep (its spec is the spec of the case).
+    torque_Nm : float
+        Signed torque; positive loads the ccw flanks.
+    gap_rad, z_mm, r_mm : (N, M) float
+        Gap angles (with offsets) and first-touch points of the loaded flank.
+    gap_offset_rad : (N,) or (2, N) float or None
+        Per-tooth additions to the gap angles (index errors).
+    """
+
+    sweep: SweepResult
+    torque_Nm: float
+    gap_rad: NDArray[np.float64]
+    z_mm: NDArray[np.float64]
+    r_mm: NDArray[np.float64]
+    gap_offset_rad: NDArray[np.float64] | None = None
+    compliance: Any = field(default=None, repr=False)
+
+    @property
+    def spec(self):
+        return self.sweep.spec
+
+    @property
+    def flank(self) -> int:
+        """Index of the loaded flank in ``(cw, ccw)``."""
+        return 1 if self.torque_Nm >= 0 else 0
+
+    @property
+    def loaded_flank(self) -> str:
+        return FLANKS[self.flank]
+
+    @property
+    def torque_Nmm(self) -> float:
+        """Torque magnitude in N·mm."""
+        return abs(self.torque_Nm) * 1e3
+
+
+def load_problem(sweep_result: SweepResult, torque_Nm: float | None = None,
+              gap_offset_rad: ArrayLike | None = None) -> LoadProblem:
+    """The :class:`LoadProblem` of a sweep at a torque (default the spec's ``[load]`` torque)."""
+    if not isinstance(sweep_result, SweepResult):
+        raise ArgumentError(f"sweep_result is a {type(sweep_result).__name__}: must be the "
+                            "SweepResult of gearcoupling.sweep")
+    spec = sweep_result.spec
+    T = resolve_torque_Nm(spec, torque_Nm)
+    flank = 1 if T >= 0 else 0
+    g = loaded_gaps(sweep_result, flank, gap_offset_rad)
+    z, r = contact_points(spec, sweep_result, flank)
+    off = None if gap_offset_rad is None else np.asarray(gap_offset_rad, dtype=float)
+    return LoadProblem(sweep_result, T, g, z, r, off, tooth_compliance(spec))
