@@ -91,7 +91,7 @@ def test_compliance_model_shares_equally_when_aligned():
 
 
 def test_more_torque_more_teeth_and_stiffer_mesh(renzo):
-    spec, sw = renzo
+    _spec, sw = renzo
     lo = load_from_sweep(sw, torque_Nm=200.0, model="compliance")
     hi = load_from_sweep(sw, torque_Nm=5000.0, model="compliance")
     assert hi.in_contact.sum() > lo.in_contact.sum()
@@ -101,7 +101,7 @@ def test_more_torque_more_teeth_and_stiffer_mesh(renzo):
 
 
 def test_regimes_reported_per_tooth(renzo):
-    spec, sw = renzo
+    _spec, sw = renzo
     light = load_from_sweep(sw, torque_Nm=5.0, model="compliance")
     heavy = load_from_sweep(sw, torque_Nm=5000.0, model="compliance")
     assert np.any(light.contact_regime == 1)  # elliptic Hertz at light load
@@ -110,7 +110,7 @@ def test_regimes_reported_per_tooth(renzo):
 
 
 def test_huge_torque_stays_finite_and_flags_edge_contact(renzo):
-    spec, sw = renzo
+    _spec, sw = renzo
     r = load_from_sweep(sw, torque_Nm=1e7, model="compliance")
     assert np.all(np.isfinite(r.max_pressure_MPa)) and np.any(r.edge_contact)
     assert np.all((r.edge_load_share >= 0) & (r.edge_load_share < 1))
@@ -118,7 +118,7 @@ def test_huge_torque_stays_finite_and_flags_edge_contact(renzo):
 
 def test_fe_stiffness_without_the_fe_branch_is_a_clear_error(renzo):
     spec, sw = renzo
-    fe = spec.replace(**{"load.stiffness": "fe"})
+    spec.replace(**{"load.stiffness": "fe"})
     try:
         import gearcoupling.fea as fea
         has = hasattr(fea, "tooth_compliance_table")

@@ -85,7 +85,7 @@ def test_gap_offset_moves_load_like_a_spacing_error(renzo):
 
 
 def test_zero_torque_is_finite(renzo):
-    spec, sw = renzo
+    _spec, sw = renzo
     r = load_from_sweep(sw, torque_Nm=0.0, model="linear")
     assert np.all(r.tangential_force_N == 0) and 0 < r.q() <= 1
     assert math.isfinite(float(np.max(r.max_pressure_MPa)))
