@@ -16,6 +16,8 @@ from pathlib import Path
 import numpy as np
 
 from ..atomic import atomic_path, write_json
+from ..clearance import require_finite, sweep
+from ..interference import check_interference, plot_interference, posed_meshes
 from .common import (
     MAX_TEETH,
     add_misalignment_argument,
@@ -72,8 +74,6 @@ def register(sub) -> None:
 
 def plot(result, reference_mm, path: Path, backlash_mm=None) -> Path:
     """Write :func:`~gearcoupling.interference.plot.plot_interference` as PNG, atomically."""
-    from ..interference.plot import plot_interference
-
     fig = plot_interference(result, reference_mm, backlash_mm)
     with atomic_path(path) as tmp:
         fig.savefig(tmp, format="png", dpi=120)
@@ -81,8 +81,6 @@ def plot(result, reference_mm, path: Path, backlash_mm=None) -> Path:
 
 
 def write_meshes(result, index: int, out: Path) -> list[Path]:
-    from ..interference import posed_meshes
-
     written = []
     for name, mesh in posed_meshes(result, index).items():
         path = out / f"worst_{name}.stl"
@@ -119,9 +117,6 @@ def print_table(result, count: int) -> None:
 
 def write_outputs(spec, result, out: Path) -> list[Path]:
     """CSV, JSON (with the sweep's exact clearance), plot and worst posed meshes."""
-    from ..clearance import sweep
-    from ..clearance.result import require_finite
-
     reference = backlash = None
     if result.hub_rotation_deg == 0.0:
         swept = sweep(spec, result.misalignment_deg, result.angles_deg).check_finite()
@@ -142,16 +137,12 @@ def write_outputs(spec, result, out: Path) -> list[Path]:
 
 def run_step(spec, out: Path, angles: int = 72) -> list[Path]:
     """The ``gearcoupling run`` step: the check at the design angle, defaults otherwise."""
-    from ..interference import check_interference
-
     result = check_interference(spec, math.degrees(spec.design_misalignment),
                                 360.0 * np.arange(angles) / angles)
     return write_outputs(spec, result, out)
 
 
 def run(args) -> int:
-    from ..interference import check_interference
-
     spec = spec_from_args(args)
     mis = misalignment_deg(args, spec)
     angles = 360.0 * np.arange(args.angles) / args.angles

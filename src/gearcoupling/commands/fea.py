@@ -11,6 +11,7 @@ import sys
 from pathlib import Path
 
 from ..atomic import write_json
+from ..fea import FORMATS, check_size, mesh_part, region_ids, sector_teeth, write_mesh
 from .common import (
     MAX_TEETH,
     add_spec_arguments,
@@ -41,8 +42,6 @@ def register(sub) -> None:
 def fea_meshes(spec, out: Path, parts, formats, *, sector=3, size_mm=None,
                advance=None) -> tuple[list[Path], dict]:
     """Mesh every part and write every format; returns the files and the report."""
-    from ..fea import check_size, mesh_part, region_ids, sector_teeth, write_mesh
-
     teeth = sector_teeth(spec, sector)
     for part in parts:  # refuse a bad size before any meshing
         check_size(spec, part, size_mm)
@@ -63,13 +62,10 @@ def fea_meshes(spec, out: Path, parts, formats, *, sector=3, size_mm=None,
 
 
 def run(args) -> int:
-    from ..fea import FORMATS
-
     spec = spec_from_args(args)
     parts = parse_list(args.parts, PART_NAMES, "--parts")
     fmts = parse_list(args.formats, FORMATS, "--format")
     sector = None if args.whole else args.sector
-    from ..fea import check_size, sector_teeth
 
     sector_teeth(spec, sector)
     for part in parts:

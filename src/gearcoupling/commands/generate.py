@@ -12,6 +12,9 @@ from pathlib import Path
 
 from ..atomic import write_json
 from ..errors import SpecError
+from ..export import export_part
+from ..export import formats as registered
+from ..parts import build_part, check_part, check_tolerance, measure_deviation
 from .common import add_spec_arguments, output_dir, positive_length, progress, spec_from_args
 
 PART_NAMES = ("hub", "sleeve")
@@ -69,11 +72,6 @@ def file_stem(part: str, teeth: list[int] | None) -> str:
 def generate(spec, out: Path, parts, formats, tolerance_mm=None, teeth=None,
              advance=None) -> tuple[list[Path], dict]:
     """Build the parts and write every format; returns the files and the report."""
-    from ..export import export_part
-    from ..parts import build_part, check_tolerance
-    from ..parts.deviation import measure_deviation
-    from ..parts.validity import check_part
-
     try:
         tol = check_tolerance(spec, tolerance_mm)
     except ValueError as err:
@@ -105,8 +103,6 @@ def generate(spec, out: Path, parts, formats, tolerance_mm=None, teeth=None,
 
 
 def run(args) -> int:
-    from ..export import formats as registered
-
     spec = spec_from_args(args)
     parts = parse_list(args.parts, PART_NAMES, "--parts")
     fmts = parse_list(args.formats, registered(), "--format")
@@ -134,7 +130,6 @@ def step_step(spec, out: Path) -> list[Path]:
     import json
     from importlib.util import find_spec
 
-    from ..export import export_part
 
     if find_spec("OCP") is None:
         print("gearcoupling: STEP skipped: pip install 'gearcoupling[step]' for STEP files",

@@ -8,8 +8,21 @@ from pathlib import Path
 import numpy as np
 
 from ..atomic import write_json
+from ..clearance import sweep
 from ..errors import SpecError
+from ..loading import (
+    capacity_from_sweep,
+    default_angles,
+    load,
+    load_from_sweep,
+    plot_patches,
+    plot_q_graph,
+    plot_tooth_load,
+    plot_vs_misalignment,
+    resolve_torque_Nm,
+)
 from ..loadspec import LOAD_MODELS
+from ..plots import save_figure
 from .common import (
     MAX_ANGLES,
     add_misalignment_argument,
@@ -55,12 +68,6 @@ def study_misalignments(spec, count: int = 7) -> np.ndarray:
 
 def studies(spec, torque_Nm: float, model: str | None, out: Path) -> list[Path]:
     """Wei Figs. 12-13 and Renzo's q-graph (Fig. 12) for the spec, over one tooth pitch."""
-    from ..clearance import sweep
-    from ..loading import load_from_sweep
-    from ..loading.capacity import capacity_from_sweep, default_angles
-    from ..loading.plots import plot_q_graph, plot_vs_misalignment
-    from ..plots import save_figure
-
     mis = study_misalignments(spec)
     torques = [0.5 * torque_Nm, torque_Nm, 2.0 * torque_Nm]
     peak: dict[str, list[float]] = {f"T = {t:.4g} N·m": [] for t in torques}
@@ -103,9 +110,6 @@ def load_files(spec, out: Path, misalignment_deg: float, angles: int, *,
                tolerance_mm: float = 1e-7, plots: bool = True,
                with_studies: bool = True) -> list[Path]:
     """Run the loaded analysis and write ``load.csv``, ``load_summary.json`` and plots."""
-    from ..loading import load
-    from ..loading.inputs import resolve_torque_Nm
-
     if angles < 1:
         raise SpecError("--angles", angles, "must be at least 1")
     psi = np.arange(angles) * 360.0 / angles
@@ -114,9 +118,6 @@ def load_files(spec, out: Path, misalignment_deg: float, angles: int, *,
     summary = res.summary()
     paths = [res.write_csv(out / "load.csv"), write_json(out / "load_summary.json", summary)]
     if plots:
-        from ..loading.plots import plot_patches, plot_tooth_load
-        from ..plots import save_figure
-
         paths.append(save_figure(plot_tooth_load(res), out / "load_tooth_load.png"))
         paths.append(save_figure(plot_patches(res), out / "load_patches.png"))
         if with_studies:

@@ -11,8 +11,16 @@ import sys
 from collections.abc import Callable
 from pathlib import Path
 
+from ..atomic import write_json
 from ..errors import BackendError, SpecError
+from ..plots import plot_sections
+from ..viewer import write_html
+from .check import run_step
 from .common import add_spec_arguments, output_dir, progress, spec_from_args
+from .generate import parts_step, step_step
+from .load import load_files
+from .spec import resolved
+from .sweep import sweep_files
 
 Step = Callable[[object, Path], list[Path]]
 
@@ -22,53 +30,36 @@ class SkipStep(Exception):
 
 
 def _spec(spec, out: Path) -> list[Path]:
-    from ..atomic import write_json
-    from .spec import resolved
-
     return [write_json(out / "spec.json", resolved(spec))]
 
 
 def _sections(spec, out: Path) -> list[Path]:
-    from ..plots import plot_sections
-
     return [plot_sections(spec, out / "sections.png")]
 
 
 def _parts(spec, out: Path) -> list[Path]:
-    from .generate import parts_step
-
     return parts_step(spec, out)
 
 
 def _step_files(spec, out: Path) -> list[Path]:
-    from .generate import step_step
-
     return step_step(spec, out)
 
 
 def _sweep(spec, out: Path) -> list[Path]:
-    from .sweep import sweep_files
-
     return sweep_files(spec, out, spec.design_misalignment_deg, 360)
 
 
 def _load(spec, out: Path) -> list[Path]:
-    from .load import load_files
-
     if spec.load.torque_Nm is None:
         raise SkipStep("no [load] torque_Nm in the spec")
     return load_files(spec, out, spec.design_misalignment_deg, 360)
 
 
 def _check(spec, out: Path) -> list[Path]:
-    from .check import run_step
-
     return run_step(spec, out)
 
 
 def _viewer(spec, out: Path) -> list[Path]:
-    from ..viewer.html import write_html
-
     return [write_html(spec, out / "viewer.html")]
 
 

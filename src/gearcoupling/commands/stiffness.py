@@ -14,6 +14,8 @@ import sys
 from pathlib import Path
 
 from ..atomic import write_json, write_text
+from ..errors import SpecError
+from ..fea import ccx_path, check_size, gmsh_module, pitch_point_compliance, tooth_compliance_table
 from .common import (
     MAX_TEETH,
     add_spec_arguments,
@@ -46,8 +48,6 @@ def register(sub) -> None:
 
 def write_table(table, out: Path) -> list[Path]:
     """``stiffness.csv`` and ``stiffness.json`` of a compliance table."""
-    from ..fea.stiffness import pitch_point_compliance
-
     rows = table.rows()
     buf = io.StringIO()
     writer = csv.DictWriter(buf, fieldnames=list(rows[0]))
@@ -60,10 +60,6 @@ def write_table(table, out: Path) -> list[Path]:
 
 
 def run(args) -> int:
-    from ..errors import SpecError
-    from ..fea import check_size, tooth_compliance_table
-    from ..fea.backends import ccx_path, gmsh_module
-
     spec = spec_from_args(args)
     for part in ("hub", "sleeve"):
         check_size(spec, part, args.size)

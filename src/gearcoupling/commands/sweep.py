@@ -7,6 +7,7 @@ from pathlib import Path
 import numpy as np
 
 from ..atomic import write_json
+from ..clearance import design_quantities, plot_all, require_finite, sweep
 from ..errors import SpecError
 from .common import (
     MAX_ANGLES,
@@ -41,10 +42,6 @@ def sweep_files(spec, out: Path, misalignment_deg: float, angles: int, *,
                 tolerance_mm: float = 1e-7, design: bool = True, plots: bool = True,
                 studies: bool = True) -> list[Path]:
     """Run a sweep and write ``sweep.csv``, ``sweep_summary.json`` and the plots."""
-    from ..clearance import sweep
-    from ..clearance.design import design_quantities
-    from ..clearance.result import require_finite
-
     if angles < 1:
         raise SpecError("--angles", angles, "must be at least 1")
     psi = np.arange(angles) * 360.0 / angles
@@ -56,8 +53,6 @@ def sweep_files(spec, out: Path, misalignment_deg: float, angles: int, *,
     paths = [result.write_csv(out / "sweep.csv"),
              write_json(out / "sweep_summary.json", summary)]
     if plots:
-        from ..clearance.plots import plot_all
-
         paths += plot_all(result, spec, out, design=extra if design else None, studies=studies)
     return paths
 

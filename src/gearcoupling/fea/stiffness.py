@@ -35,7 +35,7 @@ from ..atomic import safe_name, write_json
 from ..errors import GeometryError, SpecError
 from .ccx import run_ccx, solver_dir
 from .deck import LoadCase, principal_max, static_deck
-from .mesh import DEFAULT_SECTOR_TEETH, mesh_part
+from .mesh import DEFAULT_SECTOR_TEETH, check_size, mesh_part
 from .volume import VolumeMesh
 
 CACHE_ENV = "GEARCOUPLING_CACHE"
@@ -295,8 +295,6 @@ def tooth_compliance_table(spec, *, size_mm: float | None = None,
     folder ``~/.cache/gearcoupling/fea``); ``refresh`` recomputes it. Implements the tooth
     compliance protocol ``pair_compliance_mm_per_N(z_mm, r_mm)`` of the load models.
     """
-    from .mesh import check_size
-
     check_size(spec, "hub", size_mm)
     check_size(spec, "sleeve", size_mm)
     key = spec_hash(spec, size_mm=size_mm, sector=sector, nz=nz, nr=nr)

@@ -10,7 +10,7 @@ from typing import cast
 import numpy as np
 
 from ..errors import SpecError
-from ..hob.charts import measuring_charts
+from ..hob import measuring_charts
 from .datum import bore_datum
 from .io import load_points
 from .register import RegistrationError, register

@@ -40,7 +40,7 @@ from numpy.typing import NDArray
 from scipy import ndimage
 
 from ..errors import SpecError
-from ..geometry.hub import FLANKS
+from ..geometry import FLANKS
 from .gapfield import GapField, depth_range, developed_s, face_range, gap_field, windows
 from .halfspace import composite_modulus, half_space, solve_contact
 from .inputs import loaded_gaps

@@ -36,7 +36,7 @@ class StudyRun:
     failed_rows: int
 
 
-def _pyarrow():
+def pyarrow_modules():
     try:
         import pyarrow as pa
         import pyarrow.parquet as pq
@@ -75,7 +75,7 @@ def _part_path(out: Path, chunk: int) -> Path:
 
 
 def _write_part(rows: list[dict[str, Any]], names: list[str], path: Path) -> None:
-    pa, pq = _pyarrow()
+    pa, pq = pyarrow_modules()
     table = pa.Table.from_pylist([{k: r.get(k) for k in names} for r in rows])
     with atomic_path(path) as tmp:
         pq.write_table(table, tmp)
@@ -167,7 +167,7 @@ def _compute(client, study, groups, todo, out, names, on_chunk) -> None:
 
 
 def _merge(out: Path, names: list[str], n_chunks: int, skipped: int) -> StudyRun:
-    pa, pq = _pyarrow()
+    pa, pq = pyarrow_modules()
     parts = [_part_path(out, c) for c in range(n_chunks)]
     missing = [p.name for p in parts if not p.is_file()]
     if missing:
@@ -184,5 +184,5 @@ def _merge(out: Path, names: list[str], n_chunks: int, skipped: int) -> StudyRun
 
 def read_table(path: str | Path):
     """A study table as a list of row dicts (pyarrow imported lazily)."""
-    _, pq = _pyarrow()
+    _, pq = pyarrow_modules()
     return pq.read_table(path).to_pylist()
