@@ -45,11 +45,11 @@ def capacity_files(specs: list, out: Path, misalignments_deg: np.ndarray, *,
     """Capacity curves of ``specs`` (first one names the folder) to CSV and plot."""
     curves: dict[str, list[Capacity]] = {}
     n = len(specs) * misalignments_deg.size
-    with progress("capacity", n) as advance:
-        for spec in specs:
+    with progress("capacity", n) as update:
+        for k, spec in enumerate(specs):
             curves[spec.name] = capacity_curve(
                 spec, misalignments_deg, model=model,
-                progress=lambda i, _n, s=spec: advance(f"{s.name} {i}/{_n}"))
+                progress=lambda i, _n, k=k: update(k * misalignments_deg.size + i, n))
     paths = [write_capacity_csv(curves, out / "capacity.csv")]
     if plots:
         paths.append(save_figure(plot_capacity(curves), out / "capacity.png"))

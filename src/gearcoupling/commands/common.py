@@ -123,16 +123,24 @@ def ensure_dir(out: Path, field: str = "-o") -> Path:
 
 @contextmanager
 def progress(description: str, total: int):
-    """A rich progress bar on stderr; yields ``advance(label)``."""
+    """A rich progress bar on stderr with the time left; yields ``update(done, total)``, the
+    library's progress callback. The bar redraws on each update (no refresh thread, so
+    :func:`gearcoupling.run` may fork beside it)."""
     from rich.console import Console
-    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+    from rich.progress import (
+        BarColumn,
+        Progress,
+        TextColumn,
+        TimeElapsedColumn,
+        TimeRemainingColumn,
+    )
 
     with Progress(TextColumn("{task.description}"), BarColumn(), TextColumn("{task.completed}/"
-                  "{task.total}"), TimeElapsedColumn(), console=Console(stderr=True),
-                  transient=False) as bar:
+                  "{task.total}"), TimeElapsedColumn(), TimeRemainingColumn(),
+                  console=Console(stderr=True), transient=False, auto_refresh=False) as bar:
         task = bar.add_task(description, total=total)
 
-        def advance(label: str | None = None) -> None:
-            bar.update(task, advance=1, description=label or description)
+        def update(done: int, total: int) -> None:
+            bar.update(task, completed=done, total=total, refresh=True)
 
-        yield advance
+        yield update

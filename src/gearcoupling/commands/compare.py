@@ -70,11 +70,11 @@ def run(args) -> int:
         if not Path(f).is_file():
             raise SpecError("file", f, "a scan or mesh (STL/PLY/OBJ, CSV/XYZ): no such file")
     out = output_dir(args, spec)
-    with progress("compare", 2 + STAGES * len(args.files)) as advance:
+    with progress("compare", 2 + STAGES * len(args.files)) as update:
         result = compare_part(spec, args.files[0],
                               args.files[1] if len(args.files) == 2 else None,
                               units=args.units, limits=limits,
-                              coarse=args.coarse, fit_points=args.fit_points, advance=advance)
+                              coarse=args.coarse, fit_points=args.fit_points, progress=update)
     units = ["lengths in mm, + = material excess / toward increasing polar angle"]
     if len(args.files) == 2:
         files = [write_csv(out / "comparison.csv", result.rows(), units)]

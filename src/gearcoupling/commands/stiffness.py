@@ -71,10 +71,10 @@ def run(args) -> int:
     gmsh_module()
     ccx_path()
     out = output_dir(args, spec)
-    with progress(f"{spec.name} FE stiffness", 4) as advance:
+    with progress(f"{spec.name} FE stiffness", 4) as update:
         table = tooth_compliance_table(spec, size_mm=args.size, sector=args.sector,
                                        nz=args.nz, nr=args.nr, cache=args.cache,
-                                       refresh=args.refresh, advance=advance)
+                                       refresh=args.refresh, progress=update)
     written = write_table(table, out)
     c = table.mesh_stiffness_N_per_mm
     print(f"{spec.name}: mesh stiffness C = {c:.4g} N/mm per tooth pair "

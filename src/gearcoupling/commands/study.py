@@ -52,17 +52,12 @@ def run(args) -> int:
     if study.optimise is not None:
         return _optimise(study, out, plots=not args.no_plots)
 
-    with progress(f"study {study.name} (chunks)", len(chunks(study))) as advance:
-        def on_start(todo: int, skipped: int) -> None:
-            if skipped:
-                print(f"resuming: {skipped} finished chunk(s) in {out / 'parts'} skipped, "
-                      f"{todo} to run")
-            for _ in range(skipped):
-                advance()
-
+    with progress(f"study {study.name} (chunks)", len(chunks(study))) as update:
         result = run_study(study, out, scheduler=args.scheduler, workers=args.workers,
-                           connect_timeout_s=args.connect_timeout,
-                           fresh=args.fresh, on_start=on_start, on_chunk=lambda c: advance())
+                           connect_timeout_s=args.connect_timeout, fresh=args.fresh,
+                           progress=update)
+    if result.skipped_chunks:
+        print(f"resumed: {result.skipped_chunks} chunk(s) finished earlier in {out / 'parts'}")
     print(result.table)
     if result.failed_rows:
         print(f"{result.failed_rows} of {result.rows} rows refused (see the 'error' column)")
@@ -91,8 +86,15 @@ def _optimise(study, out: Path, *, plots: bool) -> int:
     """Crown optimisation: every evaluation's row, the optimum, capacity curves against the
     compared specs."""
     options = optimise_options(study)
-    with progress(f"optimise {study.name} (evaluations)", options["max_evaluations"]) as adv:
-        result = optimise_crown(study, on_row=lambda r: adv())
+    n = options["max_evaluations"]
+    with progress(f"optimise {study.name} (evaluations)", n) as update:
+        seen = [0]
+
+        def on_row(_row) -> None:
+            seen[0] += 1
+            update(min(seen[0], n), n)
+
+        result = optimise_crown(study, on_row=on_row)
     write_rows(result.rows, out / "study.parquet")
     print(out / "study.parquet")
     if result.best is None:

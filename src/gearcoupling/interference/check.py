@@ -335,7 +335,7 @@ def check_interference(spec, misalignment_deg: float, angles_deg: ArrayLike, *,
                        teeth: int | str = "sweep", margin_mm: float | None = None,
                        hub_rotation_deg: float = 0.0, backlash: bool = False,
                        model: Model | None = None,
-                       progress: Callable[[int], None] | None = None) -> InterferenceResult:
+                       progress: Callable[[int, int], None] | None = None) -> InterferenceResult:
     """Overlap volume, teeth, centroid, depth and minimum gap of the posed meshes per angle.
 
     Parameters
@@ -374,7 +374,7 @@ def check_interference(spec, misalignment_deg: float, angles_deg: ArrayLike, *,
         A prepared model from :func:`~.submodel.build_model` to reuse (it must match
         ``tolerance_mm`` and ``teeth``).
     progress : callable, optional
-        Called with the angle index after each pose.
+        ``progress(done, total)`` after each pose.
 
     Returns
     -------
@@ -445,7 +445,7 @@ def check_interference(spec, misalignment_deg: float, angles_deg: ArrayLike, *,
         overlaps.extend(acc.pieces)
         out.store(j, acc)
         if progress is not None:
-            progress(j)
+            progress(j + 1, M)
     per_pose = (time.perf_counter() - t1) / M
     R = spec.tooth.pitch_radius
     return InterferenceResult(
