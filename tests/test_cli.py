@@ -72,7 +72,7 @@ def test_templates_lists_every_template(capsys):
 def test_atomic_writes_leave_the_old_file_on_failure_and_use_the_usual_mode(tmp_path):
     import os
 
-    from gearcoupling.atomic import atomic_path, write_text
+    from gearcoupling.io import atomic_path, write_text
 
     target = tmp_path / "a.txt"
     write_text(target, "old")

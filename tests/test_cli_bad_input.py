@@ -36,8 +36,8 @@ def files(tmp_path_factory):
 # (argv with {d} for the fixture folder, words the one-line message must contain)
 BAD = [
     (["spec", "nope"], "templates"),
-    (["spec", "{d}/missing.toml"], "no such spec file"),
-    (["spec", "{d}/folder.toml"], "no such spec file"),
+    (["spec", "{d}/missing.toml"], "no such file"),
+    (["spec", "{d}/folder.toml"], "no such file"),
     (["spec", "{d}/latin1.toml"], "UTF-8"),
     (["spec", "{d}/broken.toml"], "not valid TOML"),
     (["spec", "{d}/misspelt.toml"], "tooth.teth"),
@@ -200,9 +200,9 @@ def test_spec_json_into_a_closed_pipe_is_quiet():
 
 
 def test_a_killed_writer_leaves_a_temporary_that_the_next_write_removes(tmp_path):
-    from gearcoupling.atomic import write_text
+    from gearcoupling.io import write_text
 
-    code = ("import sys, time\nfrom gearcoupling.atomic import atomic_path\n"
+    code = ("import sys, time\nfrom gearcoupling.io import atomic_path\n"
             "with atomic_path(sys.argv[1]) as tmp:\n    tmp.write_text('half')\n"
             "    print('ready', flush=True)\n    time.sleep(60)\n")
     proc = subprocess.Popen([sys.executable, "-c", code, str(tmp_path / "hub.stl")],

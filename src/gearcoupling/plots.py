@@ -9,9 +9,9 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .atomic import atomic_path
 from .errors import ArgumentError, BackendError, SpecError
 from .geometry import hub_flank_model, hub_model, plane_rack, transverse_section
+from .io import atomic_path
 
 if TYPE_CHECKING:  # matplotlib is imported where a plot is drawn
     from matplotlib.axes import Axes

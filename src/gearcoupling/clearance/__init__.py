@@ -13,7 +13,7 @@ from .design import (
 from .flank_table import flank_table
 from .kernel import KINDS
 from .plots import plot_all
-from .result import CSV_COLUMNS, SweepResult, require_finite
+from .result import CSV_COLUMNS, SweepResult
 from .tooth_map import check_angles, check_misalignment, flank_minima, sweep
 
 __all__ = [
@@ -32,6 +32,5 @@ __all__ = [
     "min_backlash_rad",
     "pitch_turning_angles",
     "plot_all",
-    "require_finite",
     "sweep",
 ]

@@ -8,10 +8,11 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import SpecError
+from ..io import parse_override
 from ..loading import Capacity, capacity_curve, plot_capacity, write_capacity_csv
 from ..loadspec import LOAD_MODELS
 from ..plots import save_figure
-from ..spec import load_spec, parse_override
+from ..spec import load_spec
 from .common import (
     add_spec_arguments,
     count,

@@ -8,9 +8,9 @@ from collections.abc import Callable
 from contextlib import contextmanager
 from pathlib import Path
 
-from ..atomic import default_output_dir
 from ..errors import SpecError
-from ..spec import CouplingSpec, check_misalignment_deg, load_spec, parse_override
+from ..io import default_output_dir, parse_override
+from ..spec import CouplingSpec, check_misalignment_deg, load_spec
 
 MAX_ANGLES = 100_000  # rotation angles per turn a command accepts (memory grows with it)
 MAX_TEETH = 300  # the documented range of teeth is 6-300
@@ -101,7 +101,7 @@ def spec_from_args(args: argparse.Namespace) -> CouplingSpec:
 
 def output_dir(args: argparse.Namespace, spec: CouplingSpec) -> Path:
     """``-o DIR`` if given, else ``outputs/<sanitised spec name>``: a spec's ``name`` never
-    chooses where files go (see :func:`~gearcoupling.atomic.default_output_dir`)."""
+    chooses where files go (see :func:`~gearcoupling.io.default_output_dir`)."""
     given = getattr(args, "output", None)
     return ensure_dir(Path(given) if given else default_output_dir(spec.name))
 

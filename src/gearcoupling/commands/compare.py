@@ -11,9 +11,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..atomic import write_json
 from ..errors import SpecError
-from ..hob import write_csv
 from ..inspection import (
     LIMITS,
     STAGES,
@@ -23,6 +21,7 @@ from ..inspection import (
     plot_inspection,
     write_deviation_ply,
 )
+from ..io import write_csv_records, write_json
 from ..plots import save_figure
 from .common import add_spec_arguments, count, output_dir, progress, spec_from_args
 
@@ -77,13 +76,13 @@ def run(args) -> int:
                               coarse=args.coarse, fit_points=args.fit_points, progress=update)
     units = ["lengths in mm, + = material excess / toward increasing polar angle"]
     if len(args.files) == 2:
-        files = [write_csv(out / "comparison.csv", result.rows(), units)]
+        files = [write_csv_records(out / "comparison.csv", result.rows(), units)]
         files.append(write_json(out / "comparison.json", {**result.summary(),
                                                           "files": [str(f) for f in files]}))
         reports = [result.a, result.b]
     else:
         reports = [result]
-        files = [write_csv(out / "inspection.csv", result.rows(), units),
+        files = [write_csv_records(out / "inspection.csv", result.rows(), units),
                  save_figure(plot_inspection(result), out / "inspection.png"),
                  save_figure(plot_deviation_map(result), out / "deviation_map.png"),
                  write_deviation_ply(result, out / "deviation.ply")]

@@ -13,9 +13,9 @@ import io
 import sys
 from pathlib import Path
 
-from ..atomic import write_json, write_text
 from ..errors import SpecError
 from ..fea import ccx_path, check_size, gmsh_module, pitch_point_compliance, tooth_compliance_table
+from ..io import write_json, write_text
 from .common import (
     MAX_TEETH,
     add_spec_arguments,

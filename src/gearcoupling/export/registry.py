@@ -10,8 +10,8 @@ from __future__ import annotations
 from collections.abc import Callable
 from pathlib import Path
 
-from ..atomic import atomic_path
 from ..errors import SpecError
+from ..io import atomic_path
 from . import meshes, step
 from .job import PartJob
 

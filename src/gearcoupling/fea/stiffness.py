@@ -32,8 +32,8 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..atomic import safe_name, write_json
 from ..errors import GeometryError, SpecError
+from ..io import safe_name, write_json
 from .ccx import run_ccx, solver_dir
 from .deck import LoadCase, principal_max, static_deck
 from .mesh import DEFAULT_SECTOR_TEETH, check_size, mesh_part

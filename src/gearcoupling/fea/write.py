@@ -6,8 +6,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..atomic import atomic_path
 from ..errors import SpecError
+from ..io import atomic_path
 from .volume import VolumeMesh
 
 FORMATS = ("inp", "msh", "vtu")

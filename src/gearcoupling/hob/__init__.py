@@ -13,7 +13,6 @@ from .charts import (
     write_nominal_csv,
 )
 from .program import HobProgram, Move, hob_program
-from .writers import write_csv
 
 __all__ = [
     "HobProgram",
@@ -24,6 +23,5 @@ __all__ = [
     "hob_program",
     "measuring_charts",
     "plot_measuring_charts",
-    "write_csv",
     "write_nominal_csv",
 ]

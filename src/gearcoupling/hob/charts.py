@@ -32,8 +32,8 @@ from numpy.typing import NDArray
 
 from ..errors import SpecError
 from ..geometry import FLANKS, HubModel, form_radius, hub_flank_model, hub_model, inv, tip_radius
+from ..io import write_csv_records
 from ..plots import figure_axes
-from .writers import write_csv
 
 _EPS = 1e-9
 
@@ -287,7 +287,7 @@ def plot_measuring_charts(charts: MeasuringCharts, ax=None):
 
 def write_nominal_csv(charts: MeasuringCharts, path: str | Path) -> Path:
     """The nominal traces as a CSV a measuring machine can load (points + normals)."""
-    return write_csv(path, charts.rows(), [
+    return write_csv_records(path, charts.rows(), [
         f"gearcoupling nominal measuring traces, spec {charts.spec_name}",
         "units: mm (coordinates, roll length, deviation); normals: unit vectors out of the "
         "tooth material",

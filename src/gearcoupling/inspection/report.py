@@ -114,8 +114,7 @@ class InspectionReport:
 
 
 def _clean(v):
-    v = float(v)
-    return v if math.isfinite(v) else None
+    return float(v)
 
 
 def _group_fit(g, B, d, n_groups):

@@ -33,9 +33,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..atomic import write_text
 from ..clearance import check_angles, check_misalignment, sweep
 from ..errors import ArgumentError, SpecError
+from ..io import write_text
 from ..parts import SURFACE_KINDS, check_tolerance
 from . import distance as dist
 from .attribution import FLANKS, flank_index, nearest_tooth

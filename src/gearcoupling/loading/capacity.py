@@ -25,10 +25,10 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import brentq
 
-from ..atomic import write_csv_rows
 from ..clearance import SweepResult, sweep
 from ..errors import ArgumentError
 from ..geometry import FLANKS
+from ..io import write_csv_rows
 from .api import load_from_sweep
 from .compliance import first_limit_torque_Nmm
 from .contact import contact_model

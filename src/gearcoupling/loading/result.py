@@ -8,7 +8,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..atomic import write_csv_rows
+from ..io import write_csv_rows
 from .contact import REGIMES
 from .summary import summarise
 

@@ -17,7 +17,6 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..atomic import finite_json
 from ..geometry import form_radius, hub_flank_model, hub_model, tip_radius
 from .contact import REGIMES
 
@@ -105,7 +104,7 @@ def summarise(res) -> dict[str, Any]:
         "archard_index_N_mm_per_rev_per_tooth": archard.tolist(),
         "limits": _limits(res),
     }
-    return finite_json(out)
+    return out
 
 
 def _limits(res) -> list[str]:

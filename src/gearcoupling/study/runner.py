@@ -15,8 +15,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..atomic import atomic_path, write_json
 from ..errors import BackendError, SpecError
+from ..io import atomic_path, write_json
 from .evaluate import evaluate_chunk
 from .file import OUTPUTS, TOLERANCE_OUTPUTS, Study, sample_count, samples
 

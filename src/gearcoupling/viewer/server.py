@@ -23,8 +23,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..atomic import default_output_dir
 from ..errors import GearCouplingError, SpecError
+from ..io import default_output_dir
 from .html import save_html
 from .nodes import FRAMES, CouplingScene, ViewSettings, import_viser
 from .scene import (

@@ -7,17 +7,12 @@ once its process is gone (:func:`remove_stale_temporaries`).
 
 from __future__ import annotations
 
-import json
-import math
 import os
 import re
 import tempfile
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
-from typing import Any
-
-import numpy as np
 
 
 @contextmanager
@@ -102,49 +97,3 @@ def write_text(path: str | os.PathLike, text: str) -> Path:
     with atomic_path(path) as tmp:
         tmp.write_text(text)
     return Path(path)
-
-
-def write_json(path: str | os.PathLike, data: Any) -> Path:
-    """Write ``data`` as indented JSON atomically; refuses NaN and infinity."""
-    return write_text(path, json.dumps(data, indent=2, allow_nan=False, default=_jsonable) + "\n")
-
-
-def _jsonable(obj: Any) -> Any:
-    if hasattr(obj, "tolist"):
-        return obj.tolist()
-    raise TypeError(f"not JSON serialisable: {type(obj).__name__}")
-
-
-def write_csv_rows(path: str | os.PathLike, columns, rows) -> Path:
-    """A CSV written atomically: floats as ``%.9g``, booleans ``true``/``false``, None empty."""
-    import csv
-
-    def cell(v):
-        if v is None:
-            return ""
-        if isinstance(v, bool):
-            return str(v).lower()
-        return f"{v:.9g}" if isinstance(v, float) else v
-
-    with atomic_path(path) as tmp, open(tmp, "w", newline="") as fh:
-        w = csv.writer(fh)
-        w.writerow(columns)
-        w.writerows([cell(v) for v in row] for row in rows)
-    return Path(path)
-
-
-def finite_json(data: Any) -> Any:
-    """Plain JSON data: numpy scalars to Python, non-finite floats to None."""
-    if isinstance(data, dict):
-        return {k: finite_json(v) for k, v in data.items()}
-    if isinstance(data, list | tuple):
-        return [finite_json(v) for v in data]
-    if isinstance(data, np.ndarray):
-        return finite_json(data.tolist())
-    if isinstance(data, np.bool_):
-        return bool(data)
-    if isinstance(data, np.integer):
-        return int(data)
-    if isinstance(data, float | np.floating):
-        return float(data) if math.isfinite(data) else None
-    return data
