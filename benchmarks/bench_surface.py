@@ -1,4 +1,4 @@
-"""Speed and accuracy of the ``surface`` load model (issue 10): the grid trade.
+"""Speed and accuracy of the ``surface`` load model: the grid trade.
 
 For renzo-1967 at a misalignment and torque, one pose (rotation 0) is solved on a ladder of
 fine grids (cells along the face x across the depth); each row prints the CPU and wall

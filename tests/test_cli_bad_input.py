@@ -1,5 +1,5 @@
-"""Bad command lines exit with status 2 and one line naming what is wrong (issue 14 items
-3 and 10): a table of bad inputs, plus the output-folder, pipe, temporary-file and viewer
+"""Bad command lines exit with status 2 and one line naming what is wrong: a table of bad
+inputs, plus the output-folder, pipe, temporary-file and viewer
 address cases that need more than one call."""
 
 import os

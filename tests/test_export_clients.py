@@ -1,4 +1,4 @@
-"""Every export opened by its own client (issue 14, item 9): gmsh reads the MSH with its
+"""Every export opened by its own client: gmsh reads the MSH with its
 named groups and the STEP (volume, dense exact points), CalculiX runs the INP, VTK keeps
 the labels and the kind names, lib3mf reads the 3MF in strict mode, the Khronos glTF
 validator passes the GLB and its scene is in metres with +Y up and smooth normals.

@@ -10,8 +10,7 @@ from gearcoupling import load_spec
 from gearcoupling.cli import main
 from gearcoupling.errors import BackendError, SpecError
 
-pytest.importorskip("gmsh")
-pytest.importorskip("OCP")
+pytestmark = [pytest.mark.needs_fea]  # skipped, with the reason, without gmsh or ccx
 
 SIZE = 1.0  # coarse (module / 2) so the tests stay fast
 

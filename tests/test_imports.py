@@ -34,14 +34,14 @@ def test_later_stages_are_reachable_lazily_from_the_top_level():
 
 
 def test_import_gearcoupling_loads_no_scipy():
-    # issue 14 item 8: scipy.interpolate/optimize (~0.4 s) are imported inside the
+    # scipy.interpolate/optimize (~0.4 s) are imported inside the
     # functions that use them; `import gearcoupling` costs numpy plus our own modules
     code = "import sys, gearcoupling; print(','.join(m for m in sys.modules if 'scipy' in m))"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == ""
 
 
-# the data flow of docs/conventions.md (DESIGN.md §4): each unit may import only these
+# the data flow of docs/conventions.md (docs/conventions.md): each unit may import only these
 LAYERS = {
     "errors": set(),
     "io": {"errors"},
@@ -56,7 +56,8 @@ LAYERS = {
     "fea": {"io", "errors", "geometry", "spec", "parts", "export", "clearance"},
     "loading": {"io", "errors", "geometry", "spec", "loadspec", "plots", "clearance",
              "fea"},
-    "study": {"__init__", "io", "loadspec", "errors", "geometry", "spec", "plots", "clearance", "loading"},
+    "study": {"__init__", "io", "loadspec", "errors", "geometry", "spec", "plots", "clearance",
+              "loading"},
     "hob": {"io", "errors", "geometry", "spec", "plots"},
     "inspection": {"io", "errors", "geometry", "spec", "plots", "parts", "hob"},
     "outputs": {"io", "errors", "geometry", "spec", "plots", "parts", "export", "clearance",

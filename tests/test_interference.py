@@ -15,6 +15,8 @@ from gearcoupling.interference.distance import positive_integral
 from gearcoupling.interference.posed import hub_pose, window_pose, window_to_sleeve
 from gearcoupling.interference.submodel import hot_teeth, windows
 
+pytestmark = [pytest.mark.needs_fcl]
+
 FLANKS = ("cw", "ccw")
 
 
@@ -323,7 +325,8 @@ def test_mesh_backlash_matches_exact_free_turn_of_the_outlines():
 
 def test_overlap_attribution_is_one_rule():
     """Points just either side of tooth centres go to that tooth and to the flank on their
-    side (DESIGN.md §6: tooth k centred at 2 pi k / N, ccw beyond the centre)."""
+    side (docs/conventions.md, Loaded analysis: tooth k centred at 2 pi k / N, ccw beyond the
+    centre)."""
     from gearcoupling.interference.attribution import FLANKS, flank_index, nearest_tooth
 
     n = 7

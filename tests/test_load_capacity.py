@@ -1,4 +1,4 @@
-"""Capacity and Renzo's q-graph (issue 10): eq. 8, Examples 1-3, the Vari-Crown claim."""
+"""Capacity and Renzo's q-graph: eq. 8, Examples 1-3, the Vari-Crown claim."""
 
 import math
 

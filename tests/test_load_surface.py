@@ -211,7 +211,7 @@ def test_load_dispatches_to_the_surface_model(renzo):
 
 def test_gap_offsets_enter_as_rigid_rotations(renzo):
     """A common offset only shifts the wind-up; a tooth made proud (negative offset) takes
-    more load, one set back less (index errors, DESIGN.md §6)."""
+    more load, one set back less (index errors, docs/conventions.md, Loaded analysis)."""
     sw = sweep(renzo, 1.0, [0.0])
     base = solve_surface(renzo, sw, torque_Nm=2000.0)
     N = renzo.tooth.teeth

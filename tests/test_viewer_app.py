@@ -12,6 +12,8 @@ import pytest
 
 from gearcoupling.viewer import scene as vs
 
+pytestmark = [pytest.mark.needs_viewer]
+
 viser = pytest.importorskip("viser")
 
 
@@ -77,7 +79,8 @@ def test_controls_reach_the_scene(app, renzo):
 
 
 def test_ground_frame_turns_both_members(app):
-    """Ground frame: the sleeve turns by Rz(psi), the hub by Rx(i) Rz(psi) (DESIGN.md §2
+    """Ground frame: the sleeve turns by Rz(psi), the hub by Rx(i) Rz(psi) (docs/conventions.md,
+    Frames
     seen from the ground: Rz(psi) Rz(-psi) Rx(i) Rz(psi))."""
     from scipy.spatial.transform import Rotation
 

@@ -1,4 +1,4 @@
-"""The ``[load]`` and ``[material]`` spec sections (issue 10, DESIGN.md §6).
+"""The ``[load]`` and ``[material]`` spec sections (docs/conventions.md, Loaded analysis).
 
 SI keys and their inch-pound alternatives (``torque_Nm`` | ``torque_lbf_in`` ...): give at
 most one of each pair; inch-pound values are converted at loading, so the dataclasses hold

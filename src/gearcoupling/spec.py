@@ -312,7 +312,7 @@ class Sleeve:
                self.outer_diameter, f"must exceed the major diameter {self.major_diameter:.6g} mm")
 
 
-# ---- inspection tolerance limits (issue 13: gearcoupling compare) ----
+# ---- inspection tolerance limits (gearcoupling compare) ----
 INSPECTION_LIMITS = ("fpt", "Fp", "Fr", "f_Halpha", "f_Hbeta", "C_beta", "thickness")
 
 
@@ -365,8 +365,9 @@ class CouplingSpec:
 
     @property
     def design_misalignment_deg(self) -> float:
-        """The design misalignment in degrees, exactly inside 0-6° (no round-trip excess)."""
-        return check_misalignment_deg(math.degrees(self.design_misalignment),
+        """The design misalignment in degrees to 12 digits (as the file gave it: no
+        round-trip excess through radians), inside 0-6°."""
+        return check_misalignment_deg(float(f"{math.degrees(self.design_misalignment):.12g}"),
                                       "design_misalignment_deg")
 
     def replace(self, **changes: Any) -> CouplingSpec:
@@ -639,7 +640,7 @@ def _build(root: Table, name: str) -> CouplingSpec:
     s.done(SPEC_KEYS.get(s.where, ()))
     load = parse_load(root.table("load"))
     material = parse_material(root.table("material"))
-    ins = root.table("inspection")  # issue 13: tolerance limits for compare
+    ins = root.table("inspection")  # tolerance limits for compare
     inspection = InspectionLimits(**{k: ins.length(k, math.inf) for k in INSPECTION_LIMITS})
     ins.done(SPEC_KEYS.get(ins.where, ()))
     root.done(SPEC_KEYS.get(root.where, ()))

@@ -78,7 +78,8 @@ def pivot_on_face_end(spec, misalignment_rad: float) -> bool:
 def critical_misalignment_deg(spec, *, tolerance_deg: float = ANGLE_TOLERANCE_DEG
                               ) -> float | None:
     """Smallest misalignment (degrees) at which the contact on the pivot teeth runs onto a
-    face end (DESIGN.md §5: it travels axially by about ``R_c cot(phi) i``), by bisection
+    face end (docs/conventions.md, Tooth geometry: it travels axially by about ``R_c cot(phi)
+    i``), by bisection
     to ``tolerance_deg``; below it the contact stays on the flank.
 
     The pivot teeth carry the largest axial travel. Near the contacting teeth the

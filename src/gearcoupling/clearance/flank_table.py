@@ -240,8 +240,9 @@ def kink_edges(m: HubModel) -> NDArray[np.float64]:
     curvature jumps inside the face (``end_round``'s start ``s0``).
 
     The revolved flank carries the jump in the plane ``z = qz(s0)``; the enveloped one
-    along ``z = qz(s0) - h sin e(s0)`` over the rack depths ``h`` of the flank (DESIGN.md
-    §3), so there the jump gets a piece of its own, that band (a narrow piece converges
+    along ``z = qz(s0) - h sin e(s0)`` over the rack depths ``h`` of the flank
+    (docs/conventions.md, Tooth geometry), so there the jump gets a piece of its own, that band (a
+    narrow piece converges
     fast although it is not smooth).
     """
     hf = m.half_face

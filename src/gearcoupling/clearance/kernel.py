@@ -5,7 +5,7 @@ centre of the sleeve space it sits in) and axial position ``zq``, the sleeve sur
 that radius is the straight involute flank (``sm.r_form <= rq <= sm.r_fillet``), the root
 fillet above it or the tip chamfer below it. Against the involute the gaps are exact:
 
-- circumferential ``rq * (aq + sigma(rq)/2)`` (DESIGN.md §2, Wei eq. 9),
+- circumferential ``rq * (aq + sigma(rq)/2)`` (docs/conventions.md, Frames, Wei eq. 9),
 - normal ``r_b * (aq + sigma(rq)/2)``: involutes of one base circle are parallel curves.
 
 The hub flank (tooth 0, cw) is parametrised by ``(z, t)`` (see :mod:`.flank_table`); at

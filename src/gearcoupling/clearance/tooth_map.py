@@ -98,7 +98,7 @@ def sweep(spec, misalignment_deg: float, angles_deg: ArrayLike, *,
     misalignment_deg : float
         Misalignment ``i`` in degrees (0-6).
     angles_deg : (n_angle,) float
-        Rotations ``psi`` of the coupling in degrees (DESIGN.md §2).
+        Rotations ``psi`` of the coupling in degrees (docs/conventions.md, Frames).
     tolerance_mm : float
         Accuracy of every minimum (mm); also bounds the flank table error. The default
         1e-7 mm costs about twice 1e-4 mm (see ``benchmarks/bench_sweep.py``).

@@ -11,7 +11,8 @@ Load: a force along the exact surface normal (into the tooth, no friction), spre
 equal nodal forces over the flank nodes of a small patch (``|dz|, |dr| <= patch``) around
 the point ``(z, r)``, scaled so that its moment about the axis is ``1 N x R`` (a unit
 tangential load at the pitch radius R). The hub is loaded on its ccw flank, the sleeve on
-the ccw flank that meets it (positive torque, DESIGN.md §6; sleeve regions ``T<k>_...``
+the ccw flank that meets it (positive torque, docs/conventions.md, Loaded analysis; sleeve regions
+``T<k>_...``
 bound the space of hub tooth k), each in the middle of the sector. The compliance is the work
 conjugate ``sum f_i . u_i`` (mm/N): the circumferential displacement at the pitch radius
 per unit tangential load there, the measure of Renzo's mesh stiffness C. It includes the

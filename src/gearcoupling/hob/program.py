@@ -1,6 +1,7 @@
 """Hob feed program: the hob centre path in the hub's axial section (pure numpy).
 
-The hob's pitch point follows the feed path ``q(s)`` (DESIGN.md §3) with outward unit
+The hob's pitch point follows the feed path ``q(s)`` (docs/conventions.md, Tooth geometry) with
+outward unit
 normal ``n(s) = (cos e, sin e)`` in ``(v, z)``; its pitch cylinder touches the rack's
 pitch line there, so the hob centre (its axis, seen in the axial section) is the offset
 curve ``c(s) = q(s) + r_h n(s)``, ``r_h`` the hob pitch radius. A circular path of

@@ -1,6 +1,7 @@
 """``check_interference``: overlap and minimum gap of the posed part meshes over rotation.
 
-For every rotation ``psi`` the hub mesh is posed in the sleeve frame (DESIGN.md §2) and
+For every rotation ``psi`` the hub mesh is posed in the sleeve frame (docs/conventions.md, Frames)
+and
 compared with the sleeve mesh:
 
 - ``method="boolean"``: the overlap is the manifold3d intersection of the two solids,
@@ -65,7 +66,7 @@ class Overlap:
     tooth : int
         Hub tooth (= sleeve space) index.
     flank : str
-        Hub flank ``"cw"`` or ``"ccw"`` (DESIGN.md §2).
+        Hub flank ``"cw"`` or ``"ccw"`` (docs/conventions.md, Frames).
     volume_mm3 : float
         Overlap volume (an estimate with ``method="distance"``).
     depth_mm : float
@@ -367,8 +368,10 @@ def check_interference(spec, misalignment_deg: float, angles_deg: ArrayLike, *,
         the posed hub about its own axis until that side's flank, fillet and chamfer
         surfaces touch the sleeve (Newton steps on the closest distance, bisection on
         overshoot, to 1e-3 tolerance at the pitch radius; where a side already overlaps,
-        minus its depth over ``r_b`` times the turning rate), summed over the sides:
-        ``backlash_rad`` / ``backlash_mm`` at the pitch radius (DESIGN.md §2). Costs two
+        minus its depth over ``r_b`` times the turning rate), summed over the
+        sides:
+        ``backlash_rad`` / ``backlash_mm`` at the pitch radius (docs/conventions.md, Frames).
+        Costs two
         distance queries per window plus a few per side for the refinement.
     model : Model, optional
         A prepared model from :func:`~.submodel.build_model` to reuse (it must match

@@ -10,6 +10,7 @@ from .atomic import (
     write_text,
 )
 from .csv import write_csv_records, write_csv_rows
+from .inp import inp_element_lines, inp_id_lines, inp_node_lines, inp_number
 from .json import NonFiniteError, plain, write_json
 from .resources import bundled_dir, bundled_names, resolve_bundled
 from .toml import Table, line_of, parse_override, read_toml, set_dotted, unknown_key
@@ -21,6 +22,10 @@ __all__ = [
     "bundled_dir",
     "bundled_names",
     "default_output_dir",
+    "inp_element_lines",
+    "inp_id_lines",
+    "inp_node_lines",
+    "inp_number",
     "line_of",
     "parse_override",
     "plain",

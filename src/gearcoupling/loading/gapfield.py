@@ -7,7 +7,8 @@ position ``z`` (sleeve frame) and the arc length along the involute from the bas
 hub flank point facing it (same sleeve radius and axial position) is found on the exact
 hub flank (the hob envelope of :mod:`gearcoupling.geometry.hub`, through the sweep's
 Chebyshev table of it, whose measured error is below 1e-7 mm), posed by ``P(theta)`` as
-the sweep does (DESIGN.md §2), pulled back by ``P(theta)^T`` in three fixed-point steps
+the sweep does (docs/conventions.md, Frames), pulled back by ``P(theta)^T`` in three fixed-point
+steps
 (the polar angle of the hub flank moves by far less than a micrometre per step). The gap
 there is the hub rotation that closes it: ``G = (a_q + sigma(r_q)/2) / rate`` (rad;
 ``r_b G`` is the normal gap, as in the sweep).

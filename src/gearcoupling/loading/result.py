@@ -76,7 +76,7 @@ class LoadResult:
         return float(np.min(ties)) / self.teeth
 
     def summary(self) -> dict[str, Any]:
-        """The ``load_summary.json`` keys (issue 10), plain data with units in the keys."""
+        """The ``load_summary.json`` keys, plain data with units in the keys."""
         return summarise(self)
 
     def write_csv(self, path):

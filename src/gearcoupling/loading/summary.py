@@ -1,6 +1,7 @@
 """``load_summary.json``: sharing, pressures, machine loads and wear of a LoadResult.
 
-Machine loads (DESIGN.md §6, Wei's additional moment): every loaded tooth pushes the hub
+Machine loads (docs/conventions.md, Loaded analysis, Wei's additional moment): every loaded tooth
+pushes the hub
 with ``-W n`` (``n`` the exact hub flank normal at the contact point) plus Coulomb friction
 ``-mu W t`` against the hub's sliding velocity ``t`` at that point. Hub and sleeve turn at
 the same speed about their own axes, so the sliding velocity per unit speed is
@@ -69,7 +70,7 @@ def _range(a: NDArray) -> dict[str, float]:
 
 
 def summarise(res) -> dict[str, Any]:
-    """The ``load_summary.json`` keys of issue 10."""
+    """The ``load_summary.json`` keys."""
     P = res.tangential_force_N
     n_contact = np.sum(res.in_contact, axis=0)
     loads = machine_loads(res)

@@ -336,7 +336,8 @@ def solve_surface(spec, sweep_result, *, torque_Nm: float, loaded_flank: str | N
         The sweep at the misalignment and rotations to load (its gap angles and contact
         points seed the solve).
     torque_Nm : float
-        Torque; positive loads the ccw flanks (DESIGN.md §6), negative the cw flanks.
+        Torque; positive loads the ccw flanks (docs/conventions.md, Loaded analysis), negative the
+        cw flanks.
     loaded_flank : {"cw", "ccw"}, optional
         Defaults to the flank the torque's sign loads.
     compliance : object with ``pair_compliance_mm_per_N(z_mm, r_mm)``, optional

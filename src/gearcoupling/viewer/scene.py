@@ -4,7 +4,8 @@ turn these into scene nodes).
 - :func:`build_scene_meshes` meshes hub and sleeve once per level of detail and splits
   the hub into a body and one patch per (flank, tooth), so a pose change only recolours
   patches and moves the hub node;
-- :func:`hub_rotation` / :func:`quaternion_wxyz` pose the hub (DESIGN.md §2: a hub body
+- :func:`hub_rotation` / :func:`quaternion_wxyz` pose the hub (docs/conventions.md, Frames: a hub
+body
   point ``p`` lies in the sleeve frame at ``Rz(-psi) Rx(i) Rz(psi) p``);
 - :func:`pose_state` evaluates the exact clearance of every tooth and flank at one pose
   (one :func:`gearcoupling.clearance.sweep` call), the contact points and interfering teeth;
@@ -247,8 +248,10 @@ class PoseState:
 
     Attributes
     ----------
-    clearance_mm : (2, N) float
-        Circumferential clearance (DESIGN.md §2) of each flank and tooth; ``inf`` where no
+    clearance_mm : (2, N)
+    float
+        Circumferential clearance (docs/conventions.md, Frames) of each flank and tooth; ``inf``
+        where no
         point of the flank faces the sleeve flank.
     normal_clearance_mm : (2, N) float
     theta_deg : (N,) float
