@@ -178,9 +178,9 @@ def test_check_finite_names_the_array(tmp_path):
         replace(res, normal_clearance_mm=bad).check_finite()
     from gearcoupling.io import NonFiniteError, write_json
 
-    with pytest.raises(NonFiniteError, match="sweep_summary.json: .* is NaN"):
+    with pytest.raises(NonFiniteError, match=r"sweep_summary\.json: .* is NaN"):
         write_json(tmp_path / "sweep_summary.json",
-                         replace(res, normal_clearance_mm=bad).summary())
+                   replace(res, normal_clearance_mm=bad).summary())
     assert not (tmp_path / "sweep_summary.json").exists()
 
 
