@@ -20,6 +20,7 @@ from .common import (
     output_dir,
     positive_length,
     progress,
+    progress_callback,
     spec_from_args,
 )
 
@@ -109,8 +110,9 @@ def load_files(spec, out: Path, misalignment_deg: float, angles: int, *,
     if angles < 1:
         raise SpecError("--angles", angles, "must be at least 1")
     psi = np.arange(angles) * 360.0 / angles
-    res = load(spec, misalignment_deg, psi, torque_Nm=torque_Nm, model=model,
-               tolerance_mm=tolerance_mm)
+    with progress_callback(f"load ({model or spec.load.model} model)") as advance:
+        res = load(spec, misalignment_deg, psi, torque_Nm=torque_Nm, model=model,
+                   tolerance_mm=tolerance_mm, progress=advance)
     summary = res.summary()
     paths = [res.write_csv(out / "load.csv"), write_json(out / "load_summary.json", summary)]
     if plots:

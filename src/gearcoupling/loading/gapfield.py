@@ -170,7 +170,7 @@ def lattice_windows(spec, misalignment: float, level: int, z_centre_mm: ArrayLik
     last = max(2 * m + 2 - n_face, 0)
     start = np.clip(np.round((zc - 0.5 * n_face * dz - origin) / dz), 0, last).astype(np.intp)
     cells = start[:, None] + np.arange(n_face)[None, :]
-    return origin + (cells + 0.5) * dz, start
+    return (origin + (cells + 0.5) * dz).astype(float), start
 
 
 def touch_z(spec, misalignment: float, theta: ArrayLike, flank: str, z_mm: ArrayLike,

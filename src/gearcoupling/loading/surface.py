@@ -78,7 +78,14 @@ from .gapfield import (
     window_level,
     windows,
 )
-from .halfspace import GridCompliance, RigidSprings, composite_modulus, half_space, solve_contact
+from .halfspace import (
+    GridCompliance,
+    RigidSprings,
+    composite_modulus,
+    half_space,
+    load_split,
+    solve_contact,
+)
 from .inputs import loaded_gaps
 
 DEFAULT_GRID = (48, 32)  # cells (along the face, across the depth); see bench_surface.py
@@ -171,8 +178,8 @@ class BendingSprings:
             return self(*_located(gf, p, z_mm, r_mm))
 
         c0 = self(*_located(gf, p0, z_mm, r_mm)) if p0 is not None else self(z_mm, r_mm)
-        return RigidSprings(c0, gf.gap_rad.shape[:1], gf.dz * gf.ds,
-                            None if self.compliance is None else update, tolerance)
+        return RigidSprings(c0, gf.dz * gf.ds, None if self.compliance is None else update,
+                            tolerance)
 
 
 def _edge_cells(pad: NDArray[np.bool_], axis: int) -> NDArray[np.bool_]:
@@ -307,6 +314,9 @@ class SolvedPose:
     windup_rad: float
     lift_rad: float
     load_N: float
+    law: NDArray[np.float64] | None = None
+    touch_mm: NDArray[np.float64] | None = None
+    sampled_rad: NDArray[np.float64] | None = None
 
 
 class SurfaceSolver:
@@ -389,7 +399,8 @@ class SurfaceSolver:
         windup = sol.approach_mm / self.r_b
         return SolvedPose(teeth, self.theta[teeth, j], level, gf, sol.pressure_MPa,
                           np.where(np.isfinite(c), c, centres), float(np.max(e)), windup,
-                          windup - lift_from, float(np.sum(sol.load_N)))
+                          windup - lift_from, float(np.sum(sol.load_N)), sol.law,
+                          self.touch[teeth, j], _smallest(gf) - self.gap[teeth, j])
 
     def _coarse(self, j: int, cand, load_N: float) -> SolvedPose:
         """Cold start: the coarse grid over the whole face of every tooth that can touch."""
@@ -442,10 +453,10 @@ class SurfaceSolver:
         for _ in range(MAX_ROUNDS):
             zw = self._windows(j, teeth, level, centres)
             gf = self._field(j, teeth, zw, nd)
-            p0 = _transfer(seed, self._match(seed, self.theta[teeth, j], alike is not None),
-                           gf)
-            sol, z0, r0 = self._solve(gf, load_N, p0, self.contact_z[teeth, j],
-                                      self.contact_r[teeth, j], self.tolerance)
+            idx = self._match(seed, self.theta[teeth, j], alike is not None)
+            sol, z0, r0 = self._solve(gf, load_N, self._start(j, teeth, seed, idx, gf, load_N),
+                                      self.contact_z[teeth, j], self.contact_r[teeth, j],
+                                      self.tolerance)
             seed = self._state(j, teeth, level, gf, sol, g_min, centres)
             missing = np.setdiff1d(cand[gap[cand] < seed.windup_rad + 1e-3 * seed.lift_rad],
                                    teeth)
@@ -473,6 +484,29 @@ class SurfaceSolver:
             done = solved[min(solved)]
         seed, gf, sol, z0, r0 = done
         return (*self._output(j, seed, gf, sol, z0, r0, alike, keep), seed)
+
+    def _start(self, j, teeth, seed: SolvedPose, idx, gf: GapField, load_N: float):
+        """The warm start on ``gf``: ``seed``'s pressure of the matched teeth ``idx``, moved
+        with their first touch, each tooth's load predicted from its law in ``seed`` (the
+        law's first touch carried by the sweep's exact gap angle, which moves smoothly
+        with the pose where the smallest cell gap jumps from cell to cell)."""
+        known = idx >= 0
+        m = np.maximum(idx, 0)
+        moved = 0.0 if seed.touch_mm is None else \
+            np.where(known, np.nan_to_num(self.touch[teeth, j] - seed.touch_mm[m]), 0.0)
+        p0 = _transfer(seed, idx, gf, moved)
+        if seed.law is None or seed.sampled_rad is None or not np.any(known):
+            return p0
+        law = np.where(known, seed.law[:, m], np.nan)
+        if not np.any(np.isfinite(law[0])):
+            return p0
+        touch = self.gap[teeth, j] + np.where(known, seed.sampled_rad[m], 0.0)
+        touch = np.where(np.isfinite(touch), touch, _smallest(gf))
+        W = load_split(self.r_b * touch, law, load_N)
+        A = gf.dz * gf.ds
+        carried = A * np.sum(p0, axis=(1, 2))
+        scale = np.where(carried > 0, W / np.where(carried > 0, carried, 1.0), 0.0)
+        return p0 * scale[:, None, None]
 
     def _centres(self, j, teeth, seed: SolvedPose, alike: bool):
         """Window centres: the matched tooth's patch in ``seed``, else the first touch."""
@@ -532,23 +566,34 @@ class SurfaceSolver:
         return out, extra
 
 
-def _transfer(seed: SolvedPose, idx: NDArray[np.intp], gf: GapField) -> NDArray[np.float64]:
-    """The pressure of ``seed``'s teeth ``idx`` (-1: none) on the grids of ``gf``: bilinear
-    in the developed flank co-ordinates, zero beyond the seed's windows (a warm start)."""
+def _smallest(gf: GapField) -> NDArray[np.float64]:
+    """Each grid's smallest contactable cell gap (rad)."""
+    return np.min(np.where(gf.mask, gf.gap_rad, np.inf), axis=(1, 2))
+
+
+def _transfer(seed: SolvedPose, idx: NDArray[np.intp], gf: GapField, moved_mm=0.0
+              ) -> NDArray[np.float64]:
+    """The pressure of ``seed``'s teeth ``idx`` (-1: none) on the grids of ``gf``, moved
+    along the face by ``moved_mm`` (each tooth's first touch moved so much): bilinear in
+    the developed flank co-ordinates, zero beyond the seed's windows (a warm start)."""
     n, nf, nd = gf.gap_rad.shape
     out = np.zeros((n, nf, nd))
     sel = np.flatnonzero(idx >= 0)
     if sel.size == 0:
         return out
     src = seed.field
-    iz = (gf.z_mm[sel] - src.z_mm[idx[sel], :1]) / src.dz  # (ns, nf)
+    shift = np.broadcast_to(np.asarray(moved_mm, float), (n,))[sel, None]
+    iz = (gf.z_mm[sel] - shift - src.z_mm[idx[sel], :1]) / src.dz  # (ns, nf)
     js = (gf.s_mm - src.s_mm[0]) / src.ds  # (nd,)
     k = np.broadcast_to(np.arange(sel.size)[:, None, None], (sel.size, nf, nd))
     coords = np.stack([k, np.broadcast_to(iz[:, :, None], k.shape),
                        np.broadcast_to(js[None, None, :], k.shape)])
     p = ndimage.map_coordinates(seed.pressure_MPa[idx[sel]], coords.reshape(3, -1), order=1,
-                                mode="constant", cval=0.0)
-    out[sel] = np.maximum(p.reshape(sel.size, nf, nd), 0.0)
+                                mode="nearest").reshape(sel.size, nf, nd)
+    sn = src.s_mm.size
+    inside = ((iz[:, :, None] > -0.5) & (iz[:, :, None] < src.z_mm.shape[1] - 0.5)
+              & (js[None, None, :] > -0.5) & (js[None, None, :] < sn - 0.5))
+    out[sel] = np.where(inside, np.maximum(p, 0.0), 0.0)
     return np.where(gf.mask, out, 0.0)
 
 
