@@ -121,7 +121,7 @@ def _check_grid(grid) -> tuple[int, int]:
     return nf, nd
 
 
-def _offsets(gap_offset_rad, f: int, n: int) -> NDArray[np.float64]:
+def flank_offsets(gap_offset_rad, f: int, n: int) -> NDArray[np.float64]:
     """Per-tooth gap offsets of the loaded flank ``(n,)`` (validated as ``load`` does)."""
     if gap_offset_rad is None:
         return np.zeros(n)
@@ -651,7 +651,7 @@ def solve_surface(spec, sweep_result, *, torque_Nm: float, loaded_flank: str | N
     N, M = sw.theta_deg.shape
     r_b, R = spec.tooth.base_radius, spec.tooth.pitch_radius
     solver = SurfaceSolver(spec, sw, flank, BendingSprings(compliance, r_b, R), grid=grid,
-                           offsets=_offsets(gap_offset_rad, FLANKS.index(flank), N),
+                           offsets=flank_offsets(gap_offset_rad, FLANKS.index(flank), N),
                            tolerance=tolerance)
     load_N = abs(T) * 1e3 / r_b
     res: dict[str, Any] = {name: np.zeros((N, M)) for name in ARRAYS}
