@@ -229,16 +229,18 @@ def gap_field(spec, misalignment: float, theta: ArrayLike, flank: str, z_mm: Arr
     P = hub_to_sleeve(misalignment, theta)  # (n, 3, 3)
     zq = np.broadcast_to(z[:, :, None], (n, nf, n_depth))
     rq = np.broadcast_to(r[None, None, :], (n, nf, n_depth))
-    half = sm.half_angle(rq)  # the sleeve cw flank lies at polar angle -half
-    aq = -half  # first guess for the facing hub point
+    half = sm.half_angle(r)[None, None, :]  # the sleeve cw flank lies at polar angle -half
+    # first guess for the facing hub point: the sleeve flank point (one per depth row)
+    qx, qy = r * np.cos(half), -r * np.sin(half)
     for _ in range(FIXED_POINT_STEPS):  # FIXED_POINT_STEPS >= 1 sets zh, rh
-        px, py, zh = _apply(P, rq * np.cos(aq), rq * np.sin(aq), zq, transpose=True)
+        px, py, zh = _apply(P, qx, qy, zq, transpose=True)
         rh = np.hypot(px, py)
         a, r_form, r_tip = _hub_angle(table, hm, zh, rh)
-        qx, qy, _ = _apply(P, rh * np.cos(a), rh * np.sin(a), zh)
-        aq = np.arctan2(qy, qx)
+        hx, hy, _ = _apply(P, rh * np.cos(a), rh * np.sin(a), zh)
+        aq = np.arctan2(hy, hx)
+        qx, qy = rq * np.cos(aq), rq * np.sin(aq)  # the cell's point at that polar angle
     # the hub point facing the cell: its polar angle at the cell's (r, z)
-    gap = (aq + half) / _turning_rate(P, rq, aq, zq)
+    gap = (aq + half) / _turning_rate(P, rq, qx, qy, zq)
     if gap_offset_rad is not None:
         off = np.broadcast_to(np.asarray(gap_offset_rad, dtype=float), (n,))
         gap = gap + off[:, None, None]
@@ -275,10 +277,10 @@ def _apply(P, x, y, z, transpose=False):
     return tuple(c[i][0] * x + c[i][1] * y + c[i][2] * z for i in range(3))
 
 
-def _turning_rate(P, rq, aq, zq):
-    """Sleeve polar angle change per unit hub turn about its tilted axis ``k = P e_z``."""
+def _turning_rate(P, rq, x, y, zq):
+    """Sleeve polar angle change per unit hub turn about its tilted axis ``k = P e_z`` at
+    the points ``(x, y, zq)`` (radius ``rq``)."""
     k = P[:, :, 2]  # (n, 3)
-    x, y = rq * np.cos(aq), rq * np.sin(aq)
     kx, ky, kz = (k[:, j][:, None, None] for j in range(3))
     vx = ky * zq - kz * y
     vy = kz * x - kx * zq

@@ -42,6 +42,7 @@ MAX_ITER = 4000
 SINGLE_PRECISION_TOLERANCE = 1e-6  # solves to this or looser search in single precision
 SINGLE_PRECISION_NOISE = 5e-7  # transform error in single precision / largest displacement
 SINGLE_PRECISION_ITER = 200  # iterations of one grid solve before it goes on in double
+EXACT_BELOW = 1e-5  # solves to this or tighter end on double-precision displacements
 SPRING_EVERY = 10  # iterations between updates of position-dependent springs
 
 
@@ -393,30 +394,44 @@ class _Grids:
 
 
 def _per_grid_loads(grids: _Grids, W: NDArray[np.float64], p: NDArray[np.float64],
-                    tolerance: float) -> tuple[NDArray, NDArray, int, float]:
-    """Each grid's contact under its own load ``W (B,)`` (0: unloaded), from ``p``.
+                    tolerance: float, u_hs: NDArray[np.float64] | None = None
+                    ) -> tuple[NDArray, NDArray, int, float, NDArray]:
+    """Each grid's contact under its own load ``W (B,)`` (0: unloaded), from ``p`` (and
+    its half-space displacement ``u_hs``, if known: rescaled with ``p``, not transformed).
 
     Polonsky & Keer's conjugate gradients with one multiplier (approach) per grid; the
     grids are independent, so each has its own step and stops on its own (a converged
-    grid is left out). Returns the pressure, each loaded grid's approach (``nan`` where
-    unloaded), the iterations and the largest final change.
+    grid is left out). Solves to :data:`SINGLE_PRECISION_TOLERANCE` or looser transform in
+    single precision; those to at most :data:`EXACT_BELOW` are then checked (and carried
+    on where needed) in double. Returns the pressure, each loaded grid's approach (``nan``
+    where unloaded), the iterations, the largest final change and the half-space
+    displacement of the pressure.
     """
     A, m, g0 = grids.area, grids.m, grids.g0
     B = W.shape[0]
     loaded = W > 0
     p = np.where(loaded[:, None, None] & m, np.maximum(p, 0.0), 0.0)
-    for b in np.flatnonzero(loaded & ~np.any(p > 0, axis=(1, 2))):
+    fresh = loaded & ~np.any(p > 0, axis=(1, 2))
+    for b in np.flatnonzero(fresh):
         p[b] = grids.band_start(b)
     tot = A * np.sum(p, axis=(1, 2))
-    p *= np.where(loaded, W / np.where(tot > 0, tot, 1.0), 0.0)[:, None, None]
+    scale = np.where(loaded, W / np.where(tot > 0, tot, 1.0), 0.0)
+    p *= scale[:, None, None]
     every = np.flatnonzero(loaded)
     u = np.zeros_like(p)
-    u[every] = _displacement(grids.hs, p[every])
+    if u_hs is None:
+        fresh = loaded
+    else:
+        u[every] = u_hs[every] * scale[every, None, None]
+    redo = np.flatnonzero(fresh)
+    if redo.size:
+        u[redo] = _displacement(grids.hs, p[redo])
     # single-precision transforms while their rounding stays below the tolerance (checked
     # in double precision at the end)
     noise = SINGLE_PRECISION_NOISE * np.max(np.abs(u[every]), axis=(1, 2), initial=0.0)
     single = tolerance >= SINGLE_PRECISION_TOLERANCE and bool(
         np.all(noise <= tolerance * grids.scale[every]))
+    exact = tolerance <= EXACT_BELOW
     behind = grids.compliance.displacement(p[every], every)
     if behind is not None:
         u[every] += behind
@@ -488,7 +503,7 @@ def _per_grid_loads(grids: _Grids, W: NDArray[np.float64], p: NDArray[np.float64
             active[:] = False
         if np.any(active):
             continue
-        if single:  # converged in single precision: each grid checked in double
+        if single and exact:  # converged in single precision: each grid checked in double
             single = False
             u[every] = grids.operator(p[every], every)
             stale[:] = False
@@ -502,13 +517,16 @@ def _per_grid_loads(grids: _Grids, W: NDArray[np.float64], p: NDArray[np.float64
             if not grids.compliance.uniform:
                 active = loaded.copy()
                 delta[:] = 0.0
-    if np.any(stale):
+    if exact and np.any(stale):
         redo = np.flatnonzero(stale)
         u[redo] = grids.operator(p[redo], redo)
     on = p > 0
     n_on = np.maximum(np.count_nonzero(on, axis=(1, 2)), 1)
     alpha = np.where(loaded, np.sum(u + g0, axis=(1, 2), where=on) / n_on, np.nan)
-    return p, alpha, it, float(np.max(res, initial=0.0))
+    behind = grids.compliance.displacement(p[every], every)
+    if behind is not None:
+        u[every] -= behind
+    return p, alpha, it, float(np.max(res, initial=0.0)), u
 
 
 MAX_SPLITS = 60  # load splits between grids sharing one approach
@@ -560,8 +578,9 @@ def _shared_approach(grids: _Grids, W: float, p0
     res = 0.0
     spread = math.inf
     inner = max(tol, FIRST_SPLIT_TOLERANCE)
+    u_hs = None
     for _ in range(MAX_SPLITS):
-        p, alpha, it, res = _per_grid_loads(grids, Wb, p, inner)
+        p, alpha, it, res, u_hs = _per_grid_loads(grids, Wb, p, inner, u_hs)
         iterations += it
         loaded = Wb > 0
         ref = float(np.sum(Wb[loaded] * alpha[loaded]) / W)
