@@ -28,7 +28,9 @@ level and patch centres, pressure and wind-up; no coarse pass. The half-space op
 are kept per grid (:func:`.halfspace.half_space`), so the poses of a turn share them.
 With ideal teeth (no per-tooth gap offsets) a rotation one tooth pitch on is the same pose
 with the teeth renumbered: a turn solves each distinct pose once, in order of its phase
-within the pitch, each warm-started from the last.
+within the pitch, each warm-started from the last; the last pose of a sweep is kept (as
+long as the sweep is), so another torque on the sweep starts warm too. None of this
+changes an answer, only where its search starts.
 
 **Tooth compliance.** The coupling between the pressure and the teeth behind it is one
 object, ``tooth_compliance`` of :class:`SurfaceSolver` (default :class:`BendingSprings`):
@@ -59,6 +61,7 @@ Reported measures beside the grid-dependent peak ``max_pressure_MPa`` (it grows 
 from __future__ import annotations
 
 import math
+import weakref
 from dataclasses import dataclass
 from typing import Any
 
@@ -96,6 +99,10 @@ COARSE_TOLERANCE = 1e-5
 WINDOW_FACTOR = 1.75  # windows: the shortest level at least this x the longest patch
 TEETH_MARGIN = 0.1  # a solve takes the teeth within this share of the lift above the wind-up
 MAX_ROUNDS = 40  # solves of one pose while its windows and teeth settle
+
+#: the last solved pose of each sweep and flank: a later load on the sweep (another torque)
+#: starts from it; held as long as the sweep is
+_LAST_POSE: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 
 ARRAYS = ("gap_angle_rad", "deflection_mm", "bending_deflection_mm", "tangential_force_N",
           "normal_force_N", "contact_z_mm", "contact_r_mm", "max_pressure_MPa",
@@ -671,12 +678,15 @@ def solve_surface(spec, sweep_result, *, torque_Nm: float, loaded_flank: str | N
     else:
         order, source, shift = solver.plan()
         solved: dict[int, tuple] = {}
-        last = None
+        # another load on this sweep starts where the last one ended (phases wrap around
+        # the pitch, so the last pose neighbours the first)
+        last = _LAST_POSE.get(sw, {}).get(flank)
         for i, j in enumerate(order):
             out, extra, last = solver.solve_pose(int(j), load_N, last, keep_fields)
             solved[int(j)] = (out, extra)
             if progress is not None:
                 progress(i + 1, order.size)
+        _LAST_POSE.setdefault(sw, {})[flank] = last
         for j in range(M):
             out, extra = solved[int(source[j])]
             s = int(shift[j])
