@@ -24,6 +24,7 @@ The machine is shared: times are the best of ``--repeats`` runs.
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import os
 import time
 
@@ -179,7 +180,7 @@ def figures(out_dir):
 
 
 _SPEED = """
-import json, statistics, sys, time
+import dataclasses, json, statistics, sys, time
 import numpy as np
 from gearcoupling.clearance import sweep
 from gearcoupling.loading import capacity, load_from_sweep
@@ -191,23 +192,25 @@ comp = tooth_compliance(spec)
 which, repeats = sys.argv[1], int(sys.argv[2])
 def cpu(fn):
     c = time.process_time(); fn(); return time.process_time() - c
+def fresh(sw):  # a copy: no start kept from an earlier load of the same sweep object
+    return dataclasses.replace(sw)
 solve_surface(spec, sweep(spec, 1.0, [0.0]), torque_Nm=2000.0, compliance=comp)  # caches
 out = {}
 if which == "pose":
     sws = [sweep(spec, 1.0, [a]) for a in (0.0, 2.0, 4.0)]
     out["cold"] = statistics.median(
-        cpu(lambda s=s: solve_surface(spec, s, torque_Nm=2000.0, compliance=comp))
+        cpu(lambda s=s: solve_surface(spec, fresh(s), torque_Nm=2000.0, compliance=comp))
         for s in sws for _ in range(repeats))
     one, turn = sweep(spec, 1.0, [0.0]), sweep(spec, 1.0, np.arange(11.0))
-    t1 = statistics.median(cpu(lambda: solve_surface(spec, one, torque_Nm=2000.0,
+    t1 = statistics.median(cpu(lambda: solve_surface(spec, fresh(one), torque_Nm=2000.0,
                                                      compliance=comp)) for _ in range(repeats))
-    t11 = statistics.median(cpu(lambda: solve_surface(spec, turn, torque_Nm=2000.0,
+    t11 = statistics.median(cpu(lambda: solve_surface(spec, fresh(turn), torque_Nm=2000.0,
                                                       compliance=comp)) for _ in range(repeats))
     out["warm"] = (t11 - t1) / 10.0
 elif which == "turn":
     sw = sweep(spec, 1.0, np.arange(360.0))
     out["turn"] = statistics.median(cpu(lambda: load_from_sweep(
-        sw, torque_Nm=3000.0, model="surface")) for _ in range(repeats))
+        fresh(sw), torque_Nm=3000.0, model="surface")) for _ in range(repeats))
 elif which == "capacity":
     res = {}
     def run():
@@ -293,8 +296,10 @@ def main(argv=None):
     rows = []
     for grid in ladder:
         reps = 1 if grid[0] * grid[1] > 64 * 48 else args.repeats
-        cpu, wall, res = timed(lambda g=grid: solve_surface(spec, sw, torque_Nm=args.torque,
-                                                            grid=g, compliance=comp), reps)
+        # a copy of the sweep per call: each pose solved cold (no start kept from the last)
+        cpu, wall, res = timed(lambda g=grid: solve_surface(
+            spec, dataclasses.replace(sw), torque_Nm=args.torque, grid=g, compliance=comp),
+            reps)
         rows.append((grid, cpu, wall, measures(res)))
     ref = rows[-1][3]
     print(f"{args.spec}, misalignment {args.misalignment}°, torque {args.torque} N·m, "

@@ -265,3 +265,29 @@ def test_progress_reports_each_solved_pose(renzo):
     solve_surface(renzo, sweep(renzo, 1.0, [0.0, 1.0, 2.0]), torque_Nm=1000.0,
                   progress=lambda done, total: calls.append((done, total)))
     assert calls == [(1, 3), (2, 3), (3, 3)]
+
+
+def test_window_lattices_are_symmetric_with_the_face_ends_on_cell_edges(renzo):
+    """Windows of one level lie on one lattice: cell edges at whole multiples of the cell
+    size, so mirrored teeth see mirrored cells and the face range ends on a cell edge; the
+    level of a length is the shortest at least that long."""
+    from gearcoupling.loading.gapfield import (
+        face_range,
+        lattice_windows,
+        window_length,
+        window_level,
+    )
+
+    i = math.radians(1.0)
+    Z = face_range(renzo, i)
+    for level in (0, 3, 9):
+        z, _ = lattice_windows(renzo, i, level, [-3.0, 3.0, 40.0], 48)
+        dz = z[0, 1] - z[0, 0]
+        edges = z[:, 0] - 0.5 * dz
+        assert np.allclose(edges / dz, np.round(edges / dz), atol=1e-9)
+        assert Z / dz == pytest.approx(round(Z / dz), abs=1e-9)
+        assert z[0, 0] == pytest.approx(-z[1, -1], abs=1e-9)  # mirrored centres, mirrored
+        assert z[2, -1] <= Z + 2 * dz  # a window past the face end is moved back onto it
+    for length in (0.5, 2.0, 7.0):
+        k = window_level(renzo, i, length, 48)
+        assert window_length(renzo, i, k, 48) >= length > window_length(renzo, i, k + 1, 48)

@@ -197,7 +197,7 @@ class FlankTable:
         return r, np.arcsin(self.y_at(self.z_coefficients(z), t) / r)
 
 
-BLAS_BLOCK = 150_000  # multiply-adds per BLAS call: below OpenBLAS's threading threshold
+BLAS_BLOCK = 250_000  # multiply-adds per BLAS call: below OpenBLAS's threading threshold
 
 
 def _product(mat: NDArray[np.float64], v: NDArray[np.float64]) -> NDArray[np.float64]:

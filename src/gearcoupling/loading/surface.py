@@ -308,7 +308,10 @@ class SolvedPose:
     (radians), ``level`` the window level (None: the coarse whole-face grid), ``field`` and
     ``pressure_MPa (n, nf, nd)`` its grids, ``centres_mm (n,)`` where each tooth's patch
     (or, unloaded, its window) lies along the face, ``extent_mm`` the longest patch span,
-    ``windup_rad`` and ``lift_rad`` (wind-up above the smallest gap angle).
+    ``windup_rad`` and ``lift_rad`` (wind-up above the smallest gap angle), ``law (3, n)``
+    each tooth's load-approach law (:attr:`.halfspace.ContactSolution.law`),
+    ``touch_mm (n,)`` where its first touch lies along the face (sleeve frame) and
+    ``sampled_rad (n,)`` its smallest cell gap above the sweep's exact gap angle.
     """
 
     teeth: NDArray[np.intp]
@@ -320,10 +323,9 @@ class SolvedPose:
     extent_mm: float
     windup_rad: float
     lift_rad: float
-    load_N: float
-    law: NDArray[np.float64] | None = None
-    touch_mm: NDArray[np.float64] | None = None
-    sampled_rad: NDArray[np.float64] | None = None
+    law: NDArray[np.float64]
+    touch_mm: NDArray[np.float64]
+    sampled_rad: NDArray[np.float64]
 
 
 class SurfaceSolver:
@@ -406,8 +408,8 @@ class SurfaceSolver:
         windup = sol.approach_mm / self.r_b
         return SolvedPose(teeth, self.theta[teeth, j], level, gf, sol.pressure_MPa,
                           np.where(np.isfinite(c), c, centres), float(np.max(e)), windup,
-                          windup - lift_from, float(np.sum(sol.load_N)), sol.law,
-                          self.touch[teeth, j], _smallest(gf) - self.gap[teeth, j])
+                          windup - lift_from, sol.law, self.touch[teeth, j],
+                          _smallest(gf) - self.gap[teeth, j])
 
     def _coarse(self, j: int, cand, load_N: float) -> SolvedPose:
         """Cold start: the coarse grid over the whole face of every tooth that can touch."""
@@ -499,11 +501,8 @@ class SurfaceSolver:
         with the pose where the smallest cell gap jumps from cell to cell)."""
         known = idx >= 0
         m = np.maximum(idx, 0)
-        moved = 0.0 if seed.touch_mm is None else \
-            np.where(known, np.nan_to_num(self.touch[teeth, j] - seed.touch_mm[m]), 0.0)
+        moved = np.where(known, np.nan_to_num(self.touch[teeth, j] - seed.touch_mm[m]), 0.0)
         p0 = _transfer(seed, idx, gf, moved)
-        if seed.law is None or seed.sampled_rad is None or not np.any(known):
-            return p0
         law = np.where(known, seed.law[:, m], np.nan)
         if not np.any(np.isfinite(law[0])):
             return p0
