@@ -41,7 +41,11 @@ def test_sections_and_run_write_files(tmp_path, capsys):
 def test_run_only_and_skip_choose_steps(tmp_path):
     assert main(["run", "renzo-1967", "-o", str(tmp_path), "--only", "spec,sections,parts",
                  "--skip", "parts"]) == 0
-    assert {p.name for p in tmp_path.iterdir()} == {"spec.json", "sections.png"}
+    assert {p.name for p in tmp_path.iterdir()} == {"spec.json", "sections.png",
+                                                    "run_summary.json"}
+    summary = json.loads((tmp_path / "run_summary.json").read_text())
+    assert set(summary["step_seconds"]) == {"spec", "sections"}
+    assert summary["files"] == ["spec.json", "sections.png"]
 
 
 @pytest.mark.parametrize("argv, words", [

@@ -211,12 +211,11 @@ def test_generate_bad_options_exit_2(tmp_path, capsys, argv, field):
 
 
 def test_run_has_parts_and_step_steps(tmp_path):
-    from gearcoupling.commands.generate import parts_step
-    from gearcoupling.commands.run import STEP_KEYS
+    from gearcoupling.outputs import STEPS, write_parts
 
-    assert "parts" in STEP_KEYS and "step" in STEP_KEYS
+    assert "parts" in STEPS and "step" in STEPS
     spec = gc.load_spec("industrial-m2")
-    written = parts_step(spec, tmp_path)
+    written, _ = write_parts(spec, tmp_path)
     assert {p.name for p in written} == {"hub.stl", "sleeve.stl", "parts.json"}
     for part in ("hub", "sleeve"):
         assert trimesh.load(tmp_path / f"{part}.stl").is_watertight
@@ -276,7 +275,7 @@ def test_run_lists_the_step_files_in_parts_json(tmp_path, capsys):
     printed = capsys.readouterr().out.split()
     assert sorted(printed) == sorted(str(tmp_path / n) for n in
                                      ("hub.stl", "sleeve.stl", "parts.json", "hub.step",
-                                      "sleeve.step"))
+                                      "sleeve.step", "run_summary.json"))
 
 
 def test_profile_fit_uses_the_fewest_poles_within_the_tolerance():

@@ -104,3 +104,108 @@ def test_imports_follow_the_data_flow():
         bad = _internal_imports(path, root) - LAYERS[unit] - {unit}
         wrong += [f"{'/'.join(rel)} imports {b}" for b in sorted(bad)]
     assert not wrong, wrong
+
+
+def _package_imports():
+    """``(file, line, target unit, target module parts, names, inside a function)`` of every
+    first-party ``from`` import in the package."""
+    import ast
+    from pathlib import Path
+
+    import gearcoupling
+
+    root = Path(gearcoupling.__file__).parent
+    for path in sorted(root.rglob("*.py")):
+        rel = path.relative_to(root).parts
+        pkg = list(rel[:-1])
+        tree = ast.parse(path.read_text())
+        in_fn = {id(n) for f in ast.walk(tree)
+                 if isinstance(f, ast.FunctionDef | ast.AsyncFunctionDef)
+                 for n in ast.walk(f) if n is not f}
+        for node in ast.walk(tree):
+            if not isinstance(node, ast.ImportFrom):
+                continue
+            if node.level:
+                base = pkg[:len(pkg) - (node.level - 1)]
+                full = base + (node.module.split(".") if node.module else [])
+            elif (node.module or "").startswith("gearcoupling"):
+                full = node.module.split(".")[1:]
+            else:
+                continue
+            yield (path, "/".join(rel), node.lineno, full, [a.name for a in node.names],
+                   id(node) in in_fn)
+
+
+def test_other_packages_are_reached_only_through_their_public_names():
+    """A module imports another package only by the names in that package's ``__all__``
+    (no reaching into its modules)."""
+    import importlib
+
+    wrong = []
+    for _, rel, line, full, names, _ in _package_imports():
+        unit = rel.split("/")[0].removesuffix(".py")
+        if not full or full[0] == unit:
+            continue
+        target = importlib.import_module(f"gearcoupling.{full[0]}")
+        if not hasattr(target, "__path__"):  # a module, not a package
+            continue
+        if len(full) > 1:
+            wrong.append(f"{rel}:{line} imports gearcoupling.{'.'.join(full)}")
+        else:
+            wrong += [f"{rel}:{line} imports {n} from {full[0]}, not in its __all__"
+                      for n in names if n not in target.__all__]
+    assert not wrong, wrong
+
+
+# the one first-party import made at the call: the compiled kernels import numba (heavy,
+# optional) at their top, so importing them is the lazy import of numba
+LAZY_FIRST_PARTY = {("clearance/fast.py", "_compiled")}
+
+
+def test_first_party_imports_sit_at_the_top_of_modules():
+    inside = [f"{rel}:{line}" for _, rel, line, _, names, in_fn in _package_imports()
+              if in_fn and not {(rel, n) for n in names} <= LAZY_FIRST_PARTY]
+    assert not inside, inside
+
+
+def test_no_import_circles_between_modules():
+    """The module-level import graph of the package has no cycle (strongly connected
+    component of more than one module)."""
+    graph: dict[str, set[str]] = {}
+    for path, rel, _, full, names, in_fn in _package_imports():
+        if in_fn or not full:
+            continue
+        src = rel.removesuffix(".py").removesuffix("/__init__")
+        package = path.parents[len(rel.split("/")) - 1].joinpath(*full)
+        for name in names:  # `from . import module` points at that module
+            is_module = (package / f"{name}.py").exists() or (package / name).is_dir()
+            dst = "/".join([*full, name] if is_module else full)
+            graph.setdefault(src, set()).add(dst)
+    index: dict[str, int] = {}
+    low: dict[str, int] = {}
+    stack: list[str] = []
+    cycles = []
+
+    def visit(v):  # Tarjan's strongly connected components
+        index[v] = low[v] = len(index)
+        stack.append(v)
+        for w in graph.get(v, ()):
+            if w not in index:
+                visit(w)
+                low[v] = min(low[v], low[w])
+            elif w in stack:
+                low[v] = min(low[v], index[w])
+        if low[v] == index[v]:
+            comp = []
+            while True:
+                w = stack.pop()
+                comp.append(w)
+                if w == v:
+                    break
+            if len(comp) > 1:
+                cycles.append(sorted(comp))
+
+    for v in list(graph):
+        if v not in index:
+            visit(v)
+    assert not cycles, cycles

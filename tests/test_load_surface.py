@@ -11,7 +11,14 @@ from gearcoupling.errors import SpecError
 from gearcoupling.geometry.hub import hub_flank
 from gearcoupling.geometry.sleeve import sleeve_model
 from gearcoupling.loading import CantileverCompliance
-from gearcoupling.loading.gapfield import gap_field, windows
+from gearcoupling.loading.gapfield import (
+    face_range,
+    gap_field,
+    lattice_windows,
+    window_length,
+    window_level,
+    windows,
+)
 from gearcoupling.loading.halfspace import half_space, solve_contact
 from gearcoupling.loading.surface import contact_modulus, patch_measures, solve_surface
 from gearcoupling.spec import load_spec
@@ -271,13 +278,6 @@ def test_window_lattices_are_symmetric_with_the_face_ends_on_cell_edges(renzo):
     """Windows of one level lie on one lattice: cell edges at whole multiples of the cell
     size, so mirrored teeth see mirrored cells and the face range ends on a cell edge; the
     level of a length is the shortest at least that long."""
-    from gearcoupling.loading.gapfield import (
-        face_range,
-        lattice_windows,
-        window_length,
-        window_level,
-    )
-
     i = math.radians(1.0)
     Z = face_range(renzo, i)
     for level in (0, 3, 9):

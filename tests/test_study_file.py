@@ -175,7 +175,8 @@ def test_every_bundled_study_runs_one_evaluation(name):
     """The first sample of each bundled study (the optimiser: the middle of its bounds)
     evaluates without error, every requested output present and finite or None (no limit
     reached within the range); a tolerance study's K lies in (0, 1]."""
-    from gearcoupling.study.optimise import crown_row, optimise_options
+    from gearcoupling.study.file import optimise_options
+    from gearcoupling.study.optimise import crown_row
 
     s = load_study(name)
     if s.optimise is not None:

@@ -9,7 +9,6 @@ import pytest
 
 from gearcoupling.clearance import CSV_COLUMNS
 from gearcoupling.cli import main
-from gearcoupling.commands.run import STEP_KEYS
 
 
 def test_sweep_command_writes_csv_json_and_plots(tmp_path, capsys):
@@ -58,4 +57,6 @@ def test_sweep_command_bad_input_exits_2(tmp_path, capsys, argv, needle):
 
 
 def test_run_has_the_sweep_step():
-    assert "sweep" in STEP_KEYS
+    from gearcoupling.outputs import STEPS
+
+    assert "sweep" in STEPS

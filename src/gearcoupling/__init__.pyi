@@ -34,6 +34,8 @@ from .loading import capacity as capacity
 from .loading import capacity_curve as capacity_curve
 from .loading import load as load
 from .loading import load_from_sweep as load_from_sweep
+from .outputs import RunResult as RunResult
+from .outputs import run as run
 from .parts import build_part as build_part
 from .parts import check_part as check_part
 from .spec import CouplingSpec as CouplingSpec

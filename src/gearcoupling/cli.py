@@ -15,6 +15,7 @@ import sys
 from collections.abc import Sequence
 from typing import NoReturn
 
+from .commands import COMMANDS
 from .errors import GearCouplingError
 
 EXIT_BAD_INPUT = 2
@@ -29,8 +30,6 @@ class _Parser(argparse.ArgumentParser):
 
 
 def build_parser() -> argparse.ArgumentParser:
-    from .commands import COMMANDS
-
     parser = _Parser(
         prog="gearcoupling",
         description="Crowned-tooth gear couplings: exact geometry, parts, sweeps and viewer.",

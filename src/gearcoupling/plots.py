@@ -11,8 +11,7 @@ import numpy as np
 
 from .atomic import atomic_path
 from .errors import ArgumentError, BackendError, SpecError
-from .geometry.hub import hub_flank_model, hub_model, plane_rack
-from .geometry.section import transverse_section
+from .geometry import hub_flank_model, hub_model, plane_rack, transverse_section
 
 if TYPE_CHECKING:  # matplotlib is imported where a plot is drawn
     from matplotlib.axes import Axes

@@ -24,8 +24,15 @@ from typing import Any, ClassVar
 import numpy as np
 
 from .errors import GeometryError, SpecError
-from .geometry.checks import MAX_END_TANGENT_DEG, check_spec, derived_values
-from .geometry.involute import inv_inverse
+from .geometry import (
+    MAX_END_TANGENT_DEG,
+    HubModel,
+    check_spec,
+    derived_values,
+    feed_path,
+    inv_inverse,
+    radius_squared,
+)
 from .loadspec import LoadSpec, Materials, parse_load, parse_material
 
 MM_PER_INCH = 25.4
@@ -581,9 +588,6 @@ def default_dedendum(tooth: ToothSystem, thickness: float, crowning: Crowning,
                      face_width: float) -> float:
     """Hob addendum: 1.25 m, or 90 % of the deepest form depth free of undercut in every
     plane of the face (few teeth, small pressure angles), found by bisection."""
-    from .geometry.feedpath import feed_path
-    from .geometry.hub import HubModel, radius_squared
-
     m, phi, R = tooth.module, tooth.pressure_angle, tooth.pitch_radius
     d = 1.25 * m
     f = default_fillet_radius(tooth, thickness, d)
@@ -739,8 +743,6 @@ def _build(root: _Table, name: str) -> CouplingSpec:
 def _crown_drop(crowning: Crowning, R: float, face: float, z: float) -> float:
     """Feed-path crown drop at ``z`` for a default; 0 where the path does not reach ``z``
     (the checks then refuse the crown itself, with a better reason)."""
-    from .geometry.feedpath import feed_path
-
     try:
         with np.errstate(all="ignore"):
             drop = float(feed_path(crowning, R, face).drop(z))

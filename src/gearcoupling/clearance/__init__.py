@@ -8,11 +8,30 @@ from .design import (
     design_quantities,
     double_engagement,
     min_backlash_rad,
+    pitch_turning_angles,
 )
+from .flank_table import flank_table
 from .kernel import KINDS
-from .result import CSV_COLUMNS, SweepResult
-from .tooth_map import sweep
+from .plots import plot_all
+from .result import CSV_COLUMNS, SweepResult, require_finite
+from .tooth_map import check_angles, check_misalignment, flank_minima, sweep
 
-__all__ = ["CSV_COLUMNS", "KINDS", "SweepResult", "binding_angle_deg", "contact_travel",
-           "critical_misalignment_deg", "design_quantities", "double_engagement",
-           "min_backlash_rad", "sweep"]
+__all__ = [
+    "CSV_COLUMNS",
+    "KINDS",
+    "SweepResult",
+    "binding_angle_deg",
+    "check_angles",
+    "check_misalignment",
+    "contact_travel",
+    "critical_misalignment_deg",
+    "design_quantities",
+    "double_engagement",
+    "flank_minima",
+    "flank_table",
+    "min_backlash_rad",
+    "pitch_turning_angles",
+    "plot_all",
+    "require_finite",
+    "sweep",
+]

@@ -13,10 +13,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import SpecError
-from ..geometry.sleeve import sleeve_model
+from ..geometry import sleeve_model
 from ..spec import MISALIGNMENT_RANGE_DEG
 from .kernel import DEFAULT_TOLERANCE_MM, FACE_END, minimise
-from .tooth_map import check_misalignment, flank_minima
+from .tooth_map import check_misalignment, flank_minima, sweep
 
 ANGLE_TOLERANCE_DEG = 1e-4
 DEFAULT_STEPS = 16  # rotations per tooth pitch for the design searches
@@ -187,8 +187,6 @@ def double_engagement(spec, offset_mm: float, angle_deg: float, span_mm: float,
 
     Raises :class:`SpecError` if a mesh angle exceeds the 6° the sweeps cover.
     """
-    from .tooth_map import sweep
-
     mesh = mesh_angles(offset_mm, angle_deg, span_mm,
                        offset_azimuth_deg=kwargs.pop("offset_azimuth_deg", 0.0),
                        angle_azimuth_deg=kwargs.pop("angle_azimuth_deg", 0.0))

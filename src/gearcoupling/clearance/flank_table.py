@@ -23,7 +23,7 @@ from numpy.polynomial import chebyshev as C
 from numpy.typing import NDArray
 
 from ..errors import ArgumentError, GeometryError
-from ..geometry.hub import HubModel, form_radius, hub_flank_model, hub_model, tip_radius
+from ..geometry import HubModel, form_radius, hub_flank_model, hub_model, tip_radius
 
 DEFAULT_NODES = (24, 12)  # (nz, nt): interpolation error ~1e-8 mm on renzo-1967
 NODE_LADDER = ((16, 8), (24, 12), (32, 16), (32, 32), (48, 48), (64, 64))

@@ -32,9 +32,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import ArgumentError
-from ..geometry.involute import inv
-from ..geometry.pose import map_polar
-from ..geometry.sleeve import SleeveModel
+from ..geometry import SleeveModel, inv, map_polar
 from .fast import kernels
 from .flank_table import FlankTable
 

@@ -15,9 +15,7 @@ import math
 
 import numpy as np
 
-from ..geometry.hub import hub_flank_model, hub_model
-from ..geometry.pose import hub_to_sleeve
-from ..geometry.sleeve import sleeve_model
+from ..geometry import hub_flank_model, hub_model, hub_to_sleeve, sleeve_model
 from .flank_table import exact_alpha
 
 

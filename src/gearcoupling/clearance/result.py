@@ -9,8 +9,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from ..atomic import write_csv_rows
 from ..errors import ArgumentError, GeometryError
-from ..geometry.hub import FLANKS
+from ..geometry import FLANKS
 from .kernel import KINDS, NONE
 
 CSV_COLUMNS = ("theta_deg", "tooth", "flank", "clearance_mm", "normal_clearance_mm",
@@ -173,8 +174,6 @@ class SweepResult:
 
     def write_csv(self, path):
         """Write :meth:`rows` under :data:`CSV_COLUMNS` atomically; returns the path."""
-        from ..atomic import write_csv_rows
-
         return write_csv_rows(path, CSV_COLUMNS, self.rows())
 
     def rows(self):

@@ -9,8 +9,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import SpecError
-from ..geometry.pose import turning_angles
-from ..geometry.sleeve import sleeve_model
+from ..geometry import sleeve_model, turning_angles
 from ..spec import check_misalignment_deg
 from .flank_table import DEFAULT_TABLE_TOLERANCE_MM, flank_table
 from .kernel import DEFAULT_GRID, DEFAULT_TOLERANCE_MM, MEASURES, Minimum, minimise

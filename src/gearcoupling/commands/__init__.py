@@ -37,3 +37,5 @@ COMMANDS = [
     charts,
     compare,
 ]
+
+__all__ = ["COMMANDS"]

@@ -8,8 +8,9 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import SpecError
-from ..loading.capacity import write_capacity_csv
+from ..loading import Capacity, capacity_curve, plot_capacity, write_capacity_csv
 from ..loadspec import LOAD_MODELS
+from ..plots import save_figure
 from ..spec import load_spec, parse_override
 from .common import (
     add_spec_arguments,
@@ -42,20 +43,15 @@ def register(sub) -> None:
 def capacity_files(specs: list, out: Path, misalignments_deg: np.ndarray, *,
                    model: str | None = None, plots: bool = True) -> list[Path]:
     """Capacity curves of ``specs`` (first one names the folder) to CSV and plot."""
-    from ..loading import Capacity, capacity_curve
-
     curves: dict[str, list[Capacity]] = {}
     n = len(specs) * misalignments_deg.size
-    with progress("capacity", n) as advance:
-        for spec in specs:
+    with progress("capacity", n) as update:
+        for k, spec in enumerate(specs):
             curves[spec.name] = capacity_curve(
                 spec, misalignments_deg, model=model,
-                progress=lambda i, _n, s=spec: advance(f"{s.name} {i}/{_n}"))
+                progress=lambda i, _n, k=k: update(k * misalignments_deg.size + i, n))
     paths = [write_capacity_csv(curves, out / "capacity.csv")]
     if plots:
-        from ..loading.plots import plot_capacity
-        from ..plots import save_figure
-
         paths.append(save_figure(plot_capacity(curves), out / "capacity.png"))
     return paths
 

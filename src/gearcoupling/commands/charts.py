@@ -8,6 +8,8 @@ Writes ``charts.png`` (profile and lead traces per flank with the evaluation ran
 from __future__ import annotations
 
 from ..atomic import write_json
+from ..hob import measuring_charts, plot_measuring_charts, write_nominal_csv
+from ..plots import save_figure
 from .common import add_spec_arguments, count, number_in, output_dir, spec_from_args
 
 
@@ -23,9 +25,6 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
-    from ..hob import measuring_charts, plot_measuring_charts, write_nominal_csv
-    from ..plots import save_figure
-
     spec = spec_from_args(args)
     charts = measuring_charts(spec, args.points, args.tip_exclusion)
     out = output_dir(args, spec)

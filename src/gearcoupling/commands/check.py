@@ -10,12 +10,11 @@ table of the worst angles, and exits with status 1 when any pose overlaps.
 from __future__ import annotations
 
 import argparse
-import math
-from pathlib import Path
 
 import numpy as np
 
-from ..atomic import atomic_path, write_json
+from ..interference import check_interference
+from ..outputs import write_interference
 from .common import (
     MAX_TEETH,
     add_misalignment_argument,
@@ -70,28 +69,6 @@ def register(sub) -> None:
     p.set_defaults(func=run)
 
 
-def plot(result, reference_mm, path: Path, backlash_mm=None) -> Path:
-    """Write :func:`~gearcoupling.interference.plot.plot_interference` as PNG, atomically."""
-    from ..interference.plot import plot_interference
-
-    fig = plot_interference(result, reference_mm, backlash_mm)
-    with atomic_path(path) as tmp:
-        fig.savefig(tmp, format="png", dpi=120)
-    return Path(path)
-
-
-def write_meshes(result, index: int, out: Path) -> list[Path]:
-    from ..interference import posed_meshes
-
-    written = []
-    for name, mesh in posed_meshes(result, index).items():
-        path = out / f"worst_{name}.stl"
-        with atomic_path(path) as tmp:
-            mesh.export(tmp, file_type="stl")
-        written.append(path)
-    return written
-
-
 def print_table(result, count: int) -> None:
     from rich.console import Console
     from rich.table import Table
@@ -117,51 +94,17 @@ def print_table(result, count: int) -> None:
                   f"pose; {'INTERFERENCE' if result.interferes else 'no interference'}")
 
 
-def write_outputs(spec, result, out: Path) -> list[Path]:
-    """CSV, JSON (with the sweep's exact clearance), plot and worst posed meshes."""
-    from ..clearance import sweep
-    from ..clearance.result import require_finite
-
-    reference = backlash = None
-    if result.hub_rotation_deg == 0.0:
-        swept = sweep(spec, result.misalignment_deg, result.angles_deg).check_finite()
-        reference = np.min(swept.normal_clearance_mm, axis=(0, 1))
-        backlash = swept.backlash_mm
-    summary = result.summary()
-    if reference is not None and backlash is not None:
-        summary["sweep_min_normal_clearance_mm"] = [float(v) for v in reference]
-        summary["sweep_backlash_mm"] = [float(v) for v in backlash]
-    # validated before anything is written: no NaN in the CSV or the JSON
-    require_finite(result.rows(), "interference.csv")
-    require_finite(summary, "interference.json")
-    written = [result.write_csv(out / "interference.csv"),
-               write_json(out / "interference.json", summary),
-               plot(result, reference, out / "interference.png", backlash)]
-    return written + write_meshes(result, int(result.worst(1)[0]), out)
-
-
-def run_step(spec, out: Path, angles: int = 72) -> list[Path]:
-    """The ``gearcoupling run`` step: the check at the design angle, defaults otherwise."""
-    from ..interference import check_interference
-
-    result = check_interference(spec, math.degrees(spec.design_misalignment),
-                                360.0 * np.arange(angles) / angles)
-    return write_outputs(spec, result, out)
-
-
 def run(args) -> int:
-    from ..interference import check_interference
-
     spec = spec_from_args(args)
     mis = misalignment_deg(args, spec)
     angles = 360.0 * np.arange(args.angles) / args.angles
     out = output_dir(args, spec)
-    with progress(f"check {spec.name}", args.angles) as advance:
+    with progress(f"check {spec.name}", args.angles) as update:
         result = check_interference(spec, mis, angles, method=args.method,
                                     tolerance_mm=args.tolerance, teeth=args.teeth,
                                     hub_rotation_deg=args.hub_rotation,
-                                    backlash=args.backlash, progress=lambda j: advance())
-    written = write_outputs(spec, result, out)
+                                    backlash=args.backlash, progress=update)
+    written = write_interference(spec, result, out)
     print_table(result, args.worst)
     for path in written:
         print(path)

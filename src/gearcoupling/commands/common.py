@@ -121,9 +121,11 @@ def ensure_dir(out: Path, field: str = "-o") -> Path:
     return out
 
 
-def _bar():
-    """A rich progress display on stderr: count, time elapsed and an estimate of the time
-    left."""
+@contextmanager
+def progress(description: str, total: int):
+    """A rich progress bar on stderr with the time left; yields ``update(done, total)``, the
+    library's progress callback. The bar redraws on each update (no refresh thread, so
+    :func:`gearcoupling.run` may fork beside it)."""
     from rich.console import Console
     from rich.progress import (
         BarColumn,
@@ -133,31 +135,12 @@ def _bar():
         TimeRemainingColumn,
     )
 
-    return Progress(TextColumn("{task.description}"), BarColumn(), TextColumn(
-        "{task.completed}/{task.total}"), TimeElapsedColumn(), TextColumn("left"),
-        TimeRemainingColumn(), console=Console(stderr=True), transient=False)
-
-
-@contextmanager
-def progress(description: str, total: int):
-    """A rich progress bar on stderr; yields ``advance(label)``."""
-    with _bar() as bar:
+    with Progress(TextColumn("{task.description}"), BarColumn(), TextColumn("{task.completed}/"
+                  "{task.total}"), TimeElapsedColumn(), TimeRemainingColumn(),
+                  console=Console(stderr=True), transient=False, auto_refresh=False) as bar:
         task = bar.add_task(description, total=total)
 
-        def advance(label: str | None = None) -> None:
-            bar.update(task, advance=1, description=label or description)
-
-        yield advance
-
-
-@contextmanager
-def progress_callback(description: str):
-    """A rich progress bar on stderr for a library call; yields the ``progress(done,
-    total)`` callback the library's long calls take."""
-    with _bar() as bar:
-        task = bar.add_task(description, total=None)
-
         def update(done: int, total: int) -> None:
-            bar.update(task, completed=done, total=total)
+            bar.update(task, completed=done, total=total, refresh=True)
 
         yield update

@@ -13,14 +13,23 @@ from pathlib import Path
 
 from ..atomic import write_json
 from ..errors import SpecError
+from ..hob import write_csv
+from ..inspection import (
+    LIMITS,
+    STAGES,
+    check_limits,
+    compare_part,
+    plot_deviation_map,
+    plot_inspection,
+    write_deviation_ply,
+)
+from ..plots import save_figure
 from .common import add_spec_arguments, count, output_dir, progress, spec_from_args
 
 MAX_FIT_POINTS = 1_000_000
 
 
 def register(sub) -> None:
-    from ..inspection.report import LIMITS
-
     p = sub.add_parser("compare", help="measured hub (mesh / point cloud) vs nominal, per tooth")
     add_spec_arguments(p)
     p.add_argument("files", nargs="+", metavar="FILE",
@@ -40,8 +49,6 @@ def register(sub) -> None:
 
 def parse_limits(items: list[str]) -> dict[str, float]:
     """``NAME=MM`` items -> limits, each checked (known name, finite length > 0)."""
-    from ..inspection.report import check_limits
-
     out: dict[str, float] = {}
     for item in items:
         key, sep, value = item.partition("=")
@@ -55,13 +62,6 @@ def parse_limits(items: list[str]) -> dict[str, float]:
 
 
 def run(args) -> int:
-    from ..hob.writers import write_csv
-    from ..inspection import compare_part
-    from ..inspection.compare import STAGES
-    from ..inspection.heatmap import write_deviation_ply
-    from ..inspection.plots import plot_deviation_map, plot_inspection
-    from ..plots import save_figure
-
     if len(args.files) > 2:
         raise SpecError("FILE", args.files, "one scan, or two (A B) to compare")
     spec = spec_from_args(args)
@@ -70,11 +70,11 @@ def run(args) -> int:
         if not Path(f).is_file():
             raise SpecError("file", f, "a scan or mesh (STL/PLY/OBJ, CSV/XYZ): no such file")
     out = output_dir(args, spec)
-    with progress("compare", 2 + STAGES * len(args.files)) as advance:
+    with progress("compare", 2 + STAGES * len(args.files)) as update:
         result = compare_part(spec, args.files[0],
                               args.files[1] if len(args.files) == 2 else None,
                               units=args.units, limits=limits,
-                              coarse=args.coarse, fit_points=args.fit_points, advance=advance)
+                              coarse=args.coarse, fit_points=args.fit_points, progress=update)
     units = ["lengths in mm, + = material excess / toward increasing polar angle"]
     if len(args.files) == 2:
         files = [write_csv(out / "comparison.csv", result.rows(), units)]

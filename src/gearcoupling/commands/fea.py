@@ -8,9 +8,11 @@ MSH/VTU files and the sets of the INP.
 from __future__ import annotations
 
 import sys
+from collections.abc import Callable
 from pathlib import Path
 
 from ..atomic import write_json
+from ..fea import FORMATS, check_size, mesh_part, region_ids, sector_teeth, write_mesh
 from .common import (
     MAX_TEETH,
     add_spec_arguments,
@@ -39,10 +41,8 @@ def register(sub) -> None:
 
 
 def fea_meshes(spec, out: Path, parts, formats, *, sector=3, size_mm=None,
-               advance=None) -> tuple[list[Path], dict]:
+               progress: Callable[[int, int], None] | None = None) -> tuple[list[Path], dict]:
     """Mesh every part and write every format; returns the files and the report."""
-    from ..fea import check_size, mesh_part, region_ids, sector_teeth, write_mesh
-
     teeth = sector_teeth(spec, sector)
     for part in parts:  # refuse a bad size before any meshing
         check_size(spec, part, size_mm)
@@ -56,28 +56,25 @@ def fea_meshes(spec, out: Path, parts, formats, *, sector=3, size_mm=None,
         report["parts"][part] = {"size_mm": vm.size_mm, **vm.quality,
                                  "region_ids": region_ids(vm), "sets": vm.set_names(),
                                  "files": [f.name for f in files]}
-        if advance:
-            advance(f"{part}: {vm.quality['elements']} C3D10")
+        if progress:
+            progress(len(report["parts"]), len(parts))
     written.append(write_json(out / "fea_mesh.json", report))
     return written, report
 
 
 def run(args) -> int:
-    from ..fea import FORMATS
-
     spec = spec_from_args(args)
     parts = parse_list(args.parts, PART_NAMES, "--parts")
     fmts = parse_list(args.formats, FORMATS, "--format")
     sector = None if args.whole else args.sector
-    from ..fea import check_size, sector_teeth
 
     sector_teeth(spec, sector)
     for part in parts:
         check_size(spec, part, args.size)
     out = output_dir(args, spec)
-    with progress(f"{spec.name} volume meshes", len(parts)) as advance:
+    with progress(f"{spec.name} volume meshes", len(parts)) as update:
         written, report = fea_meshes(spec, out, parts, fmts, sector=sector,
-                                     size_mm=args.size, advance=advance)
+                                     size_mm=args.size, progress=update)
     for part, info in report["parts"].items():
         print(f"{part}: {info['nodes']} nodes, {info['elements']} C3D10, min scaled Jacobian "
               f"{info['min_scaled_jacobian']:.3f}, max aspect ratio "

@@ -8,13 +8,11 @@ and files of each part.
 from __future__ import annotations
 
 import sys
-from pathlib import Path
 
-from ..atomic import write_json
 from ..errors import SpecError
+from ..export import formats as registered
+from ..outputs import PART_NAMES, write_parts
 from .common import add_spec_arguments, output_dir, positive_length, progress, spec_from_args
-
-PART_NAMES = ("hub", "sleeve")
 
 
 def register(sub) -> None:
@@ -62,58 +60,15 @@ def parse_teeth(text: str | None, teeth: int) -> list[int] | None:
     return sorted(set(out))
 
 
-def file_stem(part: str, teeth: list[int] | None) -> str:
-    return part if teeth is None else f"{part}-teeth-{'-'.join(map(str, teeth))}"
-
-
-def generate(spec, out: Path, parts, formats, tolerance_mm=None, teeth=None,
-             advance=None) -> tuple[list[Path], dict]:
-    """Build the parts and write every format; returns the files and the report."""
-    from ..export import export_part
-    from ..parts import build_part, check_tolerance
-    from ..parts.deviation import measure_deviation
-    from ..parts.validity import check_part
-
-    try:
-        tol = check_tolerance(spec, tolerance_mm)
-    except ValueError as err:
-        raise SpecError("--tolerance", tolerance_mm, str(err).split(": ", 1)[-1]) from err
-    written: list[Path] = []
-    report = {"spec": spec.name, "tolerance_mm": tol, "teeth": teeth, "parts": {}}
-    for part in parts:
-        mesh = build_part(spec, part, tol, teeth)
-        check = check_part(mesh)
-        if advance:
-            advance(f"{part}: {len(mesh.faces)} triangles")
-        files = []
-        for ext in formats:
-            path = export_part(spec, part, out / f"{file_stem(part, teeth)}.{ext}",
-                               tolerance_mm=tol, teeth=teeth, mesh=mesh)
-            files.append(path.name)
-            written.append(path)
-            if advance:
-                advance(f"{part}.{ext}")
-        report["parts"][part] = {
-            "triangles": len(mesh.faces), "volume_mm3": float(mesh.volume),
-            "area_mm2": float(mesh.area), "valid": check.ok, "problems": check.problems(),
-            "genus": check.genus, "build_seconds": mesh.metadata["build_seconds"],
-            "measured_deviation_mm": measure_deviation(spec, mesh, samples=500)["max"],
-            "files": files,
-        }
-    written.append(write_json(out / "parts.json", report))
-    return written, report
-
-
 def run(args) -> int:
-    from ..export import formats as registered
-
     spec = spec_from_args(args)
     parts = parse_list(args.parts, PART_NAMES, "--parts")
     fmts = parse_list(args.formats, registered(), "--format")
     teeth = parse_teeth(args.teeth, spec.tooth.teeth)
     out = output_dir(args, spec)
-    with progress(f"{spec.name} parts", len(parts) * (1 + len(fmts))) as advance:
-        written, report = generate(spec, out, parts, fmts, args.tolerance, teeth, advance)
+    with progress(f"{spec.name} parts", len(parts) * (1 + len(fmts))) as update:
+        written, report = write_parts(spec, out, parts, fmts, args.tolerance, teeth,
+                                      progress=update)
     for part, info in report["parts"].items():
         state = "valid" if info["valid"] else "INVALID: " + "; ".join(info["problems"])
         print(f"{part}: {info['triangles']} triangles, {info['volume_mm3']:.6g} mm³, measured "
@@ -121,32 +76,3 @@ def run(args) -> int:
     for path in written:
         print(path)
     return 0 if all(i["valid"] for i in report["parts"].values()) else 1
-
-
-def parts_step(spec, out: Path) -> list[Path]:
-    """``gearcoupling run`` step: hub and sleeve STL at the default tolerance."""
-    return generate(spec, out, PART_NAMES, ["stl"])[0]
-
-
-def step_step(spec, out: Path) -> list[Path]:
-    """``gearcoupling run`` step: hub and sleeve STEP, when OpenCASCADE is installed; adds
-    them to the files of each part in ``parts.json`` when the parts step wrote it."""
-    import json
-    from importlib.util import find_spec
-
-    from ..export import export_part
-
-    if find_spec("OCP") is None:
-        print("gearcoupling: STEP skipped: pip install 'gearcoupling[step]' for STEP files",
-              file=sys.stderr)
-        return []
-    written = [export_part(spec, part, out / f"{part}.step") for part in PART_NAMES]
-    listing = out / "parts.json"
-    if listing.is_file():
-        report = json.loads(listing.read_text())
-        for part, path in zip(PART_NAMES, written, strict=True):
-            files = report["parts"].setdefault(part, {}).setdefault("files", [])
-            if path.name not in files:
-                files.append(path.name)
-        write_json(listing, report)  # already listed by the parts step
-    return written

@@ -8,6 +8,7 @@ chordal deviation, start/end positions, crown drop at the tooth ends).
 from __future__ import annotations
 
 from ..atomic import write_json, write_text
+from ..hob import hob_program, write_csv
 from .common import add_spec_arguments, output_dir, positive_length, spec_from_args
 
 
@@ -25,9 +26,6 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
-    from ..hob import hob_program
-    from ..hob.writers import write_csv
-
     spec = spec_from_args(args)
     prog = hob_program(spec, args.hob_diameter, args.tolerance)
     out = output_dir(args, spec)

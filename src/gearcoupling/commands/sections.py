@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from ..plots import plot_sections
 from .common import add_spec_arguments, output_dir, positive_length, spec_from_args
 
 
@@ -14,8 +15,6 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
-    from ..plots import plot_sections
-
     spec = spec_from_args(args)
     path = plot_sections(spec, output_dir(args, spec) / "sections.png", args.tolerance)
     print(path)

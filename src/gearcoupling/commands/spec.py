@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import json
 
-from ..spec import json_safe
+from ..outputs import resolved_spec
 from .common import add_spec_arguments, spec_from_args
 
 
@@ -15,16 +15,9 @@ def register(sub) -> None:
     p.set_defaults(func=run)
 
 
-def resolved(spec) -> dict:
-    """The resolved spec (mm, degrees) with its derived values, as plain data."""
-    data = spec.to_dict()
-    data["derived"] = json_safe(dict(spec.derived))
-    return data
-
-
 def run(args) -> int:
     spec = spec_from_args(args)
-    data = resolved(spec)
+    data = resolved_spec(spec)
     if args.json:
         print(json.dumps(data, indent=2, allow_nan=False))
         return 0

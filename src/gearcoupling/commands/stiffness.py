@@ -14,6 +14,8 @@ import sys
 from pathlib import Path
 
 from ..atomic import write_json, write_text
+from ..errors import SpecError
+from ..fea import ccx_path, check_size, gmsh_module, pitch_point_compliance, tooth_compliance_table
 from .common import (
     MAX_TEETH,
     add_spec_arguments,
@@ -46,8 +48,6 @@ def register(sub) -> None:
 
 def write_table(table, out: Path) -> list[Path]:
     """``stiffness.csv`` and ``stiffness.json`` of a compliance table."""
-    from ..fea.stiffness import pitch_point_compliance
-
     rows = table.rows()
     buf = io.StringIO()
     writer = csv.DictWriter(buf, fieldnames=list(rows[0]))
@@ -60,10 +60,6 @@ def write_table(table, out: Path) -> list[Path]:
 
 
 def run(args) -> int:
-    from ..errors import SpecError
-    from ..fea import check_size, tooth_compliance_table
-    from ..fea.backends import ccx_path, gmsh_module
-
     spec = spec_from_args(args)
     for part in ("hub", "sleeve"):
         check_size(spec, part, args.size)
@@ -75,10 +71,10 @@ def run(args) -> int:
     gmsh_module()
     ccx_path()
     out = output_dir(args, spec)
-    with progress(f"{spec.name} FE stiffness", 4) as advance:
+    with progress(f"{spec.name} FE stiffness", 4) as update:
         table = tooth_compliance_table(spec, size_mm=args.size, sector=args.sector,
                                        nz=args.nz, nr=args.nr, cache=args.cache,
-                                       refresh=args.refresh, advance=advance)
+                                       refresh=args.refresh, progress=update)
     written = write_table(table, out)
     c = table.mesh_stiffness_N_per_mm
     print(f"{spec.name}: mesh stiffness C = {c:.4g} N/mm per tooth pair "

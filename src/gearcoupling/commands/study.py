@@ -4,7 +4,22 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..atomic import default_output_dir
+from ..atomic import default_output_dir, write_json
+from ..plots import save_figure
+from ..study import (
+    chunks,
+    compare_curves,
+    load_study,
+    optimise_crown,
+    optimise_options,
+    plot_capacity_curves,
+    plot_k_histogram,
+    read_table,
+    run_study,
+    study_plots,
+    summarise_rows,
+    write_rows,
+)
 from .common import count, ensure_dir, number_in, progress
 
 MAX_WORKERS = 256
@@ -31,27 +46,18 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
-    from ..study import load_study, read_table, run_study
-    from ..study.plots import study_plots
-
     study = load_study(args.file)
     out = ensure_dir(Path(args.output) if args.output
                      else default_output_dir(f"study-{study.name}"))
     if study.optimise is not None:
         return _optimise(study, out, plots=not args.no_plots)
-    from ..study.runner import chunks
 
-    with progress(f"study {study.name} (chunks)", len(chunks(study))) as advance:
-        def on_start(todo: int, skipped: int) -> None:
-            if skipped:
-                print(f"resuming: {skipped} finished chunk(s) in {out / 'parts'} skipped, "
-                      f"{todo} to run")
-            for _ in range(skipped):
-                advance()
-
+    with progress(f"study {study.name} (chunks)", len(chunks(study))) as update:
         result = run_study(study, out, scheduler=args.scheduler, workers=args.workers,
-                           connect_timeout_s=args.connect_timeout,
-                           fresh=args.fresh, on_start=on_start, on_chunk=lambda c: advance())
+                           connect_timeout_s=args.connect_timeout, fresh=args.fresh,
+                           progress=update)
+    if result.skipped_chunks:
+        print(f"resumed: {result.skipped_chunks} chunk(s) finished earlier in {out / 'parts'}")
     print(result.table)
     if result.failed_rows:
         print(f"{result.failed_rows} of {result.rows} rows refused (see the 'error' column)")
@@ -65,9 +71,6 @@ def run(args) -> int:
 
 
 def _tolerance_summary(study, rows, out: Path, *, plots: bool) -> None:
-    from ..atomic import write_json
-    from ..study.tolerance import summarise_rows
-
     summary = summarise_rows(study, rows)
     print(write_json(out / "tolerance_summary.json", summary))
     for s in summary:
@@ -76,27 +79,22 @@ def _tolerance_summary(study, rows, out: Path, *, plots: bool) -> None:
               f"{s['K_p05']:.4f}, {s['samples']} samples; {s['samples_needed']} needed for "
               f"+-{s['precision']:g}")
     if plots and len(summary) == 1:
-        from ..plots import save_figure
-        from ..study.plots import plot_k_histogram
-
         print(save_figure(plot_k_histogram(rows, summary[0]), out / "K-histogram.png"))
 
 
 def _optimise(study, out: Path, *, plots: bool) -> int:
     """Crown optimisation: every evaluation's row, the optimum, capacity curves against the
     compared specs."""
-    from ..atomic import write_json
-    from ..study.optimise import (
-        compare_curves,
-        optimise_crown,
-        optimise_options,
-        plot_capacity_curves,
-        write_rows,
-    )
-
     options = optimise_options(study)
-    with progress(f"optimise {study.name} (evaluations)", options["max_evaluations"]) as adv:
-        result = optimise_crown(study, on_row=lambda r: adv())
+    n = options["max_evaluations"]
+    with progress(f"optimise {study.name} (evaluations)", n) as update:
+        seen = [0]
+
+        def on_row(_row) -> None:
+            seen[0] += 1
+            update(min(seen[0], n), n)
+
+        result = optimise_crown(study, on_row=on_row)
     write_rows(result.rows, out / "study.parquet")
     print(out / "study.parquet")
     if result.best is None:
@@ -115,7 +113,5 @@ def _optimise(study, out: Path, *, plots: bool) -> int:
     for name, (_, cap) in curves.items():
         print(f"  {name:28s} " + " ".join(f"{c:8.0f}" for c in cap) + "  N m")
     if plots:
-        from ..plots import save_figure
-
         print(save_figure(plot_capacity_curves(curves), out / "capacity-curves.png"))
     return 0

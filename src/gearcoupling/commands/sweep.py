@@ -2,12 +2,7 @@
 
 from __future__ import annotations
 
-from pathlib import Path
-
-import numpy as np
-
-from ..atomic import write_json
-from ..errors import SpecError
+from ..outputs import write_sweep
 from .common import (
     MAX_ANGLES,
     add_misalignment_argument,
@@ -37,37 +32,13 @@ def register(sub) -> None:
     p.set_defaults(func=run)
 
 
-def sweep_files(spec, out: Path, misalignment_deg: float, angles: int, *,
-                tolerance_mm: float = 1e-7, design: bool = True, plots: bool = True,
-                studies: bool = True) -> list[Path]:
-    """Run a sweep and write ``sweep.csv``, ``sweep_summary.json`` and the plots."""
-    from ..clearance import sweep
-    from ..clearance.design import design_quantities
-    from ..clearance.result import require_finite
-
-    if angles < 1:
-        raise SpecError("--angles", angles, "must be at least 1")
-    psi = np.arange(angles) * 360.0 / angles
-    result = sweep(spec, misalignment_deg, psi, tolerance_mm=tolerance_mm).check_finite()
-    summary = result.summary()
-    extra = design_quantities(spec, misalignment_deg) if design else {}
-    summary.update(extra)
-    require_finite(summary, "sweep_summary.json")  # nothing is written before this
-    paths = [result.write_csv(out / "sweep.csv"),
-             write_json(out / "sweep_summary.json", summary)]
-    if plots:
-        from ..clearance.plots import plot_all
-
-        paths += plot_all(result, spec, out, design=extra if design else None, studies=studies)
-    return paths
-
-
 def run(args) -> int:
     spec = spec_from_args(args)
     mis = misalignment_deg(args, spec)
     out = output_dir(args, spec)
-    for path in sweep_files(spec, out, mis, args.angles, tolerance_mm=args.tolerance,
-                            design=not args.no_design, plots=not args.no_plots,
-                            studies=not args.quick_plots):
+    _, paths = write_sweep(spec, out, mis, args.angles, tolerance_mm=args.tolerance,
+                           design=not args.no_design, plots=not args.no_plots,
+                           studies=not args.quick_plots)
+    for path in paths:
         print(path)
     return 0

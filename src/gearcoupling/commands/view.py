@@ -7,8 +7,18 @@ import time
 from pathlib import Path
 
 from ..errors import SpecError
-from ..viewer.nodes import FRAMES
-from ..viewer.scene import COLOR_MODES, CUTAWAYS, LOD_DIVISORS
+from ..viewer import (
+    COLOR_MODES,
+    CUTAWAYS,
+    FRAMES,
+    LOD_DIVISORS,
+    ViewSettings,
+    check_pose,
+    exposure_warning,
+    lod_tolerance,
+    serve,
+    write_html,
+)
 from .common import (
     add_misalignment_argument,
     add_spec_arguments,
@@ -53,9 +63,6 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
-    from ..viewer.nodes import ViewSettings
-    from ..viewer.scene import check_pose, lod_tolerance
-
     spec = spec_from_args(args)
     mis = misalignment_deg(args, spec)
     mis, psi = check_pose(mis, args.angle)
@@ -65,14 +72,11 @@ def run(args) -> int:
                             color_mode=args.color_by, frame=args.frame)
     tol = lod_tolerance(spec, args.lod) if args.tolerance is None else args.tolerance
     if args.html:
-        from ..viewer.html import write_html
-
         t0 = time.perf_counter()
         path = write_html(spec, args.html, settings=settings, tolerance_mm=tol)
         print(f"{path} ({path.stat().st_size / 1e6:.2f} MB, "
               f"{time.perf_counter() - t0:.1f} s)")
         return 0
-    from ..viewer.server import exposure_warning, serve
 
     warning = exposure_warning(args.host)
     if warning:

@@ -6,5 +6,13 @@ writers, STEP through OCP (see ``docs/export.md``).
 
 from .job import PartJob
 from .registry import EXPORTERS, export_part, formats
+from .step import part_solid, write_step
 
-__all__ = ["EXPORTERS", "PartJob", "export_part", "formats"]
+__all__ = [
+    "EXPORTERS",
+    "PartJob",
+    "export_part",
+    "formats",
+    "part_solid",
+    "write_step",
+]

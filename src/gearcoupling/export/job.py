@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from ..parts import build_part
+
 
 @dataclass
 class PartJob:
@@ -22,8 +24,6 @@ class PartJob:
     @property
     def mesh(self):
         if self._mesh is None:
-            from ..parts import build_part
-
             self._mesh = build_part(self.spec, self.part, self.tolerance_mm, self.teeth)
         return self._mesh
 

@@ -28,7 +28,7 @@ from typing import cast
 import numpy as np
 from numpy.typing import NDArray
 
-from ..parts.builder import SURFACE_KINDS
+from ..parts import SURFACE_KINDS
 from .job import PartJob
 
 GLB_FROM_MM = np.array([[1e-3, 0, 0, 0], [0, 0, 1e-3, 0], [0, -1e-3, 0, 0], [0, 0, 0, 1.0]])

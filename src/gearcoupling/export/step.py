@@ -24,7 +24,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import BackendError, GeometryError
-from ..parts.builder import SURFACE_KINDS, Run, tooth_runs
+from ..geometry import hub_model, sleeve_model
+from ..parts import SURFACE_KINDS, Run, check_tolerance, hub_layout, sleeve_layout, tile, tooth_runs
 from .fit import DEGREE, fit_sections
 
 FIT_SHARE = 0.5
@@ -145,8 +146,6 @@ def _volume(o, shape) -> float:
 
 
 def _tile_ring(pitch: NDArray, teeth: int) -> NDArray:
-    from ..parts.builder import tile
-
     return tile(pitch[None], Run(0, teeth, teeth))[0]
 
 
@@ -166,9 +165,6 @@ def hub_solid(spec, tol: float):
     The loft is split at the planes where the feed-path curvature jumps (``end_round``)
     so that no B-spline surface spans a curvature break; the pieces are fused.
     """
-    from ..geometry.hub import hub_model
-    from ..parts.hub import hub_layout
-
     o = _occ()
     lay = hub_layout(spec, sampling_tolerance(spec, tol))  # section planes
     dense = hub_layout(spec, DENSE_SHARE * tol)  # exact points the profiles are fitted to
@@ -377,9 +373,6 @@ def loft_sections(z_grid: NDArray, edges: NDArray, dense, tol: float) -> list[ND
 
 def sleeve_solid(spec, tol: float):
     """OpenCASCADE solid of the whole sleeve (the exact outline extruded)."""
-    from ..geometry.sleeve import sleeve_model
-    from ..parts.sleeve import sleeve_layout
-
     o = _occ()
     lay = sleeve_layout(spec, DENSE_SHARE * tol)  # exact points the flanks are fitted to
     sm = sleeve_model(spec)
@@ -522,8 +515,6 @@ __all__ = ["hub_solid", "part_solid", "read_step_volume", "shape_volume",
 
 def write_step_job(job, path: Path) -> None:
     """STEP AP214 B-spline solid of the part (``step`` extra)."""
-    from ..parts import check_tolerance
-
     tol = check_tolerance(job.spec, job.tolerance_mm)
     shape = part_solid(job.spec, job.part, tol, job.teeth)
     write_step(shape, path, name=job.title)

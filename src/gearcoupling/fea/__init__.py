@@ -5,11 +5,32 @@ gmsh (``fea`` extra) and ``ccx`` (Debian ``calculix-ccx``) are imported or looke
 when called; a missing one raises :class:`gearcoupling.errors.BackendError` naming it.
 """
 
+from .backends import ccx_path, gmsh_module
 from .mesh import DEFAULT_SECTOR_TEETH, check_size, default_size, mesh_part, sector_teeth
-from .stiffness import ComplianceTable, compute_compliance_table, tooth_compliance_table
+from .stiffness import (
+    ComplianceTable,
+    compute_compliance_table,
+    pitch_point_compliance,
+    tooth_compliance_table,
+)
 from .volume import VolumeMesh
 from .write import FORMATS, region_ids, write_inp, write_mesh
 
-__all__ = ["DEFAULT_SECTOR_TEETH", "FORMATS", "ComplianceTable", "VolumeMesh", "check_size",
-           "compute_compliance_table", "default_size", "mesh_part", "region_ids",
-           "sector_teeth", "tooth_compliance_table", "write_inp", "write_mesh"]
+__all__ = [
+    "DEFAULT_SECTOR_TEETH",
+    "FORMATS",
+    "ComplianceTable",
+    "VolumeMesh",
+    "ccx_path",
+    "check_size",
+    "compute_compliance_table",
+    "default_size",
+    "gmsh_module",
+    "mesh_part",
+    "pitch_point_compliance",
+    "region_ids",
+    "sector_teeth",
+    "tooth_compliance_table",
+    "write_inp",
+    "write_mesh",
+]

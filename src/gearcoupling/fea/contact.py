@@ -20,6 +20,7 @@ import time
 import numpy as np
 
 from ..errors import SpecError
+from ..geometry import hub_to_sleeve
 from .ccx import run_ccx, solver_dir
 from .mesh import mesh_part
 from .stiffness import material
@@ -77,8 +78,6 @@ def contact_pose(spec, *, misalignment_deg: float, psi_deg: float, windup_rad: f
                  sector: int = 3, size_mm: float | None = None, penalty_factor: float = 20.0,
                  workdir=None) -> dict:
     """Solve one loaded pose with contact (module docstring); returns the per-tooth table."""
-    from ..geometry.pose import hub_to_sleeve
-
     if not (math.isfinite(windup_rad) and windup_rad > 0):
         raise SpecError("windup_rad", windup_rad, "a positive wind-up angle (rad)")
     t0 = time.perf_counter()

@@ -19,6 +19,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import GeometryError, SpecError
+from ..export import part_solid, write_step
+from ..parts import SURFACE_KINDS, build_part, check_tolerance
 from .backends import gmsh_session
 from .volume import VolumeMesh, aspect_ratios, match_faces, tet_volumes
 
@@ -99,9 +101,6 @@ def mesh_part(spec, part: str, *, sector: int | None = DEFAULT_SECTOR_TEETH,
     -------
     VolumeMesh
     """
-    from ..export.step import part_solid, write_step
-    from ..parts import build_part, check_tolerance
-
     if part not in ("hub", "sleeve"):
         raise SpecError("part", part, "hub or sleeve")
     teeth = sector_teeth(spec, sector)
@@ -164,8 +163,6 @@ def _size_field(gmsh, faces, size, body, module) -> None:
 
 def classify_surfaces(gmsh, spec, part, labelled, surfaces) -> dict[int, tuple[str, float]]:
     """Region name and vote share of every gmsh surface (see the module docstring)."""
-    from ..parts import SURFACE_KINDS
-
     kind, tooth = labelled.face_attributes["kind"], labelled.face_attributes["tooth"]
     r_outer = 0.5 * spec.sleeve.outer_diameter
     n = spec.tooth.teeth

@@ -25,6 +25,7 @@ import hashlib
 import json
 import os
 import time
+from collections.abc import Callable
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
@@ -35,7 +36,7 @@ from ..atomic import safe_name, write_json
 from ..errors import GeometryError, SpecError
 from .ccx import run_ccx, solver_dir
 from .deck import LoadCase, principal_max, static_deck
-from .mesh import DEFAULT_SECTOR_TEETH, mesh_part
+from .mesh import DEFAULT_SECTOR_TEETH, check_size, mesh_part
 from .volume import VolumeMesh
 
 CACHE_ENV = "GEARCOUPLING_CACHE"
@@ -247,8 +248,10 @@ def part_compliance(vm: VolumeMesh, spec, z_mm, r_mm, *, patch_mm: float, workdi
 def compute_compliance_table(spec, *, size_mm: float | None = None,
                              sector: int = DEFAULT_SECTOR_TEETH, nz: int = 3, nr: int = 3,
                              patch_mm: float | None = None, workdir=None,
-                             advance=None) -> ComplianceTable:
-    """Mesh hub and sleeve sectors and solve the load cases with ccx (no cache)."""
+                             progress: Callable[[int, int], None] | None = None
+                             ) -> ComplianceTable:
+    """Mesh hub and sleeve sectors and solve the load cases with ccx (no cache);
+    ``progress(done, 4)`` after each mesh and each solve."""
     if sector is None or int(sector) < 1 or int(sector) % 2 == 0:
         raise SpecError("sector", sector, "an odd number of teeth (the middle one is loaded), "
                         "e.g. 3")
@@ -256,8 +259,8 @@ def compute_compliance_table(spec, *, size_mm: float | None = None,
     meshes = {}
     for part in ("hub", "sleeve"):
         meshes[part] = mesh_part(spec, part, sector=sector, size_mm=size_mm)
-        if advance:
-            advance(f"{part} mesh: {meshes[part].quality['elements']} C3D10")
+        if progress:
+            progress(len(meshes), 4)
     z, r = load_grid(spec, meshes["hub"], meshes["sleeve"], nz, nr)
     patch = (max(meshes["hub"].size_mm, spec.tooth.module / 4.0) if patch_mm is None
              else float(patch_mm))
@@ -267,8 +270,8 @@ def compute_compliance_table(spec, *, size_mm: float | None = None,
             comp[part], stress[part], info = part_compliance(vm, spec, z, r, patch_mm=patch,
                                                              workdir=work, job=part)
             times[part] = info["solve_seconds"]
-            if advance:
-                advance(f"{part} solved in {times[part]:.1f} s")
+            if progress:
+                progress(2 + len(times), 4)
     info = {
         "spec": spec.name, "size_mm": meshes["hub"].size_mm, "sector_teeth": sector,
         "patch_mm": patch, "loaded_flank": {"hub": "ccw", "sleeve": "ccw"},
@@ -288,15 +291,14 @@ def compute_compliance_table(spec, *, size_mm: float | None = None,
 def tooth_compliance_table(spec, *, size_mm: float | None = None,
                            sector: int = DEFAULT_SECTOR_TEETH, nz: int = 3, nr: int = 3,
                            cache: str | Path | None = None, refresh: bool = False,
-                           advance=None) -> ComplianceTable:
+                           progress: Callable[[int, int], None] | None = None
+                           ) -> ComplianceTable:
     """The FE compliance table of a spec, cached per spec hash and settings.
 
     The cache is ``<cache>/<hash>.json`` (default :func:`cache_dir`, i.e. the user's cache
     folder ``~/.cache/gearcoupling/fea``); ``refresh`` recomputes it. Implements the tooth
     compliance protocol ``pair_compliance_mm_per_N(z_mm, r_mm)`` of the load models.
     """
-    from .mesh import check_size
-
     check_size(spec, "hub", size_mm)
     check_size(spec, "sleeve", size_mm)
     key = spec_hash(spec, size_mm=size_mm, sector=sector, nz=nz, nr=nr)
@@ -305,7 +307,7 @@ def tooth_compliance_table(spec, *, size_mm: float | None = None,
     if path.exists() and not refresh:
         return ComplianceTable.from_dict(json.loads(path.read_text()))
     table = compute_compliance_table(spec, size_mm=size_mm, sector=sector, nz=nz, nr=nr,
-                                     advance=advance)
+                                     progress=progress)
     table.info["spec_hash"] = key
     write_json(path, table.to_dict())
     return table

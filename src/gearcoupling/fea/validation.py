@@ -7,6 +7,7 @@ import numpy as np
 from .backends import gmsh_session
 from .ccx import run_ccx, solver_dir
 from .deck import LoadCase, static_deck
+from .mesh import extract_mesh
 
 
 def timoshenko_tip_deflection(force_N: float, length_mm: float, width_mm: float,
@@ -25,8 +26,6 @@ def timoshenko_tip_deflection(force_N: float, length_mm: float, width_mm: float,
 def cantilever_mesh(length_mm: float, width_mm: float, height_mm: float, size_mm: float):
     """Quadratic tet mesh of the box ``[0, L] x [0, b] x [0, h]`` with regions ``ROOT``
     (x = 0) and ``TIP`` (x = L)."""
-    from .mesh import extract_mesh
-
     with gmsh_session() as gmsh:
         gmsh.model.occ.addBox(0, 0, 0, length_mm, width_mm, height_mm)
         gmsh.model.occ.synchronize()

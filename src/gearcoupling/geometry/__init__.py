@@ -3,20 +3,60 @@
 Nothing here imports a mesh, CAD or viewer library.
 """
 
+from .checks import MAX_END_TANGENT_DEG, check_spec, derived_values
 from .feedpath import FeedPath, feed_path
-from .hub import hub_flank, hub_model
+from .hub import (
+    FLANKS,
+    HubModel,
+    envelope,
+    flank_depth,
+    flank_u,
+    form_radius,
+    hub_flank,
+    hub_flank_model,
+    hub_model,
+    plane_rack,
+    radius_squared,
+    root_radius,
+    round_point,
+    tip_radius,
+)
 from .involute import inv, inv_inverse
-from .section import transverse_section
-from .sleeve import sleeve_flank, sleeve_model
+from .pose import hub_to_sleeve, map_polar, rot_z, turning_angles
+from .section import PARTS, sleeve_space_outline, transverse_section
+from .sleeve import SleeveModel, flank_point, sleeve_flank, sleeve_model
 
 __all__ = [
+    "FLANKS",
+    "MAX_END_TANGENT_DEG",
+    "PARTS",
     "FeedPath",
+    "HubModel",
+    "SleeveModel",
+    "check_spec",
+    "derived_values",
+    "envelope",
     "feed_path",
+    "flank_depth",
+    "flank_point",
+    "flank_u",
+    "form_radius",
     "hub_flank",
+    "hub_flank_model",
     "hub_model",
+    "hub_to_sleeve",
     "inv",
     "inv_inverse",
+    "map_polar",
+    "plane_rack",
+    "radius_squared",
+    "root_radius",
+    "rot_z",
+    "round_point",
     "sleeve_flank",
     "sleeve_model",
+    "sleeve_space_outline",
+    "tip_radius",
     "transverse_section",
+    "turning_angles",
 ]

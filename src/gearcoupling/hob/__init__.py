@@ -7,19 +7,23 @@ matplotlib lazily.
 from .charts import (
     MeasuringCharts,
     Trace,
+    evaluation_ranges,
     measuring_charts,
     plot_measuring_charts,
     write_nominal_csv,
 )
 from .program import HobProgram, Move, hob_program
+from .writers import write_csv
 
 __all__ = [
     "HobProgram",
     "MeasuringCharts",
     "Move",
     "Trace",
+    "evaluation_ranges",
     "hob_program",
     "measuring_charts",
     "plot_measuring_charts",
+    "write_csv",
     "write_nominal_csv",
 ]

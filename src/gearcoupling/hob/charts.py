@@ -31,8 +31,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import SpecError
-from ..geometry.hub import FLANKS, HubModel, form_radius, hub_flank_model, hub_model, tip_radius
-from ..geometry.involute import inv
+from ..geometry import FLANKS, HubModel, form_radius, hub_flank_model, hub_model, inv, tip_radius
+from ..plots import figure_axes
+from .writers import write_csv
 
 _EPS = 1e-9
 
@@ -256,8 +257,6 @@ def plot_measuring_charts(charts: MeasuringCharts, ax=None):
     -------
     matplotlib.figure.Figure
     """
-    from ..plots import figure_axes
-
     fig, axes = figure_axes(ax, (2, 2), figsize=(11, 8))
     axes = list(np.ravel(axes))
     for row, flank in enumerate(FLANKS):
@@ -288,8 +287,6 @@ def plot_measuring_charts(charts: MeasuringCharts, ax=None):
 
 def write_nominal_csv(charts: MeasuringCharts, path: str | Path) -> Path:
     """The nominal traces as a CSV a measuring machine can load (points + normals)."""
-    from .writers import write_csv
-
     return write_csv(path, charts.rows(), [
         f"gearcoupling nominal measuring traces, spec {charts.spec_name}",
         "units: mm (coordinates, roll length, deviation); normals: unit vectors out of the "

@@ -23,7 +23,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import ArgumentError, SpecError
-from ..geometry.hub import HubModel, hub_model, plane_rack, tip_radius
+from ..geometry import HubModel, hub_model, plane_rack, tip_radius
 
 _DENSE = 65  # exact-curve samples per move when its chordal deviation is measured
 

@@ -6,10 +6,24 @@ crown, pitch, thickness and runout deviations with pass/fail. Uses the geometry 
 trimesh is imported only to read mesh files, matplotlib only to plot.
 """
 
-from .compare import PartComparison, compare_part
+from .compare import STAGES, PartComparison, compare_part
+from .heatmap import write_deviation_ply
 from .io import load_points
+from .plots import plot_deviation_map, plot_inspection
 from .register import Registration, RegistrationError
-from .report import LIMITS, InspectionReport
+from .report import LIMITS, InspectionReport, check_limits
 
-__all__ = ["LIMITS", "InspectionReport", "PartComparison", "Registration",
-           "RegistrationError", "compare_part", "load_points"]
+__all__ = [
+    "LIMITS",
+    "STAGES",
+    "InspectionReport",
+    "PartComparison",
+    "Registration",
+    "RegistrationError",
+    "check_limits",
+    "compare_part",
+    "load_points",
+    "plot_deviation_map",
+    "plot_inspection",
+    "write_deviation_ply",
+]

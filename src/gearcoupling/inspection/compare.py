@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import cast
@@ -10,7 +11,7 @@ from typing import cast
 import numpy as np
 
 from ..errors import SpecError
-from ..hob.charts import measuring_charts
+from ..hob import measuring_charts
 from .datum import bore_datum
 from .io import load_points
 from .register import RegistrationError, register
@@ -67,7 +68,8 @@ def _points(source, units: str):
 def compare_part(spec, source, other=None, *, units: str = "mm", limits=None,
                  coarse: str = "auto", fit_points: int = 20_000,
                  grid: tuple[int, int] = (61, 41), outlier_mm: float | None = None,
-                 min_points: int = 30, advance=None):
+                 min_points: int = 30,
+                 progress: Callable[[int, int], None] | None = None):
     """Inspect a measured hub against the spec's nominal, tooth by tooth.
 
     Parameters
@@ -94,16 +96,22 @@ def compare_part(spec, source, other=None, *, units: str = "mm", limits=None,
     min_points : int
         A flank with fewer band points (or covering less than half of the evaluation
         ranges) is not reported; a tooth is reported when both flanks are.
-    advance : callable, optional
-        ``advance(label)`` after each stage (``STAGES`` per part, plus two): progress bars.
+    progress : callable, optional
+        ``progress(done, total)`` after each stage (``STAGES`` per part, plus two).
 
     Returns
     -------
     InspectionReport or PartComparison
     """
-    step = advance or (lambda label: None)
     lim = check_limits({**spec.inspection.as_dict(), **dict(limits or {})})
     parts = [_points(src, units) for src in (source, other) if src is not None]
+    total, done = 2 + STAGES * len(parts), [0]
+
+    def step(_label: str) -> None:
+        done[0] += 1
+        if progress is not None:
+            progress(done[0], total)
+
     step(f"read {', '.join(f'{len(p):,}' for p, _ in parts)} points")
     table = flank_table(spec, grid)
     charts = measuring_charts(spec)

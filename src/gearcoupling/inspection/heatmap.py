@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
+from ..atomic import atomic_path
 from .report import InspectionReport
 
 # diverging blue - white - red (ColorBrewer RdBu end points), minus material blue
@@ -56,7 +57,6 @@ def write_deviation_ply(report: InspectionReport, path: str | Path,
     """Write the coloured deviation cloud as a PLY point cloud (hub frame, mm)."""
     import trimesh
 
-    from ..atomic import atomic_path
 
     pts, rgb, _ = heatmap_points(report, limit_mm)
     cloud = trimesh.PointCloud(pts, colors=np.concatenate(

@@ -6,6 +6,7 @@ from typing import cast
 
 import numpy as np
 
+from ..plots import figure_axes
 from .report import FLANK_NAMES, InspectionReport
 
 
@@ -19,8 +20,6 @@ def plot_inspection(report: InspectionReport, ax=None):
     -------
     matplotlib.figure.Figure
     """
-    from ..plots import figure_axes
-
     fig, axes = figure_axes(ax, (2, 2), figsize=(12, 8))
     axes = list(np.ravel(axes))
     k = report.teeth
@@ -68,8 +67,6 @@ def plot_deviation_map(report: InspectionReport, ax=None, limit_mm: float | None
     ``x`` = tooth + axial position across the face, ``y`` = roll length; colour = normal
     deviation (µm, + material). ``ax``: sequence of 2 Axes (cw, ccw), optional.
     """
-    from ..plots import figure_axes
-
     fig, axes = figure_axes(ax, (2, 1), figsize=(14, 7), sharex=True)
     axes = list(np.ravel(axes))
     s = report.sample

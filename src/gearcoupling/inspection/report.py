@@ -31,8 +31,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import SpecError
-from ..geometry.hub import hub_flank_model
-from ..hob.charts import MeasuringCharts
+from ..geometry import hub_flank_model
+from ..hob import MeasuringCharts
 from .register import Registration
 from .surface import FlankTable, PointDeviation
 

@@ -22,8 +22,8 @@ from numpy.typing import NDArray
 from scipy.interpolate import RectBivariateSpline
 
 from ..errors import GeometryError, SpecError
-from ..geometry.hub import HubModel, hub_flank_model, hub_model
-from ..hob.charts import evaluation_ranges
+from ..geometry import HubModel, hub_flank_model, hub_model
+from ..hob import evaluation_ranges
 
 
 @dataclass(frozen=True, eq=False)

@@ -13,7 +13,7 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..geometry.hub import FLANKS
+from ..geometry import FLANKS
 
 __all__ = ["FLANKS", "flank_index", "nearest_tooth"]
 

@@ -33,7 +33,10 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ..atomic import write_text
+from ..clearance import check_angles, check_misalignment, sweep
 from ..errors import ArgumentError, SpecError
+from ..parts import SURFACE_KINDS, check_tolerance
 from . import distance as dist
 from .attribution import FLANKS, flank_index, nearest_tooth
 from .posed import hub_pose, window_pose, window_to_sleeve
@@ -163,7 +166,6 @@ class InterferenceResult:
         import csv
         import io
 
-        from ..atomic import write_text
 
         rows = self.rows()
         buf = io.StringIO()
@@ -333,7 +335,7 @@ def check_interference(spec, misalignment_deg: float, angles_deg: ArrayLike, *,
                        teeth: int | str = "sweep", margin_mm: float | None = None,
                        hub_rotation_deg: float = 0.0, backlash: bool = False,
                        model: Model | None = None,
-                       progress: Callable[[int], None] | None = None) -> InterferenceResult:
+                       progress: Callable[[int, int], None] | None = None) -> InterferenceResult:
     """Overlap volume, teeth, centroid, depth and minimum gap of the posed meshes per angle.
 
     Parameters
@@ -372,16 +374,12 @@ def check_interference(spec, misalignment_deg: float, angles_deg: ArrayLike, *,
         A prepared model from :func:`~.submodel.build_model` to reuse (it must match
         ``tolerance_mm`` and ``teeth``).
     progress : callable, optional
-        Called with the angle index after each pose.
+        ``progress(done, total)`` after each pose.
 
     Returns
     -------
     InterferenceResult
     """
-    from ..clearance import sweep
-    from ..clearance.tooth_map import check_angles, check_misalignment
-    from ..parts import check_tolerance
-
     method = _check_method(method)
     mis = check_misalignment(misalignment_deg)
     psi = np.radians(check_angles(angles_deg))
@@ -447,7 +445,7 @@ def check_interference(spec, misalignment_deg: float, angles_deg: ArrayLike, *,
         overlaps.extend(acc.pieces)
         out.store(j, acc)
         if progress is not None:
-            progress(j)
+            progress(j + 1, M)
     per_pose = (time.perf_counter() - t1) / M
     R = spec.tooth.pitch_radius
     return InterferenceResult(
@@ -485,8 +483,6 @@ def _evaluate(model: Model, A: NDArray, N: int, w: Window, pieces_of) -> _Window
 def _collect(acc: _PoseAcc, ev: _WindowResult, w: Window, A: NDArray, j: int, angle: float,
              N: int, r_b: float, model: Model) -> None:
     """Add one window's findings to the pose, in sleeve-frame coordinates and real teeth."""
-    from ..parts import SURFACE_KINDS
-
     c = w.centre
     for rel, flank, vol, dep, cen, deep in ev.pieces:
         tooth = (rel + c) % N

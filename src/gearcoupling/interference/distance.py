@@ -34,6 +34,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import BackendError
+from ..geometry import rot_z
 from .posed import PreparedPart
 
 
@@ -195,8 +196,6 @@ def free_turn(hub: PreparedPart, matrix: NDArray, sleeve: PreparedPart, flank: s
     involutes), bisecting between the last free turn and the first touching one when a
     step overshoots; stops when the remaining step is below ``tol_angle``.
     """
-    from ..geometry.pose import rot_z
-
     sign = 1.0 if flank == "ccw" else -1.0
     lo, hi = 0.0, math.inf
     c = closest_pair(hub, matrix, sleeve, flank)

@@ -7,6 +7,8 @@ from collections.abc import Sequence
 
 from numpy.typing import ArrayLike
 
+from ..errors import SpecError
+
 
 def plot_interference(result, reference_mm: ArrayLike | None = None,
                       backlash_mm: ArrayLike | None = None, *, ax: Sequence | None = None):
@@ -36,8 +38,6 @@ def plot_interference(result, reference_mm: ArrayLike | None = None,
     else:
         axes = list(ax)
         if len(axes) != rows:
-            from ..errors import SpecError
-
             raise SpecError("ax", f"{len(axes)} axes", f"{rows} axes, one per panel")
         fig = axes[0].figure
     a = result.angles_deg

@@ -22,7 +22,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import BackendError
-from ..geometry.pose import hub_to_sleeve, rot_z
+from ..geometry import hub_to_sleeve, rot_z
+from ..parts import SURFACE_KINDS
 
 
 def hub_pose(misalignment: float, psi: float, hub_rotation: float = 0.0) -> NDArray:
@@ -111,8 +112,6 @@ class PreparedPart:
     @classmethod
     def from_trimesh(cls, mesh, shell_kinds: tuple[str, ...]) -> PreparedPart:
         """From a :func:`gearcoupling.parts.build_part` mesh; ``shell_kinds`` are excluded."""
-        from ..parts import SURFACE_KINDS
-
         kind = np.asarray(mesh.face_attributes["kind"], dtype=np.int16)
         drop = [SURFACE_KINDS.index(k) for k in shell_kinds]
         return cls(part=mesh.metadata.get("part", "?"),
@@ -161,8 +160,6 @@ class PreparedPart:
         """Faces of one flank side (``"cw"``/``"ccw"``: flank, fillet, chamfer of that side)."""
         key = ("side", flank)
         if key not in self._cache:
-            from ..parts import SURFACE_KINDS
-
             codes = [SURFACE_KINDS.index(f"{k}_{flank}") for k in ("flank", "fillet", "chamfer")]
             self._cache[key] = np.flatnonzero(np.isin(self.kind, codes))
         return self._cache[key]

@@ -22,6 +22,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import ArgumentError
+from ..parts import build_part
 from .posed import PreparedPart
 
 NOT_SHELL = ("body", "bore", "side")  # left out of the flank-only shells
@@ -75,8 +76,6 @@ def build_model(spec, tolerance_mm: float, half_window: int | None) -> Model:
     half_window : int or None
         ``k``: the sector holds teeth ``-k .. k`` around tooth 0 (``2k + 1 < N``).
     """
-    from ..parts import build_part
-
     N = spec.tooth.teeth
     if half_window is not None:
         k = int(half_window)

@@ -30,7 +30,7 @@ from scipy.optimize import brentq
 from ..atomic import write_csv_rows
 from ..clearance import SweepResult, sweep
 from ..errors import ArgumentError, GearCouplingError
-from ..geometry.hub import FLANKS
+from ..geometry import FLANKS
 from .api import load_from_sweep
 from .compliance import first_limit_torque_Nmm
 from .contact import contact_model

@@ -34,7 +34,7 @@ from functools import lru_cache
 import numpy as np
 from numpy.typing import NDArray
 
-from ..geometry.hub import form_radius, hub_flank_model, hub_model, tip_radius
+from ..geometry import form_radius, hub_flank_model, hub_model, tip_radius
 from .cantilever import CantileverCompliance
 from .inputs import tooth_compliance
 

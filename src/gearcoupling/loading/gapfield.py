@@ -29,11 +29,9 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..clearance.flank_table import flank_table
+from ..clearance import flank_table
 from ..errors import SpecError
-from ..geometry.hub import FLANKS, hub_model, tip_radius
-from ..geometry.pose import hub_to_sleeve
-from ..geometry.sleeve import sleeve_model
+from ..geometry import FLANKS, hub_model, hub_to_sleeve, sleeve_model, tip_radius
 
 FIXED_POINT_STEPS = 3
 FLANK_TABLE_TOLERANCE_MM = 1e-7  # the sweep's certified table of the exact flank

@@ -17,7 +17,7 @@ from numpy.typing import ArrayLike, NDArray
 from ..clearance import SweepResult
 from ..errors import ArgumentError, SpecError
 from ..fea import tooth_compliance_table
-from ..geometry.hub import FLANKS
+from ..geometry import FLANKS
 from ..loadspec import LOAD_MODELS
 from .cantilever import CantileverCompliance
 

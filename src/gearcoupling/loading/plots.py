@@ -13,6 +13,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from ..plots import new_figure
+from .contact import contact_model
 
 
 def _axes(ax, **kw):
@@ -115,7 +116,6 @@ def plot_patches(res, rotation: int = 0, ax=None):
     from matplotlib.cm import ScalarMappable
     from matplotlib.colors import Normalize
 
-    from .contact import contact_model
 
     fig, ax = _axes(ax, figsize=(12, 3.6))
     spec = res.spec

@@ -18,7 +18,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..atomic import finite_json
-from ..geometry.hub import form_radius, hub_flank_model, hub_model, tip_radius
+from ..geometry import form_radius, hub_flank_model, hub_model, tip_radius
 from .contact import REGIMES
 
 

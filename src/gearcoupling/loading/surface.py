@@ -70,7 +70,7 @@ from numpy.typing import NDArray
 from scipy import ndimage
 
 from ..errors import GearCouplingError, SpecError
-from ..geometry.hub import FLANKS
+from ..geometry import FLANKS
 from .gapfield import (
     GapField,
     depth_range,

@@ -17,8 +17,9 @@ from typing import Any
 import numpy as np
 
 from ..errors import ArgumentError, GeometryError, SpecError
-from ..geometry.section import PARTS
-from .builder import SURFACE_KINDS, MeshBuilder, tooth_runs
+from ..geometry import PARTS
+from .builder import SURFACE_KINDS, MeshBuilder, Run, tile, tooth_runs
+from .deviation import measure_deviation
 from .hub import build_hub_run, hub_layout
 from .sleeve import build_sleeve_run, sleeve_layout
 from .validity import PartCheck, check_part
@@ -95,5 +96,19 @@ def build_part(spec, part: str, tolerance_mm: float | None = None, teeth=None):
     return mesh
 
 
-__all__ = ["PARTS", "SURFACE_KINDS", "PartCheck", "build_part", "check_part", "check_tolerance",
-           "default_tolerance"]
+
+__all__ = [
+    "PARTS",
+    "SURFACE_KINDS",
+    "PartCheck",
+    "Run",
+    "build_part",
+    "check_part",
+    "check_tolerance",
+    "default_tolerance",
+    "hub_layout",
+    "measure_deviation",
+    "sleeve_layout",
+    "tile",
+    "tooth_runs",
+]

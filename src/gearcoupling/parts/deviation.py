@@ -16,16 +16,17 @@ import math
 import numpy as np
 from numpy.typing import NDArray
 
-from ..geometry.hub import (
+from ..geometry import (
     envelope,
+    flank_point,
     form_radius,
     hub_flank_model,
     hub_model,
     root_radius,
     round_point,
+    sleeve_model,
     tip_radius,
 )
-from ..geometry.sleeve import flank_point, sleeve_model
 from .grid import tip_corner
 
 

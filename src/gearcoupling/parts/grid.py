@@ -23,17 +23,17 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import GeometryError
-from ..geometry.hub import (
+from ..geometry import (
     HubModel,
+    SleeveModel,
     envelope,
     flank_depth,
     flank_u,
     root_radius,
     round_point,
+    sleeve_space_outline,
     tip_radius,
 )
-from ..geometry.section import sleeve_space_outline
-from ..geometry.sleeve import SleeveModel
 
 SPLIT = 0.45  # share of the tolerance given to each of the two grid directions
 MAX_PARAMS = 200_000  # parameter values per direction before giving up

@@ -16,7 +16,7 @@ from functools import lru_cache
 import numpy as np
 from numpy.typing import NDArray
 
-from ..geometry.hub import hub_model, root_radius
+from ..geometry import hub_model, root_radius
 from .builder import (
     KIND_CODE,
     MIN_RING,

@@ -14,7 +14,7 @@ from functools import lru_cache
 import numpy as np
 from numpy.typing import NDArray
 
-from ..geometry.sleeve import sleeve_model
+from ..geometry import sleeve_model
 from . import builder as mb
 from .grid import arc_count, sleeve_pitch
 

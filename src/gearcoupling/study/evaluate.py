@@ -7,27 +7,26 @@ row with ``error`` set to the reason and its outputs empty; other exceptions pro
 
 from __future__ import annotations
 
-import hashlib
-import json
 import math
 from typing import Any
 
 import numpy as np
 
+from .. import __version__
+from ..clearance import (
+    binding_angle_deg,
+    check_misalignment,
+    critical_misalignment_deg,
+    flank_minima,
+    pitch_turning_angles,
+)
 from ..errors import GearCouplingError
-from .file import ANGLE_OUTPUTS, LOAD_OUTPUTS, OUTPUTS, TOLERANCE_OUTPUTS, build_spec
-
-
-def spec_hash(spec) -> str:
-    """Short SHA-256 of the resolved spec (mm, degrees), independent of its name."""
-    data = spec.to_dict()
-    data.pop("name", None)
-    return hashlib.sha256(json.dumps(data, sort_keys=True).encode()).hexdigest()[:16]
+from ..loading import capacity, load
+from .file import ANGLE_OUTPUTS, LOAD_OUTPUTS, OUTPUTS, TOLERANCE_OUTPUTS, build_spec, spec_hash
+from .tolerance import Tolerances, tolerance_sample
 
 
 def _version() -> str:
-    from .. import __version__
-
     return __version__
 
 
@@ -36,9 +35,6 @@ def angle_outputs(spec, misalignment_deg: float, *, steps: int, tolerance_mm: fl
     """Smallest backlash over a turn and the axial range of the first-touch point of the
     contacting tooth of each flank, from one clearance map over a tooth pitch (``steps``
     rotations; every tooth, so the whole turn)."""
-    from ..clearance.design import pitch_turning_angles
-    from ..clearance.tooth_map import check_misalignment, flank_minima
-
     i = check_misalignment(misalignment_deg)
     theta = pitch_turning_angles(spec.tooth.teeth, steps)
     mins, _ = flank_minima(spec, i, np.stack([theta, np.pi - theta]), tolerance_mm=tolerance_mm)
@@ -55,9 +51,6 @@ def load_outputs(spec, misalignment_deg: float, torque_Nm: float | None, *, angl
     """Largest tooth load and q over a turn at the torque (:func:`gearcoupling.loading.load`),
     and the governing capacity (:func:`gearcoupling.loading.capacity.capacity`, times the
     spec's accuracy factor), from the load analysis."""
-    from ..loading import load
-    from ..loading.capacity import capacity
-
     psi = np.arange(angles) * 360.0 / angles
     res = load(spec, misalignment_deg, psi, torque_Nm=torque_Nm, model=model)
     cap = capacity(spec, misalignment_deg, model=model)
@@ -90,13 +83,9 @@ def evaluate(payload: dict[str, Any], inputs: dict[str, Any], sample: int = 0) -
             row.update(_tolerance_row(payload, spec, mis, torque, sample))
             return row
         if "critical_misalignment_deg" in wanted:
-            from ..clearance.design import critical_misalignment_deg
-
             row["critical_misalignment_deg"] = critical_misalignment_deg(
                 spec, tolerance_deg=acc["angle_tolerance_deg"])
         if "binding_angle_deg" in wanted:
-            from ..clearance.design import binding_angle_deg
-
             row["binding_angle_deg"] = binding_angle_deg(
                 spec, tolerance_deg=acc["angle_tolerance_deg"], steps=int(acc["steps"]))
         if any(k in wanted for k in ANGLE_OUTPUTS):
@@ -114,8 +103,6 @@ def evaluate(payload: dict[str, Any], inputs: dict[str, Any], sample: int = 0) -
 
 
 def _tolerance_row(payload, spec, mis: float, torque, sample: int) -> dict[str, Any]:
-    from .tolerance import Tolerances, tolerance_sample
-
     t = payload["tolerances"]
     acc = payload["accuracy"]
     out = tolerance_sample(spec, mis, Tolerances(**t["values"]), payload["seed"], sample,

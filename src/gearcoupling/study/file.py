@@ -50,6 +50,7 @@ from typing import Any
 
 from ..errors import SpecError
 from ..spec import MISALIGNMENT_RANGE_DEG, resolve_spec_path, spec_from_dict
+from .tolerance import MODELS, PATHS, Tolerances
 
 METHODS = ("grid", "random", "lhs")
 CONDITIONS = ("misalignment_deg", "torque_Nm")
@@ -64,6 +65,7 @@ TOLERANCE_KEYS = ("index_sd_mm", "pitch_sd_mm", "hub_runout_mm", "sleeve_runout_
 LIMIT_KEYS = ("index_mm", "pitch_mm", "thickness_mm", "crown_mm")
 ACCURACY = {"tolerance_mm": 1e-7, "angle_tolerance_deg": 1e-4, "steps": 16, "load_angles": 72}
 MAX_SAMPLES = 10_000_000
+OBJECTIVES = ("mean", "min")  # of a crown optimisation
 
 
 @dataclass(frozen=True)
@@ -335,8 +337,6 @@ def load_study(path: str | Path) -> Study:
     study = Study(name, src, base_path.stem, base_text, fixed, params, method, samples, seed,
                   chunk, outputs, conditions, accuracy, plots, tolerances, optimise)
     if optimise is not None:
-        from .optimise import optimise_options
-
         optimise_options(study)
         return study
     n = sample_count(study)
@@ -399,8 +399,6 @@ def resolve_study_path(path: str | Path) -> Path:
 def _tolerances(r: _Reader) -> dict[str, Any]:
     """``[tolerances]``: standard deviations (``*_sd_mm``) or ISO-style limits (``*_mm``,
     divided by ``coverage``), runouts, ``path``, ``draws`` per point, ``precision`` of K."""
-    from .tolerance import MODELS, PATHS, Tolerances
-
     coverage = r.get("coverage", float, 3.0)
     values = {k: r.get(k, float) for k in TOLERANCE_KEYS if k in r.data}
     limits = {k: r.get(k, float) for k in LIMIT_KEYS if k in r.data}
@@ -467,3 +465,35 @@ def _plain(value: Any) -> Any:
     return value if not hasattr(value, "item") else value.item()
 
 
+def spec_hash(spec) -> str:
+    """Short SHA-256 of the resolved spec (mm, degrees), independent of its name."""
+    data = spec.to_dict()
+    data.pop("name", None)
+    return hashlib.sha256(json.dumps(data, sort_keys=True).encode()).hexdigest()[:16]
+
+
+def optimise_options(study: Study) -> dict[str, Any]:
+    opt = dict(study.optimise or {})
+    angles = opt.get("angles_deg")
+    if not (isinstance(angles, list) and angles
+            and all(isinstance(a, int | float) and 0 < a <= 6 for a in angles)):
+        raise SpecError(f"{study.source} optimise.angles_deg", angles,
+                        "a non-empty list of design angles in (0, 6] degrees")
+    objective = opt.get("objective", "mean")
+    if objective not in OBJECTIVES:
+        raise SpecError(f"{study.source} optimise.objective", objective, f"one of {OBJECTIVES}")
+    budget = opt.get("max_evaluations", 40)
+    if not (isinstance(budget, int) and budget >= 3):
+        raise SpecError(f"{study.source} optimise.max_evaluations", budget, "an integer >= 3")
+    compare = opt.get("compare", [])
+    if not (isinstance(compare, list) and all(isinstance(c, str) for c in compare)):
+        raise SpecError(f"{study.source} optimise.compare", compare, "a list of spec names")
+    model = opt.get("model")
+    if model not in (None, "renzo", "linear", "compliance", "surface"):
+        raise SpecError(f"{study.source} optimise.model", model,
+                        "renzo, linear, compliance or surface (default: the spec's)")
+    unknown = set(opt) - {"angles_deg", "objective", "max_evaluations", "compare", "model"}
+    if unknown:
+        raise SpecError(f"{study.source} optimise", sorted(unknown)[0], "unknown key")
+    return {"angles_deg": [float(a) for a in angles], "objective": objective,
+            "max_evaluations": budget, "compare": compare, "model": model}

@@ -26,11 +26,16 @@ from typing import Any
 
 import numpy as np
 
+from ..atomic import atomic_path
+from ..clearance import critical_misalignment_deg, min_backlash_rad
 from ..errors import GearCouplingError, SpecError
-from .evaluate import spec_hash
-from .file import Study, build_spec
+from ..loading import capacity
+from ..plots import new_figure
+from ..spec import load_spec
+from .file import Study, build_spec, optimise_options, spec_hash
+from .runner import pyarrow_modules
+from .tolerance import ideal_map, linear_outputs, rotations
 
-OBJECTIVES = ("mean", "min")
 PENALTY_NM = 1e12
 
 
@@ -48,11 +53,7 @@ def capacity_curve_Nm(spec, angles_deg, *, model: str | None = None, steps: int 
     capacity (:func:`gearcoupling.loading.capacity.capacity`, ``model`` default the spec's,
     times the spec's accuracy factor), or with ``model = "renzo"`` Renzo's closed form
     (linear model, tooth-load criterion, K = 1, ``steps`` rotations per pitch)."""
-    from .tolerance import ideal_map, linear_outputs, rotations
-
     if model != "renzo":
-        from ..loading.capacity import capacity
-
         caps = [capacity(spec, a, model=model, tolerance_mm=tolerance_mm).capacity_Nm
                 for a in angles_deg]
         if any(c is None for c in caps):
@@ -66,8 +67,6 @@ def capacity_curve_Nm(spec, angles_deg, *, model: str | None = None, steps: int 
 
 def crown_row(study: Study, inputs: dict[str, Any], options: dict[str, Any]) -> dict[str, Any]:
     """Evaluate one candidate crown: capacities, constraints, objective (a study row)."""
-    from ..clearance.design import critical_misalignment_deg, min_backlash_rad
-
     angles = options["angles_deg"]
     acc = study.accuracy
     row: dict[str, Any] = {**inputs, "capacity_mean_Nm": None, "capacity_min_Nm": None,
@@ -154,39 +153,9 @@ def _simplex(x0: np.ndarray) -> np.ndarray:
     return np.array(pts)
 
 
-def optimise_options(study: Study) -> dict[str, Any]:
-    opt = dict(study.optimise or {})
-    angles = opt.get("angles_deg")
-    if not (isinstance(angles, list) and angles
-            and all(isinstance(a, int | float) and 0 < a <= 6 for a in angles)):
-        raise SpecError(f"{study.source} optimise.angles_deg", angles,
-                        "a non-empty list of design angles in (0, 6] degrees")
-    objective = opt.get("objective", "mean")
-    if objective not in OBJECTIVES:
-        raise SpecError(f"{study.source} optimise.objective", objective, f"one of {OBJECTIVES}")
-    budget = opt.get("max_evaluations", 40)
-    if not (isinstance(budget, int) and budget >= 3):
-        raise SpecError(f"{study.source} optimise.max_evaluations", budget, "an integer >= 3")
-    compare = opt.get("compare", [])
-    if not (isinstance(compare, list) and all(isinstance(c, str) for c in compare)):
-        raise SpecError(f"{study.source} optimise.compare", compare, "a list of spec names")
-    model = opt.get("model")
-    if model not in (None, "renzo", "linear", "compliance", "surface"):
-        raise SpecError(f"{study.source} optimise.model", model,
-                        "renzo, linear, compliance or surface (default: the spec's)")
-    unknown = set(opt) - {"angles_deg", "objective", "max_evaluations", "compare", "model"}
-    if unknown:
-        raise SpecError(f"{study.source} optimise", sorted(unknown)[0], "unknown key")
-    return {"angles_deg": [float(a) for a in angles], "objective": objective,
-            "max_evaluations": budget, "compare": compare, "model": model}
-
-
 def write_rows(rows: list[dict[str, Any]], path) -> None:
     """Rows with differing keys as one Parquet table (union of columns), atomically."""
-    from ..atomic import atomic_path
-    from .runner import _pyarrow
-
-    pa, pq = _pyarrow()
+    pa, pq = pyarrow_modules()
     names: list[str] = []
     for r in rows:
         names += [k for k in r if k not in names]
@@ -197,8 +166,6 @@ def write_rows(rows: list[dict[str, Any]], path) -> None:
 
 def plot_capacity_curves(curves: dict[str, tuple[np.ndarray, np.ndarray]], *, ax=None):
     """Capacity (N m) against misalignment for named crowns; returns the Figure."""
-    from ..plots import new_figure
-
     if ax is None:
         fig, ax = new_figure(figsize=(7, 4.5))
     else:
@@ -216,8 +183,6 @@ def compare_curves(study: Study, best: dict[str, Any], points: int = 8
                    ) -> dict[str, tuple[np.ndarray, np.ndarray]]:
     """Capacity curves (``points`` angles up to the largest design angle) of the optimum
     and of the ``compare`` specs, by name."""
-    from ..spec import load_spec
-
     options = optimise_options(study)
     acc = study.accuracy
     angles = np.linspace(0.0, max(options["angles_deg"]), points + 1)[1:]

@@ -36,7 +36,7 @@ class StudyRun:
     failed_rows: int
 
 
-def _pyarrow():
+def pyarrow_modules():
     try:
         import pyarrow as pa
         import pyarrow.parquet as pq
@@ -75,7 +75,7 @@ def _part_path(out: Path, chunk: int) -> Path:
 
 
 def _write_part(rows: list[dict[str, Any]], names: list[str], path: Path) -> None:
-    pa, pq = _pyarrow()
+    pa, pq = pyarrow_modules()
     table = pa.Table.from_pylist([{k: r.get(k) for k in names} for r in rows])
     with atomic_path(path) as tmp:
         pq.write_table(table, tmp)
@@ -126,12 +126,11 @@ def _close(client, own_cluster: bool) -> None:
 def run_study(study: Study, out: str | Path, *, scheduler: str | None = None,
               workers: int | None = None, fresh: bool = False, client=None,
               connect_timeout_s: float = CONNECT_TIMEOUT_S,
-              on_start: Callable[[int, int], None] | None = None,
-              on_chunk: Callable[[int], None] | None = None) -> StudyRun:
+              progress: Callable[[int, int], None] | None = None) -> StudyRun:
     """Evaluate every sample of ``study`` on dask and write ``<out>/study.parquet``.
 
-    ``on_start(todo, skipped)`` is called once the finished chunks are known, ``on_chunk(n)``
-    after each chunk's part is written (progress). ``client`` reuses a dask Client.
+    ``progress(done, total)`` counts chunks, those finished by an earlier run first (called
+    once with them before any new one). ``client`` reuses a dask Client.
     """
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
@@ -140,20 +139,20 @@ def run_study(study: Study, out: str | Path, *, scheduler: str | None = None,
     groups = chunks(study)
     todo = [c for c in range(len(groups)) if not _part_path(out, c).is_file()]
     skipped = len(groups) - len(todo)
-    if on_start is not None:
-        on_start(len(todo), skipped)
+    if progress is not None:
+        progress(skipped, len(groups))
     if todo:
         own = client is None
         client = client or connect(scheduler, workers, connect_timeout_s)
         try:
-            _compute(client, study, groups, todo, out, names, on_chunk)
+            _compute(client, study, groups, todo, out, names, progress, skipped)
         finally:
             if own:
                 _close(client, scheduler is None)
     return _merge(out, names, len(groups), skipped)
 
 
-def _compute(client, study, groups, todo, out, names, on_chunk) -> None:
+def _compute(client, study, groups, todo, out, names, progress, done: int) -> None:
     distributed = _distributed()
     payload = study.payload()
     futures = {client.submit(evaluate_chunk, payload, c, groups[c], key=f"study-{study.digest()}"
@@ -162,12 +161,13 @@ def _compute(client, study, groups, todo, out, names, on_chunk) -> None:
         c = futures[fut]
         _write_part(fut.result(), names, _part_path(out, c))
         fut.release()
-        if on_chunk is not None:
-            on_chunk(c)
+        done += 1
+        if progress is not None:
+            progress(done, len(groups))
 
 
 def _merge(out: Path, names: list[str], n_chunks: int, skipped: int) -> StudyRun:
-    pa, pq = _pyarrow()
+    pa, pq = pyarrow_modules()
     parts = [_part_path(out, c) for c in range(n_chunks)]
     missing = [p.name for p in parts if not p.is_file()]
     if missing:
@@ -184,5 +184,5 @@ def _merge(out: Path, names: list[str], n_chunks: int, skipped: int) -> StudyRun
 
 def read_table(path: str | Path):
     """A study table as a list of row dicts (pyarrow imported lazily)."""
-    _, pq = _pyarrow()
+    _, pq = pyarrow_modules()
     return pq.read_table(path).to_pylist()

@@ -50,7 +50,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from ..clearance import check_misalignment, flank_minima, sweep
 from ..errors import SpecError
+from ..loading import capacity_from_sweep, load_from_sweep, mesh_stiffness_N_per_mm, solve_windup
 
 PATHS = ("fast", "interpolated", "exact")
 MODELS = ("renzo", "linear", "compliance")
@@ -176,8 +178,6 @@ def _theta(spec, psi):
 
 
 def _gap_map(spec, mis: float, theta_both, tolerance_mm: float, periodic: bool = True):
-    from ..clearance.tooth_map import flank_minima
-
     mins, _ = flank_minima(spec, mis, theta_both, tolerance_mm=tolerance_mm, periodic=periodic)
     with np.errstate(invalid="ignore", divide="ignore"):
         g = mins["normal"] / spec.tooth.base_radius / mins["rate"]
@@ -240,8 +240,6 @@ class CrownMaps:
     def skeleton(self):
         """The ideal :class:`~gearcoupling.clearance.SweepResult` on these rotations (contact
         points and shapes for the load analysis; its gap angles are replaced per sample)."""
-        from ..clearance import sweep
-
         return sweep(self.spec, math.degrees(self.mis), np.degrees(self.psi),
                      tolerance_mm=self.tolerance_mm)
 
@@ -263,9 +261,6 @@ def model_outputs(spec, skeleton, gap: NDArray[np.float64], torque_Nm: float, mo
                   ) -> dict[str, float]:
     """:func:`linear_outputs` through the load analysis (``model`` linear or compliance) on
     the ideal sweep ``skeleton`` with the gap angles ``gap`` ``(2, N, M)``."""
-    from ..loading import load_from_sweep
-    from ..loading.capacity import capacity_from_sweep
-
     sw = replace(skeleton, gap_angle_rad=gap)
     res = load_from_sweep(sw, torque_Nm=torque_Nm, model=model)
     cap = capacity_from_sweep(sw, model=model,
@@ -284,9 +279,6 @@ def model_outputs(spec, skeleton, gap: NDArray[np.float64], torque_Nm: float, mo
 def linear_outputs(spec, gap: NDArray[np.float64], torque_Nm: float) -> dict[str, float]:
     """Backlash, teeth in contact, largest tooth load at ``torque_Nm`` and the capacity of
     one gap map ``(2, N, M)`` under Renzo's linear model (module docstring)."""
-    from ..loading.linear import solve_windup
-    from ..loading.linear_model import mesh_stiffness_N_per_mm
-
     P_i = spec.load.allowable_tooth_load_N
     if P_i is None:
         raise SpecError("load.allowable_tooth_load_N", None, "the tolerance study's capacity "
@@ -328,7 +320,6 @@ def tolerance_sample(spec, misalignment_deg: float, tol: Tolerances, seed: int, 
         raise SpecError("path", path, f"one of {PATHS}")
     if model not in MODELS:
         raise SpecError("tolerances.model", model, f"one of {MODELS}")
-    from ..clearance.tooth_map import check_misalignment
 
     check_misalignment(misalignment_deg)
     T = spec.load.torque_Nm if torque_Nm is None else torque_Nm

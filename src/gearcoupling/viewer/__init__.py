@@ -7,22 +7,32 @@ viser is imported only when a server is made and is an optional extra
 (``pip install 'gearcoupling[viewer]'``).
 """
 
-from .scene import CUTAWAYS, LOD_DIVISORS, PoseState, build_scene_meshes, pose_state
+from .html import write_html
+from .nodes import FRAMES, ViewSettings
+from .scene import (
+    COLOR_MODES,
+    CUTAWAYS,
+    LOD_DIVISORS,
+    PoseState,
+    build_scene_meshes,
+    check_pose,
+    lod_tolerance,
+    pose_state,
+)
+from .server import exposure_warning, serve
 
-
-def write_html(spec, path, **kwargs):
-    """Write the static HTML of a coupling scene (see :func:`.html.write_html`)."""
-    from .html import write_html as _write_html
-
-    return _write_html(spec, path, **kwargs)
-
-
-def serve(spec, **kwargs):
-    """Start the live viewer (see :class:`.server.ViewerApp`)."""
-    from .server import serve as _serve
-
-    return _serve(spec, **kwargs)
-
-
-__all__ = ["CUTAWAYS", "LOD_DIVISORS", "PoseState", "build_scene_meshes", "pose_state", "serve",
-           "write_html"]
+__all__ = [
+    "COLOR_MODES",
+    "CUTAWAYS",
+    "FRAMES",
+    "LOD_DIVISORS",
+    "PoseState",
+    "ViewSettings",
+    "build_scene_meshes",
+    "check_pose",
+    "exposure_warning",
+    "lod_tolerance",
+    "pose_state",
+    "serve",
+    "write_html",
+]

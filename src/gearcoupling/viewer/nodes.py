@@ -24,8 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ArgumentError, BackendError
-from ..geometry.hub import FLANKS
-from ..geometry.pose import rot_z
+from ..geometry import FLANKS, rot_z
 from .scene import (
     COLOR_MODES,
     CUTAWAYS,

@@ -26,10 +26,8 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..clearance import sweep
 from ..errors import ArgumentError, SpecError
-from ..geometry.hub import FLANKS, hub_flank_model, hub_model
-from ..geometry.pose import hub_to_sleeve, rot_z
-from ..interference.attribution import flank_index, nearest_tooth
-from ..interference.posed import PreparedPart, affine
+from ..geometry import FLANKS, hub_flank_model, hub_model, hub_to_sleeve, rot_z
+from ..interference import PreparedPart, affine, flank_index, nearest_tooth
 from ..loading import load_from_sweep
 from ..parts import SURFACE_KINDS, build_part, check_tolerance
 

@@ -24,7 +24,8 @@ from pathlib import Path
 import numpy as np
 
 from ..atomic import default_output_dir
-from ..errors import GearCouplingError
+from ..errors import GearCouplingError, SpecError
+from .html import save_html
 from .nodes import FRAMES, CouplingScene, ViewSettings, import_viser
 from .scene import (
     COLOR_MODES,
@@ -64,8 +65,6 @@ def exposure_warning(host: str) -> str | None:
 def free_port(host: str, port: int, tries: int = PORT_TRIES) -> int:
     """The first port from ``port`` (at most ``tries`` of them, up to 65535) that ``host``
     can bind, or :class:`~gearcoupling.errors.SpecError` naming the host or the ports."""
-    from ..errors import SpecError
-
     if not 1 <= port <= 65535:
         raise SpecError("port", port, "must be from 1 to 65535")
     try:
@@ -326,8 +325,6 @@ class ViewerApp:
             self.plot.data = data
         self._update_readouts()
         if "save" in dirty:
-            from .html import save_html
-
             save_html(sc, self.html_path)
             self.saved.content = f"saved {self.html_path}"
 

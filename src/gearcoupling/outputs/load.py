@@ -1,0 +1,95 @@
+"""``load.csv``, ``load_summary.json`` and the load plots, with the misalignment studies
+(Wei Figs. 12-13, Renzo's q-graph)."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from pathlib import Path
+
+import numpy as np
+
+from ..atomic import write_json
+from ..clearance import SweepResult, sweep
+from ..loading import (
+    capacity_from_sweep,
+    default_angles,
+    load_from_sweep,
+    plot_patches,
+    plot_q_graph,
+    plot_tooth_load,
+    plot_vs_misalignment,
+    resolve_torque_Nm,
+)
+from ..plots import save_figure
+from ..spec import CouplingSpec
+from .sweep import turn_angles
+
+
+def study_misalignments(spec: CouplingSpec, count: int = 7) -> np.ndarray:
+    """Misalignments of the studies: 0 to the design angle (at least 0.5°), 0 left out."""
+    top = max(math.degrees(spec.design_misalignment), 0.5)
+    return np.linspace(top / count, top, count)
+
+
+def load_studies(spec: CouplingSpec, torque_Nm: float, model: str | None, out: Path, *,
+                 progress: Callable[[int, int], None] | None = None) -> list[Path]:
+    """Wei Figs. 12-13 and Renzo's q-graph (Fig. 12) for the spec, over one tooth pitch;
+    ``progress(done, total)`` after each misalignment."""
+    mis = study_misalignments(spec)
+    torques = [0.5 * torque_Nm, torque_Nm, 2.0 * torque_Nm]
+    peak: dict[str, list[float]] = {f"T = {t:.4g} N·m": [] for t in torques}
+    moment: dict[str, list[float]] = {f"T = {t:.4g} N·m": [] for t in torques}
+    q_pts: list[tuple[float, float]] = []
+    ld = spec.load
+    for n, i in enumerate(mis):
+        sw = sweep(spec, float(i), default_angles(spec, None))
+        for t, key in zip(torques, peak, strict=True):
+            res = load_from_sweep(sw, torque_Nm=t, model=model)
+            peak[key].append(float(np.max(res.tangential_force_N)))
+            moment[key].append(res.summary()["tilting_moment_Nm"]["mean"])
+        if ld.allowable_tooth_load_N is not None and ld.mesh_stiffness_N_per_mm is not None:
+            c = capacity_from_sweep(sw, model="linear")
+            rc = spec.derived["crowning_radius_midplane_mm"]
+            z0 = 0.5 * rc * math.tan(math.radians(i)) ** 2 / math.tan(spec.tooth.pressure_angle)
+            zc = ld.allowable_tooth_load_N / ld.mesh_stiffness_N_per_mm
+            if z0 > 0 and c.criteria_Nm["tooth_load"] and c.aligned_capacity_Nm:
+                q_pts.append((zc / z0, c.criteria_Nm["tooth_load"] / c.aligned_capacity_Nm))
+        if progress:
+            progress(n + 1, mis.size)
+    label = model or spec.load.model
+    paths = [
+        save_figure(plot_vs_misalignment(mis, dict(peak), "max tooth load P (N)",
+                                         f"{spec.name}: {label}, max tooth load"),
+                    out / "load_max_vs_misalignment.png"),
+        save_figure(plot_vs_misalignment(mis, dict(moment), "additional (tilting) moment (N·m)",
+                                         f"{spec.name}: {label}, mean over the turn"),
+                    out / "load_moment_vs_misalignment.png"),
+    ]
+    if q_pts:
+        paths.append(save_figure(plot_q_graph({"linear model, exact geometry": q_pts}),
+                                 out / "load_q_graph.png"))
+    return paths
+
+
+def write_load(spec: CouplingSpec, out: Path, misalignment_deg: float, angles: int = 360, *,
+               torque_Nm: float | None = None, model: str | None = None,
+               tolerance_mm: float = 1e-7, plots: bool = True, with_studies: bool = True,
+               swept: SweepResult | None = None,
+               progress: Callable[[int, int], None] | None = None) -> list[Path]:
+    """The loaded analysis over ``angles`` rotations of a turn: ``load.csv``,
+    ``load_summary.json`` and plots. ``swept``: a sweep of this spec at these rotations
+    and misalignment to reuse (else one is made); ``progress(done, total)`` as the
+    surface model and the studies go."""
+    if swept is None:
+        swept = sweep(spec, misalignment_deg, turn_angles(angles), tolerance_mm=tolerance_mm)
+    res = load_from_sweep(swept, torque_Nm=torque_Nm, model=model, progress=progress)
+    summary = res.summary()
+    paths = [res.write_csv(out / "load.csv"), write_json(out / "load_summary.json", summary)]
+    if plots:
+        paths.append(save_figure(plot_tooth_load(res), out / "load_tooth_load.png"))
+        paths.append(save_figure(plot_patches(res), out / "load_patches.png"))
+        if with_studies:
+            paths += load_studies(spec, resolve_torque_Nm(spec, torque_Nm), model, out,
+                                  progress=progress)
+    return paths

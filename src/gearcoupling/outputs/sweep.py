@@ -1,0 +1,38 @@
+"""``sweep.csv``, ``sweep_summary.json`` and the sweep plots."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from ..atomic import write_json
+from ..clearance import SweepResult, design_quantities, plot_all, require_finite, sweep
+from ..errors import ArgumentError
+from ..spec import CouplingSpec
+
+
+def turn_angles(angles: int) -> np.ndarray:
+    """``angles`` rotations evenly over a turn (degrees); at least one."""
+    if angles < 1:
+        raise ArgumentError(f"angles = {angles}: must be at least 1")
+    return np.arange(angles) * 360.0 / angles
+
+
+def write_sweep(spec: CouplingSpec, out: Path, misalignment_deg: float, angles: int = 360, *,
+                tolerance_mm: float = 1e-7, design: bool = True, plots: bool = True,
+                studies: bool = True) -> tuple[SweepResult, list[Path]]:
+    """Sweep ``angles`` rotations over a turn and write ``sweep.csv``,
+    ``sweep_summary.json`` (with the design quantities) and the plots; returns the sweep
+    and the paths."""
+    result = sweep(spec, misalignment_deg, turn_angles(angles),
+                   tolerance_mm=tolerance_mm).check_finite()
+    summary = result.summary()
+    extra = design_quantities(spec, misalignment_deg) if design else {}
+    summary.update(extra)
+    require_finite(summary, "sweep_summary.json")  # nothing is written before this
+    paths = [result.write_csv(out / "sweep.csv"),
+             write_json(out / "sweep_summary.json", summary)]
+    if plots:
+        paths += plot_all(result, spec, out, design=extra if design else None, studies=studies)
+    return result, paths
