@@ -84,7 +84,7 @@ def write_load(spec: CouplingSpec, out: Path, misalignment_deg: float, angles: i
     surface model and the studies go."""
     if swept is None:
         swept = sweep(spec, misalignment_deg, turn_angles(angles), tolerance_mm=tolerance_mm)
-    res = load_from_sweep(swept, torque_Nm=torque_Nm, model=model)
+    res = load_from_sweep(swept, torque_Nm=torque_Nm, model=model, progress=progress)
     summary = res.summary()
     paths = [res.write_csv(out / "load.csv"), write_json(out / "load_summary.json", summary)]
     if plots:
