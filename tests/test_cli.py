@@ -25,6 +25,7 @@ def test_spec_table_output(capsys):
     assert "aligned_backlash_mm" in out and "renzo_z0_mm" in out
 
 
+@pytest.mark.slow
 def test_sections_and_run_write_files(tmp_path, capsys):
     assert main(["sections", "industrial-m2", "-o", str(tmp_path / "s")]) == 0
     png = tmp_path / "s" / "sections.png"

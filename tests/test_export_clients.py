@@ -89,6 +89,7 @@ def test_gmsh_reads_the_msh_with_named_groups(hub, gmsh):
     assert np.array_equal(faces, mesh.faces)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", gc.template_names())
 @pytest.mark.parametrize("part", ["hub", "sleeve"])
 def test_gmsh_reads_the_step_volume_and_exact_points(tmp_path, gmsh, name, part):

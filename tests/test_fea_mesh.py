@@ -10,7 +10,8 @@ from gearcoupling import load_spec
 from gearcoupling.cli import main
 from gearcoupling.errors import BackendError, SpecError
 
-pytestmark = [pytest.mark.needs_fea]  # skipped, with the reason, without gmsh or ccx
+# skipped, with the reason, without gmsh or ccx
+pytestmark = [pytest.mark.needs_fea, pytest.mark.slow]
 
 SIZE = 1.0  # coarse (module / 2) so the tests stay fast
 

@@ -8,7 +8,8 @@ from gearcoupling import load_spec
 from gearcoupling.cli import main
 from gearcoupling.errors import BackendError, SpecError
 
-pytestmark = [pytest.mark.needs_fea]  # skipped, with the reason, without gmsh or ccx
+# skipped, with the reason, without gmsh or ccx
+pytestmark = [pytest.mark.needs_fea, pytest.mark.slow]
 
 
 @pytest.mark.parametrize("size", [5.0, 3.0])

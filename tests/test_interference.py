@@ -9,7 +9,7 @@ import pytest
 
 import gearcoupling as gc
 from gearcoupling.clearance import sweep
-from gearcoupling.errors import SpecError
+from gearcoupling.errors import ArgumentError
 from gearcoupling.interference import build_model, check_interference, posed_meshes
 from gearcoupling.interference.distance import positive_integral
 from gearcoupling.interference.posed import hub_pose, window_pose, window_to_sleeve
@@ -261,7 +261,7 @@ def test_bad_input_names_the_field(renzo, kwargs, match):
 
 @pytest.mark.parametrize("mis, angles", [(7.0, [0.0]), (1.0, []), (1.0, [float("nan")])])
 def test_bad_angles_raise_spec_error(renzo, mis, angles):
-    with pytest.raises(SpecError):
+    with pytest.raises(ArgumentError):
         check_interference(renzo, mis, angles)
 
 

@@ -109,6 +109,7 @@ def test_capacity_torque_brings_the_worst_tooth_to_its_limit(renzo, model):
     assert c.load_sharing_factor == pytest.approx(1 / c.q)
 
 
+@pytest.mark.slow
 def test_surface_capacity_brings_the_worst_tooth_to_its_limit(renzo):
     """The surface model's capacity, found per rotation from single-pose solves, checked
     on full load solves of every rotation: at each criterion's torque the worst tooth sits

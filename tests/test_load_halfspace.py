@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from gearcoupling.errors import SpecError
+from gearcoupling.errors import ArgumentError, SpecError
 from gearcoupling.loading.halfspace import (
     composite_modulus,
     half_space,
@@ -129,13 +129,13 @@ def test_edge_peak_grows_as_inverse_sqrt_cell_while_intensity_converges():
 def test_bad_input_is_refused():
     hs = half_space((4, 4), 0.1, 0.1, E_STAR)
     gap = np.zeros((4, 4))
-    with pytest.raises(SpecError, match="exactly one"):
+    with pytest.raises(ArgumentError, match="exactly one"):
         solve_contact(hs, gap)
-    with pytest.raises(SpecError, match="load_N"):
+    with pytest.raises(ArgumentError, match="load_N"):
         solve_contact(hs, gap, load_N=-1.0)
-    with pytest.raises(SpecError, match="gap0_mm"):
+    with pytest.raises(ArgumentError, match="gap0_mm"):
         solve_contact(hs, np.zeros((3, 4)), load_N=1.0)
-    with pytest.raises(SpecError, match="cell size"):
+    with pytest.raises(ArgumentError, match="cell size"):
         half_space((4, 4), 0.0, 0.1, E_STAR)
     # an approach that does not close the gap carries nothing (no NaN)
     sol = solve_contact(hs, gap + 1.0, approach_mm=0.5)

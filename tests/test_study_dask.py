@@ -19,7 +19,7 @@ import gearcoupling as gc
 from gearcoupling.cli import main
 from gearcoupling.study import read_table, spec_hash
 
-pytestmark = [pytest.mark.needs_dask]
+pytestmark = [pytest.mark.needs_dask, pytest.mark.slow]
 
 SRC = str(Path(gc.__file__).resolve().parents[1])
 STUDY = """\

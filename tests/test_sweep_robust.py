@@ -207,7 +207,7 @@ def test_plots_return_figures_draw_into_given_axes_and_keep_the_backend(monkeypa
     host = Figure()
     pair = host.subplots(1, 2)
     assert plots.plot_contact_path(res, spec, ax=pair) is host
-    with pytest.raises(gc.SpecError, match="4 Axes"):
+    with pytest.raises(gc.ArgumentError, match="4 Axes"):
         plots.plot_clearance(res, ax=pair)
 
 

@@ -140,12 +140,12 @@ def test_save_button_writes_a_shareable_html(app):
 def test_bad_tolerance_is_refused_and_frees_the_port(renzo):
     import socket
 
-    from gearcoupling.errors import SpecError
+    from gearcoupling.errors import ArgumentError
     from gearcoupling.viewer.html import free_port
     from gearcoupling.viewer.server import ViewerApp
 
     port = free_port()
-    with pytest.raises(SpecError, match="tolerance_mm"):
+    with pytest.raises(ArgumentError, match="tolerance_mm"):
         ViewerApp(renzo, port=port, tolerance_mm=50.0)
     with socket.socket() as s:  # the server was stopped: the port binds again
         s.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)

@@ -21,7 +21,7 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from .errors import GeometryError, SpecError
+from .errors import ArgumentError, GeometryError, SpecError
 from .geometry import (
     MAX_END_TANGENT_DEG,
     HubModel,
@@ -46,16 +46,18 @@ TIP_KINDS = ("sphere", "cylinder")
 _ROUNDING_DEG = 1e-9  # slack for degree <-> radian round trips (6° -> 6.000000000000001)
 
 
-def check_misalignment_deg(value: object, field_name: str = "misalignment_deg") -> float:
+def check_misalignment_deg(value: object, field_name: str = "misalignment_deg",
+                           error: type[SpecError] | type[ArgumentError] = SpecError) -> float:
     """A misalignment in degrees, validated once for every caller (0-6°).
 
     Values within ``1e-9°`` outside the range (a degree-radian round trip) are clamped
-    onto it; anything else outside, non-numeric or non-finite raises :class:`SpecError`.
+    onto it; anything else outside, non-numeric or non-finite raises ``error``: a
+    :class:`SpecError` for a spec value, an :class:`ArgumentError` for an argument.
     """
     lo, hi = MISALIGNMENT_RANGE_DEG
     if isinstance(value, bool) or not isinstance(value, numbers.Real) or not (
             math.isfinite(value) and lo - _ROUNDING_DEG <= float(value) <= hi + _ROUNDING_DEG):
-        raise SpecError(field_name, value, f"must be a finite angle from {lo} to {hi} degrees")
+        raise error(field_name, value, f"must be a finite angle from {lo} to {hi} degrees")
     return min(max(float(value), lo), hi)
 
 

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import SpecError
+from ..errors import ArgumentError, SpecError
 from ..io import parse_override
 from ..loading import Capacity, capacity_curve, plot_capacity, write_capacity_csv
 from ..loadspec import LOAD_MODELS
@@ -62,7 +62,7 @@ def _compared_spec(text: str, overrides: dict):
     try:
         return load_spec(text, **overrides)
     except SpecError as err:
-        raise SpecError("--compare", text, err.allowed if err.field == "spec" else str(err)) \
+        raise ArgumentError("--compare", text, err.allowed if err.field == "spec" else str(err)) \
             from None
 
 

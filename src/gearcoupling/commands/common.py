@@ -8,7 +8,7 @@ from collections.abc import Callable
 from contextlib import contextmanager
 from pathlib import Path
 
-from ..errors import SpecError
+from ..errors import ArgumentError
 from ..io import default_output_dir, parse_override
 from ..spec import CouplingSpec, check_misalignment_deg, load_spec
 
@@ -91,7 +91,7 @@ def misalignment_deg(args: argparse.Namespace, spec: CouplingSpec) -> float:
     checked once by :func:`~gearcoupling.spec.check_misalignment_deg`)."""
     if args.misalignment is None:
         return spec.design_misalignment_deg
-    return check_misalignment_deg(args.misalignment, "--misalignment")
+    return check_misalignment_deg(args.misalignment, "--misalignment", ArgumentError)
 
 
 def spec_from_args(args: argparse.Namespace) -> CouplingSpec:
@@ -112,12 +112,12 @@ def ensure_dir(out: Path, field: str = "-o") -> Path:
     try:
         out.mkdir(parents=True, exist_ok=True)
     except FileExistsError:
-        raise SpecError(field, str(out), "names an existing file: give a folder") from None
+        raise ArgumentError(field, str(out), "names an existing file: give a folder") from None
     except OSError as err:
-        raise SpecError(field, str(out), f"cannot create the output folder: {err.strerror}") \
+        raise ArgumentError(field, str(out), f"cannot create the output folder: {err.strerror}") \
             from None
     if not out.is_dir():
-        raise SpecError(field, str(out), "names an existing file: give a folder")
+        raise ArgumentError(field, str(out), "names an existing file: give a folder")
     return out
 
 

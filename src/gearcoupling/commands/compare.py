@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..errors import SpecError
+from ..errors import ArgumentError, SpecError
 from ..inspection import (
     LIMITS,
     STAGES,
@@ -52,11 +52,11 @@ def parse_limits(items: list[str]) -> dict[str, float]:
     for item in items:
         key, sep, value = item.partition("=")
         if not sep:
-            raise SpecError("--limit", item, "NAME=MM, e.g. fpt=0.012")
+            raise ArgumentError("--limit", item, "NAME=MM, e.g. fpt=0.012")
         try:
             out.update(check_limits({key.strip(): value.strip()}))
-        except SpecError as err:
-            raise SpecError("--limit", item, err.allowed) from None
+        except ArgumentError as err:
+            raise ArgumentError("--limit", item, err.allowed) from None
     return out
 
 
@@ -67,7 +67,7 @@ def run(args) -> int:
     limits = parse_limits(args.limit)
     for f in args.files:  # before the output folder is made (the reader checks the rest)
         if not Path(f).is_file():
-            raise SpecError("file", f, "a scan or mesh (STL/PLY/OBJ, CSV/XYZ): no such file")
+            raise ArgumentError("file", f, "a scan or mesh (STL/PLY/OBJ, CSV/XYZ): no such file")
     out = output_dir(args, spec)
     with progress("compare", 2 + STAGES * len(args.files)) as update:
         result = compare_part(spec, args.files[0],

@@ -20,7 +20,7 @@ import time
 
 import numpy as np
 
-from ..errors import SpecError
+from ..errors import ArgumentError
 from ..geometry import hub_to_sleeve
 from ..io import inp_id_lines, inp_number
 from .ccx import run_ccx, solver_dir
@@ -81,7 +81,7 @@ def contact_pose(spec, *, misalignment_deg: float, psi_deg: float, windup_rad: f
                  workdir=None) -> dict:
     """Solve one loaded pose with contact (module docstring); returns the per-tooth table."""
     if not (math.isfinite(windup_rad) and windup_rad > 0):
-        raise SpecError("windup_rad", windup_rad, "a positive wind-up angle (rad)")
+        raise ArgumentError("windup_rad", windup_rad, "a positive wind-up angle (rad)")
     t0 = time.perf_counter()
     hub = mesh_part(spec, "hub", sector=sector, size_mm=size_mm)
     sleeve = mesh_part(spec, "sleeve", sector=sector, size_mm=size_mm)

@@ -33,7 +33,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..errors import GeometryError, SpecError
+from ..errors import ArgumentError, GeometryError
 from ..io import safe_name, write_json
 from .ccx import run_ccx, solver_dir
 from .deck import LoadCase, principal_max, static_deck
@@ -254,7 +254,7 @@ def compute_compliance_table(spec, *, size_mm: float | None = None,
     """Mesh hub and sleeve sectors and solve the load cases with ccx (no cache);
     ``progress(done, 4)`` after each mesh and each solve."""
     if sector is None or int(sector) < 1 or int(sector) % 2 == 0:
-        raise SpecError("sector", sector, "an odd number of teeth (the middle one is loaded), "
+        raise ArgumentError("sector", sector, "an odd number of teeth (the middle one is loaded), "
                         "e.g. 3")
     t0 = time.perf_counter()
     meshes = {}

@@ -30,7 +30,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import SpecError
+from ..errors import ArgumentError
 from ..geometry import FLANKS, HubModel, form_radius, hub_flank_model, hub_model, inv, tip_radius
 from ..io import write_csv_records
 from ..plots import figure_axes
@@ -190,9 +190,9 @@ def measuring_charts(spec, points: int = 101, tip_exclusion: float = 0.08) -> Me
         ``L_alpha`` at the tip end (0 to 0.5).
     """
     if not (isinstance(points, int) and points >= 5):
-        raise SpecError("points", points, "an integer >= 5 points per trace")
+        raise ArgumentError("points", points, "an integer >= 5 points per trace")
     if not (isinstance(tip_exclusion, int | float) and 0.0 <= tip_exclusion <= 0.5):
-        raise SpecError("tip_exclusion", tip_exclusion, "a share from 0 to 0.5")
+        raise ArgumentError("tip_exclusion", tip_exclusion, "a share from 0 to 0.5")
     m = hub_model(spec)
     rb = m.R * math.cos(m.phi)
     half_lead, profile_range, r_lead = evaluation_ranges(spec, tip_exclusion)

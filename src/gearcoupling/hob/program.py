@@ -23,7 +23,7 @@ from itertools import pairwise
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import ArgumentError, SpecError
+from ..errors import ArgumentError
 from ..geometry import HubModel, hub_model, plane_rack, tip_radius
 
 _DENSE = 65  # exact-curve samples per move when its chordal deviation is measured
@@ -258,15 +258,15 @@ def hob_program(spec, hob_diameter_mm: float, tolerance_mm: float | None = None,
     tol = module / 1000.0 if tolerance_mm is None else tolerance_mm
     if not (isinstance(tol, int | float) and math.isfinite(tol)
             and module * 1e-6 <= tol <= module * 0.1):
-        raise SpecError("tolerance_mm", tolerance_mm,
+        raise ArgumentError("tolerance_mm", tolerance_mm,
                         f"a chordal tolerance from {module * 1e-6:.3g} to {module * 0.1:.3g} mm "
                         "(1e-6 to 0.1 module)")
     D = hob_diameter_mm
     if not (isinstance(D, int | float) and math.isfinite(D) and D > 2.0 * (m.dedendum + module)):
-        raise SpecError("hob_diameter_mm", D, f"a finite hob outside diameter above "
+        raise ArgumentError("hob_diameter_mm", D, f"a finite hob outside diameter above "
                         f"2 (dedendum + module) = {2.0 * (m.dedendum + module):.4g} mm")
     if not (isinstance(table_points, int) and table_points >= 3):
-        raise SpecError("table_points", table_points, "an integer >= 3")
+        raise ArgumentError("table_points", table_points, "an integer >= 3")
     r_h = 0.5 * D - m.dedendum
     s_gen = float(m.path.solve_plane(m.half_face, m.dedendum)[0])
     z_end = m.half_face

@@ -30,7 +30,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import SpecError
+from ..errors import ArgumentError
 from ..geometry import hub_flank_model
 from ..hob import MeasuringCharts
 from .register import Registration
@@ -53,13 +53,13 @@ def check_limits(limits) -> dict[str, float]:
     out = {}
     for key, value in dict(limits or {}).items():
         if key not in LIMITS:
-            raise SpecError(f"limits.{key}", value, f"a known limit: {', '.join(LIMITS)}")
+            raise ArgumentError(f"limits.{key}", value, f"a known limit: {', '.join(LIMITS)}")
         try:
             v = float(value)
         except (TypeError, ValueError):
             v = math.nan
         if not (math.isfinite(v) and v > 0):
-            raise SpecError(f"limits.{key}", value, "a positive length in mm")
+            raise ArgumentError(f"limits.{key}", value, "a positive length in mm")
         out[key] = v
     return out
 

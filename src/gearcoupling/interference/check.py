@@ -35,7 +35,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..clearance import check_angles, check_misalignment, sweep
-from ..errors import ArgumentError, SpecError
+from ..errors import ArgumentError
 from ..io import write_text
 from ..parts import SURFACE_KINDS, check_tolerance
 from . import distance as dist
@@ -390,10 +390,10 @@ def check_interference(spec, misalignment_deg: float, angles_deg: ArrayLike, *,
     try:
         delta_deg = float(hub_rotation_deg)
     except (TypeError, ValueError) as err:
-        raise SpecError("hub_rotation_deg", hub_rotation_deg, "must be a number") from err
+        raise ArgumentError("hub_rotation_deg", hub_rotation_deg, "must be a number") from err
     pitch_deg = 360.0 / spec.tooth.teeth
     if not (math.isfinite(delta_deg) and abs(delta_deg) < 0.5 * pitch_deg):
-        raise SpecError("hub_rotation_deg", hub_rotation_deg,
+        raise ArgumentError("hub_rotation_deg", hub_rotation_deg,
                         f"must be finite and below half a pitch ({0.5 * pitch_deg:.4g}°)")
     delta = math.radians(delta_deg)
     N = spec.tooth.teeth

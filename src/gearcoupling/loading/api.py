@@ -8,7 +8,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ..clearance import SweepResult, sweep
-from ..errors import SpecError
+from ..errors import ArgumentError
 from .inputs import LoadProblem, load_problem, resolve_model, resolve_torque_Nm
 from .models import ModelOutput, Progress, solve
 from .result import LoadResult
@@ -67,7 +67,7 @@ def load_from_sweep(sweep_result: SweepResult, *, torque_Nm: float | None = None
 def _result(problem: LoadProblem, model: str, out: ModelOutput) -> LoadResult:
     bad = out.non_finite()
     if bad:
-        raise SpecError("torque_Nm", problem.torque_Nm, f"the {model} model gave non-finite "
+        raise ArgumentError("torque_Nm", problem.torque_Nm, f"the {model} model gave non-finite "
                         f"{bad}; the load is outside what the model covers")
     sw = problem.sweep
     sign = 1.0 if problem.torque_Nm >= 0 else -1.0

@@ -31,7 +31,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..clearance import flank_table
-from ..errors import SpecError
+from ..errors import ArgumentError
 from ..geometry import FLANKS, hub_model, hub_to_sleeve, sleeve_model, tip_radius
 
 FIXED_POINT_STEPS = 3
@@ -208,9 +208,9 @@ def gap_field(spec, misalignment: float, theta: ArrayLike, flank: str, z_mm: Arr
         Added to each tooth's gap (index errors etc.).
     """
     if flank not in FLANKS:
-        raise SpecError("loaded_flank", flank, f"must be one of {FLANKS}")
+        raise ArgumentError("loaded_flank", flank, f"must be one of {FLANKS}")
     if n_depth < 2:
-        raise SpecError("grid", n_depth, "needs at least 2 cells across the depth")
+        raise ArgumentError("grid", n_depth, "needs at least 2 cells across the depth")
     theta = np.atleast_1d(np.asarray(theta, dtype=float))
     if flank == "ccw":
         theta = np.pi - theta
@@ -250,7 +250,7 @@ def gap_field(spec, misalignment: float, theta: ArrayLike, flank: str, z_mm: Arr
                | (rq < sm.r_form - eps) | (rq > sm.r_fillet + eps))
     mask = ~(hub_face | sleeve_face | profile)
     if not np.all(np.isfinite(gap[mask])):
-        raise SpecError("gap field", "non-finite", "the flank geometry gave no finite gap")
+        raise ArgumentError("gap field", "non-finite", "the flank geometry gave no finite gap")
     gap = np.where(np.isfinite(gap), gap, 0.0)
     return GapField(z, s, r, dz, float(ds), gap, mask, (hub_face | sleeve_face) & ~mask,
                     zh, rh, r_b)

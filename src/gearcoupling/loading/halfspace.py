@@ -58,7 +58,7 @@ def composite_modulus(e1_MPa: float, nu1: float, e2_MPa: float, nu2: float) -> f
     for name, e, nu in (("youngs_modulus_MPa (1)", e1_MPa, nu1),
                         ("youngs_modulus_MPa (2)", e2_MPa, nu2)):
         if not (math.isfinite(e) and e > 0):
-            raise SpecError(name, e, "must be a finite modulus > 0 MPa")
+            raise ArgumentError(name, e, "must be a finite modulus > 0 MPa")
         if not (math.isfinite(nu) and -1.0 < nu < 0.5):
             raise SpecError("poisson_ratio", nu, "must be in (-1, 0.5)")
     return 1.0 / ((1.0 - nu1 * nu1) / e1_MPa + (1.0 - nu2 * nu2) / e2_MPa)
@@ -146,9 +146,9 @@ def half_space(shape: tuple[int, int], dx: float, dy: float, e_star_MPa: float) 
     a ``2n1 x 2n2`` array (offset ``k < 0`` at index ``2n + k``; index ``n`` unused)."""
     n1, n2 = (int(v) for v in shape)
     if n1 < 1 or n2 < 1:
-        raise SpecError("grid", shape, "needs at least 1 x 1 cells")
+        raise ArgumentError("grid", shape, "needs at least 1 x 1 cells")
     if not (dx > 0 and dy > 0 and math.isfinite(dx) and math.isfinite(dy)):
-        raise SpecError("cell size", (dx, dy), "must be finite and > 0 mm")
+        raise ArgumentError("cell size", (dx, dy), "must be finite and > 0 mm")
     return _half_space(n1, n2, float(dx), float(dy), float(e_star_MPa))
 
 
@@ -323,14 +323,14 @@ def solve_contact(hs: HalfSpace, gap0_mm: ArrayLike, *, load_N: float | None = N
     """
     g0 = np.asarray(gap0_mm, dtype=float)
     if g0.shape[-2:] != hs.shape:
-        raise SpecError("gap0_mm", g0.shape, f"must end in the grid shape {hs.shape}")
+        raise ArgumentError("gap0_mm", g0.shape, f"must end in the grid shape {hs.shape}")
     if (load_N is None) == (approach_mm is None):
-        raise SpecError("load_N/approach_mm", (load_N, approach_mm), "give exactly one")
+        raise ArgumentError("load_N/approach_mm", (load_N, approach_mm), "give exactly one")
     batch = g0.shape[:-2]
     m = np.ones(g0.shape, bool) if mask is None else np.broadcast_to(
         np.asarray(mask, bool), g0.shape)
     if not np.all(np.isfinite(g0[m])):
-        raise SpecError("gap0_mm", "non-finite", "must be finite on contactable cells")
+        raise ArgumentError("gap0_mm", "non-finite", "must be finite on contactable cells")
     B = int(np.prod(batch, dtype=int))
     if compliance is None:
         c = np.zeros(batch) if spring_mm_per_N is None else np.broadcast_to(
@@ -340,11 +340,11 @@ def solve_contact(hs: HalfSpace, gap0_mm: ArrayLike, *, load_N: float | None = N
                                       batch).reshape(B))
         compliance = RigidSprings(c.reshape(B), hs.cell_area, update, spring_tolerance)
     if not (tolerance > 0):
-        raise SpecError("tolerance", tolerance, "must be > 0")
+        raise ArgumentError("tolerance", tolerance, "must be > 0")
     gmin = float(np.min(g0[m])) if np.any(m) else 0.0
     if load_N is not None:
         if not (math.isfinite(load_N) and load_N > 0):
-            raise SpecError("load_N", load_N, "must be finite and > 0 N")
+            raise ArgumentError("load_N", load_N, "must be finite and > 0 N")
     elif approach_mm is not None:
         if not math.isfinite(approach_mm):
             raise SpecError("approach_mm", approach_mm, "must be finite")
@@ -353,7 +353,7 @@ def solve_contact(hs: HalfSpace, gap0_mm: ArrayLike, *, load_N: float | None = N
             return ContactSolution(z, np.where(m, g0 - approach_mm, 0.0), approach_mm,
                                    np.zeros(batch), np.zeros(batch), 0, 0.0)
     if not np.any(m):
-        raise SpecError("mask", "empty", "no contactable cell carries the load")
+        raise ArgumentError("mask", "empty", "no contactable cell carries the load")
     start = None if p0 is None else np.broadcast_to(np.asarray(p0, float), g0.shape)
     # grids as one leading axis
     flat = _Grids(hs, g0.reshape(B, *hs.shape), m.reshape(B, *hs.shape), compliance,
@@ -768,7 +768,7 @@ def _displacement(hs: HalfSpace, q: NDArray[np.float64], single: bool = False
 def _springs(c) -> NDArray[np.float64]:
     c = np.asarray(c, dtype=float)
     if np.any(~np.isfinite(c)) or np.any(c < 0):
-        raise SpecError("spring_mm_per_N", c, "must be finite and >= 0")
+        raise ArgumentError("spring_mm_per_N", c, "must be finite and >= 0")
     return c
 
 

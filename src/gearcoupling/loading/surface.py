@@ -69,7 +69,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy import ndimage
 
-from ..errors import GearCouplingError, SpecError
+from ..errors import ArgumentError, GearCouplingError
 from ..geometry import FLANKS
 from .gapfield import (
     GapField,
@@ -121,10 +121,10 @@ def _check_grid(grid) -> tuple[int, int]:
     try:
         nf, nd = (int(v) for v in grid)
     except (TypeError, ValueError) as err:
-        raise SpecError("grid", grid, "must be (cells along the face, cells across the "
+        raise ArgumentError("grid", grid, "must be (cells along the face, cells across the "
                         "depth)") from err
     if nf < 4 or nd < 4 or nf * nd > 1_000_000:
-        raise SpecError("grid", grid, "needs at least 4 cells each way, at most 1e6 in all")
+        raise ArgumentError("grid", grid, "needs at least 4 cells each way, at most 1e6 in all")
     return nf, nd
 
 
@@ -136,7 +136,7 @@ def flank_offsets(gap_offset_rad, f: int, n: int) -> NDArray[np.float64]:
     if off.shape == (2, n):
         off = off[f]
     if off.shape != (n,) or not np.all(np.isfinite(off)):
-        raise SpecError("gap_offset_rad", off.shape, f"must be finite, shaped ({n},) or "
+        raise ArgumentError("gap_offset_rad", off.shape, f"must be finite, shaped ({n},) or "
                         f"(2, {n})")
     return off
 
@@ -173,7 +173,7 @@ class BendingSprings:
                                                                 np.asarray(r, float)), float)
         c = np.broadcast_to(c, np.shape(z))
         if not np.all(np.isfinite(c)) or np.any(c < 0):
-            raise SpecError("compliance", "pair_compliance_mm_per_N",
+            raise ArgumentError("compliance", "pair_compliance_mm_per_N",
                             "must give finite compliances >= 0 mm/N")
         return c * self.factor
 
@@ -440,7 +440,7 @@ class SurfaceSolver:
         gap = self.gap[:, j]
         cand = np.flatnonzero(np.isfinite(gap))
         if cand.size == 0:
-            raise SpecError("torque_Nm", load_N * self.r_b / 1e3, "no tooth of the loaded "
+            raise ArgumentError("torque_Nm", load_N * self.r_b / 1e3, "no tooth of the loaded "
                             "flank can touch at this pose")
         # aligned with equal offsets every tooth has the same gap field: solve one, share out
         alike = cand if self.mis == 0.0 and self.uniform else None
@@ -647,12 +647,12 @@ def solve_surface(spec, sweep_result, *, torque_Nm: float, loaded_flank: str | N
     try:
         T = float(torque_Nm)
     except (TypeError, ValueError) as err:
-        raise SpecError("torque_Nm", torque_Nm, "must be a number") from err
+        raise ArgumentError("torque_Nm", torque_Nm, "must be a number") from err
     if not math.isfinite(T):
-        raise SpecError("torque_Nm", torque_Nm, "must be finite")
+        raise ArgumentError("torque_Nm", torque_Nm, "must be finite")
     flank = loaded_flank if loaded_flank is not None else ("ccw" if T >= 0 else "cw")
     if flank not in FLANKS:
-        raise SpecError("loaded_flank", loaded_flank, f"must be one of {FLANKS}")
+        raise ArgumentError("loaded_flank", loaded_flank, f"must be one of {FLANKS}")
     _check_grid(grid)
     sw = sweep_result
     N, M = sw.theta_deg.shape
