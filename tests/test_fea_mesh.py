@@ -8,7 +8,7 @@ import pytest
 
 from gearcoupling import load_spec
 from gearcoupling.cli import main
-from gearcoupling.errors import BackendError, SpecError
+from gearcoupling.errors import ArgumentError, BackendError
 
 # skipped, with the reason, without gmsh or ccx
 pytestmark = [pytest.mark.needs_fea, pytest.mark.slow]
@@ -131,13 +131,13 @@ def test_bad_sector_and_size_are_refused_with_the_allowed_range(spec):
     from gearcoupling.fea import check_size, sector_teeth
 
     for bad in (0, 39, 2.5, "x"):
-        with pytest.raises(SpecError, match="from 1 to 38"):
+        with pytest.raises(ArgumentError, match="from 1 to 38"):
             sector_teeth(spec, bad)
-    with pytest.raises(SpecError, match="module / 2"):
+    with pytest.raises(ArgumentError, match="module / 2"):
         check_size(spec, "hub", 1.3)
     sharp = load_spec("industrial-m2", **{"hub.root.fillet_radius": 0.3})
     assert check_size(sharp, "hub", 0.6) == 0.6
-    with pytest.raises(SpecError, match="root fillet"):
+    with pytest.raises(ArgumentError, match="root fillet"):
         check_size(sharp, "hub", 0.7)
 
 

@@ -6,7 +6,7 @@ import pytest
 
 from gearcoupling import load_spec
 from gearcoupling.cli import main
-from gearcoupling.errors import BackendError, SpecError
+from gearcoupling.errors import ArgumentError, BackendError
 
 # skipped, with the reason, without gmsh or ccx
 pytestmark = [pytest.mark.needs_fea, pytest.mark.slow]
@@ -101,7 +101,7 @@ def test_missing_solver_names_the_package(monkeypatch, tmp_path):
 def test_stiffness_cli_refuses_an_even_sector(tmp_path, capsys):
     assert main(["stiffness", "industrial-m2", "--sector", "2", "-o", str(tmp_path)]) == 2
     assert "odd number of teeth" in capsys.readouterr().err
-    with pytest.raises(SpecError):
+    with pytest.raises(ArgumentError):
         from gearcoupling.fea import compute_compliance_table
 
         compute_compliance_table(load_spec("industrial-m2"), sector=4)

@@ -40,7 +40,7 @@ def fillet_radius(spec, part: str) -> float:
 
 
 def check_size(spec, part: str, size_mm) -> float:
-    """The element size as a float, or :class:`SpecError` naming the allowed range.
+    """The element size as a float, or :class:`ArgumentError` naming the allowed range.
 
     Allowed: from module / 40 to the smaller of module / 2 and twice the part's root
     fillet radius (a coarser size cannot follow the fillet, where the root stress is).
