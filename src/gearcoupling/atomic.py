@@ -11,6 +11,7 @@ import json
 import math
 import os
 import re
+import stat
 import tempfile
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -18,6 +19,8 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+
+from .errors import SpecError
 
 
 @contextmanager
@@ -148,3 +151,39 @@ def finite_json(data: Any) -> Any:
     if isinstance(data, float | np.floating):
         return float(data) if math.isfinite(data) else None
     return data
+
+
+def not_a_file(path: str | os.PathLike) -> str | None:
+    """Why ``path`` is not a readable regular file (``None`` when it is one): a missing
+    file, a broken link, a folder, a device such as ``/dev/null``, a named pipe, a socket
+    or a file without read permission, each said plainly."""
+    p = Path(path)
+    try:
+        mode = p.stat().st_mode
+    except FileNotFoundError:
+        return "a broken symbolic link" if p.is_symlink() else "no such file"
+    except NotADirectoryError:
+        return "no such file (a part of the path is a file, not a folder)"
+    except OSError as err:
+        return f"cannot be read ({err.strerror})"
+    kinds = ((stat.S_ISDIR, "a folder, not a file"),
+             (stat.S_ISCHR, "a character device (like /dev/null), not a file"),
+             (stat.S_ISBLK, "a block device, not a file"),
+             (stat.S_ISFIFO, "a named pipe (FIFO), not a file (a pipe can be read only once)"),
+             (stat.S_ISSOCK, "a socket, not a file"))
+    for test, text in kinds:
+        if test(mode):
+            return text
+    if not os.access(p, os.R_OK):
+        return "a file without read permission"
+    return None
+
+
+def require_file(path: str | os.PathLike, field: str, expected: str) -> Path:
+    """``path`` when it is a readable regular file; else a
+    :class:`~gearcoupling.errors.SpecError` naming ``field``, what the path is and what is
+    ``expected`` (e.g. ``"a TOML spec file"``)."""
+    reason = not_a_file(path)
+    if reason is not None:
+        raise SpecError(field, str(path), f"{reason}: give {expected}")
+    return Path(path)

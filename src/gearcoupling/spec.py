@@ -23,6 +23,7 @@ from typing import Any, ClassVar
 
 import numpy as np
 
+from .atomic import require_file
 from .errors import GeometryError, SpecError
 from .geometry import (
     MAX_END_TANGENT_DEG,
@@ -796,9 +797,8 @@ def template_names() -> list[str]:
 def resolve_spec_path(name_or_path: str | Path) -> Path:
     """A template name or a file path, as a path to a TOML file."""
     p = Path(name_or_path)
-    if p.suffix == ".toml" or p.exists():
-        _check(p.is_file(), "spec", str(p), "no such spec file")
-        return p
+    if p.suffix == ".toml" or p.exists() or p.is_symlink():
+        return require_file(p, "spec", "a TOML spec file or a template name")
     candidate = template_dir() / f"{name_or_path}.toml"
     _check(candidate.is_file(), "spec", str(name_or_path),
            f"not a file and not a template; templates: {template_names()}")

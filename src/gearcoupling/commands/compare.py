@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..atomic import write_json
+from ..atomic import require_file, write_json
 from ..errors import SpecError
 from ..hob import write_csv
 from ..inspection import (
@@ -67,8 +67,7 @@ def run(args) -> int:
     spec = spec_from_args(args)
     limits = parse_limits(args.limit)
     for f in args.files:  # before the output folder is made (the reader checks the rest)
-        if not Path(f).is_file():
-            raise SpecError("file", f, "a scan or mesh (STL/PLY/OBJ, CSV/XYZ): no such file")
+        require_file(f, "file", "a scan or mesh file (STL/PLY/OBJ, CSV/XYZ)")
     out = output_dir(args, spec)
     with progress("compare", 2 + STAGES * len(args.files)) as update:
         result = compare_part(spec, args.files[0],

@@ -9,6 +9,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from ..atomic import require_file
 from ..errors import BackendError, SpecError
 
 MESH_SUFFIXES = (".stl", ".obj", ".ply", ".off", ".glb")
@@ -35,9 +36,7 @@ def load_points(path: str | Path, units: str = "mm") -> NDArray[np.float64]:
     """
     if units not in UNIT_SCALE:
         raise SpecError("units", units, f"one of {tuple(UNIT_SCALE)}")
-    p = Path(path)
-    if not p.is_file():
-        raise SpecError("file", str(p), ALLOWED + ": no such file")
+    p = require_file(path, "file", ALLOWED)
     suffix = p.suffix.lower()
     if suffix in MESH_SUFFIXES:
         pts = _load_mesh(p)

@@ -48,6 +48,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from ..atomic import not_a_file, require_file
 from ..errors import SpecError
 from ..spec import MISALIGNMENT_RANGE_DEG, resolve_spec_path, spec_from_dict
 from .tolerance import MODELS, PATHS, Tolerances
@@ -387,10 +388,10 @@ def study_names() -> list[str]:
 def resolve_study_path(path: str | Path) -> Path:
     """A study file path, or the name of a bundled study."""
     p = Path(path)
-    if p.is_file():
-        return p
+    if p.exists() or p.is_symlink():
+        return require_file(p, "study", "a study TOML file or a bundled study's name")
     candidate = study_dir() / f"{path}.toml"
-    if candidate.is_file():
+    if not_a_file(candidate) is None:
         return candidate
     raise SpecError("study", str(path), f"no such file and not a bundled study; bundled: "
                     f"{study_names()}")
