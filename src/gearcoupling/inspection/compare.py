@@ -12,6 +12,7 @@ import numpy as np
 
 from ..errors import SpecError
 from ..hob import measuring_charts
+from ..tables import dataframe
 from .datum import bore_datum
 from .io import load_points
 from .register import RegistrationError, register
@@ -42,6 +43,12 @@ class PartComparison:
                     row[f"{key[:-3]}_diff_mm"] = vb - va
             out.append(row)
         return out
+
+    def to_dataframe(self):
+        """:meth:`rows` (B - A per tooth) as a pandas DataFrame with the columns of
+        ``comparison.csv`` (the ``pandas`` extra)."""
+        rows = self.rows()
+        return dataframe(list(rows[0]) if rows else [], rows)
 
     def summary(self) -> dict:
         rows = self.rows()

@@ -33,6 +33,7 @@ from numpy.typing import NDArray
 from ..errors import SpecError
 from ..geometry import hub_flank_model
 from ..hob import MeasuringCharts
+from ..tables import dataframe
 from .register import Registration
 from .surface import FlankTable, PointDeviation
 
@@ -97,6 +98,12 @@ class InspectionReport:
                 row["pass"] = bool(self.passed[i])
             out.append(row)
         return out
+
+    def to_dataframe(self):
+        """:meth:`rows` as a pandas DataFrame with the columns of ``inspection.csv`` (the
+        ``pandas`` extra)."""
+        rows = self.rows()
+        return dataframe(list(rows[0]) if rows else [], rows)
 
     def summary(self) -> dict:
         """Registration, part values, limits and per-tooth pass/fail (``inspection.json``)."""

@@ -6,6 +6,7 @@ from .api import load, load_from_sweep
 from .cantilever import CantileverCompliance
 from .capacity import (
     Capacity,
+    CapacityCurve,
     capacity,
     capacity_curve,
     capacity_from_sweep,
@@ -22,6 +23,7 @@ __all__ = [
     "CSV_COLUMNS",
     "CantileverCompliance",
     "Capacity",
+    "CapacityCurve",
     "LoadResult",
     "capacity",
     "capacity_curve",
