@@ -11,11 +11,11 @@ import sys
 
 import numpy as np
 import pytest
-from inspection_synth import synthetic_hub
 
 import gearcoupling as gc
 from gearcoupling.cli import main
 from gearcoupling.loading import write_capacity_csv
+from inspection_synth import synthetic_hub
 
 pd = pytest.importorskip("pandas")
 

@@ -32,9 +32,9 @@ def dataframe(columns: Sequence[str], rows: Iterable[Sequence[Any]]) -> Any:
     pd = import_pandas()
     records = [[r.get(c) for c in columns] if isinstance(r, dict) else list(r) for r in rows]
     frame = pd.DataFrame.from_records(records, columns=list(columns))
-    for name in frame.columns[frame.dtypes == object]:
+    for name in frame.columns:
         values = frame[name].tolist()
-        if all(v is None or (isinstance(v, int | float) and not isinstance(v, bool))
+        if frame[name].dtype.kind == "O" and all(v is None or (isinstance(v, int | float) and not isinstance(v, bool))
                for v in values):
             frame[name] = frame[name].astype(float)
     return frame
