@@ -33,8 +33,10 @@ def dataframe(columns: Sequence[str], rows: Iterable[Sequence[Any]]) -> Any:
     records = [[r.get(c) for c in columns] if isinstance(r, dict) else list(r) for r in rows]
     frame = pd.DataFrame.from_records(records, columns=list(columns))
     for name in frame.columns:
-        values = frame[name].tolist()
-        if frame[name].dtype.kind == "O" and all(v is None or (isinstance(v, int | float) and not isinstance(v, bool))
-               for v in values):
+        if frame[name].dtype.kind == "O" and all(_number_or_none(v) for v in frame[name]):
             frame[name] = frame[name].astype(float)
     return frame
+
+
+def _number_or_none(v: Any) -> bool:
+    return v is None or (isinstance(v, int | float) and not isinstance(v, bool))
