@@ -15,6 +15,7 @@ import pytest
 
 import gearcoupling as gc
 from gearcoupling.cli import main
+from gearcoupling.hob import MAX_HOB_DIAMETER_MM, check_hob_diameter
 from gearcoupling.inspection import LIMITS, grade_limits
 from gearcoupling.inspection.iso1328 import iso_round_um, tolerances_um
 from inspection_synth import synthetic_hub
@@ -102,8 +103,6 @@ def test_compare_prints_not_judged_and_grade_verdicts(thick_scan, tmp_path, caps
 
 
 def test_hob_diameter_range(renzo):
-    from gearcoupling.hob import MAX_HOB_DIAMETER_MM, check_hob_diameter
-
     depth = 3.175 + 2.54  # dedendum 0.125 in + module
     assert check_hob_diameter(renzo, 80.0) == 80.0
     with pytest.raises(gc.SpecError, match=r"too small to carry teeth 5\.715 mm deep"):
