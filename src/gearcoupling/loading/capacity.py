@@ -17,6 +17,7 @@ compliance model, and the same root find on full solves for the surface model.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -310,7 +311,7 @@ CAPACITY_COLUMNS = ("spec", "misalignment_deg", "capacity_Nm", "governing", "too
                     "load_sharing_factor", "max_tooth_load_N")
 
 
-def write_capacity_csv(curves: dict[str, list[Capacity]], path) -> Path:
+def write_capacity_csv(curves: Mapping[str, Sequence[Capacity]], path) -> Path:
     """``capacity.csv``: one row per spec name and misalignment of :func:`capacity_curve`
     results, written atomically."""
     return write_csv_rows(path, CAPACITY_COLUMNS, ((name, *c.row()[1:])

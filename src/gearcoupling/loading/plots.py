@@ -8,7 +8,7 @@ moment vs misalignment (Wei Fig. 13), capacity vs misalignment per criterion.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 
 import numpy as np
 
@@ -92,7 +92,7 @@ CRITERION_STYLES = {"tooth_load": "--", "contact_stress": ":", "bending_stress":
 SPEC_MARKERS = ("o", "s", "^", "D", "v", "P", "X")
 
 
-def plot_capacity(curves: dict[str, list], ax=None, *,
+def plot_capacity(curves: Mapping[str, Sequence], ax=None, *,
                   critical_deg: dict[str, float | None] | None = None):
     """Capacity against misalignment per criterion (thin: dashed, dotted, dash-dot) and the
     governing one (thick), per spec; each spec's design point (design angle, ``[load]``
@@ -128,13 +128,13 @@ def plot_capacity(curves: dict[str, list], ax=None, *,
             ax.plot([spec.design_misalignment_deg], [abs(spec.load.torque_Nm)], "*",
                     color=colour, ms=9 + 7 * nest, mec="k", mew=0.6, zorder=20 + k)
         label = name
-        crit = (critical_deg or {}).get(name)
-        if crit is not None:
-            ax.axvline(crit, color=colour, lw=1.0, alpha=0.6, zorder=1)
-            ax.annotate(f"{crit:.2f}°", (crit, 1.0), xycoords=("data", "axes fraction"),
+        i_crit = (critical_deg or {}).get(name)
+        if i_crit is not None:
+            ax.axvline(i_crit, color=colour, lw=1.0, alpha=0.6, zorder=1)
+            ax.annotate(f"{i_crit:.2f}°", (i_crit, 1.0), xycoords=("data", "axes fraction"),
                         xytext=(2, -2 - 10 * k), textcoords="offset points", va="top",
                         fontsize=7, color=colour)
-            label += f" (critical {crit:.2f}°)"
+            label += f" (critical {i_crit:.2f}°)"
         spec_handles.append(Line2D([], [], color=colour, lw=2, marker=marker, label=label))
     kinds = [Line2D([], [], color="k", lw=2.2, label="governing (smallest)")]
     kinds += [Line2D([], [], color="k", lw=1, ls=style, label=crit.replace("_", " "))
@@ -148,15 +148,16 @@ def plot_capacity(curves: dict[str, list], ax=None, *,
     ax.set_xlabel("misalignment i (deg)")
     ax.set_ylabel("capacity K·T (N·m)")
     ax.grid(alpha=0.3, which="both")
-    style = {"fontsize": 8, "title_fontsize": 8}
     if own:
-        fig.legend(handles=spec_handles, title="spec", loc="outside right upper", **style)
-        fig.legend(handles=kinds, title="line", loc="outside right lower", **style)
+        fig.legend(handles=spec_handles, title="spec", loc="outside right upper", fontsize=8,
+                   title_fontsize=8)
+        fig.legend(handles=kinds, title="line", loc="outside right lower", fontsize=8,
+                   title_fontsize=8)
     else:
         ax.add_artist(ax.legend(handles=spec_handles, title="spec", loc="upper left",
-                                bbox_to_anchor=(1.01, 1.0), **style))
+                                bbox_to_anchor=(1.01, 1.0), fontsize=8, title_fontsize=8))
         ax.legend(handles=kinds, title="line", loc="lower left", bbox_to_anchor=(1.01, 0.0),
-                  **style)
+                  fontsize=8, title_fontsize=8)
     rows0 = [r for rows in curves.values() for r in rows]
     models = sorted({r.model for r in rows0})
     factors = sorted({r.accuracy_factor for r in rows0})
