@@ -15,6 +15,7 @@ import numpy as np
 from ..errors import ArgumentError
 from ..plots import new_figure
 from .patchmap import patch_extent, patch_maps
+from .summary import rotation_table
 
 
 def _axes(ax, **kw):
@@ -51,6 +52,49 @@ def plot_tooth_load(res, ax=None, rotation: int = 0):
     ax.set_xlim(0, 360)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
+    return fig
+
+
+def plot_loads_over_turn(res, ax=None):
+    """Over the rotations of ``res``: teeth in contact; the largest interior pressure and
+    root stress against their allowables; the tilting moment, axial thrust and radial force
+    the coupling puts on the machine (3 panels, ``ax``: 3 Axes)."""
+    t = rotation_table(res)
+    if ax is None:
+        fig, axes = new_figure(3, 1, figsize=(9, 8.4), sharex=True, layout="constrained")
+    else:
+        axes = list(np.ravel(np.asarray(ax, dtype=object)))
+        if len(axes) != 3:
+            raise ArgumentError(f"ax: {len(axes)} Axes given, 3 needed")
+        fig = axes[0].figure
+    order = np.argsort(t["psi_deg"])
+    psi = t["psi_deg"][order]
+    mat = res.spec.material
+    a0, a1, a2 = axes
+    a0.step(psi, t["teeth_in_contact"][order], where="mid", color="C0")
+    a0.set_ylabel("teeth in contact")
+    a0.set_ylim(0, res.teeth * 1.05)
+    a0.set_title(f"{res.spec.name}: loads over the rotations, {res.model} model, "
+                 f"T = {res.torque_Nm:.4g} N·m, i = {res.misalignment_deg:.3g}°", fontsize=10)
+    a1.plot(psi, t["max_interior_pressure_MPa"][order], color="C1",
+            label="largest contact pressure (interior)")
+    a1.plot(psi, t["max_root_stress_MPa"][order], color="C2", label="largest root stress")
+    a1.axhline(min(mat.hub.allowable_contact_stress_MPa, mat.sleeve.allowable_contact_stress_MPa),
+               color="C1", ls="--", lw=1, label="allowable contact stress")
+    a1.axhline(min(mat.hub.allowable_bending_stress_MPa, mat.sleeve.allowable_bending_stress_MPa),
+               color="C2", ls="--", lw=1, label="allowable bending stress")
+    a1.set_ylabel("stress (MPa)")
+    a1.set_ylim(bottom=0)
+    a1.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    a2.plot(psi, t["tilting_moment_Nm"][order], color="C3", label="tilting moment (N·m)")
+    a2.plot(psi, np.abs(t["axial_force_N"][order]), color="C4", label="|axial thrust| (N)")
+    a2.plot(psi, t["radial_force_N"][order], color="C5", label="radial force (N)")
+    a2.set_ylabel("machine loads")
+    a2.set_xlabel("rotation ψ (deg)")
+    a2.set_ylim(bottom=0)
+    a2.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    for a in axes:
+        a.grid(alpha=0.3)
     return fig
 
 
