@@ -17,8 +17,8 @@ import gearcoupling as gc
 from gearcoupling.hob import hob_program
 
 TABLE = {"hub.crowning.kind": "table", "hub.crowning.radius": math.inf,
-         "hub.crowning.table_z": (0.0, 3.0, 6.0, 9.0, 12.0),
-         "hub.crowning.table_drop": (0.0, 0.02, 0.09, 0.21, 0.40)}
+         "hub.crowning.z": [0.0, 3.0, 6.0, 9.0, 12.0],
+         "hub.crowning.drop": [0.0, 0.02, 0.09, 0.21, 0.40]}
 
 
 def main():

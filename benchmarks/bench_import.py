@@ -1,4 +1,4 @@
-"""Time of ``import gearcoupling`` (issue 14 item 8: target <= 0.15 s).
+"""Time of ``import gearcoupling``.
 
 Runs fresh interpreters ``--repeats`` times each for ``import numpy`` (the floor: every
 kernel needs it) and ``import gearcoupling``, and prints the medians and the difference,

@@ -1,4 +1,4 @@
-"""Speed and accuracy of the loaded-contact analysis (issue 10); prints the docs/load.md tables.
+"""Speed and accuracy of the loaded-contact analysis; prints the docs/load.md tables.
 
 Run: ``python benchmarks/bench_load.py [--quick]``. Times are medians of several runs of
 CPU time of this process and wall time (the machine is shared; quote ratios).

@@ -1,4 +1,4 @@
-"""Throughput of studies on dask.distributed and of the tolerance Monte Carlo (issue 12).
+"""Throughput of studies on dask.distributed and of the tolerance Monte Carlo.
 
 Prints
 1. the serial time of one study row (``evaluate``) of a small study;

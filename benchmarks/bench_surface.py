@@ -1,4 +1,4 @@
-"""Speed and accuracy of the ``surface`` load model (issue 10): the grid trade.
+"""Speed and accuracy of the ``surface`` load model: the grid trade.
 
 For renzo-1967 at a misalignment and torque, one pose (rotation 0) is solved on a ladder of
 fine grids (cells along the face x across the depth); each row prints the CPU and wall
@@ -9,6 +9,10 @@ and their differences from the finest grid.
 
 ``--figures DIR`` writes pressure maps of the most loaded tooth on the developed flank
 (renzo-1967: aligned, 1°, and past the critical misalignment) as PNG files.
+``--speed [--against DIR]`` times what users wait for (one pose cold, a pose warm-started
+from its neighbouring rotation, a turn of 360 rotations, the surface capacity at one
+misalignment), each in a subprocess of this checkout and (``--against``) of another
+checkout (``DIR/src``) in the same run: medians of CPU seconds, and their ratio.
 ``--theory`` prints the validation tables instead: Hertz's elliptic contact (curvature
 ratios 1-20) and a quadratic gap cut by a straight edge, against grid refinement, and the
 crowned renzo-1967 patch against the line contact of the exact lead curvature.
@@ -20,6 +24,7 @@ The machine is shared: times are the best of ``--repeats`` runs.
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import os
 import time
 
@@ -174,6 +179,93 @@ def figures(out_dir):
     print(f"wrote {path}")
 
 
+_SPEED = """
+import dataclasses, json, statistics, sys, time
+import numpy as np
+from gearcoupling.clearance import sweep
+from gearcoupling.loading import capacity, load_from_sweep
+from gearcoupling.loading.inputs import tooth_compliance
+from gearcoupling.loading.surface import solve_surface
+from gearcoupling.spec import load_spec
+spec = load_spec("renzo-1967")
+comp = tooth_compliance(spec)
+which, repeats = sys.argv[1], int(sys.argv[2])
+def cpu(fn):
+    c = time.process_time(); fn(); return time.process_time() - c
+def fresh(sw):  # a copy: no start kept from an earlier load of the same sweep object
+    return dataclasses.replace(sw)
+solve_surface(spec, sweep(spec, 1.0, [0.0]), torque_Nm=2000.0, compliance=comp)  # caches
+out = {}
+if which == "pose":
+    sws = [sweep(spec, 1.0, [a]) for a in (0.0, 2.0, 4.0)]
+    out["cold"] = statistics.median(
+        cpu(lambda s=s: solve_surface(spec, fresh(s), torque_Nm=2000.0, compliance=comp))
+        for s in sws for _ in range(repeats))
+    one, turn = sweep(spec, 1.0, [0.0]), sweep(spec, 1.0, np.arange(11.0))
+    t1 = statistics.median(cpu(lambda: solve_surface(spec, fresh(one), torque_Nm=2000.0,
+                                                     compliance=comp)) for _ in range(repeats))
+    t11 = statistics.median(cpu(lambda: solve_surface(spec, fresh(turn), torque_Nm=2000.0,
+                                                      compliance=comp)) for _ in range(repeats))
+    out["warm"] = (t11 - t1) / 10.0
+elif which == "turn":
+    sw = sweep(spec, 1.0, np.arange(360.0))
+    out["turn"] = statistics.median(cpu(lambda: load_from_sweep(
+        fresh(sw), torque_Nm=3000.0, model="surface")) for _ in range(repeats))
+elif which == "capacity":
+    res = {}
+    def run():
+        res["c"] = capacity(spec, 1.0, model="surface")
+    out["capacity"] = statistics.median(cpu(run) for _ in range(repeats))
+    out["capacity_Nm"] = res["c"].capacity_Nm
+    out["solves"] = res["c"].solves
+print(json.dumps(out))
+"""
+
+
+def speed_in(path: str, which: str, repeats: int) -> dict:
+    """Medians (CPU s) of the speed measurement ``which`` with the checkout ``path``."""
+    import json
+    import subprocess
+    import sys
+
+    env = dict(os.environ, PYTHONPATH=os.path.join(path, "src"), OPENBLAS_NUM_THREADS="1")
+    out = subprocess.run([sys.executable, "-c", _SPEED, which, str(repeats)], env=env,
+                         capture_output=True, text=True, check=True)
+    return json.loads(out.stdout.splitlines()[-1])
+
+
+def speed(against: str | None, repeats: int, with_capacity: bool):
+    """The speed table: this checkout against ``against`` (the same measurements)."""
+    here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    rows = [("one pose, cold (1°, 2000 N·m)", "pose", "cold", repeats),
+            ("one pose, warm from the neighbouring rotation (1° apart)", "pose", "warm",
+             repeats),
+            ("turn of 360 rotations (3000 N·m, load_from_sweep)", "turn", "turn",
+             max(1, repeats // 3))]
+    if with_capacity:
+        rows.append(("capacity at 1° (25 rotations, 4 criteria)", "capacity", "capacity", 1))
+    cache: dict = {}
+    print("renzo-1967, surface model, CPU seconds (median; the same run, subprocesses)\n")
+    print("| measurement | before | after | before / after |\n|---|---|---|---|")
+    for label, which, key, reps in rows:
+        new = cache.setdefault((here, which), speed_in(here, which, reps))
+        old = cache.setdefault((against, which), speed_in(against, which, reps)) \
+            if against else None
+        if old is None:
+            print(f"| {label} | | {new[key]:.3f} | |")
+        else:
+            print(f"| {label} | {old[key]:.3f} | {new[key]:.3f} | "
+                  f"{old[key] / new[key]:.1f} |")
+    if with_capacity:
+        new = cache[(here, "capacity")]
+        line = f"\ncapacity: {new['capacity_Nm']:.1f} N·m from {new['solves']} solves"
+        if against:
+            old = cache[(against, "capacity")]
+            line += (f" (before: {old['capacity_Nm']:.1f} N·m from {old['solves']} "
+                     "full-turn solves)")
+        print(line)
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--spec", default="renzo-1967")
@@ -184,7 +276,13 @@ def main(argv=None):
     ap.add_argument("--rigid", action="store_true", help="rigid teeth (no bending compliance)")
     ap.add_argument("--theory", action="store_true", help="print the validation tables")
     ap.add_argument("--figures", metavar="DIR", help="write pressure maps into DIR")
+    ap.add_argument("--speed", action="store_true", help="print the speed table")
+    ap.add_argument("--against", metavar="DIR", help="--speed: also time this checkout")
+    ap.add_argument("--capacity", action="store_true", help="--speed: also the capacity")
     args = ap.parse_args(argv)
+    if args.speed:
+        speed(args.against, args.repeats, args.capacity)
+        return
     if args.figures:
         figures(args.figures)
         return
@@ -198,8 +296,10 @@ def main(argv=None):
     rows = []
     for grid in ladder:
         reps = 1 if grid[0] * grid[1] > 64 * 48 else args.repeats
-        cpu, wall, res = timed(lambda g=grid: solve_surface(spec, sw, torque_Nm=args.torque,
-                                                            grid=g, compliance=comp), reps)
+        # a copy of the sweep per call: each pose solved cold (no start kept from the last)
+        cpu, wall, res = timed(lambda g=grid: solve_surface(
+            spec, dataclasses.replace(sw), torque_Nm=args.torque, grid=g, compliance=comp),
+            reps)
         rows.append((grid, cpu, wall, measures(res)))
     ref = rows[-1][3]
     print(f"{args.spec}, misalignment {args.misalignment}°, torque {args.torque} N·m, "

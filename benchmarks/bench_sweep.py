@@ -1,4 +1,4 @@
-"""Speed and accuracy of the misalignment sweep (issue 4).
+"""Speed and accuracy of the misalignment sweep.
 
 Prints (1) the time of the full map - every tooth x 360 rotations x both flanks, all four
 clearance measures - for ``renzo-1967`` at 1°, and (2) the speed/accuracy table: coarse

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
 # Set up (idempotent) and run the whole test suite: the README's test command.
+# bash scripts/test.sh --fast leaves out the slow tests; other arguments go to pytest.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 python3 -m pip install --quiet --disable-pip-version-check -e '.[test]'
@@ -26,4 +27,9 @@ if [ ! -d .cache/npm/node_modules/gltf-validator ]; then
 fi
 python3 -m ruff check src tests benchmarks
 python3 -m mypy
+# --fast: leave out the tests marked slow (under a minute on two cores); CI runs everything
+if [ "${1:-}" = "--fast" ]; then
+    shift
+    set -- -m "not slow" "$@"
+fi
 python3 -m pytest "$@"

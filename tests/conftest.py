@@ -1,11 +1,54 @@
-"""Shared fixtures: templates and small helpers for the geometry tests."""
+"""Shared fixtures: templates and small helpers for the geometry tests; the markers of
+tests that need an optional back-end skip, with the reason, where it is missing.
+
+Markers (``pyproject.toml``): ``slow`` (over about 5 s; ``scripts/test.sh --fast`` leaves
+them out), ``needs_fea`` (gmsh, OpenCASCADE and CalculiX ``ccx``), ``needs_fcl``
+(python-fcl), ``needs_dask`` (dask.distributed, pyarrow), ``needs_browser`` (playwright and
+Debian's chromium), ``needs_viewer`` (viser).
+"""
 
 from __future__ import annotations
+
+import importlib.util
+import shutil
+from pathlib import Path
 
 import numpy as np
 import pytest
 
 import gearcoupling as gc
+
+# marker -> (Python modules, executable, what to install)
+REQUIRES = {
+    "needs_fea": (("gmsh", "OCP"), "ccx", "pip install 'gearcoupling[fea]'; "
+                  "apt-get install calculix-ccx"),
+    "needs_fcl": (("fcl",), None, "pip install 'gearcoupling[interference]'"),
+    "needs_dask": (("distributed", "pyarrow"), None, "pip install 'gearcoupling[study]'"),
+    "needs_browser": (("playwright",), "/usr/bin/chromium", "pip install playwright; "
+                      "apt-get install chromium"),
+    "needs_viewer": (("viser",), None, "pip install 'gearcoupling[viewer]'"),
+}
+
+
+def _missing(modules, executable) -> list[str]:
+    gone = [m for m in modules if importlib.util.find_spec(m) is None]
+    if executable and not (Path(executable).is_file() or shutil.which(executable)):
+        gone.append(executable)
+    return gone
+
+
+def pytest_collection_modifyitems(config, items):
+    """Skip, with the reason, a test whose marked back-end is not installed."""
+    checked: dict[str, list[str]] = {}
+    for item in items:
+        for name, (modules, exe, install) in REQUIRES.items():
+            if item.get_closest_marker(name) is None:
+                continue
+            if name not in checked:
+                checked[name] = _missing(modules, exe)
+            if checked[name]:
+                item.add_marker(pytest.mark.skip(reason=f"{', '.join(checked[name])} not "
+                                                        f"installed: {install}"))
 
 
 @pytest.fixture(scope="session")

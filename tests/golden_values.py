@@ -33,7 +33,7 @@ def golden(spec) -> dict:
     return out
 
 
-# --- sweep design angles (issue 14 item 5; key "sweep", written by ``--sweep``) ---
+# --- sweep design angles ---
 SWEEP_SOURCE = ("gearcoupling.clearance.design: critical_misalignment_deg (bisection) and "
                 "binding_angle_deg (Brent), each to 1e-4 deg, 16 rotations per tooth pitch, "
                 "default kernel tolerance 1e-7 mm; computed by this code and cross-checked "

@@ -91,7 +91,7 @@ def test_plot_accepts_axes_and_cli_writes_files(tmp_path, capsys):
     fig, axes = new_figure(2, 2)
     assert plot_measuring_charts(ch, ax=axes.ravel()) is fig
     assert len(axes[0, 1].lines) >= 1
-    with pytest.raises(gc.SpecError, match="4 Axes"):
+    with pytest.raises(gc.ArgumentError, match="4 Axes"):
         plot_measuring_charts(ch, ax=axes.ravel()[:2])
     assert main(["charts", "industrial-m2", "-o", str(tmp_path), "--points", "11"]) == 0
     for f in ("charts.png", "nominal_traces.csv", "charts.json"):

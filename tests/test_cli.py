@@ -25,6 +25,7 @@ def test_spec_table_output(capsys):
     assert "aligned_backlash_mm" in out and "renzo_z0_mm" in out
 
 
+@pytest.mark.slow
 def test_sections_and_run_write_files(tmp_path, capsys):
     assert main(["sections", "industrial-m2", "-o", str(tmp_path / "s")]) == 0
     png = tmp_path / "s" / "sections.png"
@@ -72,7 +73,7 @@ def test_templates_lists_every_template(capsys):
 def test_atomic_writes_leave_the_old_file_on_failure_and_use_the_usual_mode(tmp_path):
     import os
 
-    from gearcoupling.atomic import atomic_path, write_text
+    from gearcoupling.io import atomic_path, write_text
 
     target = tmp_path / "a.txt"
     write_text(target, "old")

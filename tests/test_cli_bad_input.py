@@ -1,5 +1,5 @@
-"""Bad command lines exit with status 2 and one line naming what is wrong (issue 14 items
-3 and 10): a table of bad inputs, plus the output-folder, pipe, temporary-file and viewer
+"""Bad command lines exit with status 2 and one line naming what is wrong: a table of bad
+inputs, plus the output-folder, pipe, temporary-file and viewer
 address cases that need more than one call."""
 
 import os
@@ -38,8 +38,8 @@ def files(tmp_path_factory):
 # (argv with {d} for the fixture folder, words the one-line message must contain)
 BAD = [
     (["spec", "nope"], "templates"),
-    (["spec", "{d}/missing.toml"], "no such file: give a TOML spec file"),
-    (["spec", "{d}/folder.toml"], "a folder, not a file: give a TOML spec file"),
+    (["spec", "{d}/missing.toml"], "no such file: give a spec file"),
+    (["spec", "{d}/folder.toml"], "a folder, not a file: give a spec file"),
     (["spec", "/dev/null"], "a character device (like /dev/null), not a file"),
     (["spec", "{d}/pipe"], "a named pipe (FIFO), not a file"),
     (["spec", "{d}/dangling"], "a broken symbolic link"),
@@ -213,9 +213,9 @@ def test_spec_json_into_a_closed_pipe_is_quiet():
 
 
 def test_a_killed_writer_leaves_a_temporary_that_the_next_write_removes(tmp_path):
-    from gearcoupling.atomic import write_text
+    from gearcoupling.io import write_text
 
-    code = ("import sys, time\nfrom gearcoupling.atomic import atomic_path\n"
+    code = ("import sys, time\nfrom gearcoupling.io import atomic_path\n"
             "with atomic_path(sys.argv[1]) as tmp:\n    tmp.write_text('half')\n"
             "    print('ready', flush=True)\n    time.sleep(60)\n")
     proc = subprocess.Popen([sys.executable, "-c", code, str(tmp_path / "hub.stl")],
@@ -241,11 +241,11 @@ def test_viewer_ports_are_tried_a_bounded_number_of_times():
         taken.listen()
         port = taken.getsockname()[1]
         t0 = time.perf_counter()
-        with pytest.raises(gc.SpecError, match="taken") as info:
+        with pytest.raises(gc.ArgumentError, match="taken") as info:
             free_port("127.0.0.1", port, tries=1)
         assert info.value.field == "port" and time.perf_counter() - t0 < 5
         assert free_port("127.0.0.1", port, tries=50) > port
-    with pytest.raises(gc.SpecError, match="cannot be resolved"):
+    with pytest.raises(gc.ArgumentError, match="cannot be resolved"):
         free_port("no.such.host.invalid", 8080)
 
 
@@ -258,7 +258,7 @@ def test_the_last_port_is_not_exceeded():
         except OSError:
             pytest.skip("port 65535 is in use on this machine")
         taken.listen()
-        with pytest.raises(gc.SpecError, match="65535-65535"):
+        with pytest.raises(gc.ArgumentError, match="65535-65535"):
             free_port("127.0.0.1", 65535)
 
 

@@ -12,7 +12,7 @@ import trimesh
 
 import gearcoupling as gc
 from gearcoupling.cli import main
-from gearcoupling.errors import BackendError, SpecError
+from gearcoupling.errors import ArgumentError, BackendError
 from gearcoupling.export import EXPORTERS, export_part, formats
 from gearcoupling.export.meshes import read_mesh
 from gearcoupling.parts import SURFACE_KINDS, build_part
@@ -94,7 +94,7 @@ def test_a_failing_writer_leaves_no_file(tmp_path, hub_sector, monkeypatch):
 
 def test_unknown_extension_names_the_allowed_ones(tmp_path, hub_sector):
     spec, mesh = hub_sector
-    with pytest.raises(SpecError, match=r"hub\.dxf.*stl.*'dxf' is not a supported format"):
+    with pytest.raises(ArgumentError, match=r"hub\.dxf.*stl.*'dxf' is not a supported format"):
         export_part(spec, "hub", tmp_path / "hub.dxf", mesh=mesh)
 
 
@@ -137,6 +137,7 @@ def _face_types(shape):
 
 @pytest.mark.parametrize("name, part", [("renzo-1967", "sleeve"), ("renzo-1967", "hub"),
                                         ("renzo-1967-end-round", "hub")])
+@pytest.mark.slow
 def test_step_solid_is_exact_geometry_and_round_trips(tmp_path, name, part):
     clients.ocp()
     from gearcoupling.export.step import part_solid, read_step_volume, shape_volume
@@ -163,6 +164,7 @@ def test_step_solid_is_exact_geometry_and_round_trips(tmp_path, name, part):
     assert abs(v_back - mesh.volume) <= 1e-3 * mesh.volume
 
 
+@pytest.mark.slow
 def test_step_sector_matches_the_mesh_sector(tmp_path):
     clients.ocp()
     from gearcoupling.export.step import read_step_volume
@@ -263,6 +265,7 @@ def test_export_package_imports_no_opencascade():
     subprocess.run([sys.executable, "-c", code], check=True)
 
 
+@pytest.mark.slow
 def test_run_lists_the_step_files_in_parts_json(tmp_path, capsys):
     clients.ocp()
     rc = main(["run", "renzo-1967", "--only", "parts,step", "-o", str(tmp_path)])

@@ -1,4 +1,4 @@
-"""Every export opened by its own client (issue 14, item 9): gmsh reads the MSH with its
+"""Every export opened by its own client: gmsh reads the MSH with its
 named groups and the STEP (volume, dense exact points), CalculiX runs the INP, VTK keeps
 the labels and the kind names, lib3mf reads the 3MF in strict mode, the Khronos glTF
 validator passes the GLB and its scene is in metres with +Y up and smooth normals.
@@ -89,6 +89,7 @@ def test_gmsh_reads_the_msh_with_named_groups(hub, gmsh):
     assert np.array_equal(faces, mesh.faces)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", gc.template_names())
 @pytest.mark.parametrize("part", ["hub", "sleeve"])
 def test_gmsh_reads_the_step_volume_and_exact_points(tmp_path, gmsh, name, part):

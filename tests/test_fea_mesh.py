@@ -10,8 +10,8 @@ from gearcoupling import load_spec
 from gearcoupling.cli import main
 from gearcoupling.errors import BackendError, SpecError
 
-pytest.importorskip("gmsh")
-pytest.importorskip("OCP")
+# skipped, with the reason, without gmsh or ccx
+pytestmark = [pytest.mark.needs_fea, pytest.mark.slow]
 
 SIZE = 1.0  # coarse (module / 2) so the tests stay fast
 

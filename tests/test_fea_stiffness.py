@@ -8,11 +8,8 @@ from gearcoupling import load_spec
 from gearcoupling.cli import main
 from gearcoupling.errors import BackendError, SpecError
 
-pytest.importorskip("gmsh")
-pytest.importorskip("OCP")
-if __import__("shutil").which("ccx") is None:
-    pytest.skip("CalculiX ccx not installed (scripts/test.sh installs calculix-ccx)",
-                allow_module_level=True)
+# skipped, with the reason, without gmsh or ccx
+pytestmark = [pytest.mark.needs_fea, pytest.mark.slow]
 
 
 @pytest.mark.parametrize("size", [5.0, 3.0])

@@ -34,34 +34,36 @@ def test_later_stages_are_reachable_lazily_from_the_top_level():
 
 
 def test_import_gearcoupling_loads_no_scipy():
-    # issue 14 item 8: scipy.interpolate/optimize (~0.4 s) are imported inside the
+    # scipy.interpolate/optimize (~0.4 s) are imported inside the
     # functions that use them; `import gearcoupling` costs numpy plus our own modules
     code = "import sys, gearcoupling; print(','.join(m for m in sys.modules if 'scipy' in m))"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == ""
 
 
-# the data flow of docs/conventions.md (DESIGN.md §4): each unit may import only these
+# the data flow of docs/conventions.md (docs/conventions.md): each unit may import only these
 LAYERS = {
     "errors": set(),
-    "atomic": {"errors"},
+    "io": {"errors"},
     "tables": {"errors"},
-    "loadspec": {"errors"},
+    "loadspec": {"errors", "io"},
     "geometry": {"errors"},
-    "spec": {"atomic", "errors", "geometry", "loadspec"},
-    "plots": {"atomic", "errors", "geometry", "spec"},
-    "parts": {"atomic", "errors", "geometry", "spec"},
-    "export": {"atomic", "errors", "geometry", "spec", "parts"},
-    "clearance": {"atomic", "errors", "geometry", "spec", "plots", "tables"},
-    "interference": {"atomic", "errors", "geometry", "spec", "plots", "parts", "clearance"},
-    "fea": {"atomic", "errors", "geometry", "spec", "parts", "export", "clearance"},
-    "loading": {"atomic", "errors", "geometry", "spec", "loadspec", "plots", "clearance",
+    "spec": {"errors", "io", "geometry", "loadspec"},
+    "plots": {"io", "errors", "geometry", "spec"},
+    "parts": {"io", "errors", "geometry", "spec"},
+    "export": {"io", "errors", "geometry", "spec", "parts"},
+    "clearance": {"io", "errors", "geometry", "spec", "plots", "tables"},
+    "interference": {"io", "errors", "geometry", "spec", "plots", "parts", "clearance"},
+    "fea": {"io", "errors", "geometry", "spec", "parts", "export", "clearance"},
+    "loading": {"io", "errors", "geometry", "spec", "loadspec", "plots", "clearance",
                 "fea", "tables"},
-    "study": {"__init__", "atomic", "errors", "geometry", "spec", "plots", "clearance", "loading",
-              "tables"},
-    "hob": {"atomic", "errors", "geometry", "spec", "plots"},
-    "inspection": {"atomic", "errors", "geometry", "spec", "plots", "parts", "hob", "tables"},
-    "viewer": {"atomic", "errors", "geometry", "spec", "parts", "export", "clearance",
+    "study": {"__init__", "io", "loadspec", "errors", "geometry", "spec", "plots", "clearance",
+              "loading", "tables"},
+    "hob": {"io", "errors", "geometry", "spec", "plots"},
+    "inspection": {"io", "errors", "geometry", "spec", "plots", "parts", "hob", "tables"},
+    "outputs": {"io", "errors", "geometry", "spec", "plots", "parts", "export", "clearance",
+                "interference", "loading", "viewer"},
+    "viewer": {"io", "errors", "geometry", "spec", "parts", "export", "clearance",
                "interference", "loading", "inspection"},
 }
 

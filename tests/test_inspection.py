@@ -106,7 +106,7 @@ def test_part_of_another_spec_is_refused_with_the_reason(renzo):
 
 def test_inch_scan_is_detected_by_its_scale(renzo, tmp_path):
     pts = synthetic_hub(renzo, per_flank=80) / 25.4
-    with pytest.raises(gc.SpecError, match="inches") as err:
+    with pytest.raises(gc.ArgumentError, match="inches") as err:
         compare_part(renzo, pts)
     assert err.value.field == "units"
     rep = compare_part(renzo, pts, units="in")
@@ -120,7 +120,7 @@ def test_inch_scan_is_detected_by_its_scale(renzo, tmp_path):
 def test_bad_point_files_give_clear_errors(renzo, tmp_path, content, words):
     path = tmp_path / "scan.xyz"
     path.write_text(content)
-    with pytest.raises(gc.SpecError, match=words):
+    with pytest.raises(gc.ArgumentError, match=words):
         compare_part(renzo, path)
 
 
@@ -132,7 +132,7 @@ def test_unreadable_files_give_clear_errors(renzo, tmp_path, capsys):
     for path in (tmp_path / "missing.ply", bad_stl, binary_xyz, tmp_path / "scan.docx"):
         if path.suffix == ".docx":
             path.write_text("x")
-        with pytest.raises(gc.SpecError):
+        with pytest.raises(gc.ArgumentError):
             compare_part(renzo, path)
         assert main(["compare", "renzo-1967", str(path), "-o", str(tmp_path / "o")]) == 2
         err = capsys.readouterr().err.strip().splitlines()

@@ -9,11 +9,13 @@ import pytest
 
 import gearcoupling as gc
 from gearcoupling.clearance import sweep
-from gearcoupling.errors import SpecError
+from gearcoupling.errors import ArgumentError
 from gearcoupling.interference import build_model, check_interference, posed_meshes
 from gearcoupling.interference.distance import positive_integral
 from gearcoupling.interference.posed import hub_pose, window_pose, window_to_sleeve
 from gearcoupling.interference.submodel import hot_teeth, windows
+
+pytestmark = [pytest.mark.needs_fcl]
 
 FLANKS = ("cw", "ccw")
 
@@ -259,7 +261,7 @@ def test_bad_input_names_the_field(renzo, kwargs, match):
 
 @pytest.mark.parametrize("mis, angles", [(7.0, [0.0]), (1.0, []), (1.0, [float("nan")])])
 def test_bad_angles_raise_spec_error(renzo, mis, angles):
-    with pytest.raises(SpecError):
+    with pytest.raises(ArgumentError):
         check_interference(renzo, mis, angles)
 
 
@@ -323,7 +325,8 @@ def test_mesh_backlash_matches_exact_free_turn_of_the_outlines():
 
 def test_overlap_attribution_is_one_rule():
     """Points just either side of tooth centres go to that tooth and to the flank on their
-    side (DESIGN.md §6: tooth k centred at 2 pi k / N, ccw beyond the centre)."""
+    side (docs/conventions.md, Loaded analysis: tooth k centred at 2 pi k / N, ccw beyond the
+    centre)."""
     from gearcoupling.interference.attribution import FLANKS, flank_index, nearest_tooth
 
     n = 7

@@ -7,6 +7,8 @@ import pytest
 
 from gearcoupling.cli import main
 
+pytestmark = [pytest.mark.needs_fcl]
+
 
 def test_free_coupling_exits_0_and_writes_everything(tmp_path, capsys):
     out = tmp_path / "free"

@@ -1,4 +1,4 @@
-"""Capacity and Renzo's q-graph (issue 10): eq. 8, Examples 1-3, the Vari-Crown claim."""
+"""Capacity and Renzo's q-graph: eq. 8, Examples 1-3, the Vari-Crown claim."""
 
 import math
 
@@ -107,6 +107,34 @@ def test_capacity_torque_brings_the_worst_tooth_to_its_limit(renzo, model):
     assert np.max(res.root_stress_MPa) == pytest.approx(280.0, rel=1e-6)
     assert c.governing == min(c.criteria_Nm, key=c.criteria_Nm.get)
     assert c.load_sharing_factor == pytest.approx(1 / c.q)
+
+
+@pytest.mark.slow
+def test_surface_capacity_brings_the_worst_tooth_to_its_limit(renzo):
+    """The surface model's capacity, found per rotation from single-pose solves, checked
+    on full load solves of every rotation: at each criterion's torque the worst tooth sits
+    at its limit (to the search's 1e-3 on torque: load 1e-3, pressure 5e-4 relative), and
+    the face-end torque separates no edge contact from edge contact."""
+    sw = sweep(renzo, 1.0, np.linspace(0, 7.2, 4, endpoint=False))
+    c = capacity_from_sweep(sw, model="surface")
+    K = renzo.load.accuracy_factor
+    mat = renzo.material
+    for name, field, limit, rel in (
+            ("tooth_load", "tangential_force_N", renzo.load.allowable_tooth_load_N, 2e-3),
+            ("bending_stress", "root_stress_MPa",
+             min(mat.hub.allowable_bending_stress_MPa, mat.sleeve.allowable_bending_stress_MPa),
+             2e-3),
+            ("contact_stress", "interior_pressure_MPa",
+             min(mat.hub.allowable_contact_stress_MPa, mat.sleeve.allowable_contact_stress_MPa),
+             1e-3)):
+        res = load_from_sweep(sw, torque_Nm=c.criteria_Nm[name] / K, model="surface")
+        assert np.max(getattr(res, field)) == pytest.approx(limit, rel=rel), name
+    T = c.face_end_torque_Nm
+    below = load_from_sweep(sw, torque_Nm=0.997 * T, model="surface")
+    above = load_from_sweep(sw, torque_Nm=1.003 * T, model="surface")
+    assert not np.any(below.edge_contact) and np.any(above.edge_contact)
+    assert c.governing == min(c.criteria_Nm, key=c.criteria_Nm.get)
+    assert 0 < c.solves < 200
 
 
 def test_closed_form_capacity_matches_a_root_find_on_full_solves(renzo):

@@ -5,12 +5,13 @@ import math
 import numpy as np
 import pytest
 
-from gearcoupling.errors import SpecError
+from gearcoupling.errors import ArgumentError, SpecError
 from gearcoupling.loading.halfspace import (
     composite_modulus,
     half_space,
     hertz_ellipse,
     influence,
+    load_split,
     solve_contact,
 )
 
@@ -128,14 +129,38 @@ def test_edge_peak_grows_as_inverse_sqrt_cell_while_intensity_converges():
 def test_bad_input_is_refused():
     hs = half_space((4, 4), 0.1, 0.1, E_STAR)
     gap = np.zeros((4, 4))
-    with pytest.raises(SpecError, match="exactly one"):
+    with pytest.raises(ArgumentError, match="exactly one"):
         solve_contact(hs, gap)
-    with pytest.raises(SpecError, match="load_N"):
+    with pytest.raises(ArgumentError, match="load_N"):
         solve_contact(hs, gap, load_N=-1.0)
-    with pytest.raises(SpecError, match="gap0_mm"):
+    with pytest.raises(ArgumentError, match="gap0_mm"):
         solve_contact(hs, np.zeros((3, 4)), load_N=1.0)
-    with pytest.raises(SpecError, match="cell size"):
+    with pytest.raises(ArgumentError, match="cell size"):
         half_space((4, 4), 0.0, 0.1, E_STAR)
     # an approach that does not close the gap carries nothing (no NaN)
     sol = solve_contact(hs, gap + 1.0, approach_mm=0.5)
     assert sol.load_N.sum() == 0 and np.all(np.isfinite(sol.gap_mm))
+
+
+def test_single_precision_search_ends_on_the_double_precision_answer():
+    """Grids sharing a load with springs: the search at tolerance 1e-6 runs its
+    transforms in single precision and is checked in double; it lands on the answer of a
+    double-precision search at 1e-11 within 1e-5 (loads) relative."""
+    W = 300.0
+    _, hs, gap, _, _ = _hertz_grid(41, W, 30.0, 10.0)
+    gaps = np.stack([gap, gap + 1e-4, gap + 3e-4])
+    c = np.array([1e-5, 2e-5, 0.5e-5])
+    loose = solve_contact(hs, gaps, load_N=W, spring_mm_per_N=c, tolerance=1e-6)
+    tight = solve_contact(hs, gaps, load_N=W, spring_mm_per_N=c, tolerance=1e-11)
+    assert np.max(np.abs(loose.load_N - tight.load_N)) <= 1e-5 * W
+    assert loose.approach_mm == pytest.approx(tight.approach_mm, rel=1e-6)
+    assert float(np.sum(loose.load_N)) == pytest.approx(W, rel=1e-12)
+
+
+def test_load_split_from_laws_sums_to_the_load():
+    """The law-based split of a shared load (a warm start's first split) carries the
+    load, loads the grid that touches first most and leaves one beyond the approach out."""
+    law = np.array([[1e-4, 1e-4, 1e-4], [0.9, 0.9, 0.9], [1e-5, 1e-5, 1e-5]])
+    split = load_split([0.0, 1e-3, 1.0], law, 500.0)
+    assert float(np.sum(split)) == pytest.approx(500.0, rel=1e-12)
+    assert split[0] > split[1] > 0 and split[2] == 0

@@ -1,4 +1,4 @@
-"""Renzo's linear load-sharing model: exact kernel, equilibrium, sharing, signs (issue 10)."""
+"""Renzo's linear load-sharing model: exact kernel, equilibrium, sharing, signs."""
 
 import math
 

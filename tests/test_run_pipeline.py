@@ -13,6 +13,7 @@ import gearcoupling as gc
 STEPS = ["spec", "sections", "sweep"]  # one chain each way, quick
 
 
+@pytest.mark.slow
 def test_two_workers_write_the_same_files_as_one(tmp_path):
     """The forked second chain writes byte-identical files; the summary says two workers
     were used and gives every step's time."""

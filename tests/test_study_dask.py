@@ -19,6 +19,8 @@ import gearcoupling as gc
 from gearcoupling.cli import main
 from gearcoupling.study import read_table, spec_hash
 
+pytestmark = [pytest.mark.needs_dask, pytest.mark.slow]
+
 SRC = str(Path(gc.__file__).resolve().parents[1])
 STUDY = """\
 [study]
@@ -118,7 +120,8 @@ def test_rows_equal_single_spec_runs(uninterrupted):
         assert row["critical_misalignment_deg"] == crit[rc]
         assert row["min_backlash_mm"] == min_backlash_rad(
             spec, row["misalignment_deg"], steps=4) * spec.tooth.pitch_radius
-    # crowning radius up -> the contact reaches the face end earlier (DESIGN.md §5)
+    # crowning radius up -> the contact reaches the face end earlier (docs/conventions.md, Tooth
+    # geometry)
     values = [crit[rc] for rc in sorted(crit)]
     assert all(a > b for a, b in itertools.pairwise(values))
 

@@ -21,7 +21,7 @@ from gearcoupling.clearance.design import (
     min_backlash_rad,
     pivot_on_face_end,
 )
-from gearcoupling.errors import SpecError
+from gearcoupling.errors import ArgumentError
 
 
 @pytest.fixture(scope="module")
@@ -83,7 +83,7 @@ def test_mesh_angles_of_a_double_engagement_coupling():
     d = mesh_angles(2.0, g, L, angle_azimuth_deg=90.0)  # tilt at right angles to offset
     assert d.b_deg == pytest.approx(math.degrees(math.acos(math.cos(math.radians(g)) ** 2)),
                                     rel=1e-9)
-    with pytest.raises(SpecError, match="span_mm"):
+    with pytest.raises(ArgumentError, match="span_mm"):
         mesh_angles(1.0, 0.0, 0.0)
 
 
@@ -92,7 +92,7 @@ def test_double_engagement_sweeps_each_mesh(renzo):
     assert a.misalignment_deg == pytest.approx(mesh.a_deg)
     assert b.misalignment_deg == pytest.approx(mesh.b_deg)
     assert mesh.b_deg < mesh.a_deg  # the shaft tilt partly follows the sleeve
-    with pytest.raises(SpecError, match="mesh A angle"):
+    with pytest.raises(ArgumentError, match="mesh A angle"):
         double_engagement(renzo, 30.0, 0.0, 100.0, [0.0])
 
 
@@ -113,14 +113,14 @@ def test_summary_and_design_quantities_are_plain_json(renzo):
 
 @pytest.mark.parametrize("bad", [-0.1, 6.5, math.nan, math.inf])
 def test_bad_misalignment_names_the_field(renzo, bad):
-    with pytest.raises(SpecError, match="misalignment_deg"):
+    with pytest.raises(ArgumentError, match="misalignment_deg"):
         sweep(renzo, bad, [0.0])
 
 
 def test_bad_angles_and_tolerance(renzo):
-    with pytest.raises(SpecError, match="angles_deg"):
+    with pytest.raises(ArgumentError, match="angles_deg"):
         sweep(renzo, 1.0, [0.0, math.nan])
-    with pytest.raises(SpecError, match="angles_deg"):
+    with pytest.raises(ArgumentError, match="angles_deg"):
         sweep(renzo, 1.0, [])
     with pytest.raises(ValueError, match="tolerance"):
         sweep(renzo, 1.0, [0.0], tolerance_mm=0.0)

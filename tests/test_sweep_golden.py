@@ -1,4 +1,4 @@
-"""The sweep's critical and binding angles per template, pinned (issue 14 item 5).
+"""The sweep's critical and binding angles per template, pinned .
 
 The values and their source are in ``tests/golden/<template>.json`` under ``"sweep"``
 (regenerate with ``python tests/golden_values.py --sweep`` after an intended change and

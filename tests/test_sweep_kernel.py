@@ -22,6 +22,7 @@ def renzo():
     return load_spec("renzo-1967")
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("theta_deg", [8.0, 165.4])
 @pytest.mark.parametrize("normal", [False, True])
 def test_minimum_matches_brute_force(renzo, theta_deg, normal):
@@ -120,6 +121,7 @@ def test_flank_table_error_measured_small(renzo):
     ("industrial-m2", 0.75, 84.0, True),  # swing tooth: tip-edge and form-circle minima
     ("renzo-1967", 0.0, 0.0, True),
 ])
+@pytest.mark.slow
 def test_other_templates_match_brute_force(name, deg, theta_deg, normal):
     """Same check on other templates, larger angles (the hub end leaves the sleeve face at
     5° on renzo-1967) and a vari-crown path; tolerance 1e-6 mm plus the flank table's

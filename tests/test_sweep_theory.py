@@ -1,4 +1,5 @@
-"""Agreement with the theory of DESIGN.md §5 (Renzo et al. 1967) for both generation methods."""
+"""Agreement with the theory of docs/conventions.md, Tooth geometry (Renzo et al. 1967) for both
+generation methods."""
 
 from __future__ import annotations
 

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import gearcoupling as gc
-from gearcoupling.spec import template_dir
+from gearcoupling.io import bundled_dir
 
 from golden_values import GOLDEN, golden
 
@@ -23,7 +23,7 @@ def test_at_least_the_issue_templates_exist():
 
 @pytest.mark.parametrize("name", gc.template_names())
 def test_template_is_headed_by_its_source_and_a_disclaimer(name):
-    head = (template_dir() / f"{name}.toml").read_text().split("\n\n")[0]
+    head = (bundled_dir("templates") / f"{name}.toml").read_text().split("\n\n")[0]
     assert head.startswith(f"# {name}") and "not a standard" in head
 
 

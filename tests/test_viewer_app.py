@@ -12,6 +12,8 @@ import pytest
 
 from gearcoupling.viewer import scene as vs
 
+pytestmark = [pytest.mark.needs_viewer]
+
 viser = pytest.importorskip("viser")
 
 
@@ -77,7 +79,8 @@ def test_controls_reach_the_scene(app, renzo):
 
 
 def test_ground_frame_turns_both_members(app):
-    """Ground frame: the sleeve turns by Rz(psi), the hub by Rx(i) Rz(psi) (DESIGN.md §2
+    """Ground frame: the sleeve turns by Rz(psi), the hub by Rx(i) Rz(psi) (docs/conventions.md,
+    Frames
     seen from the ground: Rz(psi) Rz(-psi) Rx(i) Rz(psi))."""
     from scipy.spatial.transform import Rotation
 
@@ -137,12 +140,12 @@ def test_save_button_writes_a_shareable_html(app):
 def test_bad_tolerance_is_refused_and_frees_the_port(renzo):
     import socket
 
-    from gearcoupling.errors import SpecError
+    from gearcoupling.errors import ArgumentError
     from gearcoupling.viewer.html import free_port
     from gearcoupling.viewer.server import ViewerApp
 
     port = free_port()
-    with pytest.raises(SpecError, match="tolerance_mm"):
+    with pytest.raises(ArgumentError, match="tolerance_mm"):
         ViewerApp(renzo, port=port, tolerance_mm=50.0)
     with socket.socket() as s:  # the server was stopped: the port binds again
         s.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)

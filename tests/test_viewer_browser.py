@@ -17,6 +17,8 @@ import pytest
 from gearcoupling.errors import BackendError
 from gearcoupling.viewer import browser as br
 
+pytestmark = [pytest.mark.needs_browser, pytest.mark.slow]
+
 SHOTS = Path(__file__).resolve().parents[1] / "outputs" / "test-screenshots"
 VIEWPORT = {"width": 800, "height": 560}  # larger views cost seconds per frame
 

@@ -1,4 +1,4 @@
-"""The viewer's contact-pressure colours (issue 10): the surface model at the shown pose."""
+"""The viewer's contact-pressure colours: the surface model at the shown pose."""
 
 import numpy as np
 

@@ -10,7 +10,7 @@ import pytest
 
 import gearcoupling as gc
 from gearcoupling.cli import main
-from gearcoupling.errors import BackendError, SpecError
+from gearcoupling.errors import ArgumentError, BackendError, SpecError
 from gearcoupling.geometry.sleeve import sleeve_flank, sleeve_model
 from gearcoupling.viewer import scene as vs
 
@@ -199,13 +199,13 @@ def test_cutaways_remove_their_share_of_the_sleeve(meshes, cutaway, fraction):
 
 
 def test_bad_input_is_refused_clearly(renzo):
-    with pytest.raises(SpecError, match="misalignment_deg"):
+    with pytest.raises(ArgumentError, match="misalignment_deg"):
         vs.pose_state(renzo, 7.0, 0.0)
-    with pytest.raises(SpecError, match="rotation_deg"):
+    with pytest.raises(ArgumentError, match="rotation_deg"):
         vs.pose_state(renzo, 1.0, float("nan"))
-    with pytest.raises(SpecError, match="band_mm"):
+    with pytest.raises(ArgumentError, match="band_mm"):
         vs.pose_state(renzo, 1.0, 0.0, band_mm=-1.0)
-    with pytest.raises(SpecError, match="tolerance_mm"):
+    with pytest.raises(ArgumentError, match="tolerance_mm"):
         vs.build_scene_meshes(renzo, tolerance_mm=100.0)
     with pytest.raises(ValueError, match="cutaway"):
         vs.cut_sleeve(None, "sideways")

@@ -26,5 +26,14 @@ class BackendError(GearCouplingError, RuntimeError):
 
 
 class ArgumentError(GearCouplingError, ValueError):
-    """An invalid argument of a library call (not a spec value): the message names the
-    argument, its value and what is allowed. The CLI maps it to exit status 2."""
+    """An invalid argument of a library call or command line (not a value of a spec or
+    study file): the message names the argument, its value and what is allowed. Raised as
+    ``ArgumentError(message)`` or ``ArgumentError(name, value, allowed)``; the CLI maps it
+    to exit status 2."""
+
+    def __init__(self, *args: object):
+        if len(args) == 3:
+            self.field, self.value, self.allowed = args
+            super().__init__(f"{args[0]} = {args[1]!r}: {args[2]}")
+        else:
+            super().__init__(*args)

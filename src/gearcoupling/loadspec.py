@@ -1,4 +1,4 @@
-"""The ``[load]`` and ``[material]`` spec sections (issue 10, DESIGN.md §6).
+"""The ``[load]`` and ``[material]`` spec sections (docs/conventions.md, Loaded analysis).
 
 SI keys and their inch-pound alternatives (``torque_Nm`` | ``torque_lbf_in`` ...): give at
 most one of each pair; inch-pound values are converted at loading, so the dataclasses hold
@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from .errors import SpecError
+from .io import Table
 
 N_PER_LBF = 4.4482216152605
 NM_PER_LBF_IN = N_PER_LBF * 0.0254
@@ -141,72 +142,54 @@ _MATERIAL_KEYS = {
 }
 
 
-def _number(path: str, value: Any) -> float:
-    if isinstance(value, bool) or not isinstance(value, int | float):
-        raise SpecError(path, value, "must be a number")
-    return float(value)
+# every key of a pair names the other: setting one (an override) removes its sibling
+UNIT_SIBLINGS = {k: v for si, (imp, _) in (_LOAD_KEYS | _MATERIAL_KEYS).items()
+                 for k, v in ((si, imp), (imp, si))}
+LOAD_TABLE_KEYS = (*(k for pair in _LOAD_KEYS.items() for k in (pair[0], pair[1][0])), "model",
+                   "stiffness", "friction", "accuracy_factor")
+MATERIAL_TABLE_KEYS = (*(k for pair in _MATERIAL_KEYS.items() for k in (pair[0], pair[1][0])),
+                       "poisson_ratio")
 
 
-def _pop_unit_pairs(data: dict, path: str, pairs: dict) -> dict[str, float]:
-    out = {}
-    for si, (imp, factor) in pairs.items():
-        if si in data and imp in data:
-            raise SpecError(f"{path}.{imp}", data[imp], f"give {si} or {imp}, not both")
-        if si in data:
-            out[si] = _number(f"{path}.{si}", data.pop(si))
-        elif imp in data:
-            out[si] = _number(f"{path}.{imp}", data.pop(imp)) * factor
-    return out
-
-
-def _done(data: dict, path: str) -> None:
-    if data:
-        key = sorted(data)[0]
-        raise SpecError(f"{path}.{key}", data[key], "unknown key (see templates/ and "
-                        "docs/load.md for every key)")
-
-
-def _table(value: Any, path: str) -> dict:
-    if not isinstance(value, dict):
-        raise SpecError(path, value, "must be a TOML table")
-    return dict(value)
+def _pairs(t: Table, pairs: dict[str, tuple[str, float]]) -> dict[str, float]:
+    found = {si: t.pair(si, imp, factor) for si, (imp, factor) in pairs.items()}
+    return {k: v for k, v in found.items() if v is not None}
 
 
 def parse_load(data: Any) -> LoadSpec:
     """A :class:`LoadSpec` from the ``[load]`` table (SI or inch-pound keys)."""
-    d = _table(data, "load")
-    kw: dict[str, Any] = _pop_unit_pairs(d, "load", _LOAD_KEYS)
+    t = data if isinstance(data, Table) else Table(data, "load")
+    kw: dict[str, Any] = _pairs(t, _LOAD_KEYS)
     for key in ("model", "stiffness"):
-        if key in d:
-            kw[key] = d.pop(key)
-            if not isinstance(kw[key], str):
-                raise SpecError(f"load.{key}", kw[key], "must be a string")
+        if t.has(key):
+            kw[key] = t.get(key, str)
     for key in ("friction", "accuracy_factor"):
-        if key in d:
-            kw[key] = _number(f"load.{key}", d.pop(key))
-    _done(d, "load")
+        if t.has(key):
+            kw[key] = t.number(key)
+    t.done(LOAD_TABLE_KEYS)
     return LoadSpec(**kw)
 
 
-def _parse_material(d: dict, path: str) -> dict[str, float]:
-    kw = _pop_unit_pairs(d, path, _MATERIAL_KEYS)
-    if "poisson_ratio" in d:
-        kw["poisson_ratio"] = _number(f"{path}.poisson_ratio", d.pop("poisson_ratio"))
+def _material_keys(t: Table) -> dict[str, float]:
+    kw = _pairs(t, _MATERIAL_KEYS)
+    if t.has("poisson_ratio"):
+        kw["poisson_ratio"] = t.number("poisson_ratio")
     return kw
 
 
 def parse_material(data: Any) -> Materials:
     """:class:`Materials` from ``[material]`` (shared keys, ``hub`` / ``sleeve`` sub-tables)."""
-    d = _table(data, "material")
-    parts = {p: _table(d.pop(p, {}), f"material.{p}") for p in ("hub", "sleeve")}
-    shared = _parse_material(d, "material")
-    _done(d, "material")
+    t = data if isinstance(data, Table) else Table(data, "material")
+    parts = {p: t.table(p) for p in ("hub", "sleeve")}
+    shared = _material_keys(t)
+    t.done((*MATERIAL_TABLE_KEYS, "hub", "sleeve"))
     out = {}
     for p, sub in parts.items():
-        own = _parse_material(sub, f"material.{p}")
-        _done(sub, f"material.{p}")
+        own = _material_keys(sub)
+        sub.done(MATERIAL_TABLE_KEYS)
         out[p] = Material(**{**shared, **own}, part=p)
     return Materials(**out)
 
 
-__all__ = ["LOAD_MODELS", "LoadSpec", "Material", "Materials", "parse_load", "parse_material"]
+__all__ = ["LOAD_MODELS", "UNIT_SIBLINGS", "LoadSpec", "Material", "Materials", "parse_load",
+           "parse_material"]

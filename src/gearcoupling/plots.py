@@ -9,9 +9,9 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .atomic import atomic_path
-from .errors import ArgumentError, BackendError, SpecError
+from .errors import ArgumentError, BackendError
 from .geometry import hub_flank_model, hub_model, plane_rack, transverse_section
+from .io import atomic_path
 
 if TYPE_CHECKING:  # matplotlib is imported where a plot is drawn
     from matplotlib.axes import Axes
@@ -58,7 +58,7 @@ def figure_axes(ax: Any, shape: tuple[int, int], **kwargs: Any) -> tuple[Figure,
     axes = np.asarray(ax, dtype=object)
     count = shape[0] * shape[1]
     if axes.size != count:
-        raise SpecError("ax", f"{axes.size} Axes", f"must hold {count} Axes for this plot")
+        raise ArgumentError("ax", f"{axes.size} Axes", f"must hold {count} Axes for this plot")
     axes = axes.reshape(shape).squeeze() if count > 1 else axes.ravel()[0]  # as subplots
     return np.ravel(axes)[0].figure, axes
 

@@ -13,18 +13,15 @@ from __future__ import annotations
 import copy
 import math
 import numbers
-import tomllib
-from dataclasses import asdict, dataclass, field, fields, replace
+from dataclasses import asdict, dataclass, field
 from functools import cached_property
-from importlib import resources
 from itertools import pairwise
 from pathlib import Path
 from typing import Any, ClassVar
 
 import numpy as np
 
-from .atomic import require_file
-from .errors import GeometryError, SpecError
+from .errors import ArgumentError, GeometryError, SpecError
 from .geometry import (
     MAX_END_TANGENT_DEG,
     HubModel,
@@ -34,7 +31,8 @@ from .geometry import (
     inv_inverse,
     radius_squared,
 )
-from .loadspec import LoadSpec, Materials, parse_load, parse_material
+from .io import Table, bundled_names, read_toml, resolve_bundled, set_dotted, unknown_key
+from .loadspec import UNIT_SIBLINGS, LoadSpec, Materials, parse_load, parse_material
 
 MM_PER_INCH = 25.4
 UNITS = {"mm": 1.0, "in": MM_PER_INCH}
@@ -48,16 +46,18 @@ TIP_KINDS = ("sphere", "cylinder")
 _ROUNDING_DEG = 1e-9  # slack for degree <-> radian round trips (6° -> 6.000000000000001)
 
 
-def check_misalignment_deg(value: object, field_name: str = "misalignment_deg") -> float:
+def check_misalignment_deg(value: object, field_name: str = "misalignment_deg",
+                           error: type[SpecError] | type[ArgumentError] = SpecError) -> float:
     """A misalignment in degrees, validated once for every caller (0-6°).
 
     Values within ``1e-9°`` outside the range (a degree-radian round trip) are clamped
-    onto it; anything else outside, non-numeric or non-finite raises :class:`SpecError`.
+    onto it; anything else outside, non-numeric or non-finite raises ``error``: a
+    :class:`SpecError` for a spec value, an :class:`ArgumentError` for an argument.
     """
     lo, hi = MISALIGNMENT_RANGE_DEG
     if isinstance(value, bool) or not isinstance(value, numbers.Real) or not (
             math.isfinite(value) and lo - _ROUNDING_DEG <= float(value) <= hi + _ROUNDING_DEG):
-        raise SpecError(field_name, value, f"must be a finite angle from {lo} to {hi} degrees")
+        raise error(field_name, value, f"must be a finite angle from {lo} to {hi} degrees")
     return min(max(float(value), lo), hi)
 
 
@@ -314,7 +314,7 @@ class Sleeve:
                self.outer_diameter, f"must exceed the major diameter {self.major_diameter:.6g} mm")
 
 
-# ---- inspection tolerance limits (issue 13: gearcoupling compare) ----
+# ---- inspection tolerance limits (gearcoupling compare) ----
 INSPECTION_LIMITS = ("fpt", "Fp", "Fr", "f_Halpha", "f_Hbeta", "C_beta", "thickness")
 
 
@@ -367,13 +367,24 @@ class CouplingSpec:
 
     @property
     def design_misalignment_deg(self) -> float:
-        """The design misalignment in degrees, exactly inside 0-6° (no round-trip excess)."""
-        return check_misalignment_deg(math.degrees(self.design_misalignment),
+        """The design misalignment in degrees to 12 digits (as the file gave it: no
+        round-trip excess through radians), inside 0-6°."""
+        return check_misalignment_deg(float(f"{math.degrees(self.design_misalignment):.12g}"),
                                       "design_misalignment_deg")
 
     def replace(self, **changes: Any) -> CouplingSpec:
-        """A copy with dotted-path changes in mm/radians, re-validated."""
-        return _replace_dotted(self, changes)
+        """A copy with dotted file keys changed, re-read and re-validated.
+
+        Overrides follow one rule everywhere: they are keys of the spec file, in the units
+        of the file they change. The file of a resolved spec is :meth:`to_dict`, in mm and
+        degrees, so here ``{"hub.crowning.radius": 80.0}`` is 80 mm and
+        ``{"tooth.pressure_angle_deg": 25}`` 25°; ``None`` removes a key (its default
+        applies); one key of an SI/inch-pound pair replaces the other.
+        """
+        data = self.to_dict()
+        for key, value in changes.items():
+            set_dotted(data, key, value, UNIT_SIBLINGS)
+        return spec_from_dict(data, name=self.name)
 
     @cached_property
     def derived(self) -> dict[str, float]:
@@ -392,42 +403,11 @@ class CouplingSpec:
         out["material"] = {p: {k: v for k, v in m.items() if k != "part"}
                            for p, m in d["material"].items()}
         cr = out["hub"]["crowning"]
-        for key in ("table_s", "table_kappa", "table_z", "table_drop"):
-            cr[key] = list(cr[key])
-        return json_safe(out)
-
-
-def json_safe(data: Any) -> Any:
-    """Plain data with infinite floats as the strings ``"inf"``/``"-inf"`` (as TOML writes
-    them); NaN is a bug and raises ``SpecError``."""
-    if isinstance(data, dict):
-        return {k: json_safe(v) for k, v in data.items()}
-    if isinstance(data, list | tuple):
-        return [json_safe(v) for v in data]
-    if isinstance(data, float):
-        if math.isnan(data):
-            raise SpecError("spec data", data, "finite numbers only")
-        if math.isinf(data):
-            return "inf" if data > 0 else "-inf"
-    return data
-
-
-def _replace_dotted(obj, changes: dict[str, Any]):
-    groups: dict[str, dict[str, Any]] = {}
-    direct = {}
-    for key, value in changes.items():
-        head, _, rest = key.partition(".")
-        if rest:
-            groups.setdefault(head, {})[rest] = value
-        else:
-            direct[key] = value
-    names = {f.name for f in fields(obj)}
-    for head, sub in groups.items():
-        _check(head in names, head, None, f"unknown field; allowed: {sorted(names)}")
-        direct[head] = _replace_dotted(getattr(obj, head), sub)
-    unknown = set(direct) - names
-    _check(not unknown, ",".join(sorted(unknown)), None, f"unknown field; allowed: {sorted(names)}")
-    return replace(obj, **direct)
+        for key in ("s", "kappa", "z", "drop"):  # the file's keys of a tabulated path
+            samples = list(cr.pop(f"table_{key}"))
+            if samples:
+                cr[key] = samples
+        return out
 
 
 # --------------------------------------------------------------------------- loading
@@ -470,77 +450,6 @@ DEFAULT_RULES: dict[str, str] = {
 }
 
 
-class _Table:
-    """Reads one TOML table with unit conversion and reports unknown keys."""
-
-    def __init__(self, data: Any, path: str, scale: float, defaulted: set[str] | None = None):
-        _check(isinstance(data, dict), path or "spec", data, "must be a TOML table")
-        self.data, self.path, self.scale = dict(data), path, scale
-        self.defaulted = set() if defaulted is None else defaulted
-
-    def _name(self, key: str) -> str:
-        return f"{self.path}.{key}" if self.path else key
-
-    def table(self, key: str) -> _Table:
-        return _Table(self.data.pop(key, {}), self._name(key), self.scale, self.defaulted)
-
-    def _number(self, key: str, value: Any) -> float:
-        if isinstance(value, bool) or not isinstance(value, int | float) or math.isnan(value):
-            raise SpecError(self._name(key), value, "must be a number")
-        return float(value)
-
-    def has(self, key: str) -> bool:
-        return key in self.data
-
-    def length(self, key: str, default: float | None = None) -> float:
-        if key not in self.data:
-            if default is None:
-                raise SpecError(self._name(key), None, "is required (a length)")
-            self.defaulted.add(self._name(key))
-            return default
-        return self._number(key, self.data.pop(key)) * self.scale
-
-    def number(self, key: str, default: float | None = None) -> float:
-        if key not in self.data:
-            if default is None:
-                raise SpecError(self._name(key), None, "is required (a number)")
-            return default
-        return self._number(key, self.data.pop(key))
-
-    def angle(self, key: str, default_deg: float | None = None) -> float:
-        return math.radians(self.number(key, default_deg))
-
-    def integer(self, key: str) -> int:
-        value = self.data.pop(key, None)
-        _check(isinstance(value, int) and not isinstance(value, bool), self._name(key), value,
-               "is required and must be a whole number")
-        return value
-
-    def string(self, key: str, default: str) -> str:
-        value = self.data.pop(key, default)
-        _check(isinstance(value, str), self._name(key), value, "must be a string")
-        return value
-
-    def array(self, key: str, scale: float) -> tuple[float, ...]:
-        value = self.data.pop(key, [])
-        _check(isinstance(value, list), self._name(key), value, "must be an array of numbers")
-        return tuple(self._number(key, v) * scale for v in value)
-
-    def done(self) -> None:
-        if self.data:
-            key = sorted(self.data)[0]
-            _unknown_key(self._name(key), self.data[key], SPEC_KEYS.get(self.path, ()))
-
-
-def _unknown_key(name: str, value: Any, known: tuple[str, ...]) -> None:
-    import difflib
-
-    close = difflib.get_close_matches(name.rpartition(".")[2], known, n=1)
-    hint = f"did you mean {close[0]!r}? " if close else ""
-    raise SpecError(name, value, f"unknown key ({hint}allowed here: {', '.join(known)}; "
-                    "see templates/ for every key)")
-
-
 def check_keys(data: Any, path: str = "") -> None:
     """Refuse the first unknown key of a spec file (depth-first), before anything else is
     read, so that a misspelt key is named rather than reported as a missing one."""
@@ -550,7 +459,7 @@ def check_keys(data: Any, path: str = "") -> None:
     for key in sorted(data):
         name = f"{path}.{key}" if path else key
         if key not in known:
-            _unknown_key(name, data[key], known)
+            raise unknown_key(name, data[key], known)
         check_keys(data[key], name)
 
 
@@ -563,7 +472,7 @@ def spec_from_dict(data: dict[str, Any], name: str = "custom") -> CouplingSpec:
     check_keys(data)
     defaulted: set[str] = set()
     try:
-        return _build(_Table(copy.deepcopy(data), "", 1.0, defaulted), name)
+        return _build(Table(copy.deepcopy(data), defaulted=defaulted), name)
     except SpecError as err:
         if err.field not in defaulted:
             raise
@@ -625,7 +534,7 @@ def default_dedendum(tooth: ToothSystem, thickness: float, crowning: Crowning,
     return d
 
 
-def _build(root: _Table, name: str) -> CouplingSpec:
+def _build(root: Table, name: str) -> CouplingSpec:
     units = root.string("units", "mm")
     _check(units in UNITS, "units", units, f"one of {tuple(UNITS)}")
     root.scale = UNITS[units]
@@ -646,7 +555,7 @@ def _build(root: _Table, name: str) -> CouplingSpec:
     else:
         module = t.length("module")
     tooth = ToothSystem(teeth, module, t.angle("pressure_angle_deg", 20.0))
-    t.done()
+    t.done(SPEC_KEYS.get(t.where, ()))
     m, R = module, tooth.pitch_radius
 
     s = root.table("sleeve")
@@ -682,7 +591,7 @@ def _build(root: _Table, name: str) -> CouplingSpec:
         table_drop=c.array("drop", root.scale),
         generation=c.string("generation", "enveloped"),
     )
-    c.done()
+    c.done(SPEC_KEYS.get(c.where, ()))
     # the crown drop thins the teeth toward the face ends: keep the tip below where they
     # would be pointed there too (a sphere tip falls with z by itself)
     r_hub_pointed = _pointed_radius(tooth, thickness)
@@ -696,21 +605,21 @@ def _build(root: _Table, name: str) -> CouplingSpec:
     tip_default = min(tip_default, r_hub_pointed - max(drop_end, 0.0)
                       - 0.25 * (r_hub_pointed - R))
     tip = HubTip(tip_kind, tip_t.length("diameter", 2 * tip_default))
-    tip_t.done()
+    tip_t.done(SPEC_KEYS.get(tip_t.where, ()))
     root_t = h.table("root")
     dedendum = root_t.length("dedendum") if root_t.has("dedendum") else root_t.length(
         "dedendum", default_dedendum(tooth, thickness, crowning, face))
     _positive("hub.root.dedendum", dedendum)
     hub_root = HubRoot(dedendum, root_t.length("fillet_radius",
                                                default_fillet_radius(tooth, thickness, dedendum)))
-    root_t.done()
+    root_t.done(SPEC_KEYS.get(root_t.where, ()))
     root_dia = 2 * (R - hub_root.dedendum)
     b = h.table("body")
     body = HubBody(b.length("bore_diameter", max(0.0, root_dia - 2 * max(3 * m, 0.15 * R))),
                    b.length("length", face))
-    b.done()
+    b.done(SPEC_KEYS.get(b.where, ()))
     hub = Hub(face, thickness, tip, hub_root, crowning, body)
-    h.done()
+    h.done(SPEC_KEYS.get(h.where, ()))
 
     r_space_pointed = _pointed_radius(tooth, space_width)
     major = s.length("major_diameter", 2 * min(R + 1.25 * m,
@@ -730,13 +639,13 @@ def _build(root: _Table, name: str) -> CouplingSpec:
             0.25 * m, 0.3 * (r_space_pointed - 0.5 * major) * math.tan(tooth.pressure_angle))),
         outer_diameter=s.length("outer_diameter", major + 2 * max(3 * m, 0.1 * R)),
     )
-    s.done()
-    load = parse_load(root.data.pop("load", {}))
-    material = parse_material(root.data.pop("material", {}))
-    ins = root.table("inspection")  # issue 13: tolerance limits for compare
+    s.done(SPEC_KEYS.get(s.where, ()))
+    load = parse_load(root.table("load"))
+    material = parse_material(root.table("material"))
+    ins = root.table("inspection")  # tolerance limits for compare
     inspection = InspectionLimits(**{k: ins.length(k, math.inf) for k in INSPECTION_LIMITS})
-    ins.done()
-    root.done()
+    ins.done(SPEC_KEYS.get(ins.where, ()))
+    root.done(SPEC_KEYS.get(root.where, ()))
     return CouplingSpec(tooth, hub, sleeve, misalignment, name=name, units=units, load=load,
                         material=material, inspection=inspection)
 
@@ -759,50 +668,14 @@ def _pointed_radius(tooth: ToothSystem, arc_width: float) -> float:
     return tooth.base_radius / math.cos(alpha)
 
 
-def _set_dotted(data: dict[str, Any], key: str, value: Any) -> None:
-    parts = key.split(".")
-    node = data
-    for part in parts[:-1]:
-        nxt = node.setdefault(part, {})
-        _check(isinstance(nxt, dict), key, value, f"'{part}' is a value, not a table")
-        node = nxt
-    node[parts[-1]] = value
-
-
-def parse_override(text: str) -> tuple[str, Any]:
-    """Parse a CLI override ``KEY=VALUE``; the value is read as TOML, else as a string."""
-    key, sep, raw = text.partition("=")
-    _check(bool(sep) and bool(key.strip()), "--set", text, "must look like KEY=VALUE, "
-           "e.g. hub.crowning.radius=80")
-    try:
-        value = tomllib.loads(f"v = {raw.strip()}")["v"]
-    except tomllib.TOMLDecodeError:
-        value = raw.strip()
-    return key.strip(), value
-
-
-def template_dir() -> Path:
-    """Folder of the bundled templates (in the wheel, or the repo's ``templates/``)."""
-    packaged = resources.files("gearcoupling") / "templates"
-    if packaged.is_dir():
-        return Path(str(packaged))
-    return Path(__file__).resolve().parents[2] / "templates"
-
-
 def template_names() -> list[str]:
     """Names of the bundled templates."""
-    return sorted(p.stem for p in template_dir().glob("*.toml"))
+    return bundled_names("templates")
 
 
 def resolve_spec_path(name_or_path: str | Path) -> Path:
     """A template name or a file path, as a path to a TOML file."""
-    p = Path(name_or_path)
-    if p.suffix == ".toml" or p.exists() or p.is_symlink():
-        return require_file(p, "spec", "a TOML spec file or a template name")
-    candidate = template_dir() / f"{name_or_path}.toml"
-    _check(candidate.is_file(), "spec", str(name_or_path),
-           f"not a file and not a template; templates: {template_names()}")
-    return candidate
+    return resolve_bundled("templates", name_or_path)
 
 
 def load_spec(name_or_path: str | Path, **overrides: Any) -> CouplingSpec:
@@ -811,17 +684,9 @@ def load_spec(name_or_path: str | Path, **overrides: Any) -> CouplingSpec:
     >>> spec = load_spec("renzo-1967", **{"hub.crowning.radius": 2.0})  # doctest: +SKIP
     """
     path = resolve_spec_path(name_or_path)
-    try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
-    except tomllib.TOMLDecodeError as err:
-        raise SpecError(str(path), None, f"is not valid TOML: {err}") from err
-    except UnicodeDecodeError as err:
-        raise SpecError(str(path), None, f"is not UTF-8 text (byte {err.start}): save the "
-                        "spec file as UTF-8") from err
-    except OSError as err:
-        raise SpecError(str(path), None, f"cannot be read: {err.strerror}") from err
+    data, _ = read_toml(path)
     for key, value in overrides.items():
-        _set_dotted(data, key, value)
+        set_dotted(data, key, value, UNIT_SIBLINGS)
     return spec_from_dict(data, name=path.stem)
 
 
@@ -835,7 +700,6 @@ __all__ = [
     "Sleeve",
     "ToothSystem",
     "load_spec",
-    "parse_override",
     "spec_from_dict",
     "template_names",
 ]

@@ -21,7 +21,7 @@ from .plots import (
     plot_clearance_map,
     plot_contact_path,
 )
-from .result import CSV_COLUMNS, SweepResult, require_finite
+from .result import CSV_COLUMNS, SweepResult
 from .tooth_map import check_angles, check_misalignment, flank_minima, sweep
 
 __all__ = [
@@ -46,6 +46,5 @@ __all__ = [
     "plot_clearance",
     "plot_clearance_map",
     "plot_contact_path",
-    "require_finite",
     "sweep",
 ]

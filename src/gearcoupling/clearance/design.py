@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import SpecError
+from ..errors import ArgumentError
 from ..geometry import sleeve_model
 from ..spec import MISALIGNMENT_RANGE_DEG
 from .kernel import DEFAULT_TOLERANCE_MM, FACE_END, minimise
@@ -78,7 +78,8 @@ def pivot_on_face_end(spec, misalignment_rad: float) -> bool:
 def critical_misalignment_deg(spec, *, tolerance_deg: float = ANGLE_TOLERANCE_DEG
                               ) -> float | None:
     """Smallest misalignment (degrees) at which the contact on the pivot teeth runs onto a
-    face end (DESIGN.md §5: it travels axially by about ``R_c cot(phi) i``), by bisection
+    face end (docs/conventions.md, Tooth geometry: it travels axially by about ``R_c cot(phi)
+    i``), by bisection
     to ``tolerance_deg``; below it the contact stays on the flank.
 
     The pivot teeth carry the largest axial travel. Near the contacting teeth the
@@ -162,11 +163,11 @@ def mesh_angles(offset_mm: float, angle_deg: float, span_mm: float, *,
     for name, value in (("offset_mm", offset_mm), ("angle_deg", angle_deg),
                         ("span_mm", span_mm)):
         if not math.isfinite(value):
-            raise SpecError(name, value, "must be finite")
+            raise ArgumentError(name, value, "must be finite")
     if span_mm <= 0:
-        raise SpecError("span_mm", span_mm, "distance between the hub midplanes must be > 0 mm")
+        raise ArgumentError("span_mm", span_mm, "distance between the hub midplanes must be > 0 mm")
     if offset_mm < 0 or not 0 <= angle_deg < 90:
-        raise SpecError("offset_mm/angle_deg", (offset_mm, angle_deg),
+        raise ArgumentError("offset_mm/angle_deg", (offset_mm, angle_deg),
                         "offset must be >= 0 mm and the angle 0-90°")
     az = math.radians(offset_azimuth_deg)
     ob = np.array([offset_mm * math.cos(az), offset_mm * math.sin(az), span_mm])
@@ -192,7 +193,7 @@ def double_engagement(spec, offset_mm: float, angle_deg: float, span_mm: float,
                        angle_azimuth_deg=kwargs.pop("angle_azimuth_deg", 0.0))
     for name, value in (("mesh A angle", mesh.a_deg), ("mesh B angle", mesh.b_deg)):
         if value > MISALIGNMENT_RANGE_DEG[1]:
-            raise SpecError(name, round(value, 6), f"must be at most "
+            raise ArgumentError(name, round(value, 6), f"must be at most "
                             f"{MISALIGNMENT_RANGE_DEG[1]}°: reduce the offset or angle, or "
                             "lengthen the span")
     return mesh, sweep(spec, mesh.a_deg, angles_deg, **kwargs), sweep(spec, mesh.b_deg,

@@ -197,14 +197,24 @@ class FlankTable:
         return r, np.arcsin(self.y_at(self.z_coefficients(z), t) / r)
 
 
+BLAS_BLOCK = 250_000  # multiply-adds per BLAS call: below OpenBLAS's threading threshold
+
+
 def _product(mat: NDArray[np.float64], v: NDArray[np.float64]) -> NDArray[np.float64]:
     """``mat @ v`` for a small ``mat`` (``(rows, nz)``): numpy's own loop below 20000
-    columns, BLAS above. A threaded BLAS wakes its threads for each product: 16 ms for a
-    (13, 24) x (24, 2000) product on a loaded 2-core machine against 0.4 ms in one
-    thread (measured), and the sweep makes hundreds of them."""
-    if v.shape[1] <= 20000:
+    columns, BLAS above in blocks of columns small enough to run in the calling thread. A
+    threaded BLAS wakes its threads for each product: 16 ms for a (13, 24) x (24, 2000)
+    product on a loaded 2-core machine against 0.4 ms in one thread (measured), and the
+    sweep makes hundreds of them; a (12, 24) x (24, 58000) product took 1-16 ms threaded
+    and 1.0-1.2 ms in blocks (measured, loaded machine)."""
+    n = v.shape[1]
+    if n <= 20000:
         return np.einsum("ij,jn->in", mat, v)
-    return mat @ v
+    out = np.empty((mat.shape[0], n))
+    step = max(BLAS_BLOCK // max(mat.shape[0] * mat.shape[1], 1), 64)
+    for i in range(0, n, step):
+        np.matmul(mat, v[:, i:i + step], out=out[:, i:i + step])
+    return out
 
 
 def clenshaw(coef: NDArray[np.float64], t: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -240,8 +250,9 @@ def kink_edges(m: HubModel) -> NDArray[np.float64]:
     curvature jumps inside the face (``end_round``'s start ``s0``).
 
     The revolved flank carries the jump in the plane ``z = qz(s0)``; the enveloped one
-    along ``z = qz(s0) - h sin e(s0)`` over the rack depths ``h`` of the flank (DESIGN.md
-    §3), so there the jump gets a piece of its own, that band (a narrow piece converges
+    along ``z = qz(s0) - h sin e(s0)`` over the rack depths ``h`` of the flank
+    (docs/conventions.md, Tooth geometry), so there the jump gets a piece of its own, that band (a
+    narrow piece converges
     fast although it is not smooth).
     """
     hf = m.half_face

@@ -5,7 +5,7 @@ centre of the sleeve space it sits in) and axial position ``zq``, the sleeve sur
 that radius is the straight involute flank (``sm.r_form <= rq <= sm.r_fillet``), the root
 fillet above it or the tip chamfer below it. Against the involute the gaps are exact:
 
-- circumferential ``rq * (aq + sigma(rq)/2)`` (DESIGN.md §2, Wei eq. 9),
+- circumferential ``rq * (aq + sigma(rq)/2)`` (docs/conventions.md, Frames, Wei eq. 9),
 - normal ``r_b * (aq + sigma(rq)/2)``: involutes of one base circle are parallel curves.
 
 The hub flank (tooth 0, cw) is parametrised by ``(z, t)`` (see :mod:`.flank_table`); at
@@ -288,8 +288,9 @@ class _Planes:
         """Minima over the active ``t`` interval of both gaps: ``V, T, K`` each ``(6, n)``:
         (circumferential, normal) over the interval, then at its lower end and at its
         upper end alone (branches whose minima over ``z`` are found apart).
-        ``interior`` (bool or ``(n,)`` bool) selects the rows searched inside the interval
-        (the others, profile-end branch rows, want only the ends).
+        ``interior`` (bool, ``(n,)`` or ``(2, n)`` bool: per row, or per gap and row)
+        selects what is searched inside the interval (profile-end branch rows want only
+        the ends; a row of one measure only its own gap).
         ``exact=False`` (for the coarse search) solves the sleeve tip edge to 1e-7 only:
         values at real points, so never below the exact minimum. (Cutting the interior
         search short there misled the bracket: it must converge.)"""
@@ -298,9 +299,9 @@ class _Planes:
             1e-11 if exact else 1e-7)
         fa = self._f_or(t_lo, 0.0, self.g0)
         fh = self._f_or(t_hi, 1.0, self.g1)
-        want = np.broadcast_to(np.asarray(interior, dtype=bool), (n,))
+        want = np.broadcast_to(np.asarray(interior, dtype=bool), (2, n))
         fb = fh.copy()  # the upper end of [t_lo, t_a] (only the interior search uses it)
-        sub = np.flatnonzero(want & (t_a != t_hi))
+        sub = np.flatnonzero(np.any(want, axis=0) & (t_a != t_hi))
         if sub.size:
             fb[:, sub] = np.stack(self.f(t_a[sub], sub))
         # rows not searched keep t = 0, f = inf: only their ends count
@@ -333,12 +334,13 @@ class _Planes:
     def _interior(self, t_lo, t_a, fa, fb, feasible, iters: int = 12):
         """Interior minima of both gaps on ``[t_lo, t_a]``: where the one-sided slopes at
         the ends point inward, the root of the slope (central differences) by secant steps
-        kept inside the shrinking bracket, to 1e-7 in ``t``. Returns ``t, f`` each
-        ``(2, n)`` (``inf`` where the minimum is at an end)."""
+        kept inside the shrinking bracket, to 1e-7 in ``t``; ``feasible (2, n)``: the
+        gaps and rows to search. Returns ``t, f`` each ``(2, n)`` (``inf`` where the
+        minimum is at an end or not searched)."""
         n = t_lo.shape[0]
         T, F = np.zeros((2, n)), np.full((2, n), np.inf)
         d = 1e-6
-        idx0 = np.flatnonzero(feasible & (t_a - t_lo > 8 * d))
+        idx0 = np.flatnonzero(np.any(feasible, axis=0) & (t_a - t_lo > 8 * d))
         if idx0.size == 0:
             return T, F
         a0, b0 = t_lo[idx0], t_a[idx0]
@@ -346,7 +348,7 @@ class _Planes:
         GA = (fab[:, 0] - fa[:, idx0]) / d
         GB = (fb[:, idx0] - fab[:, 1]) / d
         # both gaps' searches in one batch: row j searches gap mis[j] of plane idx[j]
-        inner = (GA < 0) & (GB > 0)  # (2, m0)
+        inner = (GA < 0) & (GB > 0) & feasible[:, idx0]  # (2, m0)
         mis, pos = np.nonzero(inner)
         if mis.size == 0:
             return T, F
@@ -439,13 +441,14 @@ class _PlaneEvaluator:
         m = self.meas[rows]
         out = np.empty(rows.size), np.empty(rows.size), np.empty(rows.size, np.int8)
         pitch = (m == 2) | (m == 3)
-        ends = m >= 4  # profile-end branch rows: no interior search
+        # the interior search of a row's own gap only (profile-end branch rows: none)
+        own = np.stack([m == 0, m == 1])
         for need, sel in (((True, False), ~pitch), ((False, True), pitch)):
             idx = np.flatnonzero(sel)
             if idx.size:
                 Vr, Tr, Kr = _plane_minima(self.table, self.sl, self.mis, z[idx],
                                            self.theta[rows[idx]], self.R, need=need,
-                                           interior=~ends[idx])
+                                           interior=own[:, idx])
                 c = np.arange(idx.size)
                 for o, X in zip(out, (Vr, Tr, Kr), strict=True):
                     o[idx] = X[m[idx], c]

@@ -22,8 +22,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..atomic import atomic_path
 from ..geometry import map_polar, sleeve_model
+from ..io import atomic_path
 from ..plots import figure_axes
 from .design import binding_angle_deg, critical_misalignment_deg, min_backlash_rad
 from .flank_table import flank_table

@@ -9,9 +9,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..atomic import write_csv_rows
 from ..errors import ArgumentError, GeometryError
-from ..geometry import FLANKS
+from ..geometry import FLANKS, renzo_z0_mm
+from ..io import write_csv_rows
 from ..tables import dataframe
 from .kernel import KINDS, NONE
 
@@ -163,12 +163,12 @@ class SweepResult:
             "half_face_mm": self.half_face_mm,
         }
         if self.misalignment_deg > 0:
-            out["renzo_z0_mm"] = (0.5 * self._crown_radius() * math.tan(i) ** 2
-                                  / math.tan(math.radians(self.pressure_angle_deg)))
+            out["renzo_z0_mm"] = renzo_z0_mm(self._crown_radius(), i,
+                                             math.radians(self.pressure_angle_deg))
             out["renzo_z0_circumferential_mm"] = out["renzo_z0_mm"] / math.cos(
                 math.radians(self.pressure_angle_deg))
         out.update(self.design)
-        return _finite(out)
+        return out
 
     def _crown_radius(self) -> float:
         return float(self.design.get("crowning_radius_midplane_mm", math.inf))
@@ -194,37 +194,3 @@ class SweepResult:
                            float(self.pitch_clearance_mm[f, k, j]),
                            float(self.contact_z_mm[f, k, j]), float(self.contact_r_mm[f, k, j]),
                            str(names[self.contact_kind[f, k, j]]))
-
-
-def require_finite(data, what: str):
-    """``data`` (nested dicts, lists, numbers, ``None``) after checking it holds no NaN;
-    else :class:`~gearcoupling.errors.GeometryError` naming ``what`` and the key."""
-    def walk(x, key):
-        if isinstance(x, dict):
-            for k, v in x.items():
-                walk(v, f"{key}.{k}" if key else str(k))
-        elif isinstance(x, list | tuple | np.ndarray):
-            for j, v in enumerate(np.asarray(x, dtype=object).ravel()):
-                walk(v, f"{key}[{j}]")
-        elif isinstance(x, float | np.floating) and math.isnan(x):
-            raise GeometryError(f"{what}: {key} is NaN (a kernel fault: please report the "
-                                "spec); nothing was written")
-
-    walk(data, "")
-    return data
-
-
-def _finite(data):
-    """Replace infinite floats (no contact) by None so JSON stays valid; NaN raises."""
-    if isinstance(data, dict):
-        return {k: _finite(v) for k, v in data.items()}
-    if isinstance(data, list | tuple):
-        return [_finite(v) for v in data]
-    if isinstance(data, float | np.floating):
-        if math.isnan(data):
-            raise GeometryError("sweep summary: a value is NaN (a kernel fault: please "
-                                "report the spec)")
-        return float(data) if math.isfinite(data) else None
-    if isinstance(data, np.integer):
-        return int(data)
-    return data

@@ -8,7 +8,7 @@ from dataclasses import fields
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..errors import SpecError
+from ..errors import ArgumentError
 from ..geometry import sleeve_model, turning_angles
 from ..spec import check_misalignment_deg
 from .flank_table import DEFAULT_TABLE_TOLERANCE_MM, flank_table
@@ -23,14 +23,14 @@ _KEYS = {"clearance": "circumferential", "normal": "normal", "pitch": "pitch_cir
 
 def check_misalignment(misalignment_deg: float) -> float:
     """The misalignment in radians, or :class:`SpecError` outside 0-6°."""
-    return math.radians(check_misalignment_deg(misalignment_deg))  # the one check
+    return math.radians(check_misalignment_deg(misalignment_deg, error=ArgumentError))
 
 
 def check_angles(angles_deg: ArrayLike) -> np.ndarray:
     """Rotation angles as a finite 1-D float array (degrees)."""
     a = np.atleast_1d(np.asarray(angles_deg, dtype=float))
     if a.ndim != 1 or a.size == 0 or not np.all(np.isfinite(a)):
-        raise SpecError("angles_deg", angles_deg, "must be a non-empty 1-D list of finite "
+        raise ArgumentError("angles_deg", angles_deg, "must be a non-empty 1-D list of finite "
                         "angles in degrees")
     return a
 
@@ -98,7 +98,7 @@ def sweep(spec, misalignment_deg: float, angles_deg: ArrayLike, *,
     misalignment_deg : float
         Misalignment ``i`` in degrees (0-6).
     angles_deg : (n_angle,) float
-        Rotations ``psi`` of the coupling in degrees (DESIGN.md §2).
+        Rotations ``psi`` of the coupling in degrees (docs/conventions.md, Frames).
     tolerance_mm : float
         Accuracy of every minimum (mm); also bounds the flank table error. The default
         1e-7 mm costs about twice 1e-4 mm (see ``benchmarks/bench_sweep.py``).

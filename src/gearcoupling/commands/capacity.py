@@ -4,12 +4,13 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..errors import SpecError
+from ..errors import ArgumentError, SpecError
+from ..io import parse_override
 from ..loading import plot_capacity, write_capacity_csv
 from ..loadspec import LOAD_MODELS
 from ..plots import save_figure
 from ..reporting import CapacityComparison, compare_capacity, comparison_range
-from ..spec import load_spec, parse_override
+from ..spec import load_spec
 from .common import (
     add_spec_arguments,
     count,
@@ -48,8 +49,8 @@ def degree_list(text: str) -> list[float]:
     parse = number_in(0.0, 6.0, "degrees")
     values = [parse(item.strip()) for item in text.split(",") if item.strip()]
     if len(set(values)) < 2:
-        raise SpecError("--misalignments", text, "at least two different angles, e.g. "
-                        "0,0.5,1,2")
+        raise ArgumentError("--misalignments", text, "at least two different angles, e.g. "
+                            "0,0.5,1,2")
     return values
 
 
@@ -68,14 +69,14 @@ def _compared_spec(text: str, overrides: dict):
     try:
         return load_spec(text, **overrides)
     except SpecError as err:
-        raise SpecError("--compare", text, err.allowed if err.field == "spec" else str(err)) \
+        raise ArgumentError("--compare", text, err.allowed if err.field == "spec" else str(err)) \
             from None
 
 
 def run(args) -> int:
     if args.misalignments is not None and (args.max is not None or args.count is not None):
-        raise SpecError("--misalignments", ",".join(map(str, args.misalignments)),
-                        "give either --misalignments or --max/--count")
+        raise ArgumentError("--misalignments", ",".join(map(str, args.misalignments)),
+                            "give either --misalignments or --max/--count")
     spec = spec_from_args(args)
     overrides = dict(parse_override(t) for t in args.overrides)
     specs = [spec, *(_compared_spec(s, overrides) for s in args.compare)]

@@ -7,8 +7,8 @@ Writes ``charts.png`` (profile and lead traces per flank with the evaluation ran
 
 from __future__ import annotations
 
-from ..atomic import write_json
 from ..hob import measuring_charts, plot_measuring_charts, write_nominal_csv
+from ..io import write_json
 from ..plots import save_figure
 from .common import add_spec_arguments, count, number_in, output_dir, spec_from_args
 

@@ -8,9 +8,9 @@ from collections.abc import Callable
 from contextlib import contextmanager
 from pathlib import Path
 
-from ..atomic import default_output_dir
-from ..errors import SpecError
-from ..spec import CouplingSpec, check_misalignment_deg, load_spec, parse_override
+from ..errors import ArgumentError
+from ..io import default_output_dir, parse_override
+from ..spec import CouplingSpec, check_misalignment_deg, load_spec
 
 MAX_ANGLES = 100_000  # rotation angles per turn a command accepts (memory grows with it)
 MAX_TEETH = 300  # the documented range of teeth is 6-300
@@ -91,7 +91,7 @@ def misalignment_deg(args: argparse.Namespace, spec: CouplingSpec) -> float:
     checked once by :func:`~gearcoupling.spec.check_misalignment_deg`)."""
     if args.misalignment is None:
         return spec.design_misalignment_deg
-    return check_misalignment_deg(args.misalignment, "--misalignment")
+    return check_misalignment_deg(args.misalignment, "--misalignment", ArgumentError)
 
 
 def spec_from_args(args: argparse.Namespace) -> CouplingSpec:
@@ -101,7 +101,7 @@ def spec_from_args(args: argparse.Namespace) -> CouplingSpec:
 
 def output_dir(args: argparse.Namespace, spec: CouplingSpec) -> Path:
     """``-o DIR`` if given, else ``outputs/<sanitised spec name>``: a spec's ``name`` never
-    chooses where files go (see :func:`~gearcoupling.atomic.default_output_dir`)."""
+    chooses where files go (see :func:`~gearcoupling.io.default_output_dir`)."""
     given = getattr(args, "output", None)
     return ensure_dir(Path(given) if given else default_output_dir(spec.name))
 
@@ -112,12 +112,12 @@ def ensure_dir(out: Path, field: str = "-o") -> Path:
     try:
         out.mkdir(parents=True, exist_ok=True)
     except FileExistsError:
-        raise SpecError(field, str(out), "names an existing file: give a folder") from None
+        raise ArgumentError(field, str(out), "names an existing file: give a folder") from None
     except OSError as err:
-        raise SpecError(field, str(out), f"cannot create the output folder: {err.strerror}") \
+        raise ArgumentError(field, str(out), f"cannot create the output folder: {err.strerror}") \
             from None
     if not out.is_dir():
-        raise SpecError(field, str(out), "names an existing file: give a folder")
+        raise ArgumentError(field, str(out), "names an existing file: give a folder")
     return out
 
 

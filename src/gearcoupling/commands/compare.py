@@ -13,9 +13,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..atomic import require_file, write_json
-from ..errors import SpecError
-from ..hob import write_csv
+from ..errors import ArgumentError, SpecError
 from ..inspection import (
     GRADES,
     LIMITS,
@@ -27,6 +25,7 @@ from ..inspection import (
     plot_inspection,
     write_deviation_ply,
 )
+from ..io import require_file, write_csv_records, write_json
 from ..plots import save_figure
 from .common import add_spec_arguments, count, output_dir, progress, spec_from_args
 
@@ -60,11 +59,11 @@ def parse_limits(items: list[str]) -> dict[str, float]:
     for item in items:
         key, sep, value = item.partition("=")
         if not sep:
-            raise SpecError("--limit", item, "NAME=MM, e.g. fpt=0.012")
+            raise ArgumentError("--limit", item, "NAME=MM, e.g. fpt=0.012")
         try:
             out.update(check_limits({key.strip(): value.strip()}))
-        except SpecError as err:
-            raise SpecError("--limit", item, err.allowed) from None
+        except ArgumentError as err:
+            raise ArgumentError("--limit", item, err.allowed) from None
     return out
 
 
@@ -75,7 +74,7 @@ def run(args) -> int:
     graded = {} if args.grade is None else grade_limits(spec, args.grade, "--grade")
     limits = {**graded, **parse_limits(args.limit)}
     for f in args.files:  # before the output folder is made (the reader checks the rest)
-        require_file(f, "file", "a scan or mesh file (STL/PLY/OBJ, CSV/XYZ)")
+        require_file(f, "file", "a scan or mesh file (STL/PLY/OBJ, CSV/XYZ)", ArgumentError)
     out = output_dir(args, spec)
     with progress("compare", 2 + STAGES * len(args.files)) as update:
         result = compare_part(spec, args.files[0],
@@ -84,13 +83,13 @@ def run(args) -> int:
                               coarse=args.coarse, fit_points=args.fit_points, progress=update)
     units = ["lengths in mm, + = material excess / toward increasing polar angle"]
     if len(args.files) == 2:
-        files = [write_csv(out / "comparison.csv", result.rows(), units)]
+        files = [write_csv_records(out / "comparison.csv", result.rows(), units)]
         files.append(write_json(out / "comparison.json", {**result.summary(),
                                                           "files": [str(f) for f in files]}))
         reports = [result.a, result.b]
     else:
         reports = [result]
-        files = [write_csv(out / "inspection.csv", result.rows(), units),
+        files = [write_csv_records(out / "inspection.csv", result.rows(), units),
                  save_figure(plot_inspection(result), out / "inspection.png"),
                  save_figure(plot_deviation_map(result), out / "deviation_map.png"),
                  write_deviation_ply(result, out / "deviation.ply")]

@@ -11,8 +11,8 @@ import sys
 from collections.abc import Callable
 from pathlib import Path
 
-from ..atomic import write_json
 from ..fea import FORMATS, check_size, mesh_part, region_ids, sector_teeth, write_mesh
+from ..io import write_json
 from .common import (
     MAX_TEETH,
     add_spec_arguments,

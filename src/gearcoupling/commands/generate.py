@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import sys
 
-from ..errors import SpecError
+from ..errors import ArgumentError
 from ..export import formats as registered
 from ..outputs import PART_NAMES, write_parts
 from .common import add_spec_arguments, output_dir, positive_length, progress, spec_from_args
@@ -35,7 +35,7 @@ def parse_list(text: str, allowed, option: str) -> list[str]:
     items = [t.strip().lower() for t in text.split(",") if t.strip()]
     bad = [t for t in items if t not in allowed]
     if bad or not items:
-        raise SpecError(option, text, f"comma-separated values from {', '.join(allowed)}")
+        raise ArgumentError(option, text, f"comma-separated values from {', '.join(allowed)}")
     return list(dict.fromkeys(items))
 
 
@@ -49,14 +49,14 @@ def parse_teeth(text: str | None, teeth: int) -> list[int] | None:
             lo, _, hi = item.strip().partition("-")
             first, last = int(lo), int(hi or lo)
             if not 0 <= first <= last < teeth:  # before building a range (no MemoryError)
-                raise SpecError("--teeth", text, f"tooth indices or ascending ranges from 0 "
+                raise ArgumentError("--teeth", text, f"tooth indices or ascending ranges from 0 "
                                 f"to {teeth - 1}")
             out.extend(range(first, last + 1))
     except ValueError as err:
-        raise SpecError("--teeth", text, "tooth indices or ranges, e.g. 0,1,2,49 or 0-2,49") \
+        raise ArgumentError("--teeth", text, "tooth indices or ranges, e.g. 0,1,2,49 or 0-2,49") \
             from err
     if not out or min(out) < 0 or max(out) >= teeth:
-        raise SpecError("--teeth", text, f"tooth indices from 0 to {teeth - 1}")
+        raise ArgumentError("--teeth", text, f"tooth indices from 0 to {teeth - 1}")
     return sorted(set(out))
 
 

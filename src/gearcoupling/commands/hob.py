@@ -7,8 +7,8 @@ chordal deviation, start/end positions, crown drop at the tooth ends).
 
 from __future__ import annotations
 
-from ..atomic import write_json, write_text
-from ..hob import check_hob_diameter, hob_program, write_csv
+from ..hob import check_hob_diameter, hob_program
+from ..io import write_csv_records, write_json, write_text
 from .common import add_spec_arguments, output_dir, positive_length, spec_from_args
 
 
@@ -32,7 +32,7 @@ def run(args) -> int:
     prog = hob_program(spec, args.hob_diameter, args.tolerance)
     out = output_dir(args, spec)
     files = [
-        write_csv(out / "hob_path.csv", prog.rows(),
+        write_csv_records(out / "hob_path.csv", prog.rows(),
                   [f"hob centre path for {spec.name}; mm and degrees; x = centre distance "
                    "from the hub axis, z = axial, infeed = x(0) - x"]),
         write_text(out / "hob_program.nc", prog.gcode(args.feed)),

@@ -13,6 +13,7 @@ from .common import (
     number_in,
     output_dir,
     positive_length,
+    progress,
     spec_from_args,
 )
 
@@ -44,8 +45,12 @@ def run(args) -> int:
     spec = spec_from_args(args)
     mis = misalignment_deg(args, spec)
     out = output_dir(args, spec)
-    for path in write_load(spec, out, mis, args.angles, torque_Nm=args.torque, model=args.model,
-                           tolerance_mm=args.tolerance, plots=not args.no_plots,
-                           with_studies=not args.quick_plots):
+    # one bar: the turn's poses, then the studies' misalignments
+    with progress(f"load {spec.name}", args.angles) as update:
+        paths = write_load(spec, out, mis, args.angles, torque_Nm=args.torque,
+                           model=args.model, tolerance_mm=args.tolerance,
+                           plots=not args.no_plots, with_studies=not args.quick_plots,
+                           progress=update)
+    for path in paths:
         print(path)
     return 0

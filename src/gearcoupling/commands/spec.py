@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 
+from ..io import plain
 from ..outputs import resolved_spec
 from .common import add_spec_arguments, spec_from_args
 
@@ -19,7 +20,7 @@ def run(args) -> int:
     spec = spec_from_args(args)
     data = resolved_spec(spec)
     if args.json:
-        print(json.dumps(data, indent=2, allow_nan=False))
+        print(json.dumps(plain(data, "spec"), indent=2, allow_nan=False))
         return 0
     from rich.console import Console
     from rich.table import Table

@@ -13,9 +13,9 @@ import io
 import sys
 from pathlib import Path
 
-from ..atomic import write_json, write_text
-from ..errors import SpecError
+from ..errors import ArgumentError
 from ..fea import ccx_path, check_size, gmsh_module, pitch_point_compliance, tooth_compliance_table
+from ..io import write_json, write_text
 from .common import (
     MAX_TEETH,
     add_spec_arguments,
@@ -64,7 +64,7 @@ def run(args) -> int:
     for part in ("hub", "sleeve"):
         check_size(spec, part, args.size)
     if args.sector < 1 or args.sector % 2 == 0 or args.sector > spec.tooth.teeth:
-        raise SpecError("--sector", args.sector, f"an odd number of teeth from 1 to "
+        raise ArgumentError("--sector", args.sector, f"an odd number of teeth from 1 to "
                         f"{spec.tooth.teeth} (the middle tooth is loaded)")
     if args.cache is not None:  # before the FE runs, which write the cache at the end
         ensure_dir(Path(args.cache), "--cache")

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..atomic import default_output_dir, write_json
+from ..io import default_output_dir, write_json
 from ..plots import save_figure
 from ..study import (
     chunks,
@@ -57,7 +57,8 @@ def run(args) -> int:
                            connect_timeout_s=args.connect_timeout, fresh=args.fresh,
                            progress=update)
     if result.skipped_chunks:
-        print(f"resumed: {result.skipped_chunks} chunk(s) finished earlier in {out / 'parts'}")
+        print(f"resuming: {result.skipped_chunks} finished chunk(s) in {out / 'parts'} skipped, "
+              f"{result.chunks - result.skipped_chunks} to run")
     print(result.table)
     if result.failed_rows:
         print(f"{result.failed_rows} of {result.rows} rows refused (see the 'error' column)")

@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from ..spec import template_dir, template_names
+from ..io import bundled_dir
+from ..spec import template_names
 
 
 def register(sub) -> None:
@@ -12,6 +13,6 @@ def register(sub) -> None:
 
 def run(args) -> int:
     for name in template_names():
-        head = (template_dir() / f"{name}.toml").read_text().splitlines()[0]
+        head = (bundled_dir("templates") / f"{name}.toml").read_text().splitlines()[0]
         print(f"{name:24s} {head.lstrip('# ').split(' — ', 1)[-1]}")
     return 0

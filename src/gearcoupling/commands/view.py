@@ -6,7 +6,7 @@ import sys
 import time
 from pathlib import Path
 
-from ..errors import SpecError
+from ..errors import ArgumentError
 from ..viewer import (
     COLOR_MODES,
     CUTAWAYS,
@@ -67,7 +67,7 @@ def run(args) -> int:
     mis = misalignment_deg(args, spec)
     mis, psi = check_pose(mis, args.angle)
     if args.html and Path(args.html).is_dir():
-        raise SpecError("--html", args.html, "names a folder: give a file, e.g. viewer.html")
+        raise ArgumentError("--html", args.html, "names a folder: give a file, e.g. viewer.html")
     settings = ViewSettings(misalignment_deg=mis, psi_deg=psi, cutaway=args.cutaway,
                             color_mode=args.color_by, frame=args.frame)
     tol = lod_tolerance(spec, args.lod) if args.tolerance is None else args.tolerance

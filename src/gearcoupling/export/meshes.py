@@ -28,6 +28,7 @@ from typing import cast
 import numpy as np
 from numpy.typing import NDArray
 
+from ..io import inp_element_lines, inp_id_lines, inp_node_lines
 from ..parts import SURFACE_KINDS
 from .job import PartJob
 
@@ -214,40 +215,21 @@ def write_msh(job: PartJob, path: Path) -> None:
     path.write_text(out.getvalue())
 
 
-def _inp_ids(out: io.StringIO, ids: NDArray, per_line: int = 10) -> None:
-    """1-based ids, ``per_line`` to a line (CalculiX reads at most 16, in 132 characters)."""
-    ids = np.asarray(ids) + 1
-    full = len(ids) - len(ids) % per_line
-    if full:
-        np.savetxt(out, ids[:full].reshape(-1, per_line), fmt="%d", delimiter=", ")
-    if full < len(ids):
-        out.write(", ".join(map(str, ids[full:])) + "\n")
-
-
 def write_inp(job: PartJob, path: Path) -> None:
     """Abaqus/CalculiX mesh deck: S3 triangles and element sets per kind and tooth."""
     mesh = job.mesh
     kind, tooth = _labels(job)
-    pts = np.asarray(mesh.vertices, dtype=float)
-    faces = np.asarray(mesh.faces, dtype=np.int64)
-    out = io.StringIO()
-    out.write(f"** gearcoupling {job.title}: surface mesh in mm, S3 triangles; element sets\n"
-              f"** per surface kind and per tooth. Add a material and *SHELL SECTION to run.\n")
-    out.write("*NODE, NSET=NALL\n")
-    # %.12e is at most 19 characters: CalculiX reads 20 per field
-    np.savetxt(out, np.column_stack([np.arange(1, len(pts) + 1), pts]),
-               fmt=["%d", "%.12e", "%.12e", "%.12e"], delimiter=", ")
-    out.write("*ELEMENT, TYPE=S3, ELSET=EALL\n")
-    np.savetxt(out, np.column_stack([np.arange(1, len(faces) + 1), faces + 1]), fmt="%d",
-               delimiter=", ")
+    lines = [f"** gearcoupling {job.title}: surface mesh in mm, S3 triangles; element sets",
+             "** per surface kind and per tooth. Add a material and *SHELL SECTION to run."]
+    lines += inp_node_lines(np.asarray(mesh.vertices, dtype=float))
+    lines += inp_element_lines(np.asarray(mesh.faces, dtype=np.int64), "S3")
     for code, name in enumerate(SURFACE_KINDS):
         if np.any(kind == code):
-            out.write(f"*ELSET, ELSET={name.upper()}\n")
-            _inp_ids(out, np.flatnonzero(kind == code))
+            lines += [f"*ELSET, ELSET={name.upper()}", *inp_id_lines(np.flatnonzero(kind == code)
+                                                                     + 1)]
     for k in np.unique(tooth[tooth >= 0]):
-        out.write(f"*ELSET, ELSET=TOOTH_{int(k)}\n")
-        _inp_ids(out, np.flatnonzero(tooth == k))
-    path.write_text(out.getvalue())
+        lines += [f"*ELSET, ELSET=TOOTH_{int(k)}", *inp_id_lines(np.flatnonzero(tooth == k) + 1)]
+    path.write_text("\n".join(lines) + "\n")
 
 
 def read_mesh(path: str | Path):

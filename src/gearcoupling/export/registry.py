@@ -10,8 +10,8 @@ from __future__ import annotations
 from collections.abc import Callable
 from pathlib import Path
 
-from ..atomic import atomic_path
-from ..errors import SpecError
+from ..errors import ArgumentError
+from ..io import atomic_path
 from . import meshes, step
 from .job import PartJob
 
@@ -40,7 +40,7 @@ def extension(path: str | Path) -> str:
     """Lower-case extension of ``path``; :class:`SpecError` naming the allowed ones."""
     ext = Path(path).suffix.lower().lstrip(".")
     if ext not in EXPORTERS:
-        raise SpecError("file", str(path), f"an extension from {', '.join(formats())} "
+        raise ArgumentError("file", str(path), f"an extension from {', '.join(formats())} "
                         f"({ext!r} is not a supported format)")
     return ext
 

@@ -2,7 +2,8 @@
 
 A hub sector and a sleeve sector of the same teeth (``0 .. k-1``) are meshed, the hub is
 placed in the sleeve frame at the pose (misalignment ``i``, turning angle ``psi``,
-DESIGN.md §2: ``Rz(-psi) Rx(i) Rz(psi)``), and the hub bore and cut faces are tied to a
+docs/conventions.md, Frames: ``Rz(-psi) Rx(i) Rz(psi)``), and the hub bore and cut faces are tied
+to a
 rigid body that turns by the wind-up ``windup_rad`` about the hub axis (displacement
 control, so the run needs no initial contact); the sleeve outside diameter and cut faces
 are fixed. Every hub ccw flank (slave) meets the sleeve ccw flank of its space (master)
@@ -19,13 +20,14 @@ import time
 
 import numpy as np
 
-from ..errors import SpecError
+from ..errors import ArgumentError
 from ..geometry import hub_to_sleeve
+from ..io import inp_id_lines, inp_number
 from .ccx import run_ccx, solver_dir
 from .mesh import mesh_part
 from .stiffness import material
 from .volume import VolumeMesh
-from .write import _fmt, _id_lines, inp_mesh_lines
+from .write import inp_mesh_lines
 
 
 def merge(hub: VolumeMesh, sleeve: VolumeMesh, hub_rotation: np.ndarray) -> VolumeMesh:
@@ -53,19 +55,19 @@ def contact_deck(pair: VolumeMesh, spec, *, windup_rad: float, axis: np.ndarray,
     lines = inp_mesh_lines(pair)
     lines += ["*NODE", f"{ref}, 0.0, 0.0, 0.0", f"{rot}, 0.0, 0.0, 0.0",
               "*NSET, NSET=ROTN", f"{rot}", "*NSET, NSET=HRIGID"]
-    lines += _id_lines(rigid + 1)
-    lines += ["*MATERIAL, NAME=STEEL", "*ELASTIC", f"{_fmt(E)}, {_fmt(nu)}",
+    lines += inp_id_lines(rigid + 1)
+    lines += ["*MATERIAL, NAME=STEEL", "*ELASTIC", f"{inp_number(E)}, {inp_number(nu)}",
               "*SOLID SECTION, ELSET=EALL, MATERIAL=STEEL",
               f"*RIGID BODY, NSET=HRIGID, REF NODE={ref}, ROT NODE={rot}",
               "*SURFACE INTERACTION, NAME=SI",
-              "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR", f"{_fmt(penalty)}"]
+              "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR", f"{inp_number(penalty)}"]
     for k in teeth:
         lines += ["*CONTACT PAIR, INTERACTION=SI, TYPE=SURFACE TO SURFACE",
                   f"S_H_T{k}_FLANK_CCW, S_S_T{k}_FLANK_CCW"]
     lines += ["*BOUNDARY", "S_OUTER, 1, 3, 0.0", "S_CUT_CW, 1, 3, 0.0", "S_CUT_CCW, 1, 3, 0.0",
               f"{ref}, 1, 3, 0.0",
               "*STEP, INC=200", "*STATIC", f"{1.0 / increments}, 1.0", "*BOUNDARY"]
-    lines += [f"{rot}, {d + 1}, {d + 1}, {_fmt(windup_rad * axis[d])}" for d in range(3)]
+    lines += [f"{rot}, {d + 1}, {d + 1}, {inp_number(windup_rad * axis[d])}" for d in range(3)]
     lines += ["*NODE PRINT, NSET=ROTN", "RF"]
     for k in teeth:
         lines += [f"*CONTACT PRINT, SLAVE=S_H_T{k}_FLANK_CCW, MASTER=S_S_T{k}_FLANK_CCW",
@@ -79,7 +81,7 @@ def contact_pose(spec, *, misalignment_deg: float, psi_deg: float, windup_rad: f
                  workdir=None) -> dict:
     """Solve one loaded pose with contact (module docstring); returns the per-tooth table."""
     if not (math.isfinite(windup_rad) and windup_rad > 0):
-        raise SpecError("windup_rad", windup_rad, "a positive wind-up angle (rad)")
+        raise ArgumentError("windup_rad", windup_rad, "a positive wind-up angle (rad)")
     t0 = time.perf_counter()
     hub = mesh_part(spec, "hub", sector=sector, size_mm=size_mm)
     sleeve = mesh_part(spec, "sleeve", sector=sector, size_mm=size_mm)

@@ -8,8 +8,9 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from ..io import inp_id_lines, inp_number
 from .volume import VolumeMesh
-from .write import _fmt, _id_lines, inp_mesh_lines
+from .write import inp_mesh_lines
 
 
 @dataclass(frozen=True)
@@ -36,15 +37,15 @@ def static_deck(vm: VolumeMesh, *, youngs_modulus_MPa: float, poisson_ratio: flo
     lines = inp_mesh_lines(vm)
     for name, nodes in node_print:
         lines.append(f"*NSET, NSET={name}")
-        lines += _id_lines(np.asarray(nodes) + 1)
+        lines += inp_id_lines(np.asarray(nodes) + 1)
     lines += ["*MATERIAL, NAME=STEEL", "*ELASTIC",
-              f"{_fmt(youngs_modulus_MPa)}, {_fmt(poisson_ratio)}",
+              f"{inp_number(youngs_modulus_MPa)}, {inp_number(poisson_ratio)}",
               "*SOLID SECTION, ELSET=EALL, MATERIAL=STEEL", "*BOUNDARY"]
     lines += [f"{name}, 1, 3, 0.0" for name in fixed]
     for case in cases:
         lines += ["*STEP", f"*STATIC, SOLVER={solver}", "*CLOAD, OP=NEW"]
         for node, f in zip(case.nodes, case.forces, strict=True):
-            lines += [f"{node + 1}, {d + 1}, {_fmt(f[d])}" for d in range(3) if f[d] != 0]
+            lines += [f"{node + 1}, {d + 1}, {inp_number(f[d])}" for d in range(3) if f[d] != 0]
         for name, _ in node_print:
             lines += [f"*NODE PRINT, NSET={name}", "U"]
         for name in stress_sets:

@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import GeometryError, SpecError
+from ..errors import ArgumentError, GeometryError, SpecError
 from ..export import part_solid, write_step
 from ..parts import SURFACE_KINDS, build_part, check_tolerance
 from .backends import gmsh_session
@@ -49,13 +49,13 @@ def check_size(spec, part: str, size_mm) -> float:
     try:
         size = float(size)
     except (TypeError, ValueError) as err:
-        raise SpecError("size_mm", size_mm, "must be a number (mm)") from err
+        raise ArgumentError("size_mm", size_mm, "must be a number (mm)") from err
     m = spec.tooth.module
     lo, hi = m / 40.0, min(m / 2.0, 2.0 * fillet_radius(spec, part))
     if not (math.isfinite(size) and lo <= size <= hi):
         why = ("twice the root fillet radius: a coarser mesh cannot follow the fillet"
                if hi < m / 2.0 else "module / 2: two elements across the tooth at least")
-        raise SpecError("size_mm", size_mm, f"must be from {lo:.3g} to {hi:.3g} mm for the "
+        raise ArgumentError("size_mm", size_mm, f"must be from {lo:.3g} to {hi:.3g} mm for the "
                         f"{part} of this spec (module / 40 to {why}); choose a smaller size")
     return size
 
@@ -69,9 +69,9 @@ def sector_teeth(spec, count) -> list[int] | None:
     try:
         k = int(count)
     except (TypeError, ValueError) as err:
-        raise SpecError("sector_teeth", count, f"an integer from 1 to {n}") from err
+        raise ArgumentError("sector_teeth", count, f"an integer from 1 to {n}") from err
     if k != count or not 1 <= k <= n:
-        raise SpecError("sector_teeth", count, f"an integer from 1 to {n} (the spec has {n} "
+        raise ArgumentError("sector_teeth", count, f"an integer from 1 to {n} (the spec has {n} "
                         f"teeth; {n} meshes the whole part)")
     return None if k == n else list(range(k))
 
@@ -102,7 +102,7 @@ def mesh_part(spec, part: str, *, sector: int | None = DEFAULT_SECTOR_TEETH,
     VolumeMesh
     """
     if part not in ("hub", "sleeve"):
-        raise SpecError("part", part, "hub or sleeve")
+        raise ArgumentError("part", part, "hub or sleeve")
     teeth = sector_teeth(spec, sector)
     size = check_size(spec, part, size_mm)
     body = max(3.0 * size, spec.tooth.module) if body_size_mm is None else float(body_size_mm)

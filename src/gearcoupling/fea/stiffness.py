@@ -11,7 +11,8 @@ Load: a force along the exact surface normal (into the tooth, no friction), spre
 equal nodal forces over the flank nodes of a small patch (``|dz|, |dr| <= patch``) around
 the point ``(z, r)``, scaled so that its moment about the axis is ``1 N x R`` (a unit
 tangential load at the pitch radius R). The hub is loaded on its ccw flank, the sleeve on
-the ccw flank that meets it (positive torque, DESIGN.md §6; sleeve regions ``T<k>_...``
+the ccw flank that meets it (positive torque, docs/conventions.md, Loaded analysis; sleeve regions
+``T<k>_...``
 bound the space of hub tooth k), each in the middle of the sector. The compliance is the work
 conjugate ``sum f_i . u_i`` (mm/N): the circumferential displacement at the pitch radius
 per unit tangential load there, the measure of Renzo's mesh stiffness C. It includes the
@@ -32,8 +33,8 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..atomic import safe_name, write_json
-from ..errors import GeometryError, SpecError
+from ..errors import ArgumentError, GeometryError
+from ..io import safe_name, write_json
 from .ccx import run_ccx, solver_dir
 from .deck import LoadCase, principal_max, static_deck
 from .mesh import DEFAULT_SECTOR_TEETH, check_size, mesh_part
@@ -253,7 +254,7 @@ def compute_compliance_table(spec, *, size_mm: float | None = None,
     """Mesh hub and sleeve sectors and solve the load cases with ccx (no cache);
     ``progress(done, 4)`` after each mesh and each solve."""
     if sector is None or int(sector) < 1 or int(sector) % 2 == 0:
-        raise SpecError("sector", sector, "an odd number of teeth (the middle one is loaded), "
+        raise ArgumentError("sector", sector, "an odd number of teeth (the middle one is loaded), "
                         "e.g. 3")
     t0 = time.perf_counter()
     meshes = {}

@@ -6,39 +6,25 @@ from pathlib import Path
 
 import numpy as np
 
-from ..atomic import atomic_path
 from ..errors import SpecError
+from ..io import atomic_path, inp_element_lines, inp_id_lines, inp_node_lines
 from .volume import VolumeMesh
 
 FORMATS = ("inp", "msh", "vtu")
-PER_LINE = 16  # data items per INP line (the Abaqus limit)
-
-
-def _fmt(x: float) -> str:
-    """A number field of at most 20 characters that round-trips to 1e-12 relative."""
-    return f"{x:.12e}" if x != 0 else "0.0"
-
-
-def _id_lines(ids) -> list[str]:
-    ids = np.asarray(ids)
-    return [", ".join(map(str, ids[i:i + PER_LINE])) for i in range(0, len(ids), PER_LINE)]
 
 
 def inp_mesh_lines(vm: VolumeMesh) -> list[str]:
     """``*NODE``, ``*ELEMENT`` (C3D10, ELSET=EALL) and, for every region and aggregate,
     ``*NSET`` (its nodes), ``*ELSET`` (elements with a face on it) and ``*SURFACE``
     (``S_<name>``, element faces) lines; numbers are 1-based."""
-    lines = ["*NODE, NSET=NALL"]
-    lines += [f"{i + 1}, {_fmt(x)}, {_fmt(y)}, {_fmt(z)}" for i, (x, y, z) in enumerate(vm.nodes)]
-    etype = "C3D10" if vm.tets.shape[1] == 10 else "C3D4"
-    lines.append(f"*ELEMENT, TYPE={etype}, ELSET=EALL")
-    lines += [f"{e + 1}, " + ", ".join(map(str, row + 1)) for e, row in enumerate(vm.tets)]
+    lines = inp_node_lines(vm.nodes)
+    lines += inp_element_lines(vm.tets, "C3D10" if vm.tets.shape[1] == 10 else "C3D4")
     for name in vm.set_names():
         faces = vm.face_set(name)
         lines.append(f"*NSET, NSET={name}")
-        lines += _id_lines(vm.node_set(name) + 1)
+        lines += inp_id_lines(vm.node_set(name) + 1)
         lines.append(f"*ELSET, ELSET={name}")
-        lines += _id_lines(np.unique(faces[:, 0]) + 1)
+        lines += inp_id_lines(np.unique(faces[:, 0]) + 1)
         lines.append(f"*SURFACE, NAME=S_{name}, TYPE=ELEMENT")
         lines += [f"{e + 1}, S{f}" for e, f in faces]
     return lines

@@ -23,6 +23,7 @@ from .hub import (
 )
 from .involute import inv, inv_inverse
 from .pose import hub_to_sleeve, map_polar, rot_z, turning_angles
+from .renzo import renzo_z0_mm
 from .section import PARTS, sleeve_space_outline, transverse_section
 from .sleeve import SleeveModel, flank_point, sleeve_flank, sleeve_model
 
@@ -50,6 +51,7 @@ __all__ = [
     "map_polar",
     "plane_rack",
     "radius_squared",
+    "renzo_z0_mm",
     "root_radius",
     "rot_z",
     "round_point",

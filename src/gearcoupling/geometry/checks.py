@@ -20,6 +20,7 @@ from .hub import (
     root_radius,
     tip_radius,
 )
+from .renzo import renzo_z0_mm
 from .sleeve import sleeve_model
 
 _Z_SAMPLES = 17  # planes from the midplane to the face end checked for undercut and points
@@ -211,7 +212,7 @@ def derived_values(spec) -> dict[str, float]:
     kappa0 = float(m.path.evaluate(0.0)[0])
     rc = math.inf if kappa0 == 0 else 1.0 / kappa0
     i = spec.design_misalignment
-    z0 = 0.5 * rc * math.tan(i) ** 2 / math.tan(t.pressure_angle) if i > 0 else 0.0
+    z0 = renzo_z0_mm(rc, i, t.pressure_angle)
     backlash = spec.sleeve.space_width - hub.tooth_thickness
     zend = m.half_face
     return {

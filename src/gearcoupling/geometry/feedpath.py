@@ -1,4 +1,4 @@
-"""Hob feed paths in the hub's axial section (DESIGN.md §3).
+"""Hob feed paths in the hub's axial section (docs/conventions.md, Tooth geometry).
 
 A feed path is the locus ``q(s) = (v, z)`` of the hob's pitch point, parametrised by arc
 length ``s`` from the midplane, with even curvature ``kappa(s)``, tangent angle

@@ -1,4 +1,5 @@
-"""Crowned hub teeth as the exact envelope of a hob (rack) fed along a path (DESIGN.md §3).
+"""Crowned hub teeth as the exact envelope of a hob (rack) fed along a path (docs/conventions.md,
+Tooth geometry).
 
 The hob's normal section is a rack profile of points ``(u, h, gamma)``: tangential
 position ``u`` (clockwise positive), depth ``h`` below the feed path (inward positive) and

@@ -1,4 +1,5 @@
-"""Poses of DESIGN.md §2: the hub tilted by ``i`` about the sleeve ``x`` axis, both turning.
+"""Poses of docs/conventions.md, Frames: the hub tilted by ``i`` about the sleeve ``x`` axis, both
+turning.
 
 A hub body point ``p`` lies in the sleeve body frame at ``Rz(-psi) Rx(i) Rz(psi) p``. For
 hub tooth ``k`` in sleeve space ``k`` this equals ``Rz(2 pi k / N) P(theta_k) p0`` with

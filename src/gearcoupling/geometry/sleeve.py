@@ -1,4 +1,4 @@
-"""Sleeve with straight internal involute teeth (DESIGN.md §3).
+"""Sleeve with straight internal involute teeth (docs/conventions.md, Tooth geometry).
 
 Space ``k`` is centred at polar angle ``2 pi k / N``; its half-angle at radius ``r`` is
 ``s/(2R) + inv(phi) - inv(arccos(r_b / r))``. The transverse section is the same at every

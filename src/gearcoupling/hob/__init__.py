@@ -13,7 +13,6 @@ from .charts import (
     write_nominal_csv,
 )
 from .program import MAX_HOB_DIAMETER_MM, HobProgram, Move, check_hob_diameter, hob_program
-from .writers import write_csv
 
 __all__ = [
     "MAX_HOB_DIAMETER_MM",
@@ -26,6 +25,5 @@ __all__ = [
     "hob_program",
     "measuring_charts",
     "plot_measuring_charts",
-    "write_csv",
     "write_nominal_csv",
 ]

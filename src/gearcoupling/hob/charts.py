@@ -30,10 +30,10 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import SpecError
+from ..errors import ArgumentError
 from ..geometry import FLANKS, HubModel, form_radius, hub_flank_model, hub_model, inv, tip_radius
+from ..io import write_csv_records
 from ..plots import figure_axes
-from .writers import write_csv
 
 _EPS = 1e-9
 
@@ -190,9 +190,9 @@ def measuring_charts(spec, points: int = 101, tip_exclusion: float = 0.08) -> Me
         ``L_alpha`` at the tip end (0 to 0.5).
     """
     if not (isinstance(points, int) and points >= 5):
-        raise SpecError("points", points, "an integer >= 5 points per trace")
+        raise ArgumentError("points", points, "an integer >= 5 points per trace")
     if not (isinstance(tip_exclusion, int | float) and 0.0 <= tip_exclusion <= 0.5):
-        raise SpecError("tip_exclusion", tip_exclusion, "a share from 0 to 0.5")
+        raise ArgumentError("tip_exclusion", tip_exclusion, "a share from 0 to 0.5")
     m = hub_model(spec)
     rb = m.R * math.cos(m.phi)
     half_lead, profile_range, r_lead = evaluation_ranges(spec, tip_exclusion)
@@ -287,7 +287,7 @@ def plot_measuring_charts(charts: MeasuringCharts, ax=None):
 
 def write_nominal_csv(charts: MeasuringCharts, path: str | Path) -> Path:
     """The nominal traces as a CSV a measuring machine can load (points + normals)."""
-    return write_csv(path, charts.rows(), [
+    return write_csv_records(path, charts.rows(), [
         f"gearcoupling nominal measuring traces, spec {charts.spec_name}",
         "units: mm (coordinates, roll length, deviation); normals: unit vectors out of the "
         "tooth material",

@@ -1,6 +1,7 @@
 """Hob feed program: the hob centre path in the hub's axial section (pure numpy).
 
-The hob's pitch point follows the feed path ``q(s)`` (DESIGN.md §3) with outward unit
+The hob's pitch point follows the feed path ``q(s)`` (docs/conventions.md, Tooth geometry) with
+outward unit
 normal ``n(s) = (cos e, sin e)`` in ``(v, z)``; its pitch cylinder touches the rack's
 pitch line there, so the hob centre (its axis, seen in the axial section) is the offset
 curve ``c(s) = q(s) + r_h n(s)``, ``r_h`` the hob pitch radius. A circular path of
@@ -22,7 +23,7 @@ from itertools import pairwise
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import ArgumentError, SpecError
+from ..errors import ArgumentError
 from ..geometry import HubModel, hub_model, plane_rack, tip_radius
 
 _DENSE = 65  # exact-curve samples per move when its chordal deviation is measured
@@ -31,20 +32,20 @@ MAX_HOB_DIAMETER_MM = 1000.0  # hobs are made up to a few hundred mm (module 40:
 
 def check_hob_diameter(spec, hob_diameter_mm, field: str = "hob_diameter_mm") -> float:
     """The hob outside diameter (mm) if a hob of that size can cut the spec's hub; else a
-    :class:`SpecError` naming ``field`` that says which bound and why: the hob must carry
+    :class:`ArgumentError` naming ``field`` that says which bound and why: the hob must carry
     teeth of the hub's whole depth on a body (above ``2 (dedendum + module)``), and no hob
     is made larger than :data:`MAX_HOB_DIAMETER_MM` (its approach travel ``sqrt(H (D - H))``
     would grow without end)."""
     D = hob_diameter_mm
     if isinstance(D, bool) or not (isinstance(D, int | float) and math.isfinite(D)):
-        raise SpecError(field, D, "a finite hob outside diameter in mm")
+        raise ArgumentError(field, D, "a finite hob outside diameter in mm")
     depth = hub_model(spec).dedendum + spec.tooth.module
     if D <= 2.0 * depth:
-        raise SpecError(field, D, f"too small to carry teeth {depth:.4g} mm deep around a "
+        raise ArgumentError(field, D, f"too small to carry teeth {depth:.4g} mm deep around a "
                         f"body: a hob for this hub is larger than 2 (dedendum + module) = "
                         f"{2.0 * depth:.4g} mm")
     if D > MAX_HOB_DIAMETER_MM:
-        raise SpecError(field, D, f"larger than any hob made (up to {MAX_HOB_DIAMETER_MM:g} mm"
+        raise ArgumentError(field, D, f"larger than any hob made (up to {MAX_HOB_DIAMETER_MM:g} mm"
                         " outside diameter); its approach travel alone would be "
                         f"{math.sqrt(depth * (D - depth)):.4g} mm")
     return float(D)
@@ -279,12 +280,12 @@ def hob_program(spec, hob_diameter_mm: float, tolerance_mm: float | None = None,
     tol = module / 1000.0 if tolerance_mm is None else tolerance_mm
     if not (isinstance(tol, int | float) and math.isfinite(tol)
             and module * 1e-6 <= tol <= module * 0.1):
-        raise SpecError("tolerance_mm", tolerance_mm,
+        raise ArgumentError("tolerance_mm", tolerance_mm,
                         f"a chordal tolerance from {module * 1e-6:.3g} to {module * 0.1:.3g} mm "
                         "(1e-6 to 0.1 module)")
     D = check_hob_diameter(spec, hob_diameter_mm)
     if not (isinstance(table_points, int) and table_points >= 3):
-        raise SpecError("table_points", table_points, "an integer >= 3")
+        raise ArgumentError("table_points", table_points, "an integer >= 3")
     r_h = 0.5 * D - m.dedendum
     s_gen = float(m.path.solve_plane(m.half_face, m.dedendum)[0])
     z_end = m.half_face

@@ -10,7 +10,7 @@ from typing import cast
 
 import numpy as np
 
-from ..errors import SpecError
+from ..errors import ArgumentError
 from ..hob import measuring_charts
 from ..tables import dataframe
 from .datum import bore_datum
@@ -67,9 +67,9 @@ def _points(source, units: str):
         return load_points(source, units), str(source)
     pts = np.asarray(source, dtype=float)
     if pts.ndim != 2 or pts.shape[1] != 3 or len(pts) == 0:
-        raise SpecError("points", f"array of shape {pts.shape}", "an (n, 3) array, n >= 1")
+        raise ArgumentError("points", f"array of shape {pts.shape}", "an (n, 3) array, n >= 1")
     if not np.all(np.isfinite(pts)):
-        raise SpecError("points", "array with NaN/inf", "finite coordinates only")
+        raise ArgumentError("points", "array with NaN/inf", "finite coordinates only")
     return pts * {"mm": 1.0, "in": 25.4, "m": 1000.0}[units], "array"
 
 

@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
-from ..atomic import atomic_path
+from ..io import atomic_path
 from .report import InspectionReport
 
 # diverging blue - white - red (ColorBrewer RdBu end points), minus material blue

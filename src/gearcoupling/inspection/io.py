@@ -9,8 +9,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..atomic import require_file
-from ..errors import BackendError, SpecError
+from ..errors import ArgumentError, BackendError
+from ..io import require_file
 
 MESH_SUFFIXES = (".stl", ".obj", ".ply", ".off", ".glb")
 TEXT_SUFFIXES = (".csv", ".xyz", ".txt", ".asc", ".pts")
@@ -35,20 +35,20 @@ def load_points(path: str | Path, units: str = "mm") -> NDArray[np.float64]:
         (:class:`SpecError`).
     """
     if units not in UNIT_SCALE:
-        raise SpecError("units", units, f"one of {tuple(UNIT_SCALE)}")
-    p = require_file(path, "file", ALLOWED)
+        raise ArgumentError("units", units, f"one of {tuple(UNIT_SCALE)}")
+    p = require_file(path, "file", ALLOWED, ArgumentError)
     suffix = p.suffix.lower()
     if suffix in MESH_SUFFIXES:
         pts = _load_mesh(p)
     elif suffix in TEXT_SUFFIXES:
         pts = _load_text(p)
     else:
-        raise SpecError("file", str(p), ALLOWED)
+        raise ArgumentError("file", str(p), ALLOWED)
     if pts.ndim != 2 or pts.shape[1] != 3 or len(pts) == 0:
-        raise SpecError("file", str(p), "a file with at least one x y z point; it has none")
+        raise ArgumentError("file", str(p), "a file with at least one x y z point; it has none")
     bad = ~np.all(np.isfinite(pts), axis=1)
     if np.any(bad):
-        raise SpecError("file", str(p), f"finite coordinates; {int(bad.sum())} of {len(pts)} "
+        raise ArgumentError("file", str(p), f"finite coordinates; {int(bad.sum())} of {len(pts)} "
                         f"points have NaN or infinity (first at row {int(np.argmax(bad))}): "
                         "remove them from the scan")
     return pts * UNIT_SCALE[units]
@@ -62,7 +62,7 @@ def _load_mesh(p: Path) -> NDArray[np.float64]:
     try:
         obj = trimesh.load(p, process=False)
     except Exception as err:  # trimesh raises many types on corrupt files
-        raise SpecError("file", str(p), f"{ALLOWED}; trimesh could not read it "
+        raise ArgumentError("file", str(p), f"{ALLOWED}; trimesh could not read it "
                         f"({type(err).__name__}: {err})") from err
     if isinstance(obj, trimesh.Scene):
         # trimesh's Geometry declares no vertices; meshes, paths and point clouds all have them
@@ -116,14 +116,14 @@ def _load_text_lines(p: Path) -> NDArray[np.float64]:
                 except ValueError:
                     if not rows:
                         continue  # a header line
-                    raise SpecError("file", str(p), f"numeric x y z columns; line "
+                    raise ArgumentError("file", str(p), f"numeric x y z columns; line "
                                     f"{text[:60]!r} is not") from None
                 if len(vals) < 3:
-                    raise SpecError("file", str(p), f"three coordinates per line; line "
+                    raise ArgumentError("file", str(p), f"three coordinates per line; line "
                                     f"{text[:60]!r} has {len(vals)}")
                 rows.append(vals)
     except UnicodeDecodeError as err:
-        raise SpecError("file", str(p), ALLOWED + "; it is not a text file") from err
+        raise ArgumentError("file", str(p), ALLOWED + "; it is not a text file") from err
     except OSError as err:
-        raise SpecError("file", str(p), f"{ALLOWED}; reading failed ({err})") from err
+        raise ArgumentError("file", str(p), f"{ALLOWED}; reading failed ({err})") from err
     return np.array(rows, dtype=float).reshape(-1, 3)

@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import math
 
-from ..errors import SpecError
+from ..errors import ArgumentError
 
 GRADES = tuple(range(1, 12))
 SCOPE = {"teeth": (5, 1000), "reference diameter d (mm)": (5.0, 15_000.0),
@@ -59,16 +59,16 @@ def grade_limits(spec, grade: int, field: str = "grade") -> dict[str, float]:
     """Inspection limits (mm, keys of :data:`~gearcoupling.inspection.LIMITS`) of the
     ISO 1328-1:2013 flank tolerance class ``grade`` for the spec's hub: ``fpt``, ``Fp``,
     ``Fr``, ``f_Halpha``, ``f_Hbeta``. A class outside 1-11, or a hub outside the
-    standard's range, is a :class:`SpecError` naming ``field``."""
+    standard's range, is an :class:`ArgumentError` naming ``field``."""
     if isinstance(grade, bool) or grade not in GRADES:
-        raise SpecError(field, grade, "an ISO 1328-1:2013 flank tolerance class, a whole "
+        raise ArgumentError(field, grade, "an ISO 1328-1:2013 flank tolerance class, a whole "
                         "number from 1 (finest) to 11")
     t = spec.tooth
     sizes = {"teeth": t.teeth, "reference diameter d (mm)": 2.0 * t.pitch_radius,
              "module m_n (mm)": t.module, "face width b (mm)": spec.hub.face_width}
     for name, (lo, hi) in SCOPE.items():
         if not lo <= sizes[name] <= hi:
-            raise SpecError(field, grade, f"{spec.name}'s {name} = {sizes[name]:.4g} is "
+            raise ArgumentError(field, grade, f"{spec.name}'s {name} = {sizes[name]:.4g} is "
                             f"outside ISO 1328-1:2013's range {lo:g}-{hi:g}, where its "
                             "formulas are not extrapolated: set the limits by hand "
                             "([inspection] or --limit)")

@@ -24,7 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import GearCouplingError, SpecError
+from ..errors import ArgumentError, GearCouplingError, SpecError
 from .surface import FlankTable, deviation
 
 
@@ -106,7 +106,7 @@ def check_scale(points, tip_radius: float) -> None:
                         (1 / 1000.0, "metres: pass units='m' (--units m)"),
                         (25.4, "a mm file read as inches: pass units='mm'")):
         if abs(ratio / scale - 1.0) < 0.12:
-            raise SpecError("units", f"scan radius {r_max:.5g} mm", f"the scan is about "
+            raise ArgumentError("units", f"scan radius {r_max:.5g} mm", f"the scan is about "
                             f"{ratio:.4g} times the spec's size (hub tip radius "
                             f"{tip_radius:.5g} mm): it looks like {what}")
     if not 0.85 < ratio < 1.12:
@@ -247,15 +247,15 @@ def register(points, table: FlankTable, *, coarse: str = "auto", fit_points: int
         Rm, t, strength = coarse_place(points, table, coarse)
         Rm, t, stats = fine_register(points, table, Rm, t, fit_points=fit_points,
                                      outlier_mm=outlier_mm)
-    except (RegistrationError, SpecError) as err:
-        if coarse != "auto" or (isinstance(err, SpecError) and err.field != "units"):
+    except (RegistrationError, ArgumentError) as err:
+        if coarse != "auto" or (isinstance(err, ArgumentError) and err.field != "units"):
             raise
         try:
             used = "none (the axis search failed: scan kept in its own frame)"
             Rm, t, strength = coarse_place(points, table, "none")
             Rm, t, stats = fine_register(points, table, Rm, t, fit_points=fit_points,
                                          outlier_mm=outlier_mm)
-        except (RegistrationError, SpecError):
+        except (RegistrationError, ArgumentError):
             raise err from None
     return Registration(Rm, t, stats["rms_mm"], stats["iterations"], stats["fit_points"],
                         stats["outliers"], used, strength)

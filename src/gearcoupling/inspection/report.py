@@ -30,7 +30,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import SpecError
+from ..errors import ArgumentError
 from ..geometry import hub_flank_model
 from ..hob import MeasuringCharts
 from ..tables import dataframe
@@ -54,13 +54,13 @@ def check_limits(limits) -> dict[str, float]:
     out = {}
     for key, value in dict(limits or {}).items():
         if key not in LIMITS:
-            raise SpecError(f"limits.{key}", value, f"a known limit: {', '.join(LIMITS)}")
+            raise ArgumentError(f"limits.{key}", value, f"a known limit: {', '.join(LIMITS)}")
         try:
             v = float(value)
         except (TypeError, ValueError):
             v = math.nan
         if not (math.isfinite(v) and v > 0):
-            raise SpecError(f"limits.{key}", value, "a positive length in mm")
+            raise ArgumentError(f"limits.{key}", value, "a positive length in mm")
         out[key] = v
     return out
 
@@ -121,8 +121,7 @@ class InspectionReport:
 
 
 def _clean(v):
-    v = float(v)
-    return v if math.isfinite(v) else None
+    return float(v)
 
 
 def _group_fit(g, B, d, n_groups):

@@ -21,7 +21,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.interpolate import RectBivariateSpline
 
-from ..errors import GeometryError, SpecError
+from ..errors import ArgumentError, GeometryError
 from ..geometry import HubModel, hub_flank_model, hub_model
 from ..hob import evaluation_ranges
 
@@ -68,7 +68,7 @@ def flank_table(spec, grid: tuple[int, int] = (61, 41), tip_exclusion: float = 0
                 seed: int = 0) -> FlankTable:
     """Build the :class:`FlankTable` of a spec; ``grid`` = points in ``z`` and ``r`` (>= 6)."""
     if not (len(grid) == 2 and all(isinstance(g, int) and g >= 6 for g in grid)):
-        raise SpecError("grid", grid, "two integers >= 6 (points in z and r)")
+        raise ArgumentError("grid", grid, "two integers >= 6 (points in z and r)")
     m = hub_model(spec)
     half_lead, profile, _ = evaluation_ranges(spec, tip_exclusion)
     zs = np.linspace(-half_lead, half_lead, 9)

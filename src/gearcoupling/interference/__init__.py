@@ -1,7 +1,8 @@
 """Interference and minimum gap of the posed hub and sleeve meshes across rotation angles.
 
 Sits after the part meshes and the sweep in the data flow: :func:`check_interference`
-poses :func:`gearcoupling.parts.build_part` meshes (DESIGN.md §2), measures overlap by
+poses :func:`gearcoupling.parts.build_part` meshes (docs/conventions.md, Frames), measures overlap
+by
 manifold3d booleans or signed distances and the minimum gap by python-fcl, on sector
 submodels chosen from :func:`gearcoupling.clearance.sweep` or on the full parts.
 """

@@ -1,7 +1,8 @@
 """The one rule that attributes an overlap (or any point) to a tooth and a flank.
 
 Used by the interference check and by the viewer's interference display. Tooth ``k`` is
-centred on the polar angle ``2 pi k / N`` (DESIGN.md §6); a point belongs to the nearest
+centred on the polar angle ``2 pi k / N`` (docs/conventions.md, Loaded analysis); a point belongs
+to the nearest
 tooth centre, and to the ``ccw`` flank when its polar angle is beyond that centre
 (counter-clockwise), to ``cw`` otherwise.
 """

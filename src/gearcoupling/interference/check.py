@@ -1,6 +1,7 @@
 """``check_interference``: overlap and minimum gap of the posed part meshes over rotation.
 
-For every rotation ``psi`` the hub mesh is posed in the sleeve frame (DESIGN.md §2) and
+For every rotation ``psi`` the hub mesh is posed in the sleeve frame (docs/conventions.md, Frames)
+and
 compared with the sleeve mesh:
 
 - ``method="boolean"``: the overlap is the manifold3d intersection of the two solids,
@@ -33,9 +34,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..atomic import write_text
 from ..clearance import check_angles, check_misalignment, sweep
-from ..errors import ArgumentError, SpecError
+from ..errors import ArgumentError
+from ..io import write_text
 from ..parts import SURFACE_KINDS, check_tolerance
 from . import distance as dist
 from .attribution import FLANKS, flank_index, nearest_tooth
@@ -65,7 +66,7 @@ class Overlap:
     tooth : int
         Hub tooth (= sleeve space) index.
     flank : str
-        Hub flank ``"cw"`` or ``"ccw"`` (DESIGN.md §2).
+        Hub flank ``"cw"`` or ``"ccw"`` (docs/conventions.md, Frames).
     volume_mm3 : float
         Overlap volume (an estimate with ``method="distance"``).
     depth_mm : float
@@ -367,8 +368,10 @@ def check_interference(spec, misalignment_deg: float, angles_deg: ArrayLike, *,
         the posed hub about its own axis until that side's flank, fillet and chamfer
         surfaces touch the sleeve (Newton steps on the closest distance, bisection on
         overshoot, to 1e-3 tolerance at the pitch radius; where a side already overlaps,
-        minus its depth over ``r_b`` times the turning rate), summed over the sides:
-        ``backlash_rad`` / ``backlash_mm`` at the pitch radius (DESIGN.md §2). Costs two
+        minus its depth over ``r_b`` times the turning rate), summed over the
+        sides:
+        ``backlash_rad`` / ``backlash_mm`` at the pitch radius (docs/conventions.md, Frames).
+        Costs two
         distance queries per window plus a few per side for the refinement.
     model : Model, optional
         A prepared model from :func:`~.submodel.build_model` to reuse (it must match
@@ -387,10 +390,10 @@ def check_interference(spec, misalignment_deg: float, angles_deg: ArrayLike, *,
     try:
         delta_deg = float(hub_rotation_deg)
     except (TypeError, ValueError) as err:
-        raise SpecError("hub_rotation_deg", hub_rotation_deg, "must be a number") from err
+        raise ArgumentError("hub_rotation_deg", hub_rotation_deg, "must be a number") from err
     pitch_deg = 360.0 / spec.tooth.teeth
     if not (math.isfinite(delta_deg) and abs(delta_deg) < 0.5 * pitch_deg):
-        raise SpecError("hub_rotation_deg", hub_rotation_deg,
+        raise ArgumentError("hub_rotation_deg", hub_rotation_deg,
                         f"must be finite and below half a pitch ({0.5 * pitch_deg:.4g}°)")
     delta = math.radians(delta_deg)
     N = spec.tooth.teeth

@@ -7,7 +7,7 @@ from collections.abc import Sequence
 
 from numpy.typing import ArrayLike
 
-from ..errors import SpecError
+from ..errors import ArgumentError
 
 
 def plot_interference(result, reference_mm: ArrayLike | None = None,
@@ -38,7 +38,7 @@ def plot_interference(result, reference_mm: ArrayLike | None = None,
     else:
         axes = list(ax)
         if len(axes) != rows:
-            raise SpecError("ax", f"{len(axes)} axes", f"{rows} axes, one per panel")
+            raise ArgumentError("ax", f"{len(axes)} axes", f"{rows} axes, one per panel")
         fig = axes[0].figure
     a = result.angles_deg
     ax1, ax2 = axes[0], axes[1]

@@ -1,4 +1,4 @@
-"""Part meshes prepared once and posed many times (DESIGN.md §2).
+"""Part meshes prepared once and posed many times (docs/conventions.md, Frames).
 
 A hub body point ``p`` lies in the sleeve body frame at ``Rz(-psi) Rx(i) Rz(psi) Rz(delta)
 p``, where ``delta`` is an optional extra turn of the hub about its own axis (positive

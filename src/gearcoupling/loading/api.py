@@ -8,15 +8,16 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ..clearance import SweepResult, sweep
-from ..errors import SpecError
+from ..errors import ArgumentError
 from .inputs import LoadProblem, load_problem, resolve_model, resolve_torque_Nm
-from .models import ModelOutput, solve
+from .models import ModelOutput, Progress, solve
 from .result import LoadResult
 
 
 def load(spec, misalignment_deg: float, angles_deg: ArrayLike, *,
          torque_Nm: float | None = None, model: str | None = None,
-         gap_offset_rad: ArrayLike | None = None, **accuracy: Any) -> LoadResult:
+         gap_offset_rad: ArrayLike | None = None, progress: Progress = None,
+         **accuracy: Any) -> LoadResult:
     """Load sharing of every tooth over rotations ``angles_deg`` at a misalignment.
 
     Parameters
@@ -32,6 +33,9 @@ def load(spec, misalignment_deg: float, angles_deg: ArrayLike, *,
         Default ``spec.load.model``.
     gap_offset_rad : (N,) or (2, N) float, optional
         Per-tooth additions to the gap angles (index errors, docs/conventions.md).
+    progress : callable, optional
+        ``progress(done, total)`` as the load model advances (the ``surface`` model: after
+        each distinct pose; for a progress bar).
     **accuracy
         Passed to :func:`gearcoupling.sweep` (``tolerance_mm``, ``grid``).
 
@@ -46,23 +50,24 @@ def load(spec, misalignment_deg: float, angles_deg: ArrayLike, *,
     resolve_torque_Nm(spec, torque_Nm)
     resolve_model(spec, model)
     sw = sweep(spec, misalignment_deg, angles_deg, **accuracy)
-    return load_from_sweep(sw, torque_Nm=torque_Nm, model=model, gap_offset_rad=gap_offset_rad)
+    return load_from_sweep(sw, torque_Nm=torque_Nm, model=model, gap_offset_rad=gap_offset_rad,
+                           progress=progress)
 
 
 def load_from_sweep(sweep_result: SweepResult, *, torque_Nm: float | None = None,
-                    model: str | None = None,
-                    gap_offset_rad: ArrayLike | None = None) -> LoadResult:
+                    model: str | None = None, gap_offset_rad: ArrayLike | None = None,
+                    progress: Progress = None) -> LoadResult:
     """Load sharing on an existing sweep (its spec gives the teeth, materials and defaults);
     arguments as :func:`load`."""
     problem = load_problem(sweep_result, torque_Nm, gap_offset_rad)
     m = resolve_model(problem.spec, model)
-    return _result(problem, m, solve(problem, m))
+    return _result(problem, m, solve(problem, m, progress))
 
 
 def _result(problem: LoadProblem, model: str, out: ModelOutput) -> LoadResult:
     bad = out.non_finite()
     if bad:
-        raise SpecError("torque_Nm", problem.torque_Nm, f"the {model} model gave non-finite "
+        raise ArgumentError("torque_Nm", problem.torque_Nm, f"the {model} model gave non-finite "
                         f"{bad}; the load is outside what the model covers")
     sw = problem.sweep
     sign = 1.0 if problem.torque_Nm >= 0 else -1.0

@@ -10,8 +10,10 @@ Every tooth load grows monotonically with torque, so each criterion is a per-too
 load ``W_lim`` (from the contact and root-stress laws, independent of the torque) and the
 capacity the smallest torque at which ``max_k W_k / W_lim,k = 1``: closed form for the
 linear model (tooth ``k`` reaches its limit at ``dpsi_k = g_k + P_lim,k / (C R)``, where the
-torque is ``sum_j K (dpsi_k - g_j)+``), a bracketed root find (Brent on log torque) for the
-compliance model, and the same root find on full solves for the surface model.
+torque is ``sum_j K (dpsi_k - g_j)+``), the compliance model's own root (one load solve at
+the first tooth's limit), and for the surface model a root per rotation from a few
+single-pose solves (:func:`_surface_capacity`: secant steps on log ratio against log torque
+from the compliance model's root, each solve warm-started from its nearest solved pose).
 """
 
 from __future__ import annotations
@@ -26,16 +28,17 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import brentq
 
-from ..atomic import write_csv_rows
 from ..clearance import SweepResult, sweep
-from ..errors import ArgumentError
+from ..errors import ArgumentError, GearCouplingError
 from ..geometry import FLANKS
+from ..io import write_csv_rows
 from ..tables import dataframe
 from .api import load_from_sweep
 from .compliance import first_limit_torque_Nmm
 from .contact import contact_model
 from .inputs import LoadProblem, load_problem, resolve_model
 from .linear_model import mesh_stiffness_N_per_mm
+from .surface import BendingSprings, SurfaceSolver, flank_offsets
 
 CRITERIA = ("tooth_load", "contact_stress", "bending_stress")
 RTOL = 1e-7  # relative accuracy of a root-found torque (the closed forms are exact)
@@ -109,7 +112,9 @@ class Capacity:
     (``None``: no limit is reached); ``criteria_Nm`` each criterion's (times K);
     ``face_end_torque_Nm`` the torque at which a patch reaches a face end (not times K);
     ``q``, ``load_sharing_factor`` and ``max_tooth_load_N`` at the governing torque;
-    ``aligned_capacity_Nm`` Renzo's ``K N P_i R``; ``solves`` the full model solves used.
+    ``aligned_capacity_Nm`` Renzo's ``K N P_i R``; ``solves`` the model solves used: one
+    per load solve of all rotations (linear, compliance), one per single pose (surface: its
+    search, and each rotation of the solve for q).
     """
 
     spec: Any = field(repr=False)
@@ -174,49 +179,180 @@ def capacity_from_sweep(sweep_result: SweepResult, *, model: str | None = None,
     m = resolve_model(spec, model)
     limits = limit_loads(spec, z, r, comp)
     torques: dict[str, float] = {}
-    memo: dict[float, Any] = {}  # surface solves shared by the criteria
+    surface = _SurfaceLimits(problem) if m == "surface" else None
     for name, W_lim in limits.items():
         if m == "linear":
             T = _linear_capacity(spec, g, W_lim)
-        elif m == "compliance":
+        elif surface is None:
             T = first_limit_torque_Nmm(spec, g, z, r, W_lim, comp)
-        else:
-            guess = first_limit_torque_Nmm(spec, g, z, r, W_lim, comp)
-            T = _surface_capacity(problem, name, guess, memo)
+        else:  # each rotation's compliance-model root orders the surface model's search
+            guess = np.array([first_limit_torque_Nmm(spec, g[:, j:j + 1], z[:, j:j + 1],
+                                                     r[:, j:j + 1], W_lim[:, j:j + 1], comp)
+                              for j in range(g.shape[1])])
+            T = _surface_capacity(surface, name, guess)
         torques[name] = T * 1e-3
-    return _summarise(problem, m, torques, len(memo))
+    return _summarise(problem, m, torques, 0 if surface is None else surface.solves)
 
 
-SURFACE_RTOL = 1e-3  # relative accuracy of a surface-model capacity (full solves: costly)
+SURFACE_RTOL = 1e-3  # relative accuracy of a surface-model capacity torque
+SLOPES = {"tooth_load": 1.0, "contact_stress": 0.5, "bending_stress": 1.0}  # d ln f / d ln T
 
 
-def _surface_capacity(problem: LoadProblem, name: str, guess_Nmm: float, memo: dict) -> float:
-    """Root find on full surface-model solves for criterion ``name``, bracketed from the
-    compliance model's torque ``guess_Nmm`` (factors of 1.5) to ``SURFACE_RTOL``."""
-    spec = problem.spec
-    sign = 1.0 if problem.torque_Nm >= 0 else -1.0
-    mat = spec.material
-    limit = {"tooth_load": spec.load.allowable_tooth_load_N,
-             "contact_stress": min(mat.hub.allowable_contact_stress_MPa,
-                                   mat.sleeve.allowable_contact_stress_MPa),
-             "bending_stress": min(mat.hub.allowable_bending_stress_MPa,
-                                   mat.sleeve.allowable_bending_stress_MPa)}
+class _SurfaceLimits:
+    """The surface model's criterion ratios per rotation and torque (single poses: each
+    solve warm-started from the nearest solved one, kept for the other criteria)."""
 
-    def ratio(T):
-        if T not in memo:
-            memo[T] = load_from_sweep(problem.sweep, torque_Nm=sign * T * 1e-3, model="surface",
-                                      gap_offset_rad=problem.gap_offset_rad)
-        res = memo[T]
+    def __init__(self, problem: LoadProblem):
+        spec = problem.spec
+        self.problem = problem
+        self.spec = spec
+        t = spec.tooth
+        flank = problem.loaded_flank
+        N = problem.gap_rad.shape[0]
+        self.solver = SurfaceSolver(
+            spec, problem.sweep, flank, BendingSprings(problem.compliance, t.base_radius,
+                                                       t.pitch_radius),
+            offsets=flank_offsets(problem.gap_offset_rad, FLANKS.index(flank), N))
+        mat = spec.material
+        self.limit = {
+            "tooth_load": spec.load.allowable_tooth_load_N,
+            "contact_stress": min(mat.hub.allowable_contact_stress_MPa,
+                                  mat.sleeve.allowable_contact_stress_MPa),
+            "bending_stress": min(mat.hub.allowable_bending_stress_MPa,
+                                  mat.sleeve.allowable_bending_stress_MPa)}
+        self.solved: dict[tuple[int, float], tuple[dict, Any]] = {}
+
+    @property
+    def solves(self) -> int:
+        return len(self.solved)
+
+    def _start(self, j: int, T: float):
+        """The solved pose nearest to ``(j, T)``: the same rotation at the nearest torque,
+        else the nearest rotation (None: cold)."""
+        if not self.solved:
+            return None
+        key = min(self.solved, key=lambda k: (abs(k[0] - j), abs(math.log(k[1] / T))))
+        return self.solved[key][1]
+
+    def out(self, j: int, T_Nmm: float) -> dict:
+        key = (j, T_Nmm)
+        if key not in self.solved:
+            load_N = T_Nmm / self.spec.tooth.base_radius
+            out, _, pose = self.solver.solve_pose(j, load_N, self._start(j, T_Nmm))
+            self.solved[key] = (out, pose)
+        return self.solved[key][0]
+
+    def ratio(self, name: str, j: int, T_Nmm: float) -> float:
+        """``max over the teeth of criterion / limit`` at rotation ``j`` and torque ``T``
+        (face end: 2 with a patch on a face end, else 0.5)."""
+        out = self.out(j, T_Nmm)
         if name == "face_end":
-            return 2.0 if np.any(res.edge_contact) else 0.5
-        field = {"tooth_load": res.tangential_force_N,
-                 "contact_stress": res.interior_pressure_MPa,
-                 "bending_stress": res.root_stress_MPa}[name]
-        return float(np.max(field)) / limit[name]
+            return 2.0 if np.any(out["edge_contact"]) else 0.5
+        if name == "bending_stress":
+            comp = self.problem.compliance
+            value = comp.root_stress_MPa(out["normal_force_N"], out["contact_z_mm"],
+                                         out["contact_r_mm"])
+        else:
+            value = out[{"tooth_load": "tangential_force_N",
+                         "contact_stress": "interior_pressure_MPa"}[name]]
+        return float(np.max(value)) / self.limit[name]
 
-    start = guess_Nmm if math.isfinite(guess_Nmm) and guess_Nmm > 0 else \
-        1e3 * spec.tooth.pitch_radius
-    return _root_torque(ratio, start, step=1.5, rtol=SURFACE_RTOL)
+
+def _surface_capacity(limits: _SurfaceLimits, name: str, guess_Nmm: NDArray) -> float:
+    """Smallest torque (N·mm) at which criterion ``name`` reaches its limit on the surface
+    model, to :data:`SURFACE_RTOL`. Each tooth's load grows with the torque, so at each
+    rotation the ratio ``criterion / limit`` does; the capacity is the smallest of the
+    rotations' roots. The rotation with the smallest compliance-model root (``guess_Nmm
+    (M,)``) is solved for its root; every other rotation is screened at that torque (a
+    ratio at or below 1: its root is no smaller); those above are searched in the order of
+    their estimated roots (``T ratio^(-1/slope)``; face end: most teeth on a face end
+    first), each first checked at the best torque so far."""
+    M = guess_Nmm.size
+    if M == 0:
+        return math.inf
+    fallback = 1e3 * limits.spec.tooth.pitch_radius
+    start = np.where(np.isfinite(guess_Nmm) & (guess_Nmm > 0), guess_Nmm, fallback)
+    first = int(np.argmin(start))
+    best = _rotation_root(limits, name, first, float(start[first]))
+    if not math.isfinite(best):
+        return best
+    estimate: dict[int, float] = {}
+    for j in range(M):
+        if j == first or limits.ratio(name, j, best) <= 1.0:
+            continue
+        if name == "face_end":
+            estimate[j] = -float(np.sum(limits.out(j, best)["edge_contact"]))
+        else:
+            estimate[j] = best * limits.ratio(name, j, best) ** (-1.0 / SLOPES[name])
+    for j in sorted(estimate, key=estimate.__getitem__):
+        if limits.ratio(name, j, best) > 1.0:
+            T0 = best if name == "face_end" else min(estimate[j], best)
+            best = min(best, _rotation_root(limits, name, j, T0))
+    return best
+
+
+def _rotation_root(limits: _SurfaceLimits, name: str, j: int, T0: float) -> float:
+    def ratio(T):
+        return limits.ratio(name, j, T)
+
+    if name == "face_end":
+        return _bisect_root(ratio, T0)
+    return _secant_root(ratio, T0, SLOPES[name])
+
+
+LOG_T_MAX = math.log(1e18)  # N·mm: a torque never reached
+LOG_T_MIN = math.log(1e-12)
+
+
+def _secant_root(ratio, T0: float, slope: float, rtol: float = SURFACE_RTOL) -> float:
+    """``ratio(T) = 1`` for increasing ``ratio``: secant steps on ``ln ratio`` against
+    ``ln T`` (nearly straight: the first step takes the slope ``slope``), kept inside the
+    bracket once one is found (bisection where a step leaves it, doubling steps outward
+    before); stops when the step is below ``rtol`` (relative)."""
+    x0, f0 = math.log(T0), math.log(max(ratio(T0), 1e-300))
+    lo, hi = (-math.inf, x0) if f0 >= 0 else (x0, math.inf)
+    x1 = x0 - f0 / slope
+    for _ in range(100):
+        if x1 > LOG_T_MAX:
+            return math.inf
+        f1 = math.log(max(ratio(math.exp(x1)), 1e-300))
+        if f1 >= 0:
+            hi = min(hi, x1)
+        else:
+            lo = max(lo, x1)
+        step = -f1 * (x1 - x0) / (f1 - f0) if f1 != f0 else -f1 / slope
+        if abs(step) <= rtol:
+            return math.exp(x1 + step)
+        if hi - lo <= rtol:
+            return math.exp(0.5 * (lo + hi))
+        x2 = x1 + step
+        if not lo < x2 < hi:
+            x2 = 0.5 * (lo + hi) if math.isfinite(lo + hi) else x1 + math.copysign(2.0, step)
+        x0, f0, x1 = x1, f1, x2
+    raise GearCouplingError(f"surface capacity: no root within {rtol:g} after 100 solves")
+
+
+def _bisect_root(ratio, T0: float, rtol: float = SURFACE_RTOL) -> float:
+    """The torque where the increasing step ``ratio`` passes 1, by bisection on ``ln T``
+    from ``T0`` (bracketed by factors of 2) to ``rtol``."""
+    lo = hi = math.log(T0)
+    if ratio(T0) >= 1.0:
+        while ratio(math.exp(lo)) >= 1.0:
+            hi, lo = lo, lo - math.log(2.0)
+            if lo < LOG_T_MIN:
+                return 0.0
+    else:
+        while ratio(math.exp(hi)) < 1.0:
+            lo, hi = hi, hi + math.log(2.0)
+            if hi > LOG_T_MAX:
+                return math.inf
+    while hi - lo > rtol:
+        mid = 0.5 * (lo + hi)
+        if ratio(math.exp(mid)) >= 1.0:
+            hi = mid
+        else:
+            lo = mid
+    return math.exp(hi)
 
 
 def _summarise(problem: LoadProblem, model: str, torques: dict[str, float],
@@ -234,7 +370,7 @@ def _summarise(problem: LoadProblem, model: str, torques: dict[str, float],
         res = load_from_sweep(sw, torque_Nm=sign * T_gov, model=model,
                               gap_offset_rad=problem.gap_offset_rad)
         q, P_max = res.q(), float(np.max(res.tangential_force_N))
-        solves += 1
+        solves += sw.angles_deg.size if model == "surface" else 1
     return Capacity(
         spec=spec, misalignment_deg=float(sw.misalignment_deg), model=model,
         loaded_flank=problem.loaded_flank, accuracy_factor=K,

@@ -18,7 +18,7 @@ import math
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import SpecError
+from ..errors import ArgumentError, SpecError
 from .contact import contact_model
 
 INNER_ITER, OUTER_ITER = 60, 100
@@ -99,7 +99,7 @@ def solve_compliance(spec, gap_rad: NDArray, z_mm: NDArray, r_mm: NDArray, torqu
     g = np.asarray(gap_rad, dtype=float)
     touch = np.isfinite(g)
     if not np.all(np.any(touch, axis=0)):
-        raise SpecError("misalignment_deg", None, "no tooth can touch at some rotation")
+        raise ArgumentError("misalignment_deg", None, "no tooth can touch at some rotation")
     c, law, cm, geo = pair_laws(spec, z_mm, r_mm, compliance)
 
     g_min = np.min(np.where(touch, g, np.inf), axis=0)
@@ -125,7 +125,7 @@ def solve_compliance(spec, gap_rad: NDArray, z_mm: NDArray, r_mm: NDArray, torqu
         W, dW = _solve_load(d, c, law, W)
         resid = np.abs(r_b * np.sum(W, axis=0) - T)
         if not np.all(resid <= 1e-9 * T):
-            raise SpecError("torque_Nm", T * 1e-3, f"load sharing did not converge (torque "
+            raise ArgumentError("torque_Nm", T * 1e-3, f"load sharing did not converge (torque "
                             f"error {float(np.max(resid)) / T:.2e} relative)")
     closure = np.where(touch, np.maximum(x[None, :] - gr, 0.0), 0.0)
     out = {"windup_rad": g_min + x, "deflection_mm": R * closure,

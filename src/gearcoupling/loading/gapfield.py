@@ -7,7 +7,8 @@ position ``z`` (sleeve frame) and the arc length along the involute from the bas
 hub flank point facing it (same sleeve radius and axial position) is found on the exact
 hub flank (the hob envelope of :mod:`gearcoupling.geometry.hub`, through the sweep's
 Chebyshev table of it, whose measured error is below 1e-7 mm), posed by ``P(theta)`` as
-the sweep does (DESIGN.md §2), pulled back by ``P(theta)^T`` in three fixed-point steps
+the sweep does (docs/conventions.md, Frames), pulled back by ``P(theta)^T`` in three fixed-point
+steps
 (the polar angle of the hub flank moves by far less than a micrometre per step). The gap
 there is the hub rotation that closes it: ``G = (a_q + sigma(r_q)/2) / rate`` (rad;
 ``r_b G`` is the normal gap, as in the sweep).
@@ -30,7 +31,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..clearance import flank_table
-from ..errors import SpecError
+from ..errors import ArgumentError
 from ..geometry import FLANKS, hub_model, hub_to_sleeve, sleeve_model, tip_radius
 
 FIXED_POINT_STEPS = 3
@@ -114,6 +115,77 @@ def windows(spec, misalignment: float, z_centre_mm: ArrayLike, length_mm: float,
     return lo[:, None] + (np.arange(n_face) + 0.5)[None, :] * dz
 
 
+WINDOW_RATIO = 2.0 ** 0.25  # window lengths: the full face range over about powers of this
+MAX_LEVEL = 64  # shortest window: about the full one / WINDOW_RATIO**64 (1/65536)
+
+
+def _cells_per_half_face(level: int, n_face: int) -> int:
+    """Cells over the half face range at window ``level``: ``(n_face - 2) // 2`` at level 0
+    (the window spans the face range and a cell either side), then about
+    :data:`WINDOW_RATIO` more per level (at least one)."""
+    m0 = max((n_face - 2) // 2, 1)
+    m = m0
+    for k in range(1, int(level) + 1):
+        m = max(m + 1, round(m0 * WINDOW_RATIO**k))
+    return m
+
+
+def window_length(spec, misalignment: float, level: int, n_face: int) -> float:
+    """Length (mm) of the windows of ``level``: ``n_face`` cells of ``Z / m`` (``Z`` the
+    face range, ``m`` cells over it per side); level 0 covers the face range and one cell
+    either side, each level is about :data:`WINDOW_RATIO` shorter."""
+    return n_face * face_range(spec, misalignment) / _cells_per_half_face(level, n_face)
+
+
+def window_level(spec, misalignment: float, length_mm: float, n_face: int) -> int:
+    """The shortest level whose windows are at least ``length_mm`` long (0: the full face)."""
+    if not length_mm > 0:
+        return MAX_LEVEL
+    cells = n_face * face_range(spec, misalignment) / length_mm  # most cells per half face
+    level = 0
+    while level < MAX_LEVEL and _cells_per_half_face(level + 1, n_face) <= cells:
+        level += 1
+    return level
+
+
+def lattice_windows(spec, misalignment: float, level: int, z_centre_mm: ArrayLike,
+                    n_face: int) -> tuple[NDArray[np.float64], NDArray[np.intp]]:
+    """Windows of ``level`` as runs of ``n_face`` cells of one lattice, nearest to centred
+    on each ``z_centre_mm``: the axial cell centres ``(n, n_face)`` and each window's first
+    lattice cell ``(n,)``.
+
+    The lattice of a level has cell edges at whole multiples of ``Z / m`` (``Z`` the face
+    range, :func:`face_range`): symmetric about the midplane, with the face range's ends
+    on cell edges, one cell beyond either end (masked as face cut). Two windows of one
+    level share the cells where they overlap, so a patch inside both gets the same
+    discrete problem wherever the windows were placed: the answer does not depend on the
+    start. Level 0 equals :func:`windows` of infinite length.
+    """
+    zc = np.atleast_1d(np.asarray(z_centre_mm, dtype=float))
+    Z = face_range(spec, misalignment)
+    m = _cells_per_half_face(level, n_face)
+    dz = Z / m
+    origin = -(m + 1) * dz
+    last = max(2 * m + 2 - n_face, 0)
+    start = np.clip(np.round((zc - 0.5 * n_face * dz - origin) / dz), 0, last).astype(np.intp)
+    cells = start[:, None] + np.arange(n_face)[None, :]
+    return (origin + (cells + 0.5) * dz).astype(float), start
+
+
+def touch_z(spec, misalignment: float, theta: ArrayLike, flank: str, z_mm: ArrayLike,
+            r_mm: ArrayLike) -> NDArray[np.float64]:
+    """Sleeve-frame axial position of hub flank points ``(z_mm, r_mm)`` (hub frame, e.g.
+    the sweep's first touch) of teeth at turning angles ``theta`` (broadcast): where along
+    the face their windows must lie. ``nan`` stays ``nan``."""
+    theta = np.asarray(theta, dtype=float)
+    if flank == "ccw":
+        theta = np.pi - theta
+    z, r = np.asarray(z_mm, dtype=float), np.asarray(r_mm, dtype=float)
+    a = -sleeve_model(spec).half_angle(r)  # the flank's polar angle, near enough
+    P = hub_to_sleeve(misalignment, theta)
+    return P[..., 2, 0] * r * np.cos(a) + P[..., 2, 1] * r * np.sin(a) + P[..., 2, 2] * z
+
+
 def gap_field(spec, misalignment: float, theta: ArrayLike, flank: str, z_mm: ArrayLike,
               n_depth: int, *, gap_offset_rad: ArrayLike | None = None) -> GapField:
     """The gap field of the hub flank ``flank`` of the teeth at turning angles ``theta``.
@@ -136,9 +208,9 @@ def gap_field(spec, misalignment: float, theta: ArrayLike, flank: str, z_mm: Arr
         Added to each tooth's gap (index errors etc.).
     """
     if flank not in FLANKS:
-        raise SpecError("loaded_flank", flank, f"must be one of {FLANKS}")
+        raise ArgumentError("loaded_flank", flank, f"must be one of {FLANKS}")
     if n_depth < 2:
-        raise SpecError("grid", n_depth, "needs at least 2 cells across the depth")
+        raise ArgumentError("grid", n_depth, "needs at least 2 cells across the depth")
     theta = np.atleast_1d(np.asarray(theta, dtype=float))
     if flank == "ccw":
         theta = np.pi - theta
@@ -156,29 +228,29 @@ def gap_field(spec, misalignment: float, theta: ArrayLike, flank: str, z_mm: Arr
     P = hub_to_sleeve(misalignment, theta)  # (n, 3, 3)
     zq = np.broadcast_to(z[:, :, None], (n, nf, n_depth))
     rq = np.broadcast_to(r[None, None, :], (n, nf, n_depth))
-    half = sm.half_angle(rq)  # the sleeve cw flank lies at polar angle -half
-    aq = -half  # first guess for the facing hub point
+    half = sm.half_angle(r)[None, None, :]  # the sleeve cw flank lies at polar angle -half
+    # first guess for the facing hub point: the sleeve flank point (one per depth row)
+    qx, qy = r * np.cos(half), -r * np.sin(half)
     for _ in range(FIXED_POINT_STEPS):  # FIXED_POINT_STEPS >= 1 sets zh, rh
-        px, py, zh = _apply(P, rq * np.cos(aq), rq * np.sin(aq), zq, transpose=True)
+        px, py, zh = _apply(P, qx, qy, zq, transpose=True)
         rh = np.hypot(px, py)
-        a = _hub_angle(table, hm, zh, rh)
-        qx, qy, _ = _apply(P, rh * np.cos(a), rh * np.sin(a), zh)
-        aq = np.arctan2(qy, qx)
+        a, r_form, r_tip = _hub_angle(table, hm, zh, rh)
+        hx, hy, _ = _apply(P, rh * np.cos(a), rh * np.sin(a), zh)
+        aq = np.arctan2(hy, hx)
+        qx, qy = rq * np.cos(aq), rq * np.sin(aq)  # the cell's point at that polar angle
     # the hub point facing the cell: its polar angle at the cell's (r, z)
-    gap = (aq + half) / _turning_rate(P, rq, aq, zq)
+    gap = (aq + half) / _turning_rate(P, rq, qx, qy, zq)
     if gap_offset_rad is not None:
         off = np.broadcast_to(np.asarray(gap_offset_rad, dtype=float), (n,))
         gap = gap + off[:, None, None]
     eps = 1e-9 * (sm.R + 1.0)
     hub_face = np.abs(zh) > hm.half_face + eps
     sleeve_face = np.abs(zq) > sm.half_face + eps
-    zc = np.clip(zh, -hm.half_face, hm.half_face)
-    r_form, r_tip = table.radii(zc)
     profile = ((rh > r_tip + eps) | (rh < r_form - eps)
                | (rq < sm.r_form - eps) | (rq > sm.r_fillet + eps))
     mask = ~(hub_face | sleeve_face | profile)
     if not np.all(np.isfinite(gap[mask])):
-        raise SpecError("gap field", "non-finite", "the flank geometry gave no finite gap")
+        raise ArgumentError("gap field", "non-finite", "the flank geometry gave no finite gap")
     gap = np.where(np.isfinite(gap), gap, 0.0)
     return GapField(z, s, r, dz, float(ds), gap, mask, (hub_face | sleeve_face) & ~mask,
                     zh, rh, r_b)
@@ -186,12 +258,15 @@ def gap_field(spec, misalignment: float, theta: ArrayLike, flank: str, z_mm: Arr
 
 def _hub_angle(table, hm, zh, rh):
     """Polar angle of the hub cw flank at ``(zh, rh)``, clipped onto the flank (cells off
-    it are masked by the caller; clipping keeps the evaluation on the flank)."""
+    it are masked by the caller; clipping keeps the evaluation on the flank), and the
+    form and tip radii at the clipped ``zh``; one table product for all three."""
     zc = np.clip(zh, -hm.half_face, hm.half_face)
-    lo, hi = table.radii(zc)
+    coef, lo, hi = table.plane_coefficients(zc.ravel())
+    lo, hi = lo.reshape(zc.shape), hi.reshape(zc.shape)
     t = np.clip((rh - lo) / (hi - lo), 0.0, 1.0)
-    _, alpha = table.evaluate(zc, t)
-    return alpha
+    r = lo + t * (hi - lo)
+    y = table.plane_y(coef, t.ravel()).reshape(zc.shape)
+    return np.arcsin(y / r), lo, hi
 
 
 def _apply(P, x, y, z, transpose=False):
@@ -201,10 +276,10 @@ def _apply(P, x, y, z, transpose=False):
     return tuple(c[i][0] * x + c[i][1] * y + c[i][2] * z for i in range(3))
 
 
-def _turning_rate(P, rq, aq, zq):
-    """Sleeve polar angle change per unit hub turn about its tilted axis ``k = P e_z``."""
+def _turning_rate(P, rq, x, y, zq):
+    """Sleeve polar angle change per unit hub turn about its tilted axis ``k = P e_z`` at
+    the points ``(x, y, zq)`` (radius ``rq``)."""
     k = P[:, :, 2]  # (n, 3)
-    x, y = rq * np.cos(aq), rq * np.sin(aq)
     kx, ky, kz = (k[:, j][:, None, None] for j in range(3))
     vx = ky * zq - kz * y
     vy = kz * x - kx * zq

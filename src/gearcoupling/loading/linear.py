@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import SpecError
+from ..errors import ArgumentError, SpecError
 
 
 def solve_windup(gap_rad: NDArray[np.float64], stiffness_Nmm_per_rad: NDArray[np.float64],
@@ -42,9 +42,9 @@ def solve_windup(gap_rad: NDArray[np.float64], stiffness_Nmm_per_rad: NDArray[np
         raise SpecError("load.mesh_stiffness_N_per_mm", float(np.min(K)),
                         "tooth stiffness must be positive and finite")
     if not (np.isfinite(torque_Nmm) and torque_Nmm >= 0):
-        raise SpecError("torque_Nm", torque_Nmm / 1e3, "must be a finite torque")
+        raise ArgumentError("torque_Nm", torque_Nmm / 1e3, "must be a finite torque")
     if not np.all(np.any(np.isfinite(g), axis=0)):
-        raise SpecError("misalignment_deg", None, "no tooth can touch at some rotation")
+        raise ArgumentError("misalignment_deg", None, "no tooth can touch at some rotation")
     g_min = np.min(g, axis=0)
     if torque_Nmm == 0:
         return (g_min, np.zeros_like(g_min)) if excess else g_min

@@ -75,22 +75,35 @@ class ModelOutput:
         return [k for k, v in named.items() if v.dtype.kind == "f" and not np.all(np.isfinite(v))]
 
 
-def _linear(problem: LoadProblem) -> ModelOutput:
+#: ``progress(done, total)``: called as a model's work advances (the surface model: after
+#: each distinct pose it solves), or None
+Progress = Callable[[int, int], Any] | None
+
+
+def _finished(progress: Progress) -> None:
+    """Report a model that solves every rotation at once as done."""
+    if progress is not None:
+        progress(1, 1)
+
+
+def _linear(problem: LoadProblem, progress: Progress = None) -> ModelOutput:
     out = solve_linear(problem.spec, problem.gap_rad, problem.z_mm, problem.r_mm,
                        problem.torque_Nmm)
+    _finished(progress)
     return ModelOutput.from_solver(problem, out)
 
 
-def _compliance(problem: LoadProblem) -> ModelOutput:
+def _compliance(problem: LoadProblem, progress: Progress = None) -> ModelOutput:
     out = solve_compliance(problem.spec, problem.gap_rad, problem.z_mm, problem.r_mm,
                            problem.torque_Nmm, problem.compliance)
+    _finished(progress)
     return ModelOutput.from_solver(problem, out)
 
 
-def _surface(problem: LoadProblem) -> ModelOutput:
+def _surface(problem: LoadProblem, progress: Progress = None) -> ModelOutput:
     spec, c = problem.spec, problem.compliance
     out = solve_surface(spec, problem.sweep, torque_Nm=problem.torque_Nm, compliance=c,
-                        gap_offset_rad=problem.gap_offset_rad)
+                        gap_offset_rad=problem.gap_offset_rad, progress=progress)
     Fn = np.asarray(out["normal_force_N"])
     z, r = out["contact_z_mm"], out["contact_r_mm"]
     out.setdefault("contact_regime", np.where(Fn > 0, 2, 0))
@@ -102,10 +115,12 @@ def _surface(problem: LoadProblem) -> ModelOutput:
     return ModelOutput.from_solver(problem, out)
 
 
-MODELS: dict[str, Callable[[LoadProblem], ModelOutput]] = {
+MODELS: dict[str, Callable[[LoadProblem, Progress], ModelOutput]] = {
     "linear": _linear, "compliance": _compliance, "surface": _surface}
 
 
-def solve(problem: LoadProblem, model: str) -> ModelOutput:
-    """Solve ``problem`` with the model named ``model`` (a key of :data:`MODELS`)."""
-    return MODELS[model](problem)
+def solve(problem: LoadProblem, model: str, progress: Progress = None) -> ModelOutput:
+    """Solve ``problem`` with the model named ``model`` (a key of :data:`MODELS`);
+    ``progress(done, total)`` as the model advances (models that take under a second
+    may not call it)."""
+    return MODELS[model](problem, progress)

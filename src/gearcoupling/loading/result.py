@@ -8,7 +8,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..atomic import write_csv_rows
+from ..io import write_csv_rows
 from ..tables import dataframe
 from .contact import REGIMES
 from .summary import summarise
@@ -77,7 +77,7 @@ class LoadResult:
         return float(np.min(ties)) / self.teeth
 
     def summary(self) -> dict[str, Any]:
-        """The ``load_summary.json`` keys (issue 10), plain data with units in the keys."""
+        """The ``load_summary.json`` keys, plain data with units in the keys."""
         return summarise(self)
 
     def write_csv(self, path):

@@ -1,6 +1,7 @@
 """``load_summary.json``: sharing, pressures, machine loads and wear of a LoadResult.
 
-Machine loads (DESIGN.md §6, Wei's additional moment): every loaded tooth pushes the hub
+Machine loads (docs/conventions.md, Loaded analysis, Wei's additional moment): every loaded tooth
+pushes the hub
 with ``-W n`` (``n`` the exact hub flank normal at the contact point) plus Coulomb friction
 ``-mu W t`` against the hub's sliding velocity ``t`` at that point. Hub and sleeve turn at
 the same speed about their own axes, so the sliding velocity per unit speed is
@@ -17,7 +18,6 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..atomic import finite_json
 from ..geometry import form_radius, hub_flank_model, hub_model, tip_radius
 from .contact import REGIMES
 
@@ -87,7 +87,7 @@ def _range(a: NDArray) -> dict[str, float]:
 
 
 def summarise(res) -> dict[str, Any]:
-    """The ``load_summary.json`` keys of issue 10."""
+    """The ``load_summary.json`` keys."""
     P = res.tangential_force_N
     n_contact = np.sum(res.in_contact, axis=0)
     loads = machine_loads(res)
@@ -122,7 +122,7 @@ def summarise(res) -> dict[str, Any]:
         "archard_index_N_mm_per_rev_per_tooth": archard.tolist(),
         "limits": _limits(res),
     }
-    return finite_json(out)
+    return out
 
 
 def _limits(res) -> list[str]:

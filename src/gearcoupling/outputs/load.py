@@ -9,8 +9,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ..atomic import write_json
 from ..clearance import SweepResult, sweep
+from ..geometry import renzo_z0_mm
+from ..io import write_json
 from ..loading import (
     capacity_from_sweep,
     default_angles,
@@ -51,7 +52,7 @@ def load_studies(spec: CouplingSpec, torque_Nm: float, model: str | None, out: P
         if ld.allowable_tooth_load_N is not None and ld.mesh_stiffness_N_per_mm is not None:
             c = capacity_from_sweep(sw, model="linear")
             rc = spec.derived["crowning_radius_midplane_mm"]
-            z0 = 0.5 * rc * math.tan(math.radians(i)) ** 2 / math.tan(spec.tooth.pressure_angle)
+            z0 = renzo_z0_mm(rc, math.radians(i), spec.tooth.pressure_angle)
             zc = ld.allowable_tooth_load_N / ld.mesh_stiffness_N_per_mm
             if z0 > 0 and c.criteria_Nm["tooth_load"] and c.aligned_capacity_Nm:
                 q_pts.append((zc / z0, c.criteria_Nm["tooth_load"] / c.aligned_capacity_Nm))
@@ -86,7 +87,7 @@ def write_load(spec: CouplingSpec, out: Path, misalignment_deg: float, angles: i
     surface model and the studies go."""
     if swept is None:
         swept = sweep(spec, misalignment_deg, turn_angles(angles), tolerance_mm=tolerance_mm)
-    res = load_from_sweep(swept, torque_Nm=torque_Nm, model=model)
+    res = load_from_sweep(swept, torque_Nm=torque_Nm, model=model, progress=progress)
     summary = res.summary()
     paths = [res.write_csv(out / "load.csv"), write_json(out / "load_summary.json", summary)]
     if plots:

@@ -8,9 +8,9 @@ from importlib.util import find_spec
 from pathlib import Path
 from typing import Any
 
-from ..atomic import write_json
 from ..errors import BackendError
 from ..export import export_part
+from ..io import write_json
 from ..parts import build_part, check_part, check_tolerance, measure_deviation
 from ..spec import CouplingSpec
 

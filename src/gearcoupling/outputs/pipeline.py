@@ -17,9 +17,9 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..atomic import write_json
 from ..errors import ArgumentError, BackendError
 from ..interference import check_interference
+from ..io import write_json
 from ..plots import plot_sections
 from ..spec import CouplingSpec
 from ..viewer import write_html

@@ -5,14 +5,14 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from ..atomic import write_json
-from ..spec import CouplingSpec, json_safe
+from ..io import write_json
+from ..spec import CouplingSpec
 
 
 def resolved_spec(spec: CouplingSpec) -> dict[str, Any]:
     """The resolved spec (mm, degrees) with its derived values, as plain data."""
     data = spec.to_dict()
-    data["derived"] = json_safe(dict(spec.derived))
+    data["derived"] = dict(spec.derived)
     return data
 
 

@@ -6,9 +6,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ..atomic import write_json
-from ..clearance import SweepResult, design_quantities, plot_all, require_finite, sweep
+from ..clearance import SweepResult, design_quantities, plot_all, sweep
 from ..errors import ArgumentError
+from ..io import plain, write_json
 from ..spec import CouplingSpec
 
 
@@ -30,7 +30,7 @@ def write_sweep(spec: CouplingSpec, out: Path, misalignment_deg: float, angles: 
     summary = result.summary()
     extra = design_quantities(spec, misalignment_deg) if design else {}
     summary.update(extra)
-    require_finite(summary, "sweep_summary.json")  # nothing is written before this
+    plain(summary, "sweep_summary.json")  # refuses NaN before anything is written
     paths = [result.write_csv(out / "sweep.csv"),
              write_json(out / "sweep_summary.json", summary)]
     if plots:

@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import ArgumentError, GeometryError, SpecError
+from ..errors import ArgumentError, GeometryError
 from ..geometry import PARTS
 from .builder import SURFACE_KINDS, MeshBuilder, Run, tile, tooth_runs
 from .deviation import measure_deviation
@@ -40,10 +40,10 @@ def check_tolerance(spec, tolerance_mm) -> float:
     try:
         tol = float(tol)
     except (TypeError, ValueError) as err:
-        raise SpecError("tolerance_mm", tolerance_mm, "must be a number (mm)") from err
+        raise ArgumentError("tolerance_mm", tolerance_mm, "must be a number (mm)") from err
     lo, hi = spec.tooth.module * 1e-5, spec.tooth.module * 0.1
     if not (math.isfinite(tol) and lo <= tol <= hi):
-        raise SpecError("tolerance_mm", tolerance_mm, f"must be from {lo:.3g} to {hi:.3g} mm "
+        raise ArgumentError("tolerance_mm", tolerance_mm, f"must be from {lo:.3g} to {hi:.3g} mm "
                         "(1e-5 to 0.1 module) for this spec")
     return tol
 

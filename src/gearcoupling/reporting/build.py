@@ -11,7 +11,7 @@ from pathlib import Path
 from typing import Any
 
 from .. import __version__
-from ..atomic import write_text
+from ..io import write_text
 from ..spec import CouplingSpec
 from . import sections as sec
 from .document import Note, Section, Table, render
@@ -45,7 +45,8 @@ class ReportResult:
 
 
 def _steps(settings: ReportSettings) -> list[tuple[str, Callable[[sec.Context], Section]]]:
-    steps = [("coupling", sec.coupling), ("clearance", sec.clearance),
+    steps: list[tuple[str, Callable[[sec.Context], Section]]] = [
+        ("coupling", sec.coupling), ("clearance", sec.clearance),
              ("design angles", sec.design_angles), ("loads", sec.loads),
              ("capacity", sec.capacity_section), ("interference", sec.interference),
              ("manufacturing", sec.manufacturing)]

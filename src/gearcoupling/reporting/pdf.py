@@ -12,10 +12,11 @@ import contextlib
 import io
 import time
 from pathlib import Path
+from typing import Any, cast
 
 import numpy as np
 
-from ..atomic import atomic_path
+from ..io import atomic_path
 from ..viewer import chromium
 
 VIEWPORT = {"width": 1240, "height": 900}
@@ -54,7 +55,7 @@ def viewer_picture(page, timeout_s: float = RENDER_TIMEOUT_S) -> bytes | None:
 def print_pdf(html_path: Path, pdf_path: Path, *, timeout_s: float = RENDER_TIMEOUT_S) -> Path:
     """Print ``html_path`` (a report) to ``pdf_path`` atomically; returns the path."""
     with chromium() as browser:
-        page = browser.new_page(viewport=VIEWPORT)
+        page = cast(Any, browser).new_page(viewport=VIEWPORT)
         try:
             page.goto(Path(html_path).resolve().as_uri(), wait_until="load")
             shot = viewer_picture(page, timeout_s)

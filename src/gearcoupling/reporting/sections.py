@@ -15,7 +15,6 @@ from typing import Any
 
 import numpy as np
 
-from ..atomic import write_csv_rows, write_text
 from ..clearance import (
     backlash_curve,
     design_quantities,
@@ -25,16 +24,12 @@ from ..clearance import (
     plot_contact_path,
     sweep,
 )
-from ..errors import BackendError, SpecError
-from ..hob import (
-    hob_program,
-    measuring_charts,
-    plot_measuring_charts,
-    write_csv,
-    write_nominal_csv,
-)
+from ..errors import ArgumentError, BackendError
+from ..geometry import renzo_z0_mm
+from ..hob import hob_program, measuring_charts, plot_measuring_charts, write_nominal_csv
 from ..inspection import compare_part, plot_deviation_map, plot_inspection
 from ..interference import check_interference, plot_interference
+from ..io import write_csv_records, write_csv_rows, write_text
 from ..loading import (
     capacity,
     capacity_from_sweep,
@@ -211,7 +206,7 @@ def design_angles(ctx: Context) -> Section:
     finite = math.isfinite(rc)
     est_crit = math.degrees(half / (rc / math.tan(phi))) if finite else None
     est_bind = math.degrees(math.atan(math.sqrt(B * math.sin(phi) / rc))) if finite else None
-    z0 = 0.5 * rc * math.tan(i) ** 2 / math.tan(phi) if finite else None
+    z0 = renzo_z0_mm(rc, i, phi) if finite else None
     sw = ctx.found["sweep"]
     sep = max(sw.summary()["pitch_line_peak_to_peak_normal_mm"].values())
     travel = dq["pivot_contact_z_mm"]
@@ -337,11 +332,12 @@ def q_graph(ctx: Context, sec: Section) -> None:
     pts = []
     for i in np.linspace(top / 7, top, 7):
         c = capacity_from_sweep(sweep(spec, float(i), default_angles(spec, None)), model="linear")
-        rc = spec.derived["crowning_radius_midplane_mm"]
-        z0 = 0.5 * rc * math.tan(math.radians(i)) ** 2 / math.tan(spec.tooth.pressure_angle)
+        z0 = renzo_z0_mm(spec.derived["crowning_radius_midplane_mm"], math.radians(i),
+                         spec.tooth.pressure_angle)
         zc = ld.allowable_tooth_load_N / ld.mesh_stiffness_N_per_mm
-        if z0 > 0 and c.criteria_Nm.get("tooth_load") and c.aligned_capacity_Nm:
-            q = c.criteria_Nm["tooth_load"] / c.aligned_capacity_Nm
+        T_tooth = c.criteria_Nm.get("tooth_load")
+        if 0 < z0 < math.inf and T_tooth and c.aligned_capacity_Nm:
+            q = T_tooth / c.aligned_capacity_Nm
             pts.append((float(i), zc / z0, q, renzo_q(zc / z0)))
     name = ctx.table_file("q_graph.csv", ("misalignment_deg", "zc_over_z0", "q_linear_model",
                                           "q_renzo_eq8"), pts)
@@ -435,7 +431,8 @@ def manufacturing(ctx: Context) -> Section:
     for note in summ["notes"]:
         sec.blocks.append(Note(note, "warn"))
     write_text(ctx.data_path("hob_program.nc"), prog.gcode())
-    write_csv(ctx.data_path("hob_path.csv"), prog.rows(), ["hob centre path, mm and degrees"])
+    write_csv_records(ctx.data_path("hob_path.csv"), prog.rows(),
+                      ["hob centre path, mm and degrees"])
     fig, ax = new_figure(figsize=(9, 3.6), layout="constrained")
     ax.plot(prog.table["z_mm"], prog.table["infeed_mm"] * 1e3, "-")
     ax.set_xlabel("hob centre Z (mm)")
@@ -475,7 +472,7 @@ def measured(ctx: Context) -> Section:
                               v["verdict"] + (f" ({v['reason']})" if v["reason"] else ""))
                              for v in part["verdicts"]], "Not judged: no limit set for it "
                             "([inspection], --limit or --grade).", verdict_column=4))
-    write_csv(ctx.data_path("inspection.csv"), rep.rows(),
+    write_csv_records(ctx.data_path("inspection.csv"), rep.rows(),
               ["lengths in mm, + = material excess / toward increasing polar angle"])
     how = (f"Registration on {s.fit_points} points, flank table 61 × 41; "
            + (f"ISO 1328-1:2013 class {s.grade} limits. " if s.grade else ""))
@@ -506,7 +503,7 @@ def resolve(spec: CouplingSpec, s: ReportSettings) -> tuple[float, float | None,
     """The misalignment (deg), torque (N·m or None) and model a report uses."""
     mis = spec.design_misalignment_deg if s.misalignment_deg is None else s.misalignment_deg
     if not (isinstance(mis, int | float) and math.isfinite(mis) and 0.0 <= mis <= 6.0):
-        raise SpecError("misalignment_deg", mis, "a misalignment from 0 to 6 degrees")
+        raise ArgumentError("misalignment_deg", mis, "a misalignment from 0 to 6 degrees")
     torque = None
     if s.torque_Nm is not None or spec.load.torque_Nm is not None:
         torque = resolve_torque_Nm(spec, s.torque_Nm)

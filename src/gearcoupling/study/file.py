@@ -48,8 +48,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from ..atomic import not_a_file, require_file
 from ..errors import SpecError
+from ..io import Table, bundled_names, line_of, resolve_bundled, set_dotted
+from ..loadspec import UNIT_SIBLINGS
 from ..spec import MISALIGNMENT_RANGE_DEG, resolve_spec_path, spec_from_dict
 from .tolerance import MODELS, PATHS, Tolerances
 
@@ -143,71 +144,20 @@ class Study:
                               ).hexdigest()[:16]
 
 
-def _line_of(text: str, needle: str, default: int = 0) -> int:
-    """First line (1-based) at or after ``default`` that contains ``needle``."""
-    for n, line in enumerate(text.splitlines(), 1):
-        if n >= default and needle in line:
-            return n
-    return default
-
-
-class _Reader:
-    """Reads one table of the study file, naming file:line in errors, refusing unknown keys."""
-
-    def __init__(self, data: Any, where: str, text: str, path: str, line: int = 0):
-        self.where, self.text, self.path, self.line = where, text, path, line
-        if not isinstance(data, dict):
-            self.fail(where, data, "must be a TOML table")
-        self.data = dict(data)
-
-    def fail(self, key: str, value: Any, allowed: str, line: int | None = None):
-        n = line if line is not None else _line_of(self.text, key.rsplit(".", 1)[-1], self.line)
-        raise SpecError(f"{self.path}:{n} {key}", value, allowed)
-
-    def get(self, key: str, kind, default: Any = None, required: bool = False):
-        name = f"{self.where}.{key}" if self.where else key
-        if key not in self.data:
-            if required:
-                self.fail(name, None, "is required", self.line)
-            return default
-        value = self.data.pop(key)
-        if kind is float and isinstance(value, int) and not isinstance(value, bool):
-            value = float(value)
-        if not isinstance(value, kind) or (isinstance(value, bool) and kind is not bool):
-            self.fail(name, value, f"must be of type {getattr(kind, '__name__', kind)}")
-        return value
-
-    def done(self) -> None:
-        if self.data:
-            key = sorted(self.data)[0]
-            name = f"{self.where}.{key}" if self.where else key
-            self.fail(name, self.data[key], "unknown key")
-
-
-def _set_dotted(data: dict[str, Any], key: str, value: Any) -> None:
-    node = data
-    parts = key.split(".")
-    for part in parts[:-1]:
-        node = node.setdefault(part, {})
-        if not isinstance(node, dict):
-            raise SpecError(key, value, f"'{part}' is a value, not a table")
-    node[parts[-1]] = value
-
-
 def build_spec(base_name: str, base_text: str, overrides: dict[str, Any]):
     """The base spec (TOML text) with dotted overrides in the file's units."""
     data = tomllib.loads(base_text)
     for key, value in overrides.items():
-        _set_dotted(data, key, value)
+        set_dotted(data, key, value, UNIT_SIBLINGS)
     return spec_from_dict(data, name=base_name)
 
 
 def _parameter(entry: Any, index: int, text: str, path: str) -> Parameter:
     starts = [n for n, s in enumerate(text.splitlines(), 1) if s.strip() == "[[vary]]"]
     line = starts[index] if index < len(starts) else 0
-    r = _Reader(entry, f"vary[{index}]", text, path, line)
+    r = Table(entry, f"vary[{index}]", source=path, text=text, line=line)
     key = r.get("key", str, required=True)
-    line = _line_of(text, f'"{key}"', line)
+    line = line_of(text, f'"{key}"', line)
     r.line = line
     values = r.get("values", list)
     rng = r.get("range", list)
@@ -267,8 +217,9 @@ def load_study(path: str | Path) -> Study:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as err:
         raise SpecError(src, None, f"is not valid TOML: {err}") from err
-    root = _Reader(data, "", text, src)
-    s = _Reader(root.get("study", dict, {}), "study", text, src, _line_of(text, "[study]"))
+    root = Table(data, "", source=src, text=text)
+    s = Table(root.get("study", dict, {}), "study", source=src, text=text,
+              line=line_of(text, "[study]"))
     name = s.get("name", str, p.stem)
     base = s.get("base", str, required=True)
     method = s.get("method", str, "grid")
@@ -290,13 +241,13 @@ def load_study(path: str | Path) -> Study:
     base_path = _resolve_base(base, p.parent)
     base_text = base_path.read_text()
     fixed = root.get("set", dict, {})
-    cond_r = _Reader(root.get("conditions", dict, {}), "conditions", text, src)
+    cond_r = Table(root.get("conditions", dict, {}), "conditions", source=src, text=text)
     conditions: dict[str, Any] = {k: cond_r.get(k, float) for k in CONDITIONS
                                   if k in cond_r.data}
     if "load_model" in cond_r.data:
         conditions["load_model"] = cond_r.get("load_model", str)
     cond_r.done()
-    acc_r = _Reader(root.get("accuracy", dict, {}), "accuracy", text, src)
+    acc_r = Table(root.get("accuracy", dict, {}), "accuracy", source=src, text=text)
     accuracy = {k: acc_r.get(k, type(v), v) for k, v in ACCURACY.items()}
     acc_r.done()
     for k, v in accuracy.items():
@@ -307,7 +258,8 @@ def load_study(path: str | Path) -> Study:
     optimise = root.get("optimise", dict)
     tolerances = None
     if "tolerances" in root.data:
-        tolerances = _tolerances(_Reader(root.get("tolerances", dict), "tolerances", text, src))
+        tolerances = _tolerances(Table(root.get("tolerances", dict), "tolerances", source=src,
+                                       text=text))
         outputs = tuple(o for o in outputs if o in TOLERANCE_OUTPUTS) or TOLERANCE_OUTPUTS
     elif any(o in TOLERANCE_OUTPUTS and o not in OUTPUTS for o in outputs):
         s.fail("study.outputs", list(outputs), "tolerance outputs need a [tolerances] table")
@@ -315,11 +267,11 @@ def load_study(path: str | Path) -> Study:
     keys = [q.key for q in params]
     if len(set(keys)) != len(keys):
         dup = next(k for k in keys if keys.count(k) > 1)
-        raise SpecError(f"{src}:{_line_of(text, dup)} vary", dup, "varied twice")
+        raise SpecError(f"{src}:{line_of(text, dup)} vary", dup, "varied twice")
     try:
         build_spec(p.stem, base_text, fixed)
     except SpecError as err:
-        raise SpecError(f"{src}:{_line_of(text, '[set]')} set", None,
+        raise SpecError(f"{src}:{line_of(text, '[set]')} set", None,
                         f"the base spec with these overrides is refused: {err}") from err
     for q in params:
         _check_values(q, src, base_path.stem, base_text, fixed)
@@ -349,7 +301,7 @@ def load_study(path: str | Path) -> Study:
 
 
 def _check_plot(plot: Any, k: int, study: Study, text: str) -> None:
-    r = _Reader(plot, f"plot[{k}]", text, study.source)
+    r = Table(plot, f"plot[{k}]", source=study.source, text=text)
     x = r.get("x", str, required=True)
     y = r.get("y", str, required=True)
     group = r.get("group", list, [])
@@ -370,34 +322,17 @@ def _resolve_base(base: str, folder: Path) -> Path:
     return resolve_spec_path(base)
 
 
-def study_dir() -> Path:
-    """Folder of the bundled study files (in the wheel, or the repo's ``studies/``)."""
-    from importlib import resources
-
-    packaged = resources.files("gearcoupling") / "studies"
-    if packaged.is_dir():
-        return Path(str(packaged))
-    return Path(__file__).resolve().parents[3] / "studies"
-
-
 def study_names() -> list[str]:
     """Names of the bundled study files."""
-    return sorted(p.stem for p in study_dir().glob("*.toml"))
+    return bundled_names("studies")
 
 
 def resolve_study_path(path: str | Path) -> Path:
     """A study file path, or the name of a bundled study."""
-    p = Path(path)
-    if p.exists() or p.is_symlink():
-        return require_file(p, "study", "a study TOML file or a bundled study's name")
-    candidate = study_dir() / f"{path}.toml"
-    if not_a_file(candidate) is None:
-        return candidate
-    raise SpecError("study", str(path), f"no such file and not a bundled study; bundled: "
-                    f"{study_names()}")
+    return resolve_bundled("studies", path)
 
 
-def _tolerances(r: _Reader) -> dict[str, Any]:
+def _tolerances(r: Table) -> dict[str, Any]:
     """``[tolerances]``: standard deviations (``*_sd_mm``) or ISO-style limits (``*_mm``,
     divided by ``coverage``), runouts, ``path``, ``draws`` per point, ``precision`` of K."""
     coverage = r.get("coverage", float, 3.0)

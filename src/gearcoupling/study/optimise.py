@@ -26,9 +26,9 @@ from typing import Any
 
 import numpy as np
 
-from ..atomic import atomic_path
 from ..clearance import critical_misalignment_deg, min_backlash_rad
 from ..errors import GearCouplingError, SpecError
+from ..io import atomic_path
 from ..loading import capacity
 from ..plots import new_figure
 from ..spec import load_spec

@@ -15,8 +15,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..atomic import atomic_path, write_json
-from ..errors import BackendError, SpecError
+from ..errors import ArgumentError, BackendError
+from ..io import atomic_path, write_json
 from ..tables import import_pandas
 from .evaluate import evaluate_chunk
 from .file import OUTPUTS, TOLERANCE_OUTPUTS, Study, sample_count, samples
@@ -96,7 +96,7 @@ def _manifest(study: Study, out: Path, fresh: bool) -> None:
     if path.is_file() and not fresh:
         old = json.loads(path.read_text())
         if old.get("digest") != data["digest"]:
-            raise SpecError("output", str(out), "holds the parts of another study (its file "
+            raise ArgumentError("output", str(out), "holds the parts of another study (its file "
                             "changed); use a new --output folder or --fresh")
     if (out / "parts").is_dir():  # temporaries of a killed run; with --fresh every part
         for part in (out / "parts").glob("*chunk-*.parquet" if fresh else ".chunk-*"):
@@ -117,7 +117,7 @@ def connect(scheduler: str | None, workers: int | None, timeout_s: float = CONNE
                                "'dask scheduler' or drop --scheduler") from err
     n = workers or os.cpu_count() or 1
     if n < 1:
-        raise SpecError("--workers", workers, "must be at least 1")
+        raise ArgumentError("--workers", workers, "must be at least 1")
     # ":0": the scheduler's HTTP server on a free port (8787 may belong to another cluster)
     cluster = distributed.LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
                                        dashboard_address=":0")

@@ -17,7 +17,8 @@ unless another coverage is given).
 
 Three ways to get the per-tooth gap-angle map ``g[flank, tooth, rotation]``:
 
-- ``fast``: the ideal map plus rigid per-tooth offsets (``gap_offset_rad``, DESIGN.md §6):
+- ``fast``: the ideal map plus rigid per-tooth offsets (``gap_offset_rad``, docs/conventions.md,
+Loaded analysis):
   a position error ``t`` moves both flanks by ``t / R`` (cw opens, ccw closes); a thickness
   change ``ds`` closes both by ``ds / (2R)`` - also a rigid rotation of each flank, because
   the hob's rack shift along its pitch line equals a rotation of the generated flank about

@@ -13,7 +13,7 @@ import os
 import socket
 from pathlib import Path
 
-from ..atomic import write_text
+from ..io import write_text
 from .nodes import CouplingScene, ViewSettings, import_viser
 
 

@@ -4,7 +4,8 @@ turn these into scene nodes).
 - :func:`build_scene_meshes` meshes hub and sleeve once per level of detail and splits
   the hub into a body and one patch per (flank, tooth), so a pose change only recolours
   patches and moves the hub node;
-- :func:`hub_rotation` / :func:`quaternion_wxyz` pose the hub (DESIGN.md §2: a hub body
+- :func:`hub_rotation` / :func:`quaternion_wxyz` pose the hub (docs/conventions.md, Frames: a hub
+body
   point ``p`` lies in the sleeve frame at ``Rz(-psi) Rx(i) Rz(psi) p``);
 - :func:`pose_state` evaluates the exact clearance of every tooth and flank at one pose
   (one :func:`gearcoupling.clearance.sweep` call), the contact points and interfering teeth;
@@ -158,7 +159,7 @@ def view_tolerance(spec, tolerance_mm: float | None = None) -> float:
     try:
         return check_tolerance(spec, tol)
     except ValueError as err:
-        raise SpecError("tolerance_mm", tolerance_mm, str(err).split(": ", 1)[-1]) from err
+        raise ArgumentError("tolerance_mm", tolerance_mm, str(err).split(": ", 1)[-1]) from err
 
 
 def build_scene_meshes(spec, tolerance_mm: float | None = None) -> SceneMeshes:
@@ -220,9 +221,10 @@ def check_pose(misalignment_deg: float, psi_deg: float) -> tuple[float, float]:
         try:
             v = float(value)
         except (TypeError, ValueError) as err:
-            raise SpecError(name, value, "must be a number (degrees)") from err
+            raise ArgumentError(name, value, "must be a number (degrees)") from err
         if not (math.isfinite(v) and lo <= v <= hi):
-            raise SpecError(name, value, f"must be a finite angle from {lo:g} to {hi:g} degrees")
+            raise ArgumentError(name, value,
+                                f"must be a finite angle from {lo:g} to {hi:g} degrees")
         out.append(v)
     return out[0], out[1]
 
@@ -247,8 +249,10 @@ class PoseState:
 
     Attributes
     ----------
-    clearance_mm : (2, N) float
-        Circumferential clearance (DESIGN.md §2) of each flank and tooth; ``inf`` where no
+    clearance_mm : (2, N)
+    float
+        Circumferential clearance (docs/conventions.md, Frames) of each flank and tooth; ``inf``
+        where no
         point of the flank faces the sleeve flank.
     normal_clearance_mm : (2, N) float
     theta_deg : (N,) float
@@ -316,7 +320,7 @@ def pose_state(spec, misalignment_deg: float, psi_deg: float, *, band_mm: float 
     """
     mis, psi = check_pose(misalignment_deg, psi_deg)
     if not (math.isfinite(band_mm) and band_mm >= 0):
-        raise SpecError("band_mm", band_mm, "must be a finite length >= 0 mm")
+        raise ArgumentError("band_mm", band_mm, "must be a finite length >= 0 mm")
     res = sweep(spec, mis, [psi], tolerance_mm=tolerance_mm)
     clear = res.clearance_mm[:, :, 0]
     normal = res.normal_clearance_mm[:, :, 0]
@@ -477,7 +481,7 @@ def clearance_curve(spec, misalignment_deg: float, samples: int = DEFAULT_PLOT_S
     ``samples`` turning angles over 360° (rounded up to a multiple of the tooth count).
     """
     if not (isinstance(samples, int | np.integer) and samples >= 8):
-        raise SpecError("samples", samples, "must be a whole number >= 8")
+        raise ArgumentError("samples", samples, "must be a whole number >= 8")
     mis, _ = check_pose(misalignment_deg, 0.0)
     n = spec.tooth.teeth
     per_pitch = max(1, math.ceil(samples / n))

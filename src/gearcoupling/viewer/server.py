@@ -23,8 +23,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..atomic import default_output_dir
-from ..errors import GearCouplingError, SpecError
+from ..errors import ArgumentError, GearCouplingError
+from ..io import default_output_dir
 from .html import save_html
 from .nodes import FRAMES, CouplingScene, ViewSettings, import_viser
 from .scene import (
@@ -66,11 +66,11 @@ def free_port(host: str, port: int, tries: int = PORT_TRIES) -> int:
     """The first port from ``port`` (at most ``tries`` of them, up to 65535) that ``host``
     can bind, or :class:`~gearcoupling.errors.SpecError` naming the host or the ports."""
     if not 1 <= port <= 65535:
-        raise SpecError("port", port, "must be from 1 to 65535")
+        raise ArgumentError("port", port, "must be from 1 to 65535")
     try:
         infos = socket.getaddrinfo(host, None, type=socket.SOCK_STREAM)
     except (OSError, UnicodeError) as err:
-        raise SpecError("host", host, f"cannot be resolved ({err}): give an address of this "
+        raise ArgumentError("host", host, f"cannot be resolved ({err}): give an address of this "
                         "machine, e.g. 127.0.0.1") from None
     family = infos[0][0]
     last = min(port + tries - 1, 65535)
@@ -80,11 +80,11 @@ def free_port(host: str, port: int, tries: int = PORT_TRIES) -> int:
                 probe.bind((infos[0][4][0], candidate))
             except OSError as err:
                 if err.errno == errno.EADDRNOTAVAIL:  # not an address of this machine
-                    raise SpecError("host", host, "is not an address of this machine") \
+                    raise ArgumentError("host", host, "is not an address of this machine") \
                         from None
                 continue
         return candidate
-    raise SpecError("port", port, f"ports {port}-{last} are all taken on {host}: choose "
+    raise ArgumentError("port", port, f"ports {port}-{last} are all taken on {host}: choose "
                     "another with --port")
 
 

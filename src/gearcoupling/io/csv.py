@@ -1,0 +1,54 @@
+"""CSV files: one writer for every table gearcoupling writes."""
+
+from __future__ import annotations
+
+import csv
+import math
+import os
+from collections.abc import Iterable, Sequence
+from pathlib import Path
+from typing import Any
+
+from ..errors import GearCouplingError
+from .atomic import atomic_path
+
+
+def _cell(column: str, v: Any, digits: int, finite: bool) -> Any:
+    if v is None:
+        return ""
+    if isinstance(v, bool) or (not isinstance(v, float | int) and not hasattr(v, "dtype")):
+        return str(v).lower() if isinstance(v, bool) else v
+    if isinstance(v, int):
+        return v
+    x = float(v)
+    if finite and not math.isfinite(x):
+        raise GearCouplingError(f"refusing to write a non-finite {column} = {x} to CSV")
+    return f"{x:.{digits}g}"
+
+
+def write_csv_rows(path: str | os.PathLike, columns: Sequence[str],
+                   rows: Iterable[Sequence[Any]], *, comments: Iterable[str] = (),
+                   digits: int = 9, finite: bool = False) -> Path:
+    """A CSV written atomically: ``# comment`` lines (units, frame), a header of
+    ``columns``, then ``rows`` (sequences in column order). Floats with ``digits``
+    significant digits (``inf`` for infinity, or refused with ``finite``), booleans
+    ``true``/``false``, None empty."""
+    with atomic_path(path) as tmp, open(tmp, "w", newline="") as fh:
+        for line in comments:
+            fh.write(f"# {line}\n")
+        w = csv.writer(fh, lineterminator="\n")
+        w.writerow(columns)
+        w.writerows([_cell(c, v, digits, finite) for c, v in zip(columns, row, strict=True)]
+                    for row in rows)
+    return Path(path)
+
+
+def write_csv_records(path: str | os.PathLike, rows: Iterable[dict[str, Any]],
+                      comments: Iterable[str] = ()) -> Path:
+    """Dict rows (keys as columns, from the first row) as :func:`write_csv_rows` with 10
+    significant digits, refusing a non-finite number: the manufacturing and inspection
+    tables that go to a machine."""
+    rows = list(rows)
+    columns = list(rows[0]) if rows else []
+    return write_csv_rows(path, columns, ([r[c] for c in columns] for r in rows),
+                          comments=comments, digits=10, finite=True)
