@@ -158,6 +158,15 @@ BAD = [
     (["templates", "extra"], "unrecognized arguments"),
     ([], "required"),
     (["frobnicate", T], "invalid choice"),
+    (["report", T, "--angles", "3"], "--angles"),
+    (["report", T, "--capacity-count", "1"], "--capacity-count"),
+    (["report", T, "--hob-diameter", "1e9"], "larger than any hob made"),
+    (["report", T, "--scan", "/dev/null"], "a character device (like /dev/null), not a file"),
+    (["report", T, "--grade", "0"], "--grade"),
+    (["report", T, "--misalignment", "7"], "--misalignment"),
+    (["report", T, "--limit", "fpt"], "--limit"),
+    (["capacity", T, "--misalignments", "1"], "--misalignments"),
+    (["capacity", T, "--misalignments", "0,1", "--max", "2"], "--misalignments"),
 ]
 
 

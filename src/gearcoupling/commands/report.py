@@ -7,8 +7,10 @@ figures' data files in ``report-data/``; ``--pdf`` also prints ``report.pdf``. E
 
 from __future__ import annotations
 
+from ..errors import ArgumentError
 from ..hob import check_hob_diameter
-from ..inspection import GRADES, LIMITS
+from ..inspection import GRADES, LIMITS, grade_limits
+from ..io import require_file
 from ..loadspec import LOAD_MODELS
 from ..reporting import KNOB_RANGES, ReportSettings, report
 from .common import (
@@ -64,6 +66,11 @@ def run(args) -> int:
     spec = spec_from_args(args)
     if args.hob_diameter is not None:
         check_hob_diameter(spec, args.hob_diameter, "--hob-diameter")
+    if args.scan is not None:
+        require_file(args.scan, "--scan", "a scan or mesh file (STL/PLY/OBJ, CSV/XYZ)",
+                     ArgumentError)
+    if args.grade is not None:
+        grade_limits(spec, args.grade, "--grade")
     knobs = {k: getattr(args, k) for k in ("angles", "capacity_count", "check_angles",
                                             "surface_angles") if getattr(args, k) is not None}
     settings = ReportSettings(misalignment_deg=misalignment_deg(args, spec),

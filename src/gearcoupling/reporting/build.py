@@ -11,7 +11,10 @@ from pathlib import Path
 from typing import Any
 
 from .. import __version__
-from ..io import write_text
+from ..errors import ArgumentError
+from ..hob import check_hob_diameter
+from ..inspection import check_limits, grade_limits
+from ..io import require_file, write_text
 from ..spec import CouplingSpec
 from . import sections as sec
 from .document import Note, Section, Table, render
@@ -92,6 +95,7 @@ def report(spec: CouplingSpec, out: str | os.PathLike, *, pdf: bool = False,
     s = settings if settings is not None else ReportSettings(**options)
     t0 = time.perf_counter()
     mis, torque, model = sec.resolve(spec, s)
+    _check_inputs(spec, s)
     folder = Path(out)
     folder.mkdir(parents=True, exist_ok=True)
     ctx = sec.Context(spec, s, folder, mis, torque, model)
@@ -129,6 +133,18 @@ def report(spec: CouplingSpec, out: str | os.PathLike, *, pdf: bool = False,
             progress(total, total)
     return ReportResult(html_path, pdf_path, tuple(ctx.files), cls, text, seconds,
                         time.perf_counter() - t0)
+
+
+def _check_inputs(spec: CouplingSpec, s: ReportSettings) -> None:
+    """Inputs that would fail late, checked before anything is computed: the scan file,
+    the inspection limits and class, the hob diameter."""
+    if s.scan is not None:
+        require_file(s.scan, "scan", "a scan or mesh file (STL/PLY/OBJ, CSV/XYZ)", ArgumentError)
+    if s.grade is not None:
+        grade_limits(spec, s.grade)
+    check_limits(s.limits)
+    if s.hob_diameter_mm is not None:
+        check_hob_diameter(spec, s.hob_diameter_mm)
 
 
 def _verdicts(ctx: sec.Context):
