@@ -77,6 +77,8 @@ def test_inspection_dataframe_is_inspection_csv(renzo, tmp_path, capsys):
     assert len(frame) == renzo.tooth.teeth
 
 
+@pytest.mark.needs_dask
+@pytest.mark.slow
 def test_study_dataframe_is_the_parquet_table(tmp_path):
     study = tmp_path / "s.toml"
     study.write_text('[study]\nbase = "renzo-1967"\noutputs = ["min_backlash_mm"]\n'
