@@ -54,7 +54,7 @@ def figures(text):
 
 @pytest.mark.slow
 def test_report_is_one_self_contained_file_with_every_section(made):
-    res, text = made
+    _, text = made
     # nothing outside the file but its own data files: no http(s), no relative images
     outside = [v for v in re.findall(r'(?:src|href)="([^"]*)"', text)
                if not v.startswith(("data:", "#", "report-data/"))]
