@@ -18,6 +18,11 @@ from .patchmap import patch_extent, patch_maps
 from .summary import rotation_table
 
 
+def torque_text(torque_Nm: float) -> str:
+    """A torque for a title: 4 significant digits, whole N·m from 10 000 up (not 4e+04)."""
+    return f"{torque_Nm:.4g}" if abs(torque_Nm) < 1e4 else f"{torque_Nm:.0f}"
+
+
 def _axes(ax, **kw):
     if ax is None:
         return new_figure(figsize=kw.get("figsize", (7, 4.2)))
@@ -47,7 +52,7 @@ def plot_tooth_load(res, ax=None, rotation: int = 0):
             label="tooth 0 over the rotations")
     ax.set_xlabel("turning angle theta (deg, from the tilt axis)")
     ax.set_ylabel("tangential tooth load P (N)")
-    ax.set_title(f"{res.spec.name}: {res.model}, T = {res.torque_Nm:.4g} N·m, "
+    ax.set_title(f"{res.spec.name}: {res.model}, T = {torque_text(res.torque_Nm)} N·m, "
                  f"i = {res.misalignment_deg:.3g}°, q = {res.q():.3f}")
     ax.set_xlim(0, 360)
     ax.grid(alpha=0.3)
@@ -75,7 +80,8 @@ def plot_loads_over_turn(res, ax=None):
     a0.set_ylabel("teeth in contact")
     a0.set_ylim(0, res.teeth * 1.05)
     a0.set_title(f"{res.spec.name}: loads over the rotations, {res.model} model, "
-                 f"T = {res.torque_Nm:.4g} N·m, i = {res.misalignment_deg:.3g}°", fontsize=10)
+                 f"T = {torque_text(res.torque_Nm)} N·m, i = {res.misalignment_deg:.3g}°",
+                 fontsize=10)
     a1.plot(psi, t["max_interior_pressure_MPa"][order], color="C1",
             label="largest contact pressure (interior)")
     a1.plot(psi, t["max_root_stress_MPa"][order], color="C2", label="largest root stress")
@@ -286,7 +292,8 @@ def plot_patches(res, rotation: int = 0, ax=None, *, count: int = 6):
            "its contact laws' patch: Hertz ellipse, or strip over the active profile")
     fig.suptitle(f"{res.spec.name}: contact pressure on the loaded {res.loaded_flank} flanks at "
                  f"ψ = {res.angles_deg[j]:.3g}°, i = {res.misalignment_deg:.3g}°, "
-                 f"T = {res.torque_Nm:.4g} N·m\n{res.model} model ({how}); grey: active "
+                 f"T = {torque_text(res.torque_Nm)} N·m\n{res.model} model ({how}); "
+                 "grey: active "
                  "flank, dashed: face ends", fontsize=10)
     return fig
 
