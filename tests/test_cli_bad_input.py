@@ -30,14 +30,19 @@ def files(tmp_path_factory):
     (d / "a_file").write_text("not a folder")
     (d / "folder.toml").mkdir()
     (d / "html_folder").mkdir()
+    os.mkfifo(d / "pipe")  # never opened: a reader would block
+    (d / "dangling").symlink_to(d / "gone.toml")
     return d
 
 
 # (argv with {d} for the fixture folder, words the one-line message must contain)
 BAD = [
     (["spec", "nope"], "templates"),
-    (["spec", "{d}/missing.toml"], "no such file"),
-    (["spec", "{d}/folder.toml"], "no such file"),
+    (["spec", "{d}/missing.toml"], "no such file: give a spec file"),
+    (["spec", "{d}/folder.toml"], "a folder, not a file: give a spec file"),
+    (["spec", "/dev/null"], "a character device (like /dev/null), not a file"),
+    (["spec", "{d}/pipe"], "a named pipe (FIFO), not a file"),
+    (["spec", "{d}/dangling"], "a broken symbolic link"),
     (["spec", "{d}/latin1.toml"], "UTF-8"),
     (["spec", "{d}/broken.toml"], "not valid TOML"),
     (["spec", "{d}/misspelt.toml"], "tooth.teth"),
@@ -116,6 +121,8 @@ BAD = [
     (["stiffness", T, "--sector", "2"], "--sector"),
     (["stiffness", T, "--cache", "{d}/a_file"], "--cache"),
     (["study", "{d}/missing.toml"], "no such file"),
+    (["study", "/dev/null"], "a character device (like /dev/null), not a file: give a study"),
+    (["study", "{d}/html_folder"], "a folder, not a file: give a study"),
     (["study", "renzo-tolerances", "--connect-timeout", "0"], "--connect-timeout"),
     (["study", "renzo-tolerances", "--connect-timeout", "nan"], "--connect-timeout"),
     (["study", "renzo-tolerances", "--workers", "0"], "--workers"),
@@ -123,14 +130,19 @@ BAD = [
     (["hob", T], "--hob-diameter"),
     (["hob", T, "--hob-diameter", "0"], "--hob-diameter"),
     (["hob", T, "--hob-diameter", "inf"], "--hob-diameter"),
+    (["hob", T, "--hob-diameter", "1e9"], "larger than any hob made"),
+    (["hob", T, "--hob-diameter", "10"], "too small to carry"),
     (["hob", T, "--hob-diameter", "80", "--tolerance", "-1"], "--tolerance"),
     (["hob", T, "--hob-diameter", "80", "--feed", "0"], "--feed"),
     (["charts", T, "--points", "2"], "--points"),
     (["charts", T, "--points", "100000000"], "--points"),
     (["charts", T, "--tip-exclusion", "0.9"], "--tip-exclusion"),
     (["charts", T, "--tip-exclusion", "nan"], "--tip-exclusion"),
-    (["compare", T, "{d}/missing.stl"], "no such file"),
-    (["compare", T, "{d}/html_folder"], "no such file"),
+    (["compare", T, "{d}/missing.stl"], "no such file: give a scan or mesh file"),
+    (["compare", T, "{d}/html_folder"], "a folder, not a file: give a scan or mesh file"),
+    (["compare", T, "/dev/null"], "a character device (like /dev/null), not a file"),
+    (["compare", T, "{d}/pipe"], "a named pipe (FIFO), not a file"),
+    (["compare", T, "{d}/a_file", "--grade", "12"], "--grade"),
     (["compare", T, "{d}/a_file", "{d}/a_file", "{d}/a_file"], "FILE"),
     (["compare", T, "{d}/a_file", "--limit", "fpt=abc"], "--limit"),
     (["compare", T, "{d}/a_file", "--limit", "bogus=0.1"], "--limit"),
@@ -146,6 +158,15 @@ BAD = [
     (["templates", "extra"], "unrecognized arguments"),
     ([], "required"),
     (["frobnicate", T], "invalid choice"),
+    (["report", T, "--angles", "3"], "--angles"),
+    (["report", T, "--capacity-count", "1"], "--capacity-count"),
+    (["report", T, "--hob-diameter", "1e9"], "larger than any hob made"),
+    (["report", T, "--scan", "/dev/null"], "a character device (like /dev/null), not a file"),
+    (["report", T, "--grade", "0"], "--grade"),
+    (["report", T, "--misalignment", "7"], "--misalignment"),
+    (["report", T, "--limit", "fpt"], "--limit"),
+    (["capacity", T, "--misalignments", "1"], "--misalignments"),
+    (["capacity", T, "--misalignments", "0,1", "--max", "2"], "--misalignments"),
 ]
 
 
@@ -159,6 +180,7 @@ def test_bad_input_exits_2_with_one_line_naming_the_field(argv, words, files, ca
     lines = err.strip().splitlines()
     assert len(lines) == 1, err
     assert lines[0].startswith("gearcoupling: error:") and words in lines[0], err
+    assert lines[0].count("gearcoupling:") == 1, err  # one prefix, not one per parser
     assert not (tmp_path / "outputs").exists() or not any((tmp_path / "outputs").rglob("*.*"))
 
 

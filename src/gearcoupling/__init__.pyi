@@ -38,6 +38,10 @@ from .outputs import RunResult as RunResult
 from .outputs import run as run
 from .parts import build_part as build_part
 from .parts import check_part as check_part
+from .reporting import ReportResult as ReportResult
+from .reporting import ReportSettings as ReportSettings
+from .reporting import compare_capacity as compare_capacity
+from .reporting import report as report
 from .spec import CouplingSpec as CouplingSpec
 from .spec import load_spec as load_spec
 from .spec import spec_from_dict as spec_from_dict

@@ -25,7 +25,10 @@ class _Parser(argparse.ArgumentParser):
     """Argument errors on one line (argparse prints the usage first by default)."""
 
     def error(self, message: str) -> NoReturn:
-        self.exit(EXIT_BAD_INPUT, f"gearcoupling: error: {self.prog}: {message} "
+        # one "gearcoupling:" prefix: a subcommand's prog is "gearcoupling load"
+        command = self.prog.removeprefix("gearcoupling").strip()
+        where = f"{command}: " if command else ""
+        self.exit(EXIT_BAD_INPUT, f"gearcoupling: error: {where}{message} "
                   f"(see {self.prog} --help)\n")
 
 

@@ -12,7 +12,15 @@ from .design import (
 )
 from .flank_table import flank_table
 from .kernel import KINDS
-from .plots import plot_all
+from .plots import (
+    backlash_curve,
+    plot_all,
+    plot_backlash,
+    plot_backlash_over_turn,
+    plot_clearance,
+    plot_clearance_map,
+    plot_contact_path,
+)
 from .result import CSV_COLUMNS, SweepResult
 from .tooth_map import check_angles, check_misalignment, flank_minima, sweep
 
@@ -20,6 +28,7 @@ __all__ = [
     "CSV_COLUMNS",
     "KINDS",
     "SweepResult",
+    "backlash_curve",
     "binding_angle_deg",
     "check_angles",
     "check_misalignment",
@@ -32,5 +41,10 @@ __all__ = [
     "min_backlash_rad",
     "pitch_turning_angles",
     "plot_all",
+    "plot_backlash",
+    "plot_backlash_over_turn",
+    "plot_clearance",
+    "plot_clearance_map",
+    "plot_contact_path",
     "sweep",
 ]

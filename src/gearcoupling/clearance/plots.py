@@ -152,6 +152,26 @@ def plot_clearance_map(result: SweepResult, spec, *, ax=None):
     return fig
 
 
+def plot_backlash_over_turn(result: SweepResult, *, ax=None):
+    """Backlash (free turning of the hub, µm at the pitch circle) against the rotation, with
+    the aligned backlash for reference."""
+    fig, ax = figure_axes(ax, (1, 1), figsize=(9, 3.4), layout="constrained")
+    order = np.argsort(result.angles_deg)
+    ax.plot(result.angles_deg[order], result.backlash_mm[order] * 1e3, "-", lw=1.5,
+            label=f"at i = {result.misalignment_deg:g}°")
+    ax.axhline(result.aligned_backlash_mm * 1e3, color="0.4", ls="--", lw=1,
+               label="aligned (i = 0)")
+    ax.axhline(0.0, color="k", lw=0.8)
+    ax.set_xlim(0, 360)
+    ax.set_xlabel("rotation ψ (deg)")
+    ax.set_ylabel("backlash at the pitch circle (µm)")
+    ax.set_title(f"{result.spec_name}: backlash over a turn at i = {result.misalignment_deg:g}°",
+                 fontsize=10)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8, loc="lower right")
+    return fig
+
+
 def backlash_curve(spec, misalignment_deg, *, steps: int = 8):
     """Smallest backlash over a turn (mm at the pitch radius) at each misalignment."""
     R = spec.tooth.pitch_radius

@@ -12,6 +12,7 @@ from numpy.typing import NDArray
 from ..errors import ArgumentError, GeometryError
 from ..geometry import FLANKS, renzo_z0_mm
 from ..io import write_csv_rows
+from ..tables import dataframe
 from .kernel import KINDS, NONE
 
 CSV_COLUMNS = ("theta_deg", "tooth", "flank", "clearance_mm", "normal_clearance_mm",
@@ -175,6 +176,11 @@ class SweepResult:
     def write_csv(self, path):
         """Write :meth:`rows` under :data:`CSV_COLUMNS` atomically; returns the path."""
         return write_csv_rows(path, CSV_COLUMNS, self.rows())
+
+    def to_dataframe(self):
+        """:meth:`rows` as a pandas DataFrame with the columns of ``sweep.csv``
+        (:data:`CSV_COLUMNS`; the ``pandas`` extra)."""
+        return dataframe(CSV_COLUMNS, self.rows())
 
     def rows(self):
         """Long-form rows (tuples in :data:`CSV_COLUMNS` order), tooth-major per angle."""

@@ -9,6 +9,7 @@ from . import (
     generate,
     hob,
     load,
+    report,
     run,
     sections,
     spec,
@@ -36,6 +37,7 @@ COMMANDS = [
     hob,
     charts,
     compare,
+    report,
 ]
 
 __all__ = ["COMMANDS"]

@@ -2,16 +2,14 @@
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
-
-import numpy as np
 
 from ..errors import ArgumentError, SpecError
 from ..io import parse_override
-from ..loading import Capacity, capacity_curve, plot_capacity, write_capacity_csv
+from ..loading import plot_capacity, write_capacity_csv
 from ..loadspec import LOAD_MODELS
 from ..plots import save_figure
+from ..reporting import CapacityComparison, compare_capacity, comparison_range
 from ..spec import load_spec
 from .common import (
     add_spec_arguments,
@@ -24,6 +22,7 @@ from .common import (
 
 MAX_COUNT = 200  # misalignments of a curve (each one is a sweep over a tooth pitch)
 
+
 def register(sub) -> None:
     p = sub.add_parser("capacity", help="torque capacity and q vs misalignment per criterion "
                        "(capacity.csv, capacity.png), optionally against other specs")
@@ -34,26 +33,34 @@ def register(sub) -> None:
                    help="load model (default: each spec's [load] model)")
     p.add_argument("--max", type=number_in(0.0, 6.0, "degrees", open_lo=True), default=None,
                    metavar="DEG", help="largest misalignment, in (0, 6] degrees (default: the "
-                   "spec's design angle, >= 0.5)")
-    p.add_argument("--count", type=count(2, MAX_COUNT), default=25, metavar="N",
+                   "largest critical misalignment of the specs, at least their design angles "
+                   "and 0.5)")
+    p.add_argument("--count", type=count(2, MAX_COUNT), default=None, metavar="N",
                    help=f"misalignments from 0 to --max, 2-{MAX_COUNT} (default 25)")
+    p.add_argument("--misalignments", type=degree_list, default=None, metavar="DEG,DEG,...",
+                   help="the misalignments themselves, comma-separated degrees 0-6 "
+                        "(instead of --max and --count)")
     p.add_argument("--no-plots", action="store_true", help="write only the CSV")
     p.set_defaults(func=run)
 
 
-def capacity_files(specs: list, out: Path, misalignments_deg: np.ndarray, *,
-                   model: str | None = None, plots: bool = True) -> list[Path]:
-    """Capacity curves of ``specs`` (first one names the folder) to CSV and plot."""
-    curves: dict[str, list[Capacity]] = {}
-    n = len(specs) * misalignments_deg.size
-    with progress("capacity", n) as update:
-        for k, spec in enumerate(specs):
-            curves[spec.name] = capacity_curve(
-                spec, misalignments_deg, model=model,
-                progress=lambda i, _n, k=k: update(k * misalignments_deg.size + i, n))
-    paths = [write_capacity_csv(curves, out / "capacity.csv")]
+def degree_list(text: str) -> list[float]:
+    """argparse type: comma-separated misalignments, each a number in [0, 6] degrees."""
+    parse = number_in(0.0, 6.0, "degrees")
+    values = [parse(item.strip()) for item in text.split(",") if item.strip()]
+    if len(set(values)) < 2:
+        raise ArgumentError("--misalignments", text, "at least two different angles, e.g. "
+                            "0,0.5,1,2")
+    return values
+
+
+def capacity_files(comparison: CapacityComparison, out: Path, *,
+                   plots: bool = True) -> list[Path]:
+    """``capacity.csv`` and ``capacity.png`` of a comparison."""
+    paths = [write_capacity_csv(comparison.curves, out / "capacity.csv")]
     if plots:
-        paths.append(save_figure(plot_capacity(curves), out / "capacity.png"))
+        fig = plot_capacity(comparison.curves, critical_deg=comparison.critical_deg)
+        paths.append(save_figure(fig, out / "capacity.png"))
     return paths
 
 
@@ -67,12 +74,18 @@ def _compared_spec(text: str, overrides: dict):
 
 
 def run(args) -> int:
+    if args.misalignments is not None and (args.max is not None or args.count is not None):
+        raise ArgumentError("--misalignments", ",".join(map(str, args.misalignments)),
+                            "give either --misalignments or --max/--count")
     spec = spec_from_args(args)
     overrides = dict(parse_override(t) for t in args.overrides)
-    others = [_compared_spec(s, overrides) for s in args.compare]
-    top = args.max if args.max is not None else max(math.degrees(spec.design_misalignment), 0.5)
+    specs = [spec, *(_compared_spec(s, overrides) for s in args.compare)]
+    mis = args.misalignments
+    if mis is None:
+        mis, _ = comparison_range(specs, args.count or 25, args.max)
     out = output_dir(args, spec)
-    for path in capacity_files([spec, *others], out, np.linspace(0.0, top, args.count),
-                               model=args.model, plots=not args.no_plots):
+    with progress("capacity", len(specs) * len(mis)) as update:
+        comparison = compare_capacity(specs, mis, model=args.model, progress=update)
+    for path in capacity_files(comparison, out, plots=not args.no_plots):
         print(path)
     return 0

@@ -4,7 +4,9 @@
 ``inspection.json`` (registration, part values, limits, pass/fail),
 ``inspection.png``, ``deviation_map.png`` and ``deviation.ply`` (coloured points on the
 part). ``compare SPEC A B`` inspects both and writes ``comparison.csv`` /
-``comparison.json`` (B - A per tooth). Exit status 1 when a tooth fails a limit.
+``comparison.json`` (B - A per tooth). Each limit is printed with its verdict: ``pass``,
+``fail`` or ``not judged`` (no limit set: a quantity without a limit is never passed).
+Exit status 1 when a limit fails.
 """
 
 from __future__ import annotations
@@ -13,15 +15,17 @@ from pathlib import Path
 
 from ..errors import ArgumentError, SpecError
 from ..inspection import (
+    GRADES,
     LIMITS,
     STAGES,
     check_limits,
     compare_part,
+    grade_limits,
     plot_deviation_map,
     plot_inspection,
     write_deviation_ply,
 )
-from ..io import write_csv_records, write_json
+from ..io import require_file, write_csv_records, write_json
 from ..plots import save_figure
 from .common import add_spec_arguments, count, output_dir, progress, spec_from_args
 
@@ -36,8 +40,11 @@ def register(sub) -> None:
     p.add_argument("--units", default="mm", choices=("mm", "in", "m"),
                    help="units of the file coordinates (default mm)")
     p.add_argument("--limit", action="append", default=[], metavar="NAME=MM",
-                   help="tolerance limit, repeatable, overriding the spec's [inspection] "
-                        "table; NAME one of " + ", ".join(LIMITS))
+                   help="tolerance limit, repeatable, overriding --grade and the spec's "
+                        "[inspection] table; NAME one of " + ", ".join(LIMITS))
+    p.add_argument("--grade", type=count(GRADES[0], GRADES[-1]), default=None, metavar="Q",
+                   help="ISO 1328-1:2013 flank tolerance class 1-11: limits fpt, Fp, Fr, "
+                        "f_Halpha, f_Hbeta for the hub's size (overriding [inspection])")
     p.add_argument("--coarse", default="auto", choices=("auto", "none"),
                    help="auto: find axis and teeth; none: the file is in the hub frame")
     p.add_argument("--fit-points", type=count(100, MAX_FIT_POINTS), default=20_000,
@@ -64,10 +71,10 @@ def run(args) -> int:
     if len(args.files) > 2:
         raise SpecError("FILE", args.files, "one scan, or two (A B) to compare")
     spec = spec_from_args(args)
-    limits = parse_limits(args.limit)
+    graded = {} if args.grade is None else grade_limits(spec, args.grade, "--grade")
+    limits = {**graded, **parse_limits(args.limit)}
     for f in args.files:  # before the output folder is made (the reader checks the rest)
-        if not Path(f).is_file():
-            raise ArgumentError("file", f, "a scan or mesh (STL/PLY/OBJ, CSV/XYZ): no such file")
+        require_file(f, "file", "a scan or mesh file (STL/PLY/OBJ, CSV/XYZ)", ArgumentError)
     out = output_dir(args, spec)
     with progress("compare", 2 + STAGES * len(args.files)) as update:
         result = compare_part(spec, args.files[0],
@@ -90,13 +97,34 @@ def run(args) -> int:
                                                           "files": [str(f) for f in files]}))
     failed = False
     for rep in reports:
-        s = rep.summary()
-        part = s["part"]
-        failed |= not part["pass"]
-        print(f"{Path(rep.source).name}: {part['teeth_measured']} teeth, registration rms "
-              f"{1e3 * rep.registration.rms_mm:.2f} um, F_p {1e3 * part['F_p_mm']:.2f} um, "
-              f"f_pt max {1e3 * (part['f_pt_max_mm'] or 0):.2f} um, "
-              f"{'PASS' if part['pass'] else 'FAIL teeth ' + str(s['failed_teeth'])}")
+        failed |= rep.part["pass"] is False
+        for line in verdict_lines(rep):
+            print(line)
     for f in files:
         print(f)
     return 1 if failed else 0
+
+
+def verdict_lines(rep) -> list[str]:
+    """The inspection of one part as printed: a headline, then one line per limit with
+    the worst measured value, the limit and the verdict."""
+    s = rep.summary()
+    part = s["part"]
+    name = Path(rep.source).name
+    lines = [f"{name}: {part['teeth_measured']} teeth, registration rms "
+             f"{1e3 * rep.registration.rms_mm:.2f} um"]
+    for v in part["verdicts"]:
+        value = "-" if v["measured_mm"] is None else f"{1e3 * v['measured_mm']:.2f} um"
+        limit = "no limit" if v["limit_mm"] is None else f"limit {1e3 * v['limit_mm']:.2f} um"
+        verdict = v["verdict"].upper() if v["verdict"] != "not judged" else \
+            f"not judged ({v['reason']})"
+        lines.append(f"  {v['limit']:<9} {value:>11}  {limit:<17} {verdict}")
+    if part["pass"] is None:
+        lines.append(f"{name}: NOT JUDGED: no limit is set (give --limit NAME=MM, --grade Q "
+                     "or an [inspection] table)")
+    else:
+        open_ = f"; not judged: {', '.join(part['not_judged'])}" if part["not_judged"] else ""
+        teeth = f" (teeth {s['failed_teeth']})" if s["failed_teeth"] else ""
+        lines.append(f"{name}: {'PASS' if part['pass'] else 'FAIL' + teeth} on the limits "
+                     f"set{open_}")
+    return lines

@@ -7,7 +7,7 @@ chordal deviation, start/end positions, crown drop at the tooth ends).
 
 from __future__ import annotations
 
-from ..hob import hob_program
+from ..hob import check_hob_diameter, hob_program
 from ..io import write_csv_records, write_json, write_text
 from .common import add_spec_arguments, output_dir, positive_length, spec_from_args
 
@@ -16,7 +16,8 @@ def register(sub) -> None:
     p = sub.add_parser("hob", help="hob centre path and feed program (CSV, G-code)")
     add_spec_arguments(p)
     p.add_argument("--hob-diameter", type=positive_length, required=True, metavar="MM",
-                   help="hob outside diameter in mm, > 0")
+                   help="hob outside diameter in mm, above 2 (dedendum + module) "
+                        "and at most 1000")
     p.add_argument("--tolerance", type=positive_length, default=None, metavar="MM",
                    help="largest chordal deviation of the program in mm, > 0 "
                         "(default: module / 1000)")
@@ -27,6 +28,7 @@ def register(sub) -> None:
 
 def run(args) -> int:
     spec = spec_from_args(args)
+    check_hob_diameter(spec, args.hob_diameter, "--hob-diameter")
     prog = hob_program(spec, args.hob_diameter, args.tolerance)
     out = output_dir(args, spec)
     files = [

@@ -12,13 +12,15 @@ from .charts import (
     plot_measuring_charts,
     write_nominal_csv,
 )
-from .program import HobProgram, Move, hob_program
+from .program import MAX_HOB_DIAMETER_MM, HobProgram, Move, check_hob_diameter, hob_program
 
 __all__ = [
+    "MAX_HOB_DIAMETER_MM",
     "HobProgram",
     "MeasuringCharts",
     "Move",
     "Trace",
+    "check_hob_diameter",
     "evaluation_ranges",
     "hob_program",
     "measuring_charts",

@@ -27,6 +27,28 @@ from ..errors import ArgumentError
 from ..geometry import HubModel, hub_model, plane_rack, tip_radius
 
 _DENSE = 65  # exact-curve samples per move when its chordal deviation is measured
+MAX_HOB_DIAMETER_MM = 1000.0  # hobs are made up to a few hundred mm (module 40: about 500)
+
+
+def check_hob_diameter(spec, hob_diameter_mm, field: str = "hob_diameter_mm") -> float:
+    """The hob outside diameter (mm) if a hob of that size can cut the spec's hub; else a
+    :class:`ArgumentError` naming ``field`` that says which bound and why: the hob must carry
+    teeth of the hub's whole depth on a body (above ``2 (dedendum + module)``), and no hob
+    is made larger than :data:`MAX_HOB_DIAMETER_MM` (its approach travel ``sqrt(H (D - H))``
+    would grow without end)."""
+    D = hob_diameter_mm
+    if isinstance(D, bool) or not (isinstance(D, int | float) and math.isfinite(D)):
+        raise ArgumentError(field, D, "a finite hob outside diameter in mm")
+    depth = hub_model(spec).dedendum + spec.tooth.module
+    if D <= 2.0 * depth:
+        raise ArgumentError(field, D, f"too small to carry teeth {depth:.4g} mm deep around a "
+                        f"body: a hob for this hub is larger than 2 (dedendum + module) = "
+                        f"{2.0 * depth:.4g} mm")
+    if D > MAX_HOB_DIAMETER_MM:
+        raise ArgumentError(field, D, f"larger than any hob made (up to {MAX_HOB_DIAMETER_MM:g} mm"
+                        " outside diameter); its approach travel alone would be "
+                        f"{math.sqrt(depth * (D - depth)):.4g} mm")
+    return float(D)
 
 
 @dataclass(frozen=True)
@@ -261,10 +283,7 @@ def hob_program(spec, hob_diameter_mm: float, tolerance_mm: float | None = None,
         raise ArgumentError("tolerance_mm", tolerance_mm,
                         f"a chordal tolerance from {module * 1e-6:.3g} to {module * 0.1:.3g} mm "
                         "(1e-6 to 0.1 module)")
-    D = hob_diameter_mm
-    if not (isinstance(D, int | float) and math.isfinite(D) and D > 2.0 * (m.dedendum + module)):
-        raise ArgumentError("hob_diameter_mm", D, f"a finite hob outside diameter above "
-                        f"2 (dedendum + module) = {2.0 * (m.dedendum + module):.4g} mm")
+    D = check_hob_diameter(spec, hob_diameter_mm)
     if not (isinstance(table_points, int) and table_points >= 3):
         raise ArgumentError("table_points", table_points, "an integer >= 3")
     r_h = 0.5 * D - m.dedendum

@@ -9,11 +9,13 @@ trimesh is imported only to read mesh files, matplotlib only to plot.
 from .compare import STAGES, PartComparison, compare_part
 from .heatmap import write_deviation_ply
 from .io import load_points
+from .iso1328 import GRADES, grade_limits
 from .plots import plot_deviation_map, plot_inspection
 from .register import Registration, RegistrationError
-from .report import LIMITS, InspectionReport, check_limits
+from .report import LIMITS, InspectionReport, check_limits, verdicts
 
 __all__ = [
+    "GRADES",
     "LIMITS",
     "STAGES",
     "InspectionReport",
@@ -22,8 +24,10 @@ __all__ = [
     "RegistrationError",
     "check_limits",
     "compare_part",
+    "grade_limits",
     "load_points",
     "plot_deviation_map",
     "plot_inspection",
+    "verdicts",
     "write_deviation_ply",
 ]

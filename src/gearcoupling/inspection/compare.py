@@ -12,8 +12,10 @@ import numpy as np
 
 from ..errors import ArgumentError
 from ..hob import measuring_charts
+from ..tables import dataframe
 from .datum import bore_datum
 from .io import load_points
+from .iso1328 import grade_limits
 from .register import RegistrationError, register
 from .report import FLANK_NAMES, InspectionReport, check_limits, evaluate, pass_fail
 from .surface import deviation, flank_table
@@ -43,6 +45,12 @@ class PartComparison:
             out.append(row)
         return out
 
+    def to_dataframe(self):
+        """:meth:`rows` (B - A per tooth) as a pandas DataFrame with the columns of
+        ``comparison.csv`` (the ``pandas`` extra)."""
+        rows = self.rows()
+        return dataframe(list(rows[0]) if rows else [], rows)
+
     def summary(self) -> dict:
         rows = self.rows()
         worst: dict[str, float] = {}
@@ -66,7 +74,7 @@ def _points(source, units: str):
 
 
 def compare_part(spec, source, other=None, *, units: str = "mm", limits=None,
-                 coarse: str = "auto", fit_points: int = 20_000,
+                 grade: int | None = None, coarse: str = "auto", fit_points: int = 20_000,
                  grid: tuple[int, int] = (61, 41), outlier_mm: float | None = None,
                  min_points: int = 30,
                  progress: Callable[[int, int], None] | None = None):
@@ -84,7 +92,12 @@ def compare_part(spec, source, other=None, *, units: str = "mm", limits=None,
         its size and refused with the reason).
     limits : dict, optional
         Tolerances in mm, keys of :data:`~gearcoupling.inspection.report.LIMITS`; they
-        override the spec's ``[inspection]`` limits.
+        override ``grade`` and the spec's ``[inspection]`` limits. A quantity without a
+        limit is reported "not judged", never passed.
+    grade : int, optional
+        ISO 1328-1:2013 flank tolerance class (1-11) whose limits (``fpt``, ``Fp``,
+        ``Fr``, ``f_Halpha``, ``f_Hbeta``, :func:`~.iso1328.grade_limits`) override the
+        spec's.
     coarse : {"auto", "none"}
         ``none`` keeps the file's frame (part coordinates; partial scans).
     fit_points : int
@@ -103,7 +116,8 @@ def compare_part(spec, source, other=None, *, units: str = "mm", limits=None,
     -------
     InspectionReport or PartComparison
     """
-    lim = check_limits({**spec.inspection.as_dict(), **dict(limits or {})})
+    graded = {} if grade is None else grade_limits(spec, grade)
+    lim = check_limits({**spec.inspection.as_dict(), **graded, **dict(limits or {})})
     parts = [_points(src, units) for src in (source, other) if src is not None]
     total, done = 2 + STAGES * len(parts), [0]
 

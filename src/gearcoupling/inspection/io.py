@@ -10,6 +10,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import ArgumentError, BackendError
+from ..io import require_file
 
 MESH_SUFFIXES = (".stl", ".obj", ".ply", ".off", ".glb")
 TEXT_SUFFIXES = (".csv", ".xyz", ".txt", ".asc", ".pts")
@@ -35,9 +36,7 @@ def load_points(path: str | Path, units: str = "mm") -> NDArray[np.float64]:
     """
     if units not in UNIT_SCALE:
         raise ArgumentError("units", units, f"one of {tuple(UNIT_SCALE)}")
-    p = Path(path)
-    if not p.is_file():
-        raise ArgumentError("file", str(p), ALLOWED + ": no such file")
+    p = require_file(path, "file", ALLOWED, ArgumentError)
     suffix = p.suffix.lower()
     if suffix in MESH_SUFFIXES:
         pts = _load_mesh(p)

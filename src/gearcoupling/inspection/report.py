@@ -33,6 +33,7 @@ from numpy.typing import NDArray
 from ..errors import ArgumentError
 from ..geometry import hub_flank_model
 from ..hob import MeasuringCharts
+from ..tables import dataframe
 from .register import Registration
 from .surface import FlankTable, PointDeviation
 
@@ -97,6 +98,12 @@ class InspectionReport:
                 row["pass"] = bool(self.passed[i])
             out.append(row)
         return out
+
+    def to_dataframe(self):
+        """:meth:`rows` as a pandas DataFrame with the columns of ``inspection.csv`` (the
+        ``pandas`` extra)."""
+        rows = self.rows()
+        return dataframe(list(rows[0]) if rows else [], rows)
 
     def summary(self) -> dict:
         """Registration, part values, limits and per-tooth pass/fail (``inspection.json``)."""
@@ -230,14 +237,50 @@ def _absmax(flank, key):
     return float(np.max(np.abs(vals))) if len(vals) else None
 
 
+PER_TOOTH = {"fpt": "fpt_mm", "f_Halpha": "f_Halpha_mm", "f_Hbeta": "f_Hbeta_mm",
+             "C_beta": "C_beta_dev_mm"}  # per flank; "thickness" is per tooth
+
+
+def worst_values(ev: dict) -> dict[str, float | None]:
+    """The largest measured value of each limit of :data:`LIMITS` (mm; None: not measured)."""
+    out: dict[str, float | None] = {k: _absmax(ev["flank"], col) for k, col in PER_TOOTH.items()}
+    part = ev["part"]
+    out["Fp"], out["Fr"] = part["F_p_mm"], part["F_r_mm"]
+    ds = np.abs(ev["tooth"]["thickness_dev_mm"])
+    ds = ds[np.isfinite(ds)]
+    out["thickness"] = float(np.max(ds)) if len(ds) else None
+    return {k: out[k] for k in LIMITS}
+
+
+def verdicts(worst: dict[str, float | None], limits: dict[str, float]) -> list[dict]:
+    """One row per limit of :data:`LIMITS`: what it bounds, the worst measured value, the
+    limit and ``pass``, ``fail`` or ``not judged`` (no limit set, or nothing measured)."""
+    rows = []
+    for key, what in LIMITS.items():
+        value, limit = worst.get(key), limits.get(key)
+        if limit is None:
+            verdict = "not judged"
+            why = "no limit set"
+        elif value is None:
+            verdict, why = "not judged", "not measured"
+        else:
+            verdict, why = ("pass" if value <= limit else "fail"), ""
+        rows.append({"limit": key, "what": what, "measured_mm": value, "limit_mm": limit,
+                     "verdict": verdict, "reason": why})
+    return rows
+
+
 def pass_fail(ev: dict, limits: dict[str, float]):
-    """Per-tooth pass/fail and part-level checks against ``limits``."""
+    """Per-tooth pass/fail and part-level checks against ``limits``.
+
+    Returns ``(ok, checks)``: ``ok`` per measured tooth (``None`` when no per-tooth limit
+    is set: nothing was judged), ``checks`` with ``pass`` (``None`` when no limit is set at
+    all), ``F_p_pass``/``F_r_pass`` where those limits are set, ``verdicts`` (see
+    :func:`verdicts`) and ``not_judged``, the limits that were not set.
+    """
     teeth = ev["teeth"]
     ok = np.ones(len(teeth), bool)
-    per_tooth = {"fpt": "fpt_mm", "f_Halpha": "f_Halpha_mm", "f_Hbeta": "f_Hbeta_mm",
-                 "C_beta": "C_beta_dev_mm"}
-    checks = {}
-    for key, col in per_tooth.items():
+    for key, col in PER_TOOTH.items():
         if key in limits:
             for f in FLANK_NAMES:
                 v = np.abs(ev["flank"][f][col])
@@ -245,9 +288,16 @@ def pass_fail(ev: dict, limits: dict[str, float]):
     if "thickness" in limits:
         ok &= np.abs(ev["tooth"]["thickness_dev_mm"]) <= limits["thickness"]
     part = ev["part"]
+    checks: dict[str, object] = {}
     if "Fp" in limits:
         checks["F_p_pass"] = part["F_p_mm"] <= limits["Fp"]
     if "Fr" in limits and part["F_r_mm"] is not None:
         checks["F_r_pass"] = part["F_r_mm"] <= limits["Fr"]
-    checks["pass"] = bool(ok.all()) and all(checks.values())
-    return ok, checks
+    rows = verdicts(worst_values(ev), limits)
+    judged = [r for r in rows if r["verdict"] != "not judged"]
+    per_tooth = any(k in limits for k in (*PER_TOOTH, "thickness"))
+    checks["pass"] = (bool(ok.all()) and all(r["verdict"] == "pass" for r in judged)
+                      if judged else None)
+    checks["verdicts"] = rows
+    checks["not_judged"] = [r["limit"] for r in rows if r["verdict"] == "not judged"]
+    return (ok if per_tooth else None), checks

@@ -10,6 +10,7 @@ from .atomic import (
     write_text,
 )
 from .csv import write_csv_records, write_csv_rows
+from .files import not_a_file, require_file
 from .inp import inp_element_lines, inp_id_lines, inp_node_lines, inp_number
 from .json import NonFiniteError, plain, write_json
 from .resources import bundled_dir, bundled_names, resolve_bundled
@@ -27,10 +28,12 @@ __all__ = [
     "inp_node_lines",
     "inp_number",
     "line_of",
+    "not_a_file",
     "parse_override",
     "plain",
     "read_toml",
     "remove_stale_temporaries",
+    "require_file",
     "resolve_bundled",
     "safe_name",
     "set_dotted",

@@ -6,6 +6,7 @@ from importlib import resources
 from pathlib import Path
 
 from ..errors import SpecError
+from .files import not_a_file, require_file
 
 KINDS = {"templates": "spec", "studies": "study"}
 
@@ -29,13 +30,10 @@ def resolve_bundled(kind: str, name_or_path: str | Path) -> Path:
     naming what is bundled."""
     field = KINDS[kind]
     p = Path(name_or_path)
-    if p.suffix == ".toml" or p.exists():
-        if not p.is_file():
-            raise SpecError(field, str(p), f"no such file (give a {field} file or the name of a "
-                                           f"bundled one)")
-        return p
+    if p.suffix == ".toml" or p.exists() or p.is_symlink():
+        return require_file(p, field, f"a {field} file or the name of a bundled one")
     candidate = bundled_dir(kind) / f"{name_or_path}.toml"
-    if not candidate.is_file():
+    if not_a_file(candidate) is not None:
         raise SpecError(field, str(name_or_path), f"not a file and not one of the bundled "
                         f"{kind}: {bundled_names(kind)}")
     return candidate

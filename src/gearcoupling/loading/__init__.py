@@ -6,6 +6,7 @@ from .api import load, load_from_sweep
 from .cantilever import CantileverCompliance
 from .capacity import (
     Capacity,
+    CapacityCurve,
     capacity,
     capacity_curve,
     capacity_from_sweep,
@@ -15,27 +16,44 @@ from .capacity import (
 from .inputs import resolve_torque_Nm
 from .linear import solve_windup
 from .linear_model import mesh_stiffness_N_per_mm
-from .plots import plot_capacity, plot_patches, plot_q_graph, plot_tooth_load, plot_vs_misalignment
+from .patchmap import PatchMap, patch_maps
+from .plots import (
+    plot_capacity,
+    plot_loads_over_turn,
+    plot_patches,
+    plot_q_graph,
+    plot_tooth_load,
+    plot_vs_misalignment,
+    renzo_q,
+)
 from .result import CSV_COLUMNS, LoadResult
+from .summary import machine_loads, rotation_table
 
 __all__ = [
     "CSV_COLUMNS",
     "CantileverCompliance",
     "Capacity",
+    "CapacityCurve",
     "LoadResult",
+    "PatchMap",
     "capacity",
     "capacity_curve",
     "capacity_from_sweep",
     "default_angles",
     "load",
     "load_from_sweep",
+    "machine_loads",
     "mesh_stiffness_N_per_mm",
+    "patch_maps",
     "plot_capacity",
+    "plot_loads_over_turn",
     "plot_patches",
     "plot_q_graph",
     "plot_tooth_load",
     "plot_vs_misalignment",
+    "renzo_q",
     "resolve_torque_Nm",
+    "rotation_table",
     "solve_windup",
     "write_capacity_csv",
 ]

@@ -19,6 +19,7 @@ from the compliance model's root, each solve warm-started from its nearest solve
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -31,6 +32,7 @@ from ..clearance import SweepResult, sweep
 from ..errors import ArgumentError, GearCouplingError
 from ..geometry import FLANKS
 from ..io import write_csv_rows
+from ..tables import dataframe
 from .api import load_from_sweep
 from .compliance import first_limit_torque_Nmm
 from .contact import contact_model
@@ -135,12 +137,27 @@ class Capacity:
         names = [f for f in self.__dataclass_fields__ if f != "spec"]
         return {"spec": self.spec.name, **{k: getattr(self, k) for k in names}}
 
+    def to_dataframe(self):
+        """This result as a one-row pandas DataFrame with the columns of ``capacity.csv``
+        (:data:`CAPACITY_COLUMNS`; the ``pandas`` extra)."""
+        return dataframe(CAPACITY_COLUMNS, [self.row()])
+
     def row(self) -> tuple:
         """This result as a row of :data:`CAPACITY_COLUMNS`."""
         crit = self.criteria_Nm
         return (self.spec.name, self.misalignment_deg, self.capacity_Nm, self.governing,
                 crit.get("tooth_load"), crit.get("contact_stress"), crit.get("bending_stress"),
                 self.face_end_torque_Nm, self.q, self.load_sharing_factor, self.max_tooth_load_N)
+
+
+class CapacityCurve(list):
+    """The :class:`Capacity` results of :func:`capacity_curve`, one per misalignment (a
+    list, with :meth:`to_dataframe`)."""
+
+    def to_dataframe(self):
+        """One row per misalignment, the columns of ``capacity.csv`` (the ``pandas``
+        extra)."""
+        return dataframe(CAPACITY_COLUMNS, [c.row() for c in self])
 
 
 def _flank_problem(sweep_result: SweepResult, loaded_flank: str,
@@ -409,14 +426,14 @@ def capacity(spec, misalignment_deg: float, *, model: str | None = None,
 def capacity_curve(spec, misalignments_deg: ArrayLike | None = None, *,
                    model: str | None = None, loaded_flank: str = "ccw",
                    angles_deg: ArrayLike | None = None, gap_offset_rad: ArrayLike | None = None,
-                   progress=None, **accuracy: Any) -> list[Capacity]:
+                   progress=None, **accuracy: Any) -> CapacityCurve:
     """:func:`capacity` at each misalignment (default 25 from 0 to the design angle, at
     least 0.5°); ``progress(done, total)`` is called after each."""
     if misalignments_deg is None:
         top = max(math.degrees(spec.design_misalignment), 0.5)
         misalignments_deg = np.linspace(0.0, top, 25)
     mis = np.atleast_1d(np.asarray(misalignments_deg, dtype=float))
-    out = []
+    out = CapacityCurve()
     for i, m in enumerate(mis):
         out.append(capacity(spec, float(m), model=model, loaded_flank=loaded_flank,
                             angles_deg=angles_deg, gap_offset_rad=gap_offset_rad, **accuracy))
@@ -430,7 +447,7 @@ CAPACITY_COLUMNS = ("spec", "misalignment_deg", "capacity_Nm", "governing", "too
                     "load_sharing_factor", "max_tooth_load_N")
 
 
-def write_capacity_csv(curves: dict[str, list[Capacity]], path) -> Path:
+def write_capacity_csv(curves: Mapping[str, Sequence[Capacity]], path) -> Path:
     """``capacity.csv``: one row per spec name and misalignment of :func:`capacity_curve`
     results, written atomically."""
     return write_csv_rows(path, CAPACITY_COLUMNS, ((name, *c.row()[1:])

@@ -8,12 +8,19 @@ moment vs misalignment (Wei Fig. 13), capacity vs misalignment per criterion.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 
 import numpy as np
 
+from ..errors import ArgumentError
 from ..plots import new_figure
-from .contact import contact_model
+from .patchmap import patch_extent, patch_maps
+from .summary import rotation_table
+
+
+def torque_text(torque_Nm: float) -> str:
+    """A torque for a title: 4 significant digits, whole N·m from 10 000 up (not 4e+04)."""
+    return f"{torque_Nm:.4g}" if abs(torque_Nm) < 1e4 else f"{torque_Nm:.0f}"
 
 
 def _axes(ax, **kw):
@@ -45,7 +52,7 @@ def plot_tooth_load(res, ax=None, rotation: int = 0):
             label="tooth 0 over the rotations")
     ax.set_xlabel("turning angle theta (deg, from the tilt axis)")
     ax.set_ylabel("tangential tooth load P (N)")
-    ax.set_title(f"{res.spec.name}: {res.model}, T = {res.torque_Nm:.4g} N·m, "
+    ax.set_title(f"{res.spec.name}: {res.model}, T = {torque_text(res.torque_Nm)} N·m, "
                  f"i = {res.misalignment_deg:.3g}°, q = {res.q():.3f}")
     ax.set_xlim(0, 360)
     ax.grid(alpha=0.3)
@@ -53,8 +60,54 @@ def plot_tooth_load(res, ax=None, rotation: int = 0):
     return fig
 
 
-def plot_q_graph(points: dict[str, Sequence[tuple[float, float]]] | None = None, ax=None):
-    """q vs ``z_c / z0``: Renzo's eq. 8 and measured points ``{label: [(ratio, q), ...]}``."""
+def plot_loads_over_turn(res, ax=None):
+    """Over the rotations of ``res``: teeth in contact; the largest interior pressure and
+    root stress against their allowables; the tilting moment, axial thrust and radial force
+    the coupling puts on the machine (3 panels, ``ax``: 3 Axes)."""
+    t = rotation_table(res)
+    if ax is None:
+        fig, axes = new_figure(3, 1, figsize=(9, 8.4), sharex=True, layout="constrained")
+    else:
+        axes = list(np.ravel(np.asarray(ax, dtype=object)))
+        if len(axes) != 3:
+            raise ArgumentError(f"ax: {len(axes)} Axes given, 3 needed")
+        fig = axes[0].figure
+    order = np.argsort(t["psi_deg"])
+    psi = t["psi_deg"][order]
+    mat = res.spec.material
+    a0, a1, a2 = axes
+    a0.step(psi, t["teeth_in_contact"][order], where="mid", color="C0")
+    a0.set_ylabel("teeth in contact")
+    a0.set_ylim(0, res.teeth * 1.05)
+    a0.set_title(f"{res.spec.name}: loads over the rotations, {res.model} model, "
+                 f"T = {torque_text(res.torque_Nm)} N·m, i = {res.misalignment_deg:.3g}°",
+                 fontsize=10)
+    a1.plot(psi, t["max_interior_pressure_MPa"][order], color="C1",
+            label="largest contact pressure (interior)")
+    a1.plot(psi, t["max_root_stress_MPa"][order], color="C2", label="largest root stress")
+    a1.axhline(min(mat.hub.allowable_contact_stress_MPa, mat.sleeve.allowable_contact_stress_MPa),
+               color="C1", ls="--", lw=1, label="allowable contact stress")
+    a1.axhline(min(mat.hub.allowable_bending_stress_MPa, mat.sleeve.allowable_bending_stress_MPa),
+               color="C2", ls="--", lw=1, label="allowable bending stress")
+    a1.set_ylabel("stress (MPa)")
+    a1.set_ylim(bottom=0)
+    a1.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    a2.plot(psi, t["tilting_moment_Nm"][order], color="C3", label="tilting moment (N·m)")
+    a2.plot(psi, np.abs(t["axial_force_N"][order]), color="C4", label="|axial thrust| (N)")
+    a2.plot(psi, t["radial_force_N"][order], color="C5", label="radial force (N)")
+    a2.set_ylabel("machine loads")
+    a2.set_xlabel("rotation ψ (deg)")
+    a2.set_ylim(bottom=0)
+    a2.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    for a in axes:
+        a.grid(alpha=0.3)
+    return fig
+
+
+def plot_q_graph(points: dict[str, Sequence[tuple[float, float]]] | None = None, ax=None, *,
+                 title: str = "load proportion q against z_c / z0 (Renzo Fig. 12)"):
+    """q vs ``z_c / z0``: Renzo's eq. 8 and measured points ``{label: [(ratio, q), ...]}``;
+    ``title`` names the spec and the model of the points."""
     fig, ax = _axes(ax)
     x = np.logspace(-2, 1, 300)
     ax.semilogx(x, [renzo_q(v) for v in x], "k-", label="Renzo eq. 8")
@@ -67,6 +120,7 @@ def plot_q_graph(points: dict[str, Sequence[tuple[float, float]]] | None = None,
     ax.set_ylim(0, 1)
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=8)
+    ax.set_title(title, fontsize=10)
     return fig
 
 
@@ -84,78 +138,190 @@ def plot_vs_misalignment(misalignments_deg, series: dict[str, Sequence[float]], 
     return fig
 
 
-def plot_capacity(curves: dict[str, list], ax=None):
-    """Capacity vs misalignment per criterion (dashed) and governing (solid), per spec."""
-    fig, ax = _axes(ax, figsize=(8, 4.8))
+CRITERION_STYLES = {"tooth_load": "--", "contact_stress": ":", "bending_stress": "-."}
+SPEC_MARKERS = ("o", "s", "^", "D", "v", "P", "X")
+
+
+def plot_capacity(curves: Mapping[str, Sequence], ax=None, *,
+                  critical_deg: dict[str, float | None] | None = None):
+    """Capacity against misalignment per criterion (thin: dashed, dotted, dash-dot) and the
+    governing one (thick), per spec; each spec's design point (design angle, ``[load]``
+    torque) starred and its critical misalignment (``critical_deg``) marked.
+
+    Curves that coincide stay apart: each spec has its colour and marker (markers placed
+    at different misalignments), and lines and stars are drawn wide to narrow in the given
+    order, so a later spec's line runs inside an earlier one's. The legends sit outside
+    the axes (on the figure's right when the figure is made here).
+    """
+    from matplotlib.lines import Line2D
+
+    own = ax is None
+    fig, ax = new_figure(figsize=(11, 5.4), layout="constrained") if own else (ax.figure, ax)
+    count = len(curves)
+    spec_handles = []
     for k, (name, rows) in enumerate(curves.items()):
-        colour = f"C{k}"
-        mis = [r.misalignment_deg for r in rows]
-        gov = [r.capacity_Nm if r.capacity_Nm is not None else np.nan for r in rows]
-        ax.plot(mis, gov, "-", color=colour, lw=2, label=f"{name} (governing)")
-        styles = {"tooth_load": "--", "contact_stress": ":", "bending_stress": "-."}
-        for crit, style in styles.items():
+        colour, marker = f"C{k}", SPEC_MARKERS[k % len(SPEC_MARKERS)]
+        nest = (count - 1 - k) / max(count - 1, 1)  # 1 for the first spec, 0 for the last
+        mis = np.array([r.misalignment_deg for r in rows])
+        gov = np.array([np.nan if r.capacity_Nm is None else r.capacity_Nm for r in rows])
+        every = max(1, mis.size // 6)
+        ax.plot(mis, gov, "-", color=colour, lw=1.4 + 2.0 * nest, marker=marker, ms=5,
+                markevery=(min(k * every // max(count, 1), max(mis.size - 1, 0)), every),
+                zorder=3 + k, alpha=0.9)
+        for crit, style in CRITERION_STYLES.items():
             ys = [r.criteria_Nm.get(crit) for r in rows]
             if any(y is not None for y in ys):
                 ax.plot(mis, [np.nan if y is None else y for y in ys], style, color=colour,
-                        lw=1, label=f"{name}: {crit}")
+                        lw=0.8 + 1.0 * nest, alpha=0.85, zorder=2 + k)
+        spec = rows[0].spec if rows else None
+        if spec is not None and spec.load.torque_Nm is not None:
+            ax.plot([spec.design_misalignment_deg], [abs(spec.load.torque_Nm)], "*",
+                    color=colour, ms=9 + 7 * nest, mec="k", mew=0.6, zorder=20 + k)
+        label = name
+        i_crit = (critical_deg or {}).get(name)
+        if i_crit is not None:
+            ax.axvline(i_crit, color=colour, lw=1.0, alpha=0.6, zorder=1)
+            ax.annotate(f"{i_crit:.2f}°", (i_crit, 1.0), xycoords=("data", "axes fraction"),
+                        xytext=(2, -2 - 10 * k), textcoords="offset points", va="top",
+                        fontsize=7, color=colour)
+            label += f" (critical {i_crit:.2f}°)"
+        spec_handles.append(Line2D([], [], color=colour, lw=2, marker=marker, label=label))
+    kinds = [Line2D([], [], color="k", lw=2.2, label="governing (smallest)")]
+    kinds += [Line2D([], [], color="k", lw=1, ls=style, label=crit.replace("_", " "))
+              for crit, style in CRITERION_STYLES.items()]
+    kinds.append(Line2D([], [], color="0.4", marker="*", ms=11, ls="none", mec="k",
+                        label="design point (design angle, torque)"))
+    if critical_deg:
+        kinds.append(Line2D([], [], color="0.4", lw=1.0, alpha=0.6,
+                            label="critical misalignment"))
     ax.set_yscale("log")
     ax.set_xlabel("misalignment i (deg)")
     ax.set_ylabel("capacity K·T (N·m)")
     ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=7, ncol=2, loc="lower left")
+    if own:
+        fig.legend(handles=spec_handles, title="spec", loc="outside right upper", fontsize=8,
+                   title_fontsize=8)
+        fig.legend(handles=kinds, title="line", loc="outside right lower", fontsize=8,
+                   title_fontsize=8)
+    else:
+        ax.add_artist(ax.legend(handles=spec_handles, title="spec", loc="upper left",
+                                bbox_to_anchor=(1.01, 1.0), fontsize=8, title_fontsize=8))
+        ax.legend(handles=kinds, title="line", loc="lower left", bbox_to_anchor=(1.01, 0.0),
+                  fontsize=8, title_fontsize=8)
+    rows0 = [r for rows in curves.values() for r in rows]
+    models = sorted({r.model for r in rows0})
+    factors = sorted({r.accuracy_factor for r in rows0})
+    ax.set_title(f"torque capacity against misalignment: {', '.join(curves)}\n"
+                 f"{'/'.join(models)} model, capacity = K × torque at the first limit reached "
+                 f"(K = {', '.join(f'{f:g}' for f in factors)})", fontsize=10)
     return fig
 
 
-def plot_patches(res, rotation: int = 0, ax=None):
-    """Contact patches on the developed loaded flanks of all teeth at one rotation: tooth k
-    side by side (axial position z across, involute roll length up), each patch an ellipse
-    (Hertz) or a band (line contact) of its length along the face and width across the
-    depth, coloured by the interior pressure; face ends drawn, edge contacts outlined red."""
-    import matplotlib.patches as mpatches
+REGIME_NAMES = {"hertz": "Hertz ellipse", "line": "line contact", "surface": "pressure grid",
+                "none": "no load"}
+
+
+def plot_patches(res, rotation: int = 0, ax=None, *, count: int = 6):
+    """Contact pressure on the developed loaded flanks at one rotation: maps of the
+    ``count`` most loaded teeth (axial position z across, involute arc length up; the
+    active flank grey, face ends dashed) and an overview of every tooth (where along the
+    face its patch lies against its turning angle, coloured by its peak pressure).
+
+    The linear and compliance models draw their contact laws' patch (a Hertz ellipse, or a
+    strip over the active profile in the line regime), the surface model its pressure grid
+    (:func:`~gearcoupling.loading.patchmap.patch_maps`). ``ax``: ``count + 1`` Axes (maps,
+    then the overview), or None for a new figure.
+    """
     from matplotlib import colormaps
     from matplotlib.cm import ScalarMappable
     from matplotlib.colors import Normalize
 
-
-    fig, ax = _axes(ax, figsize=(12, 3.6))
-    spec = res.spec
-    half = 0.5 * spec.hub.face_width
-    r_b = spec.tooth.base_radius
-    pitch = 2.6 * half
-    p = res.interior_pressure_MPa[:, rotation]
-    norm = Normalize(0.0, max(float(np.max(p)), 1e-9))
+    maps = patch_maps(res, rotation, count=count)
+    cols = min(3, len(maps))
+    rows = -(-len(maps) // cols)
+    if ax is None:
+        fig, first = new_figure(figsize=(4.6 * cols + 1.2, 2.7 * rows + 3.4),
+                                layout="constrained")
+        first.remove()
+        grid = fig.add_gridspec(rows + 1, cols, height_ratios=[1.0] * rows + [1.15])
+        panels = [fig.add_subplot(grid[i // cols, i % cols]) for i in range(len(maps))]
+        overview = fig.add_subplot(grid[rows, :])
+    else:
+        axes = list(np.ravel(np.asarray(ax, dtype=object)))
+        if len(axes) != len(maps) + 1:
+            raise ArgumentError(f"ax: {len(axes)} Axes given, {len(maps) + 1} needed "
+                                "(one per map, then the overview)")
+        panels, overview = axes[:-1], axes[-1]
+        fig = overview.figure
+    j = rotation
+    # the colour scale covers the interior pressure with room; profile-end and face-end
+    # peaks of a pressure grid (singular at the edges) saturate and are named in the titles
+    interior = float(np.max(res.interior_pressure_MPa[:, j]))
+    peak = max(m.peak_MPa for m in maps)
+    top = peak if peak <= 1.5 * interior else 1.5 * interior
+    norm = Normalize(0.0, max(top, 1e-9))
     cmap = colormaps["viridis"]
-    cm = contact_model(spec)
-    for k in range(res.teeth):
-        x0 = k * pitch
-        ax.plot([x0 - half, x0 - half], [0, 1], color="0.7", lw=0.5,
-                transform=ax.get_xaxis_transform())
-        ax.plot([x0 + half, x0 + half], [0, 1], color="0.7", lw=0.5,
-                transform=ax.get_xaxis_transform())
-        if res.tangential_force_N[k, rotation] <= 0:
-            continue
-        s = math.sqrt(max(res.contact_r_mm[k, rotation] ** 2 - r_b**2, 0.0))
-        w, h = res.patch_length_mm[k, rotation], res.patch_width_mm[k, rotation]
-        xy = (x0 + res.contact_z_mm[k, rotation], s)
-        edge = "red" if res.edge_contact[k, rotation] else "none"
-        patch: mpatches.Patch
-        if res.contact_regime[k, rotation] == 1:
-            patch = mpatches.Ellipse(xy, w, h, facecolor=cmap(norm(p[k])), edgecolor=edge)
-        else:  # line contact: a band over the whole active profile at that z
-            _, lo, hi = cm._lookup(cm.A_f, res.contact_z_mm[k, rotation], 0.0)
-            s0, s1 = (math.sqrt(max(float(v) ** 2 - r_b**2, 0.0)) for v in (lo, hi))
-            patch = mpatches.Rectangle((xy[0] - w / 2, s0), w, s1 - s0,
-                                       facecolor=cmap(norm(p[k])), edgecolor=edge)
-        ax.add_patch(patch)
-    ax.set_xlim(-pitch / 2, res.teeth * pitch - pitch / 2)
-    s_lo, s_hi = (np.sqrt(np.maximum(v**2 - r_b**2, 0.0)) for v in (cm.r_lo, cm.r_hi))
-    margin = 0.05 * (np.max(s_hi) - np.min(s_lo))
-    ax.set_ylim(np.min(s_lo) - margin, np.max(s_hi) + margin)
-    ax.set_xlabel(f"teeth 0..{res.teeth - 1} side by side (axial z within each, face "
-                  f"{spec.hub.face_width:.3g} mm)")
-    ax.set_ylabel("involute roll length (mm)")
-    ax.set_title(f"{spec.name}: contact patches at psi = {res.angles_deg[rotation]:.3g}°, "
-                 f"T = {res.torque_Nm:.4g} N·m ({res.model})")
-    fig.colorbar(ScalarMappable(norm=norm, cmap=cmap), ax=ax, label="interior pressure (MPa)")
-    fig.tight_layout()
+    hf = maps[0].half_face_mm
+    for m, a in zip(maps, panels, strict=True):
+        a.fill_between(m.face_z_mm, m.s_lo_mm, m.s_hi_mm, color="0.9", lw=0)
+        for z in (-hf, hf):
+            a.axvline(z, color="k", ls="--", lw=0.8)
+        p = np.ma.masked_less_equal(m.pressure_MPa.T, 0.0)
+        if p.count():
+            a.pcolormesh(m.z_mm, m.s_mm, p, cmap=cmap, norm=norm, shading="nearest")
+        a.set_xlim(-1.04 * hf, 1.04 * hf)
+        a.set_ylim(min(m.s_mm[0], float(np.min(m.s_lo_mm))),
+                   max(m.s_mm[-1], float(np.max(m.s_hi_mm))))
+        edge = ", edge contact" if m.edge_contact else ""
+        peak_text = f", peak {m.peak_MPa:.0f}" if m.peak_MPa > 1.01 * m.interior_pressure_MPa \
+            else ""
+        a.set_title(f"tooth {m.tooth} at θ = {m.theta_deg:.0f}°: W = {m.normal_force_N:.0f} N\n"
+                    f"p {m.interior_pressure_MPa:.0f} MPa{peak_text} "
+                    f"({REGIME_NAMES[m.regime]}{edge})", fontsize=9)
+        a.tick_params(labelsize=8)
+    for a in panels[-cols:]:
+        a.set_xlabel("axial position z (mm)", fontsize=8)
+    for a in panels[::cols]:
+        a.set_ylabel("arc length s (mm)", fontsize=8)
+    _overview(res, j, overview, cmap, norm, [m.tooth for m in maps])
+    fig.colorbar(ScalarMappable(norm=norm, cmap=cmap), ax=[*panels, overview],
+                 label="contact pressure (MPa)", shrink=0.8,
+                 extend="max" if peak > top else "neither")
+    how = ("its pressure grid; p: interior pressure, peak: at a profile or face end"
+           if res.model == "surface" else
+           "its contact laws' patch: Hertz ellipse, or strip over the active profile")
+    fig.suptitle(f"{res.spec.name}: contact pressure on the loaded {res.loaded_flank} flanks at "
+                 f"ψ = {res.angles_deg[j]:.3g}°, i = {res.misalignment_deg:.3g}°, "
+                 f"T = {torque_text(res.torque_Nm)} N·m\n{res.model} model ({how}); "
+                 "grey: active "
+                 "flank, dashed: face ends", fontsize=10)
     return fig
+
+
+def _overview(res, j: int, ax, cmap, norm, marked) -> None:
+    """Every tooth's patch along the face (bar) at its turning angle, coloured by its peak
+    pressure; the teeth with maps numbered."""
+    hf = 0.5 * res.spec.hub.face_width
+    lo, hi = patch_extent(res, j)
+    theta = res.theta_deg[:, j]
+    loaded = res.normal_force_N[:, j] > 0
+    width = 0.8 * 360.0 / res.teeth
+    ax.bar(theta[loaded], (hi - lo)[loaded], bottom=lo[loaded], width=width,
+           color=cmap(norm(res.interior_pressure_MPa[loaded, j])), edgecolor="none")
+    ax.plot(theta[~loaded], res.contact_z_mm[~loaded, j], "_", color="0.6", ms=4,
+            label="no load (first-touch point)")
+    for k in marked:
+        ax.annotate(str(k), (theta[k], hi[k]), xytext=(0, 3), textcoords="offset points",
+                    ha="center", fontsize=7)
+    for z in (-hf, hf):
+        ax.axhline(z, color="k", ls="--", lw=0.8)
+    ax.set_xlim(0, 360)
+    ax.set_ylim(-1.15 * hf, 1.15 * hf)
+    ax.set_xticks(np.arange(0, 361, 45))
+    ax.set_xlabel("turning angle θ of the tooth (deg, from the tilt axis)")
+    ax.set_ylabel("patch along the face z (mm)")
+    ax.set_title(f"every tooth ({int(np.sum(res.normal_force_N[:, j] > 0))} of {res.teeth} "
+                 "loaded): patch extent along the face, coloured by its interior pressure; "
+                 "numbers: the maps above", fontsize=9)
+    if np.any(~loaded):
+        ax.legend(fontsize=7, loc="upper right")

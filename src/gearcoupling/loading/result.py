@@ -9,6 +9,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..io import write_csv_rows
+from ..tables import dataframe
 from .contact import REGIMES
 from .summary import summarise
 
@@ -82,6 +83,11 @@ class LoadResult:
     def write_csv(self, path):
         """Write :meth:`rows` under :data:`CSV_COLUMNS` atomically; returns the path."""
         return write_csv_rows(path, CSV_COLUMNS, self.rows())
+
+    def to_dataframe(self):
+        """:meth:`rows` as a pandas DataFrame with the columns of ``load.csv``
+        (:data:`CSV_COLUMNS`; the ``pandas`` extra)."""
+        return dataframe(CSV_COLUMNS, self.rows())
 
     def rows(self):
         """Long-form rows (tuples in :data:`CSV_COLUMNS` order), tooth-major per angle."""

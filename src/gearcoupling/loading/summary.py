@@ -65,6 +65,23 @@ def machine_loads(res) -> dict[str, NDArray]:
             "sliding_mm_per_rad": speed}
 
 
+def rotation_table(res) -> dict[str, NDArray]:
+    """Per rotation ``(M,)``: the rotation, teeth in contact, the largest tooth load,
+    pressures and root stress, wind-up, mesh stiffness and the machine loads (units in the
+    keys)."""
+    loads = machine_loads(res)
+    return {"psi_deg": np.asarray(res.angles_deg, float),
+            "teeth_in_contact": np.sum(res.in_contact, axis=0),
+            "max_tooth_load_N": np.max(res.tangential_force_N, axis=0),
+            "max_interior_pressure_MPa": np.max(res.interior_pressure_MPa, axis=0),
+            "max_pressure_MPa": np.max(res.max_pressure_MPa, axis=0),
+            "max_root_stress_MPa": np.max(res.root_stress_MPa, axis=0),
+            "windup_deg": np.degrees(res.windup_rad),
+            "mesh_stiffness_Nm_per_rad": res.mesh_stiffness_Nm_per_rad,
+            "radial_force_N": loads["radial_force_N"], "axial_force_N": loads["axial_force_N"],
+            "tilting_moment_Nm": loads["tilting_moment_Nm"]}
+
+
 def _range(a: NDArray) -> dict[str, float]:
     return {"min": float(np.min(a)), "mean": float(np.mean(a)), "max": float(np.max(a))}
 

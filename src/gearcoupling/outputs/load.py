@@ -68,8 +68,11 @@ def load_studies(spec: CouplingSpec, torque_Nm: float, model: str | None, out: P
                     out / "load_moment_vs_misalignment.png"),
     ]
     if q_pts:
-        paths.append(save_figure(plot_q_graph({"linear model, exact geometry": q_pts}),
-                                 out / "load_q_graph.png"))
+        title = (f"{spec.name}: load proportion q against z_c / z0 (Renzo Fig. 12)\n"
+                 "points: the linear model's tooth-load capacity on the exact geometry, "
+                 f"{mis[0]:.2g}-{mis[-1]:.2g}°")
+        paths.append(save_figure(plot_q_graph({"linear model, exact geometry": q_pts},
+                                              title=title), out / "load_q_graph.png"))
     return paths
 
 

@@ -17,6 +17,7 @@ from typing import Any
 
 from ..errors import ArgumentError, BackendError
 from ..io import atomic_path, write_json
+from ..tables import import_pandas
 from .evaluate import evaluate_chunk
 from .file import OUTPUTS, TOLERANCE_OUTPUTS, Study, sample_count, samples
 
@@ -34,6 +35,13 @@ class StudyRun:
     chunks: int
     skipped_chunks: int
     failed_rows: int
+
+    def to_dataframe(self):
+        """The study table (``study.parquet``) as a pandas DataFrame, one row per sample
+        (the ``pandas`` extra; pyarrow converts the columns)."""
+        import_pandas()
+        _, pq = pyarrow_modules()
+        return pq.read_table(self.table).to_pandas()
 
 
 def pyarrow_modules():

@@ -1,0 +1,89 @@
+"""``gearcoupling report``: the design report (HTML, optionally PDF) of a spec.
+
+Writes ``report.html`` (self-contained: figures inline, the 3D viewer embedded) and the
+figures' data files in ``report-data/``; ``--pdf`` also prints ``report.pdf``. Exit status
+1 when a judged check fails.
+"""
+
+from __future__ import annotations
+
+from ..errors import ArgumentError
+from ..hob import check_hob_diameter
+from ..inspection import GRADES, LIMITS, grade_limits
+from ..io import require_file
+from ..loadspec import LOAD_MODELS
+from ..reporting import KNOB_RANGES, ReportSettings, report
+from .common import (
+    add_misalignment_argument,
+    add_spec_arguments,
+    count,
+    finite_float,
+    misalignment_deg,
+    output_dir,
+    positive_length,
+    progress,
+    spec_from_args,
+)
+from .compare import parse_limits
+
+
+def register(sub) -> None:
+    p = sub.add_parser("report", help="design report: one self-contained HTML file (and "
+                       "--pdf) with the verdict against the spec's limits")
+    add_spec_arguments(p)
+    add_misalignment_argument(p)
+    p.add_argument("--torque", type=finite_float, default=None, metavar="NM",
+                   help="signed torque in N·m (default: the spec's [load] torque)")
+    p.add_argument("--model", choices=LOAD_MODELS, default=None,
+                   help="load model (default: the spec's [load] model)")
+    p.add_argument("--scan", default=None, metavar="FILE",
+                   help="a measured hub (mesh or point cloud) to inspect against the nominal")
+    p.add_argument("--units", default="mm", choices=("mm", "in", "m"),
+                   help="units of the scan's coordinates (default mm)")
+    p.add_argument("--grade", type=count(GRADES[0], GRADES[-1]), default=None, metavar="Q",
+                   help="ISO 1328-1:2013 flank tolerance class 1-11 for the scan's limits")
+    p.add_argument("--limit", action="append", default=[], metavar="NAME=MM",
+                   help="a tolerance limit of the scan, repeatable; NAME one of "
+                        + ", ".join(LIMITS))
+    p.add_argument("--hob-diameter", type=positive_length, default=None, metavar="MM",
+                   help="hob outside diameter of the feed program (default: an illustrative "
+                        "max(50, 20 module) mm)")
+    knob = {"angles": "rotations over a turn of the sweep and loads (default 180)",
+            "capacity_count": "misalignments of the capacity curve (default 13)",
+            "check_angles": "poses of the mesh interference check (default 36)",
+            "surface_angles": "rotations over a tooth pitch for the surface model (default 6)"}
+    for name, text in knob.items():
+        lo, hi = KNOB_RANGES[name]
+        p.add_argument(f"--{name.replace('_', '-')}", type=count(lo, hi), default=None,
+                       metavar="N", help=f"{text}; {lo}-{hi}")
+    p.add_argument("--no-viewer", action="store_true", help="leave out the 3D view")
+    p.add_argument("--pdf", action="store_true",
+                   help="also print report.pdf through headless chromium (browser extra)")
+    p.set_defaults(func=run)
+
+
+def run(args) -> int:
+    spec = spec_from_args(args)
+    if args.hob_diameter is not None:
+        check_hob_diameter(spec, args.hob_diameter, "--hob-diameter")
+    if args.scan is not None:
+        require_file(args.scan, "--scan", "a scan or mesh file (STL/PLY/OBJ, CSV/XYZ)",
+                     ArgumentError)
+    if args.grade is not None:
+        grade_limits(spec, args.grade, "--grade")
+    knobs = {k: getattr(args, k) for k in ("angles", "capacity_count", "check_angles",
+                                            "surface_angles") if getattr(args, k) is not None}
+    settings = ReportSettings(misalignment_deg=misalignment_deg(args, spec),
+                              torque_Nm=args.torque, model=args.model, scan=args.scan,
+                              scan_units=args.units, grade=args.grade,
+                              limits=parse_limits(args.limit),
+                              hob_diameter_mm=args.hob_diameter, viewer=not args.no_viewer,
+                              **knobs)
+    out = output_dir(args, spec)
+    with progress(f"report {spec.name}", 1) as update:
+        result = report(spec, out, pdf=args.pdf, settings=settings, progress=update)
+    print(f"{spec.name}: {result.verdict_text} ({result.wall_seconds:.1f} s)")
+    for path in (result.html, result.pdf):
+        if path is not None:
+            print(path)
+    return 1 if result.verdict == "fail" else 0

@@ -1,0 +1,178 @@
+"""``gc.report``: the design report of a spec, one self-contained HTML file (and a PDF)."""
+
+from __future__ import annotations
+
+import os
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+from datetime import UTC, datetime
+from pathlib import Path
+from typing import Any
+
+from .. import __version__
+from ..errors import ArgumentError
+from ..hob import check_hob_diameter
+from ..inspection import check_limits, grade_limits
+from ..io import require_file, write_text
+from ..spec import CouplingSpec
+from . import sections as sec
+from .document import Note, Section, Table, render
+from .pdf import print_pdf
+from .settings import ReportSettings
+from .verdict import (
+    COLUMNS,
+    geometry_verdicts,
+    inspection_verdicts,
+    interference_verdict,
+    load_verdicts,
+    overall,
+)
+
+REPORT = "report.html"
+
+
+@dataclass(frozen=True)
+class ReportResult:
+    """What :func:`report` wrote: the HTML, the PDF (or None), the data files, the verdict
+    (``pass``, ``fail`` or ``open`` when something was not judged, with its sentence) and
+    each section's seconds."""
+
+    html: Path
+    pdf: Path | None
+    files: tuple[Path, ...]
+    verdict: str
+    verdict_text: str
+    seconds: dict[str, float]
+    wall_seconds: float
+
+
+def _steps(settings: ReportSettings) -> list[tuple[str, Callable[[sec.Context], Section]]]:
+    steps: list[tuple[str, Callable[[sec.Context], Section]]] = [
+        ("coupling", sec.coupling), ("clearance", sec.clearance),
+             ("design angles", sec.design_angles), ("loads", sec.loads),
+             ("capacity", sec.capacity_section), ("interference", sec.interference),
+             ("manufacturing", sec.manufacturing)]
+    if settings.scan is not None:
+        steps.append(("measured part", sec.measured))
+    if settings.viewer:
+        steps.append(("3D view", sec.view3d))
+    return steps
+
+
+def report(spec: CouplingSpec, out: str | os.PathLike, *, pdf: bool = False,
+           progress: Callable[[int, int], None] | None = None,
+           settings: ReportSettings | None = None, **options: Any) -> ReportResult:
+    """Write the design report of ``spec`` into the folder ``out``.
+
+    ``report.html`` is self-contained (figures inline, the 3D viewer embedded, no network)
+    and holds: the verdict table against the spec's limits (saying which are not set), the
+    spec and its derived values, clearance, backlash and contact over the turn, the
+    critical and binding angles with Renzo's estimates, the loads (tooth load, q,
+    pressure, root stress, machine loads, contact patches), capacity per criterion against
+    misalignment, the interference check, the hob program and measuring charts, a measured
+    part when ``scan`` is given, and the 3D view. Each figure's data is a CSV file in
+    ``out/report-data/`` and its model and accuracy settings are written under it.
+
+    Parameters
+    ----------
+    spec : CouplingSpec
+    out : path-like
+        Output folder (created).
+    pdf : bool
+        Also print ``report.pdf`` through headless chromium (the ``browser`` extra and
+        Debian's chromium; the 3D view becomes a picture).
+    progress : callable, optional
+        ``progress(done, total)`` after each section.
+    settings : ReportSettings, optional
+        Inputs and accuracy knobs; or give them as keyword arguments (``torque_Nm``,
+        ``misalignment_deg``, ``scan``, ``angles``, ...; see :class:`ReportSettings`).
+
+    Returns
+    -------
+    ReportResult
+    """
+    s = settings if settings is not None else ReportSettings(**options)
+    t0 = time.perf_counter()
+    mis, torque, model = sec.resolve(spec, s)
+    _check_inputs(spec, s)
+    folder = Path(out)
+    folder.mkdir(parents=True, exist_ok=True)
+    ctx = sec.Context(spec, s, folder, mis, torque, model)
+    steps = _steps(s)
+    total = len(steps) + 1 + (1 if pdf else 0)
+    built: list[Section] = []
+    seconds: dict[str, float] = {}
+    for n, (name, step) in enumerate(steps):
+        t = time.perf_counter()
+        section = step(ctx)
+        section.seconds = seconds[name] = time.perf_counter() - t
+        built.append(section)
+        if progress is not None:
+            progress(n + 1, total)
+    verdicts = _verdicts(ctx)
+    cls, text = overall(verdicts)
+    head = Section("verdict", "Verdict against the spec's limits", [
+        Table(COLUMNS, [v.row() for v in verdicts], "pass / fail only against a limit; "
+              "not judged where the spec sets no limit or an input is missing (the reason "
+              "says which key or option sets it).", verdict_column=4)])
+    wall = time.perf_counter() - t0
+    built.append(_provenance(ctx, seconds, wall))
+    html_path = folder / "report.html"
+    title = f"Gear coupling design report: {spec.name}"
+    when = datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC")
+    sub = (f"i = {mis:g}°, " + (f"T = {torque:.4g} N·m" if torque is not None else "no torque")
+           + f", {model} load model · gearcoupling {__version__} · {when}")
+    write_text(html_path, render(title, sub, (cls, text), [head, *built]))
+    if progress is not None:
+        progress(len(steps) + 1, total)
+    pdf_path = None
+    if pdf:
+        pdf_path = print_pdf(html_path, folder / "report.pdf")
+        if progress is not None:
+            progress(total, total)
+    return ReportResult(html_path, pdf_path, tuple(ctx.files), cls, text, seconds,
+                        time.perf_counter() - t0)
+
+
+def _check_inputs(spec: CouplingSpec, s: ReportSettings) -> None:
+    """Inputs that would fail late, checked before anything is computed: the scan file,
+    the inspection limits and class, the hob diameter."""
+    if s.scan is not None:
+        require_file(s.scan, "scan", "a scan or mesh file (STL/PLY/OBJ, CSV/XYZ)", ArgumentError)
+    if s.grade is not None:
+        grade_limits(spec, s.grade)
+    check_limits(s.limits)
+    if s.hob_diameter_mm is not None:
+        check_hob_diameter(spec, s.hob_diameter_mm)
+
+
+def _verdicts(ctx: sec.Context):
+    f = ctx.found
+    rows = geometry_verdicts(ctx.misalignment_deg, f["min_backlash_mm"], f.get("critical_deg"),
+                             f.get("binding_deg"))
+    rows += load_verdicts(ctx.spec, f.get("load"), f.get("capacity"))
+    rows.append(interference_verdict(*f.get("interference", (None, "not run"))))
+    rows += inspection_verdicts(f.get("inspection"))
+    return rows
+
+
+def _provenance(ctx: sec.Context, seconds: dict[str, float], wall: float) -> Section:
+    used = {"misalignment_deg": ctx.misalignment_deg, "torque_Nm": ctx.torque_Nm,
+            "model": ctx.model}
+    settings = []
+    for k, v in ctx.settings.as_dict().items():
+        if k in used:
+            k, v = f"{k} (used)", used[k]
+        elif isinstance(v, dict):
+            v = ", ".join(f"{a}={b:g}" for a, b in v.items()) or "–"
+        settings.append((k, v))
+    timing = [(k, round(v, 2)) for k, v in seconds.items()] + [("all sections", round(wall, 2))]
+    files = [(str(p.relative_to(ctx.out)), p.stat().st_size) for p in ctx.files if p.exists()]
+    return Section("settings", "Settings, timing and files", [
+        Table(("setting", "value"), settings, "Inputs and accuracy knobs of this report "
+              "(gc.report keyword arguments; gearcoupling report options)."),
+        Table(("section", "seconds"), timing, "Wall time on the machine that made the report."),
+        Table(("data file", "bytes"), files, "Beside report.html: each figure's data."),
+        Note("Conventions (frames, signs, units) are those of docs/conventions.md; the models "
+             "and their validations are described in docs/load.md and docs/load-surface.md.")])

@@ -1,0 +1,69 @@
+"""Capacity curves of several specs over one misalignment range (``gearcoupling capacity
+--compare`` and the report's capacity section)."""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from ..clearance import critical_misalignment_deg
+from ..errors import ArgumentError
+from ..loading import CapacityCurve, capacity_curve
+from ..spec import MISALIGNMENT_RANGE_DEG, CouplingSpec
+
+DEFAULT_COUNT = 25
+SMALLEST_TOP_DEG = 0.5
+
+
+@dataclass(frozen=True)
+class CapacityComparison:
+    """Capacity curves by spec name over the same misalignments, with each spec's critical
+    misalignment (None: no face end is reached up to 6°)."""
+
+    misalignments_deg: NDArray[np.float64]
+    curves: dict[str, CapacityCurve]
+    critical_deg: dict[str, float | None]
+
+
+def comparison_range(specs: Sequence[CouplingSpec], count: int = DEFAULT_COUNT,
+                     top_deg: float | None = None) -> tuple[NDArray, dict[str, float | None]]:
+    """``count`` misalignments from 0 to ``top_deg``, by default the largest critical
+    misalignment of ``specs`` (where the contact of the pivot teeth reaches a face end;
+    the range where crowns differ), at least every design angle and 0.5°, at most 6°;
+    and the critical misalignments by spec name."""
+    critical = {s.name: critical_misalignment_deg(s) for s in specs}
+    if top_deg is None:
+        tops = [SMALLEST_TOP_DEG, *(s.design_misalignment_deg for s in specs),
+                *(c for c in critical.values() if c is not None)]
+        top_deg = min(max(tops), MISALIGNMENT_RANGE_DEG[1])
+    if not (isinstance(count, int) and count >= 2):
+        raise ArgumentError(f"count = {count!r}: must be a whole number >= 2")
+    return np.linspace(0.0, float(top_deg), count), critical
+
+
+def compare_capacity(specs: Sequence[CouplingSpec], misalignments_deg: ArrayLike | None = None,
+                     *, model: str | None = None, count: int = DEFAULT_COUNT,
+                     progress: Callable[[int, int], None] | None = None) -> CapacityComparison:
+    """Capacity curves of ``specs`` over the same misalignments (default
+    :func:`comparison_range`); ``progress(done, total)`` after each point."""
+    if not specs:
+        raise ArgumentError("specs: give at least one spec")
+    auto, critical = comparison_range(specs, count)
+    mis = auto if misalignments_deg is None else np.sort(np.unique(np.asarray(
+        misalignments_deg, dtype=float)))
+    if mis.size < 1 or mis[0] < 0 or mis[-1] > MISALIGNMENT_RANGE_DEG[1]:
+        raise ArgumentError(f"misalignments_deg = {mis.tolist()}: values 0-6 degrees")
+    names = [s.name for s in specs]
+    if len(set(names)) < len(names):
+        raise ArgumentError(f"specs {names}: each compared spec needs its own name")
+    total = len(specs) * mis.size
+    curves = {}
+    for k, spec in enumerate(specs):
+        curves[spec.name] = capacity_curve(
+            spec, mis, model=model,
+            progress=None if progress is None else
+            (lambda i, _n, k=k: progress(k * mis.size + i, total)))
+    return CapacityComparison(mis, curves, critical)

@@ -1,0 +1,93 @@
+"""What a report computes and how finely: the inputs and the accuracy knobs of
+:func:`gearcoupling.report`, checked once."""
+
+from __future__ import annotations
+
+import math
+import os
+from dataclasses import asdict, dataclass, field
+from typing import Any
+
+from ..errors import ArgumentError
+from ..loadspec import LOAD_MODELS
+
+# (smallest, largest) of each count: enough to draw, small enough to stay interactive
+KNOB_RANGES = {"angles": (8, 3600), "capacity_count": (2, 200), "check_angles": (1, 720),
+          "surface_angles": (1, 64), "patch_teeth": (1, 12), "fit_points": (100, 1_000_000),
+          "dpi": (50, 300)}
+
+
+@dataclass(frozen=True)
+class ReportSettings:
+    """Inputs and accuracy knobs of a report (defaults: renzo-1967 in about 20 s).
+
+    Attributes
+    ----------
+    misalignment_deg : float, optional
+        The misalignment reported (default the spec's design angle).
+    torque_Nm : float, optional
+        Signed torque (default ``[load] torque_Nm``; without one the loads are not judged).
+    model : {"linear", "compliance", "surface"}, optional
+        Load model (default ``[load] model``).
+    angles : int
+        Rotations over a turn of the sweep and of the linear/compliance loads.
+    tolerance_mm : float
+        Chordal tolerance of the sweep's flank table.
+    surface_angles : int
+        Rotations over one tooth pitch of the surface model (costly: about a second each).
+    capacity_count : int
+        Misalignments of the capacity curve (0 to the critical misalignment).
+    check_angles : int
+        Poses of the mesh interference check over a turn.
+    patch_teeth : int
+        Contact pressure maps drawn (the most loaded teeth).
+    hob_diameter_mm : float, optional
+        Hob outside diameter of the feed program (default ``max(50, 20 module)`` mm, an
+        illustrative size).
+    scan : path, optional
+        A measured hub (mesh or point cloud) to inspect; ``scan_units``, ``fit_points``,
+        ``grade`` (ISO 1328-1:2013 class) and ``limits`` (mm) as for
+        :func:`gearcoupling.compare_part`.
+    viewer : bool
+        Embed the 3D viewer (the ``viewer`` extra).
+    dpi : int
+        Figure resolution.
+    """
+
+    misalignment_deg: float | None = None
+    torque_Nm: float | None = None
+    model: str | None = None
+    angles: int = 180
+    tolerance_mm: float = 1e-7
+    surface_angles: int = 6
+    capacity_count: int = 13
+    check_angles: int = 36
+    patch_teeth: int = 6
+    hob_diameter_mm: float | None = None
+    scan: str | os.PathLike | None = None
+    scan_units: str = "mm"
+    fit_points: int = 20_000
+    grade: int | None = None
+    limits: dict[str, float] = field(default_factory=dict)
+    viewer: bool = True
+    dpi: int = 110
+
+    def __post_init__(self):
+        for name, (lo, hi) in KNOB_RANGES.items():
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, int) or not lo <= v <= hi:
+                raise ArgumentError(f"{name} = {v!r}: must be a whole number from {lo} to {hi}")
+        t = self.tolerance_mm
+        if not (isinstance(t, int | float) and math.isfinite(t) and 1e-9 <= t <= 1e-3):
+            raise ArgumentError(f"tolerance_mm = {t!r}: must be from 1e-9 to 1e-3 mm")
+        if self.model is not None and self.model not in LOAD_MODELS:
+            raise ArgumentError(f"model = {self.model!r}: must be one of {', '.join(LOAD_MODELS)}")
+        if self.torque_Nm is not None and not (isinstance(self.torque_Nm, int | float)
+                                               and math.isfinite(self.torque_Nm)):
+            raise ArgumentError(f"torque_Nm = {self.torque_Nm!r}: must be a finite torque in N·m")
+
+    def as_dict(self) -> dict[str, Any]:
+        """Plain data for the report's settings table."""
+        d = asdict(self)
+        d["scan"] = None if self.scan is None else os.fspath(self.scan)
+        return d

@@ -1,0 +1,225 @@
+"""The design report: one self-contained HTML file whose numbers are the library's, whose
+figures have their data files, whose verdicts are judged only against limits; in a real
+browser it renders without console errors, every image loads, the 3D view draws and the
+PDF has a page per section with the sections as its outline.
+
+The report of renzo-1967 with a scanned hub (teeth indexed 10 um off, ISO 1328-1:2013
+class 6) is made once for the module (about 10 s).
+"""
+
+from __future__ import annotations
+
+import csv
+import html
+import re
+import time
+
+import numpy as np
+import pytest
+
+import gearcoupling as gc
+from gearcoupling.cli import main
+from gearcoupling.loading import patch_maps, plot_patches
+from gearcoupling.reporting import ReportSettings
+from gearcoupling.reporting.verdict import (
+    FAIL,
+    OPEN,
+    PASS,
+    Verdict,
+    interference_verdict,
+    load_verdicts,
+    overall,
+)
+from inspection_synth import synthetic_hub
+
+SECTIONS = ("verdict", "coupling", "clearance", "design-angles", "loads", "capacity",
+            "interference", "manufacturing", "measured", "view", "settings")
+
+
+@pytest.fixture(scope="module")
+def made(renzo, tmp_path_factory):
+    out = tmp_path_factory.mktemp("report")
+    scan = out / "scan.xyz"
+    np.savetxt(scan, synthetic_hub(renzo, per_flank=120, index_mm={4: 0.01}))
+    t0 = time.perf_counter()
+    res = gc.report(renzo, out, scan=scan, grade=6, fit_points=3000)
+    print(f"\nrenzo-1967 report with a scan: {time.perf_counter() - t0:.1f} s")
+    return res, res.html.read_text(encoding="utf-8")
+
+
+def figures(text):
+    return re.findall(r'<figure id="fig-([^"]+)"><img src="data:image/png;base64,[A-Za-z0-9+/=]+'
+                      r'".*?</figure>', text, re.S)
+
+
+@pytest.mark.slow
+def test_report_is_one_self_contained_file_with_every_section(made):
+    _, text = made
+    # nothing outside the file but its own data files: no http(s), no relative images
+    outside = [v for v in re.findall(r'(?:src|href)="([^"]*)"', text)
+               if not v.startswith(("data:", "#", "report-data/"))]
+    assert outside == []
+    ids = re.findall(r'<section id="([^"]+)">', text)
+    assert tuple(ids) == SECTIONS
+    assert "<iframe" in text and "srcdoc=" in text  # the viewer, embedded
+
+
+@pytest.mark.slow
+def test_every_figure_has_its_data_file_and_its_settings(made):
+    res, text = made
+    figs = re.findall(r"<figure.*?</figure>", text, re.S)
+    assert len(figs) >= 14 and len(figures(text)) == len(figs)
+    for fig in figs:
+        link = re.search(r'Data: <a href="(report-data/[^"]+)">', fig)
+        assert link, fig[:200]
+        path = res.html.parent / link.group(1)
+        with open(path, newline="") as fh:
+            rows = [r for r in csv.reader(fh) if r and not r[0].startswith("#")]
+        assert len(rows) >= 2, path  # a header and data
+        settings = re.search(r'<span class="settings">(.*?)</span>', fig).group(1)
+        assert len(settings) > 20, fig[:200]
+
+
+@pytest.mark.slow
+def test_report_numbers_are_the_librarys(made, renzo):
+    pd = pytest.importorskip("pandas")
+    res, text = made
+    text = html.unescape(text)
+    # the load data file is the load the report drew: the same sweep and model
+    sw = gc.sweep(renzo, 1.0, np.arange(180) * 2.0, tolerance_mm=1e-7)
+    ref = gc.load_from_sweep(sw).to_dataframe()
+    disk = pd.read_csv(res.html.parent / "report-data" / "load.csv")
+    pd.testing.assert_frame_equal(ref, disk, check_exact=False, rtol=1e-8, check_dtype=False)
+    # the verdict's capacity and the design angles are those of the library's calls
+    cap = gc.capacity(renzo, 1.0)
+    assert f"{cap.capacity_Nm:.4g} N·m (bending stress governs)" in text
+    crit = gc.critical_misalignment_deg(renzo)
+    assert f"≤ critical misalignment {crit:.3f}°" in text
+    # Renzo's estimates beside them: b/2 = R_c cot(phi) i and eq. 4/6 binding, within 2 %
+    rows = dict(re.findall(r"<tr><td>(critical misalignment[^<]*|binding angle[^<]*)</td>"
+                           r'<td class="num">[^<]+</td><td class="num">([^<]+)</td>', text))
+    est = {k.split(" ")[0]: float(v) for k, v in rows.items()}
+    assert est["critical"] == pytest.approx(np.degrees(6.35 / (63.5 / np.tan(np.radians(20)))),
+                                            rel=1e-3)
+    assert est["critical"] == pytest.approx(crit, rel=0.02)
+    assert est["binding"] == pytest.approx(gc.binding_angle_deg(renzo), rel=0.02)
+
+
+@pytest.mark.slow
+def test_verdicts_judge_only_against_limits(made):
+    res, text = made
+    text = html.unescape(text)
+    # tooth 4 indexed 10 um: class 6 allows f_pT = 8.5 um, so the part fails on fpt
+    assert res.verdict == "fail" and "single pitch deviation" in res.verdict_text
+    fpt = re.search(r"<tr><td>measured single pitch[^<]*</td><td>([^<]+)</td><td>([^<]+)</td>"
+                    r"<td>[^<]*</td><td[^>]*>([^<]+)</td>", text)
+    assert fpt.group(2) == "8.50 µm" and fpt.group(3) == "fail"
+    assert float(fpt.group(1).split()[0]) == pytest.approx(10.0, abs=0.5)
+    # the crown height and the thickness have no ISO 1328 limit: not judged, saying so
+    for what in ("crown height deviation", "tooth thickness deviation"):
+        row = re.search(rf"<tr><td>measured {what}.*?</tr>", text).group(0)
+        assert "not judged: no limit set" in row
+    # the default steel allowables are judged and named as defaults
+    assert "default steel value (not set in [material])" in text
+
+
+def test_verdicts_without_limits_or_inputs_are_not_judged(renzo):
+    open_ = load_verdicts(renzo, None, None)
+    assert {v.verdict for v in open_} == {OPEN} and "no torque" in open_[0].reason
+    res = gc.load(renzo, 1.0, [0.0, 3.6])
+    no_pi = renzo.replace(**{"load.allowable_tooth_load_N": None})
+    rows = load_verdicts(no_pi, gc.load(no_pi, 1.0, [0.0, 3.6]), None)
+    assert rows[0].verdict == OPEN and "allowable_tooth_load" in rows[0].reason
+    rows = load_verdicts(renzo, res, gc.capacity(renzo, 1.0))
+    assert [r.verdict for r in rows] == [PASS] * 5  # 2260 N·m below the capacity, no edge
+    assert interference_verdict(None, "not run: no python-fcl").verdict == OPEN
+
+
+def test_overall_verdict_names_failures_and_counts_what_was_not_judged():
+    ok = Verdict("a", "1", "2", "x", PASS)
+    bad = Verdict("b", "3", "2", "x", FAIL)
+    none = Verdict("c", "–", "–", "–", OPEN, "no limit set")
+    assert overall([ok, bad, none]) == ("fail", "FAIL: 1 of 2 judged checks fail (b); 1 not "
+                                        "judged (no limit or no input): see the verdict table")
+    assert overall([ok])[0] == "pass" and overall([ok, none])[0] == "open"
+    assert overall([none])[1].startswith("NOT JUDGED")
+
+
+def test_cli_report_exit_status_follows_the_verdict(tmp_path, capsys):
+    quick = ["--no-viewer", "--angles", "36", "--capacity-count", "3", "--check-angles", "4",
+             "-o", str(tmp_path)]
+    assert main(["report", "renzo-1967", *quick]) == 0
+    out = capsys.readouterr().out
+    assert "PASS on all" in out and str(tmp_path / "report.html") in out
+    # 100 kN·m is far above the capacity at 1°: the report fails and says on what
+    assert main(["report", "renzo-1967", "--torque", "1e5", *quick]) == 1
+    out = capsys.readouterr().out
+    assert "FAIL" in out and "torque ≤ capacity" in out
+
+
+def test_report_settings_refuse_bad_knobs():
+    with pytest.raises(gc.ArgumentError, match="angles = 3"):
+        ReportSettings(angles=3)
+    with pytest.raises(gc.ArgumentError, match="model = 'fem'"):
+        ReportSettings(model="fem")
+
+
+def test_surface_pressure_map_carries_each_tooths_load(renzo):
+    res = gc.load(renzo, 1.0, [0.0], model="surface")
+    for m in patch_maps(res, 0, count=3):
+        force = m.pressure_MPa.sum() * np.diff(m.z_mm).mean() * np.diff(m.s_mm).mean()
+        assert force == pytest.approx(m.normal_force_N, rel=1e-3)
+
+
+def test_hertz_ellipse_map_carries_the_load_when_it_fits_the_flank(renzo):
+    # at 5 N·m the patches are small Hertz ellipses inside the flank: the map's
+    # semi-ellipsoid integrates to the tooth load, 2/3 pi a b p0 = W (grid: 481 x 61)
+    res = gc.load(renzo, 1.0, [0.0], torque_Nm=5.0, model="compliance")
+    for m in patch_maps(res, 0, count=2):
+        assert m.regime == "hertz"
+        force = m.pressure_MPa.sum() * np.diff(m.z_mm).mean() * np.diff(m.s_mm).mean()
+        assert force == pytest.approx(m.normal_force_N, rel=0.03)
+        assert m.peak_MPa == pytest.approx(m.interior_pressure_MPa, rel=0.02)
+
+
+def test_patch_figure_has_a_map_per_tooth_and_the_overview(renzo):
+    res = gc.load(renzo, 1.0, [0.0, 3.6])
+    fig = plot_patches(res, 1, count=4)
+    titles = [a.get_title() for a in fig.axes]
+    assert sum(t.startswith("tooth ") for t in titles) == 4
+    assert any(re.match(r"every tooth \(\d+ of 50 loaded\)", t) for t in titles)
+    assert "T = 2260 N·m" in fig.get_suptitle()
+
+
+@pytest.mark.needs_browser
+@pytest.mark.slow
+def test_report_renders_in_chromium_and_prints_a_page_per_section(made, tmp_path):
+    from gearcoupling.reporting.pdf import drawn_fraction, print_pdf, viewer_picture
+    from gearcoupling.viewer import chromium
+
+    res, text = made
+    n_figures = len(figures(text))
+    with chromium() as browser:
+        page = browser.new_page(viewport={"width": 1240, "height": 900})
+        problems = []
+        page.on("console", lambda m: problems.append(m.text) if m.type == "error" else None)
+        page.on("pageerror", lambda e: problems.append(str(e)))
+        try:
+            page.goto(res.html.as_uri(), wait_until="load")
+            images = page.evaluate("Array.from(document.querySelectorAll('figure img'))"
+                                   ".map(i => [i.complete, i.naturalWidth])")
+            assert len(images) == n_figures
+            assert all(done and width > 100 for done, width in images), images
+            shot = viewer_picture(page)
+            assert shot is not None, "the 3D view did not draw"
+            assert drawn_fraction(shot) > 0.05
+            assert problems == [], problems
+        finally:
+            page.close()
+    pdf = print_pdf(res.html, tmp_path / "report.pdf").read_bytes()
+    assert pdf.startswith(b"%PDF-")
+    pages = len(re.findall(rb"/Type\s*/Page\b", pdf))
+    titles = [t.decode() for t in re.findall(rb"/Title\s*\((\d+\. [^)]*)\)", pdf)]
+    headings = [html.unescape(h) for h in re.findall(r"<h2[^>]*>([^<]+)</h2>", text)]
+    assert titles == headings
+    assert pages >= len(headings)  # every section starts a page
