@@ -25,7 +25,7 @@ if [ ! -d .cache/npm/node_modules/gltf-validator ]; then
     fi
     npm install --silent --prefix .cache/npm gltf-validator
 fi
-python3 -m ruff check src tests benchmarks
+python3 -m ruff check src tests benchmarks examples
 python3 -m mypy
 # --fast: leave out the tests marked slow (under a minute on two cores); CI runs everything
 if [ "${1:-}" = "--fast" ]; then

@@ -1,0 +1,18 @@
+"""The hob feed program, the measuring charts, and a measured hub against the nominal.
+
+Run: python examples/09_manufacturing_and_inspection.py
+"""
+
+import numpy as np
+
+import gearcoupling as gc
+
+spec = gc.load_spec("renzo-1967")
+prog = gc.hob_program(spec, hob_diameter_mm=80.0)
+print(len(prog.moves), "moves, chordal deviation", prog.max_deviation_mm, "mm")
+charts = gc.measuring_charts(spec)
+print(sorted(charts.values["cw"])[:4])
+# a "scan": the nominal hub's vertices (a real scan is a mesh or an x y z point file)
+scan = np.asarray(gc.build_part(spec, "hub").vertices)
+report = gc.compare_part(spec, scan, grade=6)  # ISO 1328-1 class 6 limits for its size
+print(report.verdict() if hasattr(report, "verdict") else report.passed[:3])
