@@ -351,7 +351,7 @@ def check_interference(spec, misalignment_deg: float, angles_deg: ArrayLike, *,
         estimated volumes). The gap is measured the same way by both.
     tolerance_mm : float, optional
         Chordal tolerance of the meshes (default module / 200). Mesh gaps differ from the
-        exact clearance by less than this; finer costs triangles (see the README table).
+        exact clearance by less than this; finer costs triangles (docs/interference.md).
     teeth : "sweep", int or "all"
         ``"sweep"``: single tooth pairs at the teeth the sweep finds within ``margin_mm``
         of each pose's smallest clearance (or below ``2 * tolerance_mm``); ``k``: windows
