@@ -68,13 +68,27 @@ LAYERS = {
 }
 
 
+def _type_checking_nodes(tree) -> set[int]:
+    """Ids of the nodes under ``if TYPE_CHECKING:`` (annotations only: not imports at run
+    time, so they neither break the layering nor make circles)."""
+    import ast
+
+    return {id(n) for node in ast.walk(tree) if isinstance(node, ast.If)
+            and getattr(node.test, "id", None) == "TYPE_CHECKING"
+            for n in ast.walk(node) if n is not node}
+
+
 def _internal_imports(path, root):
     """Top-level units of gearcoupling that the file at ``path`` imports."""
     import ast
 
     pkg = list(path.relative_to(root).parts[:-1])
     out = set()
-    for node in ast.walk(ast.parse(path.read_text())):
+    tree = ast.parse(path.read_text())
+    typing_only = _type_checking_nodes(tree)
+    for node in ast.walk(tree):
+        if id(node) in typing_only:
+            continue
         if isinstance(node, ast.ImportFrom) and node.level:
             base = pkg[:len(pkg) - (node.level - 1)]
             full = base + (node.module.split(".") if node.module else [])
@@ -123,11 +137,12 @@ def _package_imports():
         rel = path.relative_to(root).parts
         pkg = list(rel[:-1])
         tree = ast.parse(path.read_text())
+        typing_only = _type_checking_nodes(tree)
         in_fn = {id(n) for f in ast.walk(tree)
                  if isinstance(f, ast.FunctionDef | ast.AsyncFunctionDef)
                  for n in ast.walk(f) if n is not f}
         for node in ast.walk(tree):
-            if not isinstance(node, ast.ImportFrom):
+            if not isinstance(node, ast.ImportFrom) or id(node) in typing_only:
                 continue
             if node.level:
                 base = pkg[:len(pkg) - (node.level - 1)]

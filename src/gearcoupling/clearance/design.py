@@ -14,7 +14,7 @@ import numpy as np
 
 from ..errors import ArgumentError
 from ..geometry import sleeve_model
-from ..spec import MISALIGNMENT_RANGE_DEG
+from ..spec import MISALIGNMENT_RANGE_DEG, CouplingSpec
 from .kernel import DEFAULT_TOLERANCE_MM, FACE_END, minimise
 from .tooth_map import check_misalignment, flank_minima, sweep
 
@@ -29,7 +29,8 @@ def pitch_turning_angles(teeth: int, steps: int = DEFAULT_STEPS) -> np.ndarray:
     return psi[None, :] + 2.0 * np.pi * np.arange(teeth)[:, None] / teeth
 
 
-def contact_travel(spec, misalignment_deg: float, *, tolerance_mm: float = DEFAULT_TOLERANCE_MM
+def contact_travel(spec: CouplingSpec,
+                   misalignment_deg: float, *, tolerance_mm: float = DEFAULT_TOLERANCE_MM
                    ) -> dict[str, float]:
     """Axial position of the contact on the pivot teeth (theta = 0 and 180°), in mm.
 
@@ -51,14 +52,14 @@ def contact_travel(spec, misalignment_deg: float, *, tolerance_mm: float = DEFAU
     }
 
 
-def min_backlash_rad(spec, misalignment_deg: float, *, steps: int = DEFAULT_STEPS,
+def min_backlash_rad(spec: CouplingSpec, misalignment_deg: float, *, steps: int = DEFAULT_STEPS,
                      tolerance_mm: float = DEFAULT_TOLERANCE_MM) -> float:
     """Smallest backlash (rad) over a full turn at ``misalignment_deg`` (0-6°); negative
     where the teeth bind. ``steps`` rotations per tooth pitch are searched."""
     return _min_backlash(spec, check_misalignment(misalignment_deg), steps, tolerance_mm)
 
 
-def _min_backlash(spec, misalignment_rad: float, steps: int = DEFAULT_STEPS,
+def _min_backlash(spec: CouplingSpec, misalignment_rad: float, steps: int = DEFAULT_STEPS,
                   tolerance_mm: float = DEFAULT_TOLERANCE_MM) -> float:
     theta = pitch_turning_angles(spec.tooth.teeth, steps)
     both = np.stack([theta, np.pi - theta])
@@ -68,14 +69,14 @@ def _min_backlash(spec, misalignment_rad: float, steps: int = DEFAULT_STEPS,
     return float(np.min(np.min(gap[0], axis=0) + np.min(gap[1], axis=0)))
 
 
-def pivot_on_face_end(spec, misalignment_rad: float) -> bool:
+def pivot_on_face_end(spec: CouplingSpec, misalignment_rad: float) -> bool:
     """Whether the pivot teeth (theta = 0 and 180°) touch first at a face end."""
     mins, _ = flank_minima(spec, misalignment_rad, np.array([0.0, np.pi]),
                            tolerance_mm=DEFAULT_TOLERANCE_MM, measures=("normal",))
     return bool(np.any(mins["kind"] == FACE_END))
 
 
-def critical_misalignment_deg(spec, *, tolerance_deg: float = ANGLE_TOLERANCE_DEG
+def critical_misalignment_deg(spec: CouplingSpec, *, tolerance_deg: float = ANGLE_TOLERANCE_DEG
                               ) -> float | None:
     """Smallest misalignment (degrees) at which the contact on the pivot teeth runs onto a
     face end (docs/conventions.md, Tooth geometry: it travels axially by about ``R_c cot(phi)
@@ -103,7 +104,7 @@ def critical_misalignment_deg(spec, *, tolerance_deg: float = ANGLE_TOLERANCE_DE
     return math.degrees(0.5 * (lo + hi))
 
 
-def binding_angle_deg(spec, *, tolerance_deg: float = ANGLE_TOLERANCE_DEG,
+def binding_angle_deg(spec: CouplingSpec, *, tolerance_deg: float = ANGLE_TOLERANCE_DEG,
                       steps: int = DEFAULT_STEPS) -> float | None:
     """Misalignment (degrees) at which the smallest backlash over a turn reaches zero
     (Brent's method to ``tolerance_deg``); ``None`` if the coupling does not bind by 6°."""
@@ -182,7 +183,7 @@ def mesh_angles(offset_mm: float, angle_deg: float, span_mm: float, *,
     return MeshAngles(a, b, a)
 
 
-def double_engagement(spec, offset_mm: float, angle_deg: float, span_mm: float,
+def double_engagement(spec: CouplingSpec, offset_mm: float, angle_deg: float, span_mm: float,
                       angles_deg, **kwargs):
     """Sweeps of both gear meshes: ``(MeshAngles, result_a, result_b)``.
 
@@ -200,7 +201,7 @@ def double_engagement(spec, offset_mm: float, angle_deg: float, span_mm: float,
                                                                         angles_deg, **kwargs)
 
 
-def design_quantities(spec, misalignment_deg: float, *,
+def design_quantities(spec: CouplingSpec, misalignment_deg: float, *,
                       tolerance_deg: float = ANGLE_TOLERANCE_DEG) -> dict:
     """Root-found design angles and the pivot-tooth contact travel, as plain data."""
     travel = contact_travel(spec, misalignment_deg)

@@ -24,6 +24,7 @@ from numpy.typing import NDArray
 
 from ..errors import ArgumentError, GeometryError
 from ..geometry import HubModel, form_radius, hub_flank_model, hub_model, tip_radius
+from ..spec import CouplingSpec
 
 DEFAULT_NODES = (24, 12)  # (nz, nt): interpolation error ~1e-8 mm on renzo-1967
 NODE_LADDER = ((16, 8), (24, 12), (32, 16), (32, 32), (48, 48), (64, 64))
@@ -348,6 +349,6 @@ def adaptive_flank_table(m: HubModel, tolerance_mm: float = DEFAULT_TABLE_TOLERA
 
 
 @lru_cache(maxsize=64)
-def flank_table(spec, tolerance_mm: float = DEFAULT_TABLE_TOLERANCE_MM) -> FlankTable:
+def flank_table(spec: CouplingSpec, tolerance_mm: float = DEFAULT_TABLE_TOLERANCE_MM) -> FlankTable:
     """The cached adaptive :class:`FlankTable` of a spec's hub flank."""
     return adaptive_flank_table(hub_model(spec), tolerance_mm)

@@ -25,6 +25,7 @@ import numpy as np
 from ..geometry import map_polar, sleeve_model
 from ..io import atomic_path
 from ..plots import figure_axes
+from ..spec import CouplingSpec
 from .design import binding_angle_deg, critical_misalignment_deg, min_backlash_rad
 from .flank_table import flank_table
 from .kernel import _Sleeve
@@ -73,7 +74,7 @@ def plot_clearance(result: SweepResult, *, ax=None):
     return fig
 
 
-def plot_contact_path(result: SweepResult, spec, *, ax=None):
+def plot_contact_path(result: SweepResult, spec: CouplingSpec, *, ax=None):
     """Points of first touch on the hub flank (axial position, radius) over the turn
     (2 panels: cw, ccw)."""
     table = flank_table(spec)
@@ -106,7 +107,7 @@ def plot_contact_path(result: SweepResult, spec, *, ax=None):
     return fig
 
 
-def clearance_field(spec, misalignment_deg: float, theta_deg: float, nz: int = 121,
+def clearance_field(spec: CouplingSpec, misalignment_deg: float, theta_deg: float, nz: int = 121,
                     nt: int = 41):
     """Gap of tooth 0's cw flank over its ``(z, r)`` at turning angle ``theta_deg``.
 
@@ -126,7 +127,7 @@ def clearance_field(spec, misalignment_deg: float, theta_deg: float, nz: int = 1
     return z, r, np.where(off, np.nan, circ)
 
 
-def plot_clearance_map(result: SweepResult, spec, *, ax=None):
+def plot_clearance_map(result: SweepResult, spec: CouplingSpec, *, ax=None):
     """Gap over one flank at the contacting tooth's θ and at a swing tooth (θ = 90°)
     (2 panels); a flank that faces no sleeve flank (tilted out of the sleeve face at large
     misalignment) is said so instead of drawn."""
@@ -172,14 +173,14 @@ def plot_backlash_over_turn(result: SweepResult, *, ax=None):
     return fig
 
 
-def backlash_curve(spec, misalignment_deg, *, steps: int = 8):
+def backlash_curve(spec: CouplingSpec, misalignment_deg, *, steps: int = 8):
     """Smallest backlash over a turn (mm at the pitch radius) at each misalignment."""
     R = spec.tooth.pitch_radius
     return np.array([R * min_backlash_rad(spec, a, steps=steps)
                      for a in misalignment_deg])
 
 
-def plot_backlash(spec, *, max_deg: float = 6.0, count: int = 25,
+def plot_backlash(spec: CouplingSpec, *, max_deg: float = 6.0, count: int = 25,
                   binding_deg: float | None = None, ax=None):
     """Smallest backlash over a turn against misalignment, with the binding angle."""
     a = np.linspace(0.0, max_deg, count)
@@ -198,7 +199,7 @@ def plot_backlash(spec, *, max_deg: float = 6.0, count: int = 25,
     return fig
 
 
-def critical_curve(spec, radius_ratios, *, tolerance_deg: float = 1e-3):
+def critical_curve(spec: CouplingSpec, radius_ratios, *, tolerance_deg: float = 1e-3):
     """Critical misalignment (deg, NaN where none up to 6°) for R_c = ratio * R."""
     R = spec.tooth.pitch_radius
     out = []
@@ -209,7 +210,8 @@ def critical_curve(spec, radius_ratios, *, tolerance_deg: float = 1e-3):
     return np.array(out)
 
 
-def plot_critical_vs_radius(spec, *, radius_ratios=(0.6, 0.8, 1.0, 1.5, 2.0, 3.0), ax=None):
+def plot_critical_vs_radius(spec: CouplingSpec,
+                            *, radius_ratios=(0.6, 0.8, 1.0, 1.5, 2.0, 3.0), ax=None):
     """Critical misalignment against the (uniform) crowning radius, with the small-angle
     estimate ``i = b/2 / (R_c cot phi)`` (contact travel reaching the face end)."""
     ratios = np.asarray(radius_ratios, dtype=float)
@@ -228,7 +230,7 @@ def plot_critical_vs_radius(spec, *, radius_ratios=(0.6, 0.8, 1.0, 1.5, 2.0, 3.0
     return fig
 
 
-def plot_generation(spec, misalignment_deg: float, *, count: int = 721, ax=None):
+def plot_generation(spec: CouplingSpec, misalignment_deg: float, *, count: int = 721, ax=None):
     """Pitch-line clearance over θ for both generation methods and their difference
     (2 panels)."""
     i = check_misalignment(misalignment_deg)
@@ -255,7 +257,8 @@ def plot_generation(spec, misalignment_deg: float, *, count: int = 721, ax=None)
     return fig
 
 
-def plot_all(result: SweepResult, spec, out_dir: str | Path, *, design: dict | None = None,
+def plot_all(result: SweepResult, spec: CouplingSpec,
+             out_dir: str | Path, *, design: dict | None = None,
              studies: bool = True) -> list[Path]:
     """Every sweep picture into ``out_dir``; ``studies`` adds the backlash, R_c and
     generation studies (several seconds)."""

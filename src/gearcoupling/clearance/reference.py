@@ -16,10 +16,11 @@ import math
 import numpy as np
 
 from ..geometry import hub_flank_model, hub_model, hub_to_sleeve, sleeve_model
+from ..spec import CouplingSpec
 from .flank_table import exact_alpha
 
 
-def exact_gap(spec, mis: float, theta: float, z, r, normal: bool):
+def exact_gap(spec: CouplingSpec, mis: float, theta: float, z, r, normal: bool):
     """Gap (mm) of tooth 0's exact cw flank point ``(z, r)`` to space 0 at turning angle
     ``theta``: ``(gap, rq, zq)`` (normal or circumferential)."""
     m, sm = hub_model(spec), sleeve_model(spec)
@@ -31,7 +32,7 @@ def exact_gap(spec, mis: float, theta: float, z, r, normal: bool):
     return (sm.r_base if normal else rq) * d, rq, q[..., 2]
 
 
-def _plane_min(spec, mis, theta, z, normal, nt):
+def _plane_min(spec: CouplingSpec, mis, theta, z, normal, nt):
     """Exact minimum over a dense t grid in each plane ``z`` (array); the active interval's
     ends (sleeve tip edge, sleeve face ends) solved by bisection on the exact flank."""
     m, sm = hub_model(spec), sleeve_model(spec)
@@ -92,7 +93,7 @@ def _plane_min(spec, mis, theta, z, normal, nt):
     return np.where(any_ok, best, np.inf)
 
 
-def brute_force(spec, mis: float, theta: float, normal: bool, nz: int = 401,
+def brute_force(spec: CouplingSpec, mis: float, theta: float, normal: bool, nz: int = 401,
                 nt: int = 121) -> float:
     """Dense exact grid (``nz`` planes x ``nt`` heights between the exact ends of the
     active interval, with a parabolic step in ``t``), then golden-section search over
@@ -118,7 +119,8 @@ def brute_force(spec, mis: float, theta: float, normal: bool, nz: int = 401,
     return min(best, f1, f2)
 
 
-def exact_gap_from_polar(spec, mis: float, theta: float, r, a, z, normal: bool = False):
+def exact_gap_from_polar(spec: CouplingSpec,
+                         mis: float, theta: float, r, a, z, normal: bool = False):
     """:func:`exact_gap` for hub points given in cylinder coordinates ``(r, a, z)``."""
     sm = sleeve_model(spec)
     p = np.stack(np.broadcast_arrays(r * np.cos(a), r * np.sin(a), z), axis=-1)

@@ -10,7 +10,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..errors import ArgumentError
 from ..geometry import sleeve_model, turning_angles
-from ..spec import check_misalignment_deg
+from ..spec import CouplingSpec, check_misalignment_deg
 from .flank_table import DEFAULT_TABLE_TOLERANCE_MM, flank_table
 from .kernel import DEFAULT_GRID, DEFAULT_TOLERANCE_MM, MEASURES, Minimum, minimise
 from .result import SweepResult
@@ -35,7 +35,7 @@ def check_angles(angles_deg: ArrayLike) -> np.ndarray:
     return a
 
 
-def flank_minima(spec, misalignment_rad: float, theta, *, tolerance_mm: float,
+def flank_minima(spec: CouplingSpec, misalignment_rad: float, theta, *, tolerance_mm: float,
                  grid: int = DEFAULT_GRID, periodic: bool = True,
                  measures: tuple[str, ...] = MEASURES):
     """Minima of tooth 0's cw flank at turning angles ``theta`` (any shape), all measures.
@@ -87,7 +87,7 @@ def flank_minima(spec, misalignment_rad: float, theta, *, tolerance_mm: float,
     return {k: v.reshape(theta.shape) for k, v in out.items()}, table
 
 
-def sweep(spec, misalignment_deg: float, angles_deg: ArrayLike, *,
+def sweep(spec: CouplingSpec, misalignment_deg: float, angles_deg: ArrayLike, *,
           tolerance_mm: float = DEFAULT_TOLERANCE_MM, grid: int = DEFAULT_GRID,
           periodic: bool = True) -> SweepResult:
     """Clearance of every hub tooth and flank at misalignment ``i`` over rotations ``psi``.

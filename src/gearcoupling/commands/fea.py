@@ -13,6 +13,7 @@ from pathlib import Path
 
 from ..fea import FORMATS, check_size, mesh_part, region_ids, sector_teeth, write_mesh
 from ..io import write_json
+from ..spec import CouplingSpec
 from .common import (
     MAX_TEETH,
     add_spec_arguments,
@@ -40,7 +41,7 @@ def register(sub) -> None:
     p.set_defaults(func=run)
 
 
-def fea_meshes(spec, out: Path, parts, formats, *, sector=3, size_mm=None,
+def fea_meshes(spec: CouplingSpec, out: Path, parts, formats, *, sector=3, size_mm=None,
                progress: Callable[[int, int], None] | None = None) -> tuple[list[Path], dict]:
     """Mesh every part and write every format; returns the files and the report."""
     teeth = sector_teeth(spec, sector)

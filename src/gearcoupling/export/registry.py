@@ -12,6 +12,7 @@ from pathlib import Path
 
 from ..errors import ArgumentError
 from ..io import atomic_path
+from ..spec import CouplingSpec
 from . import meshes, step
 from .job import PartJob
 
@@ -45,7 +46,8 @@ def extension(path: str | Path) -> str:
     return ext
 
 
-def export_part(spec, part: str, path: str | Path, *, tolerance_mm: float | None = None,
+def export_part(spec: CouplingSpec,
+                part: str, path: str | Path, *, tolerance_mm: float | None = None,
                 teeth=None, mesh=None) -> Path:
     """Write a part to ``path`` in the format of its extension, atomically.
 

@@ -26,6 +26,7 @@ from numpy.typing import NDArray
 from ..errors import BackendError, GeometryError
 from ..geometry import hub_model, sleeve_model
 from ..parts import SURFACE_KINDS, Run, check_tolerance, hub_layout, sleeve_layout, tile, tooth_runs
+from ..spec import CouplingSpec
 from .fit import DEGREE, fit_sections
 
 FIT_SHARE = 0.5
@@ -149,7 +150,7 @@ def _tile_ring(pitch: NDArray, teeth: int) -> NDArray:
     return tile(pitch[None], Run(0, teeth, teeth))[0]
 
 
-def sampling_tolerance(spec, tol: float) -> float:
+def sampling_tolerance(spec: CouplingSpec, tol: float) -> float:
     """Chord tolerance of the hub grid whose planes are the candidate loft sections.
 
     A cubic through sections is far closer to the crowned surface than chords between the
@@ -159,7 +160,7 @@ def sampling_tolerance(spec, tol: float) -> float:
     return max(tol, min(10.0 * tol, spec.tooth.module / 20.0))
 
 
-def hub_solid(spec, tol: float):
+def hub_solid(spec: CouplingSpec, tol: float):
     """OpenCASCADE solid of the whole hub (B-spline loft of the fitted tooth outlines).
 
     The loft is split at the planes where the feed-path curvature jumps (``end_round``)
@@ -371,7 +372,7 @@ def loft_sections(z_grid: NDArray, edges: NDArray, dense, tol: float) -> list[ND
     return _pieces(z_grid, edges, half)
 
 
-def sleeve_solid(spec, tol: float):
+def sleeve_solid(spec: CouplingSpec, tol: float):
     """OpenCASCADE solid of the whole sleeve (the exact outline extruded)."""
     o = _occ()
     lay = sleeve_layout(spec, DENSE_SHARE * tol)  # exact points the flanks are fitted to
@@ -412,7 +413,7 @@ def sleeve_solid(spec, tol: float):
 _SOLIDS = {"hub": hub_solid, "sleeve": sleeve_solid}
 
 
-def part_solid(spec, part: str, tol: float, teeth=None):
+def part_solid(spec: CouplingSpec, part: str, tol: float, teeth=None):
     """OpenCASCADE solid of a part; a tooth selection keeps the sectors of its runs."""
     shape = _SOLIDS[part](spec, tol)
     if teeth is None:
@@ -429,7 +430,7 @@ def part_solid(spec, part: str, tol: float, teeth=None):
     return keep
 
 
-def _wedge(o, spec, run: Run):
+def _wedge(o, spec: CouplingSpec, run: Run):
     """A prism over the run's polar sector, larger than the part."""
     gp, build, prim = o["gp"], o["build"], o["prim"]
     big = 4.0 * max(spec.sleeve.outer_diameter, spec.hub.tip.diameter)

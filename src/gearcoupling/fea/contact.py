@@ -23,6 +23,7 @@ import numpy as np
 from ..errors import ArgumentError
 from ..geometry import hub_to_sleeve
 from ..io import inp_id_lines, inp_number
+from ..spec import CouplingSpec
 from .ccx import run_ccx, solver_dir
 from .mesh import mesh_part
 from .stiffness import material
@@ -43,7 +44,7 @@ def merge(hub: VolumeMesh, sleeve: VolumeMesh, hub_rotation: np.ndarray) -> Volu
     return VolumeMesh("pair", nodes, tets, regions, faces, hub.teeth, hub.size_mm, quality)
 
 
-def contact_deck(pair: VolumeMesh, spec, *, windup_rad: float, axis: np.ndarray,
+def contact_deck(pair: VolumeMesh, spec: CouplingSpec, *, windup_rad: float, axis: np.ndarray,
                  penalty: float, teeth: list[int], increments: int = 10) -> str:
     """The contact deck of a merged pair: rigid hub bore + cuts turned by ``windup_rad``
     about ``axis`` (3,), sleeve fixed, one penalty contact pair per tooth in ``teeth``."""
@@ -76,7 +77,7 @@ def contact_deck(pair: VolumeMesh, spec, *, windup_rad: float, axis: np.ndarray,
     return "\n".join(lines) + "\n"
 
 
-def contact_pose(spec, *, misalignment_deg: float, psi_deg: float, windup_rad: float,
+def contact_pose(spec: CouplingSpec, *, misalignment_deg: float, psi_deg: float, windup_rad: float,
                  sector: int = 3, size_mm: float | None = None, penalty_factor: float = 20.0,
                  workdir=None) -> dict:
     """Solve one loaded pose with contact (module docstring); returns the per-tooth table."""

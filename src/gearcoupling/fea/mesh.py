@@ -21,6 +21,7 @@ from numpy.typing import NDArray
 from ..errors import ArgumentError, GeometryError, SpecError
 from ..export import part_solid, write_step
 from ..parts import SURFACE_KINDS, build_part, check_tolerance
+from ..spec import CouplingSpec
 from .backends import gmsh_session
 from .volume import VolumeMesh, aspect_ratios, match_faces, tet_volumes
 
@@ -29,17 +30,17 @@ TOOTH_KINDS = ("flank_cw", "flank_ccw", "fillet_cw", "fillet_ccw", "root", "tip"
 DEFAULT_SECTOR_TEETH = 3
 
 
-def default_size(spec) -> float:
+def default_size(spec: CouplingSpec) -> float:
     """Default element size on the teeth: module / 4 (0.5 mm for industrial-m2), in mm."""
     return spec.tooth.module / 4.0
 
 
-def fillet_radius(spec, part: str) -> float:
+def fillet_radius(spec: CouplingSpec, part: str) -> float:
     """Root fillet radius of a part (mm)."""
     return spec.hub.root.fillet_radius if part == "hub" else spec.sleeve.root_fillet_radius
 
 
-def check_size(spec, part: str, size_mm) -> float:
+def check_size(spec: CouplingSpec, part: str, size_mm) -> float:
     """The element size as a float, or :class:`ArgumentError` naming the allowed range.
 
     Allowed: from module / 40 to the smaller of module / 2 and twice the part's root
@@ -60,7 +61,7 @@ def check_size(spec, part: str, size_mm) -> float:
     return size
 
 
-def sector_teeth(spec, count) -> list[int] | None:
+def sector_teeth(spec: CouplingSpec, count) -> list[int] | None:
     """Teeth ``0 .. count - 1`` of a sector, ``None`` for the whole part (count = N or None),
     or :class:`SpecError` when the count does not fit the teeth."""
     n = spec.tooth.teeth
@@ -76,7 +77,7 @@ def sector_teeth(spec, count) -> list[int] | None:
     return None if k == n else list(range(k))
 
 
-def mesh_part(spec, part: str, *, sector: int | None = DEFAULT_SECTOR_TEETH,
+def mesh_part(spec: CouplingSpec, part: str, *, sector: int | None = DEFAULT_SECTOR_TEETH,
               size_mm: float | None = None, body_size_mm: float | None = None,
               tolerance_mm: float | None = None, order: int = 2) -> VolumeMesh:
     """Quadratic tetrahedral mesh of a sector of ``sector`` teeth (``None``: the whole part).
@@ -121,7 +122,8 @@ def mesh_part(spec, part: str, *, sector: int | None = DEFAULT_SECTOR_TEETH,
     return vm
 
 
-def _mesh_in_gmsh(gmsh, spec, part, step, labelled, teeth, size, body, order) -> VolumeMesh:
+def _mesh_in_gmsh(gmsh, spec: CouplingSpec,
+                  part, step, labelled, teeth, size, body, order) -> VolumeMesh:
     occ = gmsh.model.occ
     vols = occ.importShapes(str(step))
     occ.synchronize()
@@ -161,7 +163,8 @@ def _size_field(gmsh, faces, size, body, module) -> None:
         gmsh.option.setNumber(f"Mesh.{key}", 0)
 
 
-def classify_surfaces(gmsh, spec, part, labelled, surfaces) -> dict[int, tuple[str, float]]:
+def classify_surfaces(gmsh, spec: CouplingSpec,
+                      part, labelled, surfaces) -> dict[int, tuple[str, float]]:
     """Region name and vote share of every gmsh surface (see the module docstring)."""
     kind, tooth = labelled.face_attributes["kind"], labelled.face_attributes["tooth"]
     r_outer = 0.5 * spec.sleeve.outer_diameter

@@ -35,6 +35,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..errors import ArgumentError, GeometryError
 from ..io import safe_name, write_json
+from ..spec import CouplingSpec
 from .ccx import run_ccx, solver_dir
 from .deck import LoadCase, principal_max, static_deck
 from .mesh import DEFAULT_SECTOR_TEETH, check_size, mesh_part
@@ -46,7 +47,7 @@ LOADED_FLANK = {"hub": "CCW", "sleeve": "CCW"}  # the sleeve ccw flank meets the
 INTO_SIGN = {"hub": -1.0, "sleeve": 1.0}  # sign of the force's polar component
 
 
-def material(spec, part: str) -> tuple[float, float]:
+def material(spec: CouplingSpec, part: str) -> tuple[float, float]:
     """``(E MPa, nu)`` of a part: ``spec.material.<part>`` when the spec has it, else steel
     (206 000 MPa, 0.3)."""
     mat = getattr(getattr(spec, "material", None), part, None)
@@ -54,7 +55,7 @@ def material(spec, part: str) -> tuple[float, float]:
             float(getattr(mat, "poisson_ratio", 0.3)))
 
 
-def spec_hash(spec, **settings) -> str:
+def spec_hash(spec: CouplingSpec, **settings) -> str:
     """Hash of the spec and the FE settings (the cache key)."""
     text = repr(spec) + json.dumps(settings, sort_keys=True) + f"v{VERSION}"
     return hashlib.sha256(text.encode()).hexdigest()[:16]
@@ -150,7 +151,7 @@ def _fixed_sets(vm: VolumeMesh) -> list[str]:
     return base + (["CUT"] if vm.teeth is not None else [])
 
 
-def load_grid(spec, hub: VolumeMesh, sleeve: VolumeMesh, nz: int = 3, nr: int = 3):
+def load_grid(spec: CouplingSpec, hub: VolumeMesh, sleeve: VolumeMesh, nz: int = 3, nr: int = 3):
     """Load points: ``|z|`` from 0 to 0.8 of the hub half face; ``r`` across the radii that
     both loaded flanks cover at every such z (10 % in from each end of that band)."""
     hf = 0.5 * spec.hub.face_width
@@ -216,7 +217,7 @@ def load_case(vm: VolumeMesh, z: float, r: float, pitch_radius: float,
     return LoadCase(patch, forces)
 
 
-def part_compliance(vm: VolumeMesh, spec, z_mm, r_mm, *, patch_mm: float, workdir,
+def part_compliance(vm: VolumeMesh, spec: CouplingSpec, z_mm, r_mm, *, patch_mm: float, workdir,
                     job: str) -> tuple[NDArray, NDArray, dict]:
     """Compliance ``(nz, nr)`` (mm/N) and fillet stress per N ``(nz, nr)`` of one part."""
     R = spec.tooth.pitch_radius
@@ -246,7 +247,7 @@ def part_compliance(vm: VolumeMesh, spec, z_mm, r_mm, *, patch_mm: float, workdi
     return comp.reshape(shape), stress.reshape(shape), {"solve_seconds": res.seconds}
 
 
-def compute_compliance_table(spec, *, size_mm: float | None = None,
+def compute_compliance_table(spec: CouplingSpec, *, size_mm: float | None = None,
                              sector: int = DEFAULT_SECTOR_TEETH, nz: int = 3, nr: int = 3,
                              patch_mm: float | None = None, workdir=None,
                              progress: Callable[[int, int], None] | None = None
@@ -289,7 +290,7 @@ def compute_compliance_table(spec, *, size_mm: float | None = None,
                            spec.tooth.pitch_radius, info)
 
 
-def tooth_compliance_table(spec, *, size_mm: float | None = None,
+def tooth_compliance_table(spec: CouplingSpec, *, size_mm: float | None = None,
                            sector: int = DEFAULT_SECTOR_TEETH, nz: int = 3, nr: int = 3,
                            cache: str | Path | None = None, refresh: bool = False,
                            progress: Callable[[int, int], None] | None = None

@@ -7,6 +7,7 @@ impossibility into a :class:`~gearcoupling.errors.SpecError` naming the field to
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -22,6 +23,9 @@ from .hub import (
 )
 from .renzo import renzo_z0_mm
 from .sleeve import sleeve_model
+
+if TYPE_CHECKING:
+    from ..spec import CouplingSpec
 
 _Z_SAMPLES = 17  # planes from the midplane to the face end checked for undercut and points
 _PATH_SAMPLES = 401  # points of a table crown's splined path checked between its samples
@@ -71,7 +75,7 @@ def _check_table_path(m: HubModel, crowning) -> None:
                         "be thicker than at the midplane; add samples or smooth the table")
 
 
-def check_spec(spec) -> None:
+def check_spec(spec: CouplingSpec) -> None:
     """Raise :class:`SpecError` if the spec's geometry cannot be built as specified."""
     t, hub, sl = spec.tooth, spec.hub, spec.sleeve
     R, m_ = t.pitch_radius, t.module
@@ -199,7 +203,7 @@ def check_spec(spec) -> None:
         raise SpecError("spec", spec.name, "geometry is not finite (please report this spec)")
 
 
-def derived_values(spec) -> dict[str, float]:
+def derived_values(spec: CouplingSpec) -> dict[str, float]:
     """Derived sizes (mm, degrees) a designer checks, keyed with their unit.
 
     Includes Renzo's maximum separation ``z0 = R_c cot(phi) tan^2(i) / 2`` (eq. 4) at the

@@ -34,6 +34,7 @@ from ..errors import ArgumentError
 from ..geometry import FLANKS, HubModel, form_radius, hub_flank_model, hub_model, inv, tip_radius
 from ..io import write_csv_records
 from ..plots import figure_axes
+from ..spec import CouplingSpec
 
 _EPS = 1e-9
 
@@ -146,7 +147,7 @@ def _trace(m: HubModel, kind: str, flank: str, pos: float, z, r, x, rng) -> Trac
                  flank_deviation(m, flank, pts), pts, nrm, (float(rng[0]), float(rng[1])))
 
 
-def evaluation_ranges(spec, tip_exclusion: float = 0.08):
+def evaluation_ranges(spec: CouplingSpec, tip_exclusion: float = 0.08):
     """``(half_lead, profile, r_lead)``: the lead evaluation half length (mm; shortened where
     a tip sphere cuts the lead radius), a function ``z -> (r_start, r_end)`` of the profile
     evaluation range in plane ``z`` and the lead trace radius (middle of ``L_alpha`` in
@@ -177,7 +178,8 @@ def lead_reach(m: HubModel, r: float) -> float:
     return math.sqrt(max(m.tip_radius**2 - r * r, 0.0)) * (1.0 - 1e-12)
 
 
-def measuring_charts(spec, points: int = 101, tip_exclusion: float = 0.08) -> MeasuringCharts:
+def measuring_charts(spec: CouplingSpec,
+                     points: int = 101, tip_exclusion: float = 0.08) -> MeasuringCharts:
     """Nominal profile and lead traces of both flanks, with ``C_beta``, ``f_Hbeta``, ``f_Halpha``.
 
     Parameters

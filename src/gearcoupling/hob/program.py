@@ -25,12 +25,14 @@ from numpy.typing import NDArray
 
 from ..errors import ArgumentError
 from ..geometry import HubModel, hub_model, plane_rack, tip_radius
+from ..spec import CouplingSpec
 
 _DENSE = 65  # exact-curve samples per move when its chordal deviation is measured
 MAX_HOB_DIAMETER_MM = 1000.0  # hobs are made up to a few hundred mm (module 40: about 500)
 
 
-def check_hob_diameter(spec, hob_diameter_mm, field: str = "hob_diameter_mm") -> float:
+def check_hob_diameter(spec: CouplingSpec,
+                       hob_diameter_mm, field: str = "hob_diameter_mm") -> float:
     """The hob outside diameter (mm) if a hob of that size can cut the spec's hub; else a
     :class:`ArgumentError` naming ``field`` that says which bound and why: the hob must carry
     teeth of the hub's whole depth on a body (above ``2 (dedendum + module)``), and no hob
@@ -251,7 +253,7 @@ def _path_moves(m: HubModel, r_h: float, s_gen: float, tol: float):
     return moves, worst
 
 
-def hob_program(spec, hob_diameter_mm: float, tolerance_mm: float | None = None,
+def hob_program(spec: CouplingSpec, hob_diameter_mm: float, tolerance_mm: float | None = None,
                 table_points: int = 201) -> HobProgram:
     """The hob centre path and a two-axis (X infeed, Z feed) program for a spec's hub.
 

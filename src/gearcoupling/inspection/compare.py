@@ -12,6 +12,7 @@ import numpy as np
 
 from ..errors import ArgumentError
 from ..hob import measuring_charts
+from ..spec import CouplingSpec
 from ..tables import dataframe
 from .datum import bore_datum
 from .io import load_points
@@ -73,7 +74,7 @@ def _points(source, units: str):
     return pts * {"mm": 1.0, "in": 25.4, "m": 1000.0}[units], "array"
 
 
-def compare_part(spec, source, other=None, *, units: str = "mm", limits=None,
+def compare_part(spec: CouplingSpec, source, other=None, *, units: str = "mm", limits=None,
                  grade: int | None = None, coarse: str = "auto", fit_points: int = 20_000,
                  grid: tuple[int, int] = (61, 41), outlier_mm: float | None = None,
                  min_points: int = 30,
@@ -135,7 +136,7 @@ def compare_part(spec, source, other=None, *, units: str = "mm", limits=None,
     return reports[0] if other is None else PartComparison(*reports)
 
 
-def _inspect(spec, pts, name, table, charts, lim, coarse, fit_points, outlier_mm,
+def _inspect(spec: CouplingSpec, pts, name, table, charts, lim, coarse, fit_points, outlier_mm,
              min_points, step) -> InspectionReport:
     reg = register(pts, table, coarse=coarse, fit_points=fit_points, outlier_mm=outlier_mm)
     step(f"registered (rms {1e3 * reg.rms_mm:.2f} um)")

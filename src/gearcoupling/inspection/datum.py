@@ -5,8 +5,10 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
+from ..spec import CouplingSpec
 
-def bore_datum(points: NDArray[np.float64], spec, min_points: int = 200,
+
+def bore_datum(points: NDArray[np.float64], spec: CouplingSpec, min_points: int = 200,
                band: float = 0.04) -> dict | None:
     """Axis of the hub bore in the hub frame, from registered scan points.
 

@@ -25,6 +25,7 @@ from __future__ import annotations
 import math
 
 from ..errors import ArgumentError
+from ..spec import CouplingSpec
 
 GRADES = tuple(range(1, 12))
 SCOPE = {"teeth": (5, 1000), "reference diameter d (mm)": (5.0, 15_000.0),
@@ -55,7 +56,7 @@ def tolerances_um(d_mm: float, module_mm: float, face_mm: float, grade: int
     return {k: iso_round_um(v) for k, v in raw.items()}
 
 
-def grade_limits(spec, grade: int, field: str = "grade") -> dict[str, float]:
+def grade_limits(spec: CouplingSpec, grade: int, field: str = "grade") -> dict[str, float]:
     """Inspection limits (mm, keys of :data:`~gearcoupling.inspection.LIMITS`) of the
     ISO 1328-1:2013 flank tolerance class ``grade`` for the spec's hub: ``fpt``, ``Fp``,
     ``Fr``, ``f_Halpha``, ``f_Hbeta``. A class outside 1-11, or a hub outside the

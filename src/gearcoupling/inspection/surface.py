@@ -24,6 +24,7 @@ from scipy.interpolate import RectBivariateSpline
 from ..errors import ArgumentError, GeometryError
 from ..geometry import HubModel, hub_flank_model, hub_model
 from ..hob import evaluation_ranges
+from ..spec import CouplingSpec
 
 
 @dataclass(frozen=True, eq=False)
@@ -64,7 +65,7 @@ def _exact(m: HubModel, z, r):
     return th, n_r, n_t, nrm[..., 2]
 
 
-def flank_table(spec, grid: tuple[int, int] = (61, 41), tip_exclusion: float = 0.08,
+def flank_table(spec: CouplingSpec, grid: tuple[int, int] = (61, 41), tip_exclusion: float = 0.08,
                 seed: int = 0) -> FlankTable:
     """Build the :class:`FlankTable` of a spec; ``grid`` = points in ``z`` and ``r`` (>= 6)."""
     if not (len(grid) == 2 and all(isinstance(g, int) and g >= 6 for g in grid)):

@@ -38,6 +38,7 @@ from ..clearance import check_angles, check_misalignment, sweep
 from ..errors import ArgumentError
 from ..io import write_text
 from ..parts import SURFACE_KINDS, check_tolerance
+from ..spec import CouplingSpec
 from . import distance as dist
 from .attribution import FLANKS, flank_index, nearest_tooth
 from .posed import hub_pose, window_pose, window_to_sleeve
@@ -331,7 +332,7 @@ def _merge(pieces):
 _PIECES = {"boolean": _boolean_pieces, "distance": _distance_pieces}
 
 
-def check_interference(spec, misalignment_deg: float, angles_deg: ArrayLike, *,
+def check_interference(spec: CouplingSpec, misalignment_deg: float, angles_deg: ArrayLike, *,
                        method: str = "boolean", tolerance_mm: float | None = None,
                        teeth: int | str = "sweep", margin_mm: float | None = None,
                        hub_rotation_deg: float = 0.0, backlash: bool = False,

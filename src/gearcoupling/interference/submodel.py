@@ -23,6 +23,7 @@ from numpy.typing import NDArray
 
 from ..errors import ArgumentError
 from ..parts import build_part
+from ..spec import CouplingSpec
 from .posed import PreparedPart
 
 NOT_SHELL = ("body", "bore", "side")  # left out of the flank-only shells
@@ -65,7 +66,7 @@ class Model:
         return "full parts" if self.full else f"sector ±{self.half_window}"
 
 
-def build_model(spec, tolerance_mm: float, half_window: int | None) -> Model:
+def build_model(spec: CouplingSpec, tolerance_mm: float, half_window: int | None) -> Model:
     """Build (once) the meshes of the full parts (``half_window=None``) or of a sector.
 
     Parameters

@@ -9,12 +9,13 @@ from numpy.typing import ArrayLike
 
 from ..clearance import SweepResult, sweep
 from ..errors import ArgumentError
+from ..spec import CouplingSpec
 from .inputs import LoadProblem, load_problem, resolve_model, resolve_torque_Nm
 from .models import ModelOutput, Progress, solve
 from .result import LoadResult
 
 
-def load(spec, misalignment_deg: float, angles_deg: ArrayLike, *,
+def load(spec: CouplingSpec, misalignment_deg: float, angles_deg: ArrayLike, *,
          torque_Nm: float | None = None, model: str | None = None,
          gap_offset_rad: ArrayLike | None = None, progress: Progress = None,
          **accuracy: Any) -> LoadResult:

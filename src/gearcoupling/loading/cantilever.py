@@ -26,6 +26,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..geometry import inv
+from ..spec import CouplingSpec
 
 FOUNDATION_L, FOUNDATION_P, FOUNDATION_Q = 5.306, 1.534, 0.4167
 SHEAR_FACTOR = 1.2  # 1 / kappa for a rectangular section
@@ -73,7 +74,7 @@ class CantileverCompliance:
         Simpson points per cantilever integral.
     """
 
-    def __init__(self, spec, *, n_radii: int = 64, n_quad: int = 201):
+    def __init__(self, spec: CouplingSpec, *, n_radii: int = 64, n_quad: int = 201):
         t = spec.tooth
         self.R, self.r_b, self.phi = t.pitch_radius, t.base_radius, t.pressure_angle
         self.hub_t = spec.hub.tooth_thickness
@@ -95,12 +96,12 @@ class CantileverCompliance:
     def half_thickness(self, part: str, r: ArrayLike) -> NDArray[np.float64]:
         """Half transverse tooth thickness (chord ~ arc) of ``part`` at radius ``r`` (mm);
         below the base circle the base-circle value (the fillet only adds material)."""
-        r = np.maximum(np.asarray(r, dtype=float), self.r_b)
-        inv_r = inv(np.arccos(np.clip(self.r_b / r, -1.0, 1.0)))
+        rr = np.maximum(np.asarray(r, dtype=float), self.r_b)
+        inv_r = inv(np.arccos(np.clip(self.r_b / rr, -1.0, 1.0)))
         inv_phi = float(inv(self.phi))
         if part == "hub":
-            return r * (0.5 * self.hub_t / self.R + inv_phi - inv_r)
-        return r * (0.5 * self.sleeve_t / self.R - inv_phi + inv_r)
+            return rr * (0.5 * self.hub_t / self.R + inv_phi - inv_r)
+        return rr * (0.5 * self.sleeve_t / self.R - inv_phi + inv_r)
 
     def load_angle(self, part: str, r: ArrayLike) -> NDArray[np.float64]:
         """Angle ``beta`` of the normal load to the tooth's perpendicular at radius ``r``."""

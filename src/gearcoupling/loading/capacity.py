@@ -32,6 +32,7 @@ from ..clearance import SweepResult, sweep
 from ..errors import ArgumentError, GearCouplingError
 from ..geometry import FLANKS
 from ..io import write_csv_rows
+from ..spec import CouplingSpec
 from ..tables import dataframe
 from .api import load_from_sweep
 from .compliance import first_limit_torque_Nmm
@@ -44,7 +45,7 @@ CRITERIA = ("tooth_load", "contact_stress", "bending_stress")
 RTOL = 1e-7  # relative accuracy of a root-found torque (the closed forms are exact)
 
 
-def limit_loads(spec, z: NDArray, r: NDArray, compliance) -> dict[str, NDArray]:
+def limit_loads(spec: CouplingSpec, z: NDArray, r: NDArray, compliance) -> dict[str, NDArray]:
     """Normal tooth loads (N) at which each criterion is reached at each contact point, and
     ``face_end``: the load at which the patch reaches the face end. ``inf`` = never."""
     cosphi = math.cos(spec.tooth.pressure_angle)
@@ -65,7 +66,7 @@ def limit_loads(spec, z: NDArray, r: NDArray, compliance) -> dict[str, NDArray]:
     return out
 
 
-def _linear_capacity(spec, g: NDArray, W_lim: NDArray) -> float:
+def _linear_capacity(spec: CouplingSpec, g: NDArray, W_lim: NDArray) -> float:
     """Closed form: smallest torque (N·mm) at which a tooth of the linear model reaches
     ``W_lim`` (normal load)."""
     R = spec.tooth.pitch_radius
@@ -386,14 +387,14 @@ def _finite_or_none(v: float) -> float | None:
     return float(v) if math.isfinite(v) else None
 
 
-def default_angles(spec, gap_offset_rad, n: int = 25) -> NDArray:
+def default_angles(spec: CouplingSpec, gap_offset_rad, n: int = 25) -> NDArray:
     """Rotations covering every pose: one tooth pitch for ideal teeth (the pattern repeats
     every pitch), a full turn when per-tooth offsets break the periodicity."""
     span = 360.0 if gap_offset_rad is not None else 360.0 / spec.tooth.teeth
     return np.linspace(0.0, span, n, endpoint=False)
 
 
-def capacity(spec, misalignment_deg: float, *, model: str | None = None,
+def capacity(spec: CouplingSpec, misalignment_deg: float, *, model: str | None = None,
              loaded_flank: str = "ccw", angles_deg: ArrayLike | None = None,
              gap_offset_rad: ArrayLike | None = None, **accuracy: Any) -> Capacity:
     """Torque capacity at a misalignment, per criterion, with the governing one and q.
@@ -423,7 +424,7 @@ def capacity(spec, misalignment_deg: float, *, model: str | None = None,
                                loaded_flank=loaded_flank)
 
 
-def capacity_curve(spec, misalignments_deg: ArrayLike | None = None, *,
+def capacity_curve(spec: CouplingSpec, misalignments_deg: ArrayLike | None = None, *,
                    model: str | None = None, loaded_flank: str = "ccw",
                    angles_deg: ArrayLike | None = None, gap_offset_rad: ArrayLike | None = None,
                    progress=None, **accuracy: Any) -> CapacityCurve:

@@ -19,6 +19,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import ArgumentError, SpecError
+from ..spec import CouplingSpec
 from .contact import contact_model
 
 INNER_ITER, OUTER_ITER = 60, 100
@@ -39,7 +40,7 @@ def _solve_load(d: NDArray, c: NDArray, law, W0: NDArray | None = None,
     return W, np.where(d > 0, 1.0 / (c + s), 0.0)
 
 
-def pair_laws(spec, z_mm, r_mm, compliance):
+def pair_laws(spec: CouplingSpec, z_mm, r_mm, compliance):
     """Normal bending compliance ``c`` (mm/N) and contact law ``law(W) -> (delta, slope)`` of
     every contact, with the contact model and its geometry."""
     cphi = math.cos(spec.tooth.pressure_angle)
@@ -57,7 +58,7 @@ def pair_laws(spec, z_mm, r_mm, compliance):
     return c, law, cm, geo
 
 
-def first_limit_torque_Nmm(spec, gap_rad: NDArray, z_mm: NDArray, r_mm: NDArray,
+def first_limit_torque_Nmm(spec: CouplingSpec, gap_rad: NDArray, z_mm: NDArray, r_mm: NDArray,
                            W_lim: NDArray, compliance) -> float:
     """Smallest torque (N·mm) over all rotations at which a tooth reaches its normal load
     ``W_lim``, without iteration on the torque: each tooth's load depends on the wind-up
@@ -82,7 +83,8 @@ def first_limit_torque_Nmm(spec, gap_rad: NDArray, z_mm: NDArray, r_mm: NDArray,
     return float(np.min(T[ok]))
 
 
-def solve_compliance(spec, gap_rad: NDArray, z_mm: NDArray, r_mm: NDArray, torque_Nmm: float,
+def solve_compliance(spec: CouplingSpec,
+                     gap_rad: NDArray, z_mm: NDArray, r_mm: NDArray, torque_Nmm: float,
                      compliance) -> dict[str, NDArray]:
     """Wind-up and tooth loads of every rotation; dict as :func:`.linear_model.solve_linear`.
 

@@ -35,6 +35,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..geometry import form_radius, hub_flank_model, hub_model, tip_radius
+from ..spec import CouplingSpec
 from .cantilever import CantileverCompliance
 from .inputs import tooth_compliance
 
@@ -53,7 +54,7 @@ class ContactModel:
         Table points over ``|z|`` (midplane to face end) and over the depth.
     """
 
-    def __init__(self, spec, n_z: int = 17, n_r: int = 13):
+    def __init__(self, spec: CouplingSpec, n_z: int = 17, n_r: int = 13):
         self.spec = spec
         m = hub_model(spec)
         t = spec.tooth
@@ -252,17 +253,17 @@ class ContactModel:
 
 
 @lru_cache(maxsize=32)
-def contact_model(spec) -> ContactModel:
+def contact_model(spec: CouplingSpec) -> ContactModel:
     """The cached :class:`ContactModel` of a spec."""
     return ContactModel(spec)
 
 
 @lru_cache(maxsize=32)
-def _geometry_only(spec, cls):
+def _geometry_only(spec: CouplingSpec, cls):
     return cls(spec, n_radii=2, n_quad=3)
 
 
-def contact_estimates(spec, normal_force_N: NDArray, z_mm: NDArray,
+def contact_estimates(spec: CouplingSpec, normal_force_N: NDArray, z_mm: NDArray,
                       r_mm: NDArray) -> dict[str, NDArray]:
     """Pressures, patch and regime at given normal loads, plus the root stress."""
     cm = contact_model(spec)

@@ -33,6 +33,7 @@ from numpy.typing import ArrayLike, NDArray
 from ..clearance import flank_table
 from ..errors import ArgumentError
 from ..geometry import FLANKS, hub_model, hub_to_sleeve, sleeve_model, tip_radius
+from ..spec import CouplingSpec
 
 FIXED_POINT_STEPS = 3
 FLANK_TABLE_TOLERANCE_MM = 1e-7  # the sweep's certified table of the exact flank
@@ -82,7 +83,7 @@ def developed_s(r: ArrayLike, r_base: float) -> NDArray[np.float64]:
     return (r * r - r_base * r_base) / (2.0 * r_base)
 
 
-def depth_range(spec, misalignment: float) -> tuple[float, float]:
+def depth_range(spec: CouplingSpec, misalignment: float) -> tuple[float, float]:
     """Sleeve radii ``(lo, hi)`` the patch spans: from the sleeve flank's first radius (the
     tip chamfer edge) to the lower of the sleeve root fillet and the hub tip (its largest
     radius, plus the radial shift a tilt can give it)."""
@@ -92,7 +93,7 @@ def depth_range(spec, misalignment: float) -> tuple[float, float]:
     return sm.r_form, min(sm.r_fillet, top)
 
 
-def face_range(spec, misalignment: float) -> float:
+def face_range(spec: CouplingSpec, misalignment: float) -> float:
     """Largest ``|z|`` (sleeve frame) a contactable cell can have: the smaller face, plus
     what the tilt can move the hub's face end axially."""
     sm = sleeve_model(spec)
@@ -101,7 +102,7 @@ def face_range(spec, misalignment: float) -> float:
     return min(sm.half_face, hm.half_face + shift)
 
 
-def windows(spec, misalignment: float, z_centre_mm: ArrayLike, length_mm: float,
+def windows(spec: CouplingSpec, misalignment: float, z_centre_mm: ArrayLike, length_mm: float,
             n_face: int) -> NDArray[np.float64]:
     """Axial cell centres ``(n, n_face)`` of windows of ``length_mm`` centred on each
     ``z_centre_mm``, shifted inward so they end at most one cell past the face range
@@ -130,14 +131,14 @@ def _cells_per_half_face(level: int, n_face: int) -> int:
     return m
 
 
-def window_length(spec, misalignment: float, level: int, n_face: int) -> float:
+def window_length(spec: CouplingSpec, misalignment: float, level: int, n_face: int) -> float:
     """Length (mm) of the windows of ``level``: ``n_face`` cells of ``Z / m`` (``Z`` the
     face range, ``m`` cells over it per side); level 0 covers the face range and one cell
     either side, each level is about :data:`WINDOW_RATIO` shorter."""
     return n_face * face_range(spec, misalignment) / _cells_per_half_face(level, n_face)
 
 
-def window_level(spec, misalignment: float, length_mm: float, n_face: int) -> int:
+def window_level(spec: CouplingSpec, misalignment: float, length_mm: float, n_face: int) -> int:
     """The shortest level whose windows are at least ``length_mm`` long (0: the full face)."""
     if not length_mm > 0:
         return MAX_LEVEL
@@ -148,7 +149,7 @@ def window_level(spec, misalignment: float, length_mm: float, n_face: int) -> in
     return level
 
 
-def lattice_windows(spec, misalignment: float, level: int, z_centre_mm: ArrayLike,
+def lattice_windows(spec: CouplingSpec, misalignment: float, level: int, z_centre_mm: ArrayLike,
                     n_face: int) -> tuple[NDArray[np.float64], NDArray[np.intp]]:
     """Windows of ``level`` as runs of ``n_face`` cells of one lattice, nearest to centred
     on each ``z_centre_mm``: the axial cell centres ``(n, n_face)`` and each window's first
@@ -172,7 +173,7 @@ def lattice_windows(spec, misalignment: float, level: int, z_centre_mm: ArrayLik
     return (origin + (cells + 0.5) * dz).astype(float), start
 
 
-def touch_z(spec, misalignment: float, theta: ArrayLike, flank: str, z_mm: ArrayLike,
+def touch_z(spec: CouplingSpec, misalignment: float, theta: ArrayLike, flank: str, z_mm: ArrayLike,
             r_mm: ArrayLike) -> NDArray[np.float64]:
     """Sleeve-frame axial position of hub flank points ``(z_mm, r_mm)`` (hub frame, e.g.
     the sweep's first touch) of teeth at turning angles ``theta`` (broadcast): where along
@@ -186,7 +187,8 @@ def touch_z(spec, misalignment: float, theta: ArrayLike, flank: str, z_mm: Array
     return P[..., 2, 0] * r * np.cos(a) + P[..., 2, 1] * r * np.sin(a) + P[..., 2, 2] * z
 
 
-def gap_field(spec, misalignment: float, theta: ArrayLike, flank: str, z_mm: ArrayLike,
+def gap_field(spec: CouplingSpec,
+              misalignment: float, theta: ArrayLike, flank: str, z_mm: ArrayLike,
               n_depth: int, *, gap_offset_rad: ArrayLike | None = None) -> GapField:
     """The gap field of the hub flank ``flank`` of the teeth at turning angles ``theta``.
 

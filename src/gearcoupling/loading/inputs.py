@@ -19,10 +19,11 @@ from ..errors import ArgumentError, SpecError
 from ..fea import tooth_compliance_table
 from ..geometry import FLANKS
 from ..loadspec import LOAD_MODELS
+from ..spec import CouplingSpec
 from .cantilever import CantileverCompliance
 
 
-def resolve_torque_Nm(spec, torque_Nm: float | None) -> float:
+def resolve_torque_Nm(spec: CouplingSpec, torque_Nm: float | None) -> float:
     """The torque to apply: the argument, else ``[load] torque_Nm``; finite or SpecError."""
     t = spec.load.torque_Nm if torque_Nm is None else torque_Nm
     if t is None:
@@ -37,7 +38,7 @@ def resolve_torque_Nm(spec, torque_Nm: float | None) -> float:
     return t
 
 
-def resolve_model(spec, model: str | None) -> str:
+def resolve_model(spec: CouplingSpec, model: str | None) -> str:
     """The model name: the argument, else ``[load] model``; one of :data:`LOAD_MODELS`."""
     m = spec.load.model if model is None else model
     if m not in LOAD_MODELS:
@@ -61,7 +62,7 @@ def loaded_gaps(sweep_result: SweepResult, flank: int,
     return g + off[:, None]
 
 
-def contact_points(spec, sweep_result: SweepResult,
+def contact_points(spec: CouplingSpec, sweep_result: SweepResult,
                    flank: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """First-touch ``(z, r)`` of the loaded flank, ``(N, M)``; where nothing faces the sleeve
     (no finite point) the midplane pitch point stands in (those teeth carry no load)."""
@@ -71,7 +72,7 @@ def contact_points(spec, sweep_result: SweepResult,
     return np.where(ok, z, 0.0), np.where(ok, r, spec.tooth.pitch_radius)
 
 
-def tooth_compliance(spec):
+def tooth_compliance(spec: CouplingSpec):
     """The tooth-pair compliance of ``[load] stiffness``: the tapered cantilever, or the FE
     table (:func:`gearcoupling.fea.tooth_compliance_table`, cached per spec)."""
     if spec.load.stiffness == "fe":
@@ -80,7 +81,7 @@ def tooth_compliance(spec):
 
 
 @lru_cache(maxsize=32)
-def _cantilever(spec) -> CantileverCompliance:
+def _cantilever(spec: CouplingSpec) -> CantileverCompliance:
     return CantileverCompliance(spec)
 
 

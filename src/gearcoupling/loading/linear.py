@@ -14,7 +14,8 @@ from numpy.typing import NDArray
 from ..errors import ArgumentError, SpecError
 
 
-def solve_windup(gap_rad: NDArray[np.float64], stiffness_Nmm_per_rad: NDArray[np.float64],
+def solve_windup(gap_rad: NDArray[np.float64],
+                 stiffness_Nmm_per_rad: NDArray[np.float64] | float,
                  torque_Nmm: float, *, excess: bool = False):
     """Exact wind-up of each rotation for linear tooth stiffnesses.
 

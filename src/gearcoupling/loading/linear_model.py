@@ -7,12 +7,13 @@ import math
 import numpy as np
 from numpy.typing import NDArray
 
+from ..spec import CouplingSpec
 from .contact import contact_estimates
 from .inputs import tooth_compliance
 from .linear import solve_windup
 
 
-def mesh_stiffness_N_per_mm(spec) -> float:
+def mesh_stiffness_N_per_mm(spec: CouplingSpec) -> float:
     """Renzo's ``C``: ``[load] mesh_stiffness_N_per_mm``, else the cantilever pair stiffness
     at the pitch point in the midplane."""
     if spec.load.mesh_stiffness_N_per_mm is not None:
@@ -21,7 +22,7 @@ def mesh_stiffness_N_per_mm(spec) -> float:
     return float(1.0 / c)
 
 
-def solve_linear(spec, gap_rad: NDArray, z_mm: NDArray, r_mm: NDArray,
+def solve_linear(spec: CouplingSpec, gap_rad: NDArray, z_mm: NDArray, r_mm: NDArray,
                  torque_Nmm: float) -> dict[str, NDArray]:
     """Tooth loads ``P_k = C R max(0, dpsi - g_k)`` with ``sum P_k R = T`` exactly.
 

@@ -71,6 +71,7 @@ from scipy import ndimage
 
 from ..errors import ArgumentError, GearCouplingError
 from ..geometry import FLANKS
+from ..spec import CouplingSpec
 from .gapfield import (
     GapField,
     depth_range,
@@ -110,7 +111,7 @@ ARRAYS = ("gap_angle_rad", "deflection_mm", "bending_deflection_mm", "tangential
           "patch_length_mm", "patch_extent_mm", "patch_width_mm", "patches")
 
 
-def contact_modulus(spec) -> float:
+def contact_modulus(spec: CouplingSpec) -> float:
     """Composite modulus ``E*`` (MPa) of the hub and sleeve materials (``[material]``)."""
     m = spec.material
     return composite_modulus(m.hub.youngs_modulus_MPa, m.hub.poisson_ratio,
@@ -345,7 +346,7 @@ class SurfaceSolver:
     tolerance : float
     """
 
-    def __init__(self, spec, sweep_result, flank: str, tooth_compliance, *,
+    def __init__(self, spec: CouplingSpec, sweep_result, flank: str, tooth_compliance, *,
                  grid=DEFAULT_GRID, offsets=None, tolerance: float = DEFAULT_TOLERANCE):
         self.spec = spec
         self.grid = _check_grid(grid)
@@ -603,7 +604,8 @@ def _transfer(seed: SolvedPose, idx: NDArray[np.intp], gf: GapField, moved_mm=0.
     return np.where(gf.mask, out, 0.0)
 
 
-def solve_surface(spec, sweep_result, *, torque_Nm: float, loaded_flank: str | None = None,
+def solve_surface(spec: CouplingSpec,
+                  sweep_result, *, torque_Nm: float, loaded_flank: str | None = None,
                   compliance=None, grid=DEFAULT_GRID, gap_offset_rad=None,
                   tolerance: float = DEFAULT_TOLERANCE, keep_fields: bool = False,
                   progress=None) -> dict[str, Any]:

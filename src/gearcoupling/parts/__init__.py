@@ -18,6 +18,7 @@ import numpy as np
 
 from ..errors import ArgumentError, GeometryError
 from ..geometry import PARTS
+from ..spec import CouplingSpec
 from .builder import SURFACE_KINDS, MeshBuilder, Run, tile, tooth_runs
 from .deviation import measure_deviation
 from .hub import build_hub_run, hub_layout
@@ -29,12 +30,12 @@ _BUILDERS: dict[str, tuple[Callable[..., Any], Callable[..., None]]] = {
     "hub": (hub_layout, build_hub_run), "sleeve": (sleeve_layout, build_sleeve_run)}
 
 
-def default_tolerance(spec) -> float:
+def default_tolerance(spec: CouplingSpec) -> float:
     """Default chordal tolerance: module / 200 (0.0127 mm for renzo-1967), in mm."""
     return spec.tooth.module / 200.0
 
 
-def check_tolerance(spec, tolerance_mm) -> float:
+def check_tolerance(spec: CouplingSpec, tolerance_mm) -> float:
     """The tolerance as a float, or :class:`SpecError` (a ``ValueError``) naming the range."""
     tol = default_tolerance(spec) if tolerance_mm is None else tolerance_mm
     try:
@@ -48,7 +49,7 @@ def check_tolerance(spec, tolerance_mm) -> float:
     return tol
 
 
-def build_part(spec, part: str, tolerance_mm: float | None = None, teeth=None):
+def build_part(spec: CouplingSpec, part: str, tolerance_mm: float | None = None, teeth=None):
     """Closed triangle mesh of the hub or the sleeve within a chordal tolerance.
 
     Parameters

@@ -27,6 +27,7 @@ from ..geometry import (
     sleeve_model,
     tip_radius,
 )
+from ..spec import CouplingSpec
 from .grid import tip_corner
 
 
@@ -108,7 +109,8 @@ def _mirror(points: NDArray) -> NDArray:
     return points * np.array([1.0, -1.0, 1.0])
 
 
-def hub_samples(spec, n: int, rng: np.random.Generator) -> dict[str, NDArray[np.float64]]:
+def hub_samples(spec: CouplingSpec,
+                n: int, rng: np.random.Generator) -> dict[str, NDArray[np.float64]]:
     """Exact points on hub tooth 0 by surface kind, ``(n, 3)`` each (crown ends included)."""
     m = hub_model(spec)
     hf = m.half_face
@@ -133,7 +135,8 @@ def hub_samples(spec, n: int, rng: np.random.Generator) -> dict[str, NDArray[np.
     return out
 
 
-def sleeve_samples(spec, n: int, rng: np.random.Generator) -> dict[str, NDArray[np.float64]]:
+def sleeve_samples(spec: CouplingSpec,
+                   n: int, rng: np.random.Generator) -> dict[str, NDArray[np.float64]]:
     """Exact points on sleeve space 0 by surface kind, ``(n, 3)`` each."""
     sm = sleeve_model(spec)
     z = rng.uniform(-sm.half_face, sm.half_face, n)
@@ -173,7 +176,7 @@ def circle_samples(radius: float, z0: float, z1: float, n: int, rng) -> NDArray[
     return np.stack([radius * np.cos(a), radius * np.sin(a), rng.uniform(z0, z1, n)], -1)
 
 
-def exact_samples(spec, part: str, samples: int, teeth=None, *,
+def exact_samples(spec: CouplingSpec, part: str, samples: int, teeth=None, *,
                   seed: int = 0) -> dict[str, NDArray[np.float64]]:
     """Exact surface points ``{kind: (samples, 3)}`` of a part, each tooth-surface point on
     a random tooth of ``teeth`` (all by default); the bore and the sleeve's outer cylinder
@@ -197,7 +200,8 @@ def exact_samples(spec, part: str, samples: int, teeth=None, *,
     return pts
 
 
-def measure_deviation(spec, mesh, *, samples: int = 2000, seed: int = 0) -> dict[str, float]:
+def measure_deviation(spec: CouplingSpec,
+                      mesh, *, samples: int = 2000, seed: int = 0) -> dict[str, float]:
     """Largest distance (mm) from exact surface points to the mesh, per surface kind.
 
     Parameters

@@ -17,6 +17,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..geometry import hub_model, root_radius
+from ..spec import CouplingSpec
 from .builder import (
     KIND_CODE,
     MIN_RING,
@@ -49,7 +50,7 @@ class HubLayout:
 
 
 @lru_cache(maxsize=16)
-def hub_layout(spec, tol: float) -> HubLayout:
+def hub_layout(spec: CouplingSpec, tol: float) -> HubLayout:
     m = hub_model(spec)
     grid = hub_tooth_grid(m, tol)
     pitch = grid.points()

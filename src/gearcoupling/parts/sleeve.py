@@ -15,6 +15,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..geometry import sleeve_model
+from ..spec import CouplingSpec
 from . import builder as mb
 from .grid import arc_count, sleeve_pitch
 
@@ -32,7 +33,7 @@ class SleeveLayout:
 
 
 @lru_cache(maxsize=16)
-def sleeve_layout(spec, tol: float) -> SleeveLayout:
+def sleeve_layout(spec: CouplingSpec, tol: float) -> SleeveLayout:
     sm = sleeve_model(spec)
     pitch, kinds = sleeve_pitch(sm, tol)
     r_outer = 0.5 * spec.sleeve.outer_diameter

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..loadspec import STEEL
+from ..spec import CouplingSpec
 
 PASS, FAIL, OPEN = "pass", "fail", "not judged"
 
@@ -60,14 +61,14 @@ def geometry_verdicts(design_deg: float, min_backlash_mm: float, critical_deg: f
     return out
 
 
-def _material_source(spec, key: str) -> str:
+def _material_source(spec: CouplingSpec, key: str) -> str:
     mats = (spec.material.hub, spec.material.sleeve)
     if all(getattr(m, key) == STEEL[key] for m in mats):
         return "default steel value (not set in [material])"
     return "[material] (smaller of hub and sleeve)"
 
 
-def load_verdicts(spec, res, capacity_at_design) -> list[Verdict]:
+def load_verdicts(spec: CouplingSpec, res, capacity_at_design) -> list[Verdict]:
     """Tooth load, contact pressure, root stress and torque capacity at the reported load
     (``res`` None: no torque, nothing judged)."""
     if res is None:

@@ -22,6 +22,7 @@ from ..clearance import (
 )
 from ..errors import GearCouplingError
 from ..loading import capacity, load
+from ..spec import CouplingSpec
 from .file import ANGLE_OUTPUTS, LOAD_OUTPUTS, OUTPUTS, TOLERANCE_OUTPUTS, build_spec, spec_hash
 from .tolerance import Tolerances, tolerance_sample
 
@@ -30,7 +31,7 @@ def _version() -> str:
     return __version__
 
 
-def angle_outputs(spec, misalignment_deg: float, *, steps: int, tolerance_mm: float
+def angle_outputs(spec: CouplingSpec, misalignment_deg: float, *, steps: int, tolerance_mm: float
                   ) -> dict[str, float]:
     """Smallest backlash over a turn and the axial range of the first-touch point of the
     contacting tooth of each flank, from one clearance map over a tooth pitch (``steps``
@@ -46,7 +47,8 @@ def angle_outputs(spec, misalignment_deg: float, *, steps: int, tolerance_mm: fl
             "contact_z_min_mm": float(np.min(z)), "contact_z_max_mm": float(np.max(z))}
 
 
-def load_outputs(spec, misalignment_deg: float, torque_Nm: float | None, *, angles: int,
+def load_outputs(spec: CouplingSpec,
+                 misalignment_deg: float, torque_Nm: float | None, *, angles: int,
                  model: str | None = None) -> dict[str, float | None]:
     """Largest tooth load and q over a turn at the torque (:func:`gearcoupling.loading.load`),
     and the governing capacity (:func:`gearcoupling.loading.capacity.capacity`, times the
@@ -102,7 +104,7 @@ def evaluate(payload: dict[str, Any], inputs: dict[str, Any], sample: int = 0) -
     return row
 
 
-def _tolerance_row(payload, spec, mis: float, torque, sample: int) -> dict[str, Any]:
+def _tolerance_row(payload, spec: CouplingSpec, mis: float, torque, sample: int) -> dict[str, Any]:
     t = payload["tolerances"]
     acc = payload["accuracy"]
     out = tolerance_sample(spec, mis, Tolerances(**t["values"]), payload["seed"], sample,

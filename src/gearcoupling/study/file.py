@@ -51,7 +51,7 @@ from typing import Any
 from ..errors import SpecError
 from ..io import Table, bundled_names, line_of, resolve_bundled, set_dotted
 from ..loadspec import UNIT_SIBLINGS
-from ..spec import MISALIGNMENT_RANGE_DEG, resolve_spec_path, spec_from_dict
+from ..spec import MISALIGNMENT_RANGE_DEG, CouplingSpec, resolve_spec_path, spec_from_dict
 from .tolerance import MODELS, PATHS, Tolerances
 
 METHODS = ("grid", "random", "lhs")
@@ -401,7 +401,7 @@ def _plain(value: Any) -> Any:
     return value if not hasattr(value, "item") else value.item()
 
 
-def spec_hash(spec) -> str:
+def spec_hash(spec: CouplingSpec) -> str:
     """Short SHA-256 of the resolved spec (mm, degrees), independent of its name."""
     data = spec.to_dict()
     data.pop("name", None)

@@ -31,7 +31,7 @@ from ..errors import GearCouplingError, SpecError
 from ..io import atomic_path
 from ..loading import capacity
 from ..plots import new_figure
-from ..spec import load_spec
+from ..spec import CouplingSpec, load_spec
 from .file import Study, build_spec, optimise_options, spec_hash
 from .runner import pyarrow_modules
 from .tolerance import ideal_map, linear_outputs, rotations
@@ -47,7 +47,7 @@ class Optimum:
     rows: list[dict[str, Any]]
 
 
-def capacity_curve_Nm(spec, angles_deg, *, model: str | None = None, steps: int = 4,
+def capacity_curve_Nm(spec: CouplingSpec, angles_deg, *, model: str | None = None, steps: int = 4,
                       tolerance_mm: float = 1e-7) -> np.ndarray:
     """Capacity (N m) at each misalignment in ``angles_deg``: the load analysis' governing
     capacity (:func:`gearcoupling.loading.capacity.capacity`, ``model`` default the spec's,

@@ -54,6 +54,7 @@ from numpy.typing import NDArray
 from ..clearance import check_misalignment, flank_minima, sweep
 from ..errors import SpecError
 from ..loading import capacity_from_sweep, load_from_sweep, mesh_stiffness_N_per_mm, solve_windup
+from ..spec import CouplingSpec
 
 PATHS = ("fast", "interpolated", "exact")
 MODELS = ("renzo", "linear", "compliance")
@@ -136,7 +137,8 @@ def no_errors(teeth: int) -> ToothErrors:
     return ToothErrors(z, z, z, z)
 
 
-def gap_offsets_rad(spec, err: ToothErrors, *, rigid_only: bool = False) -> NDArray[np.float64]:
+def gap_offsets_rad(spec: CouplingSpec,
+                    err: ToothErrors, *, rigid_only: bool = False) -> NDArray[np.float64]:
     """Rigid per-tooth gap-angle offsets ``(2, N)`` (cw, ccw) of the fast path; with
     ``rigid_only`` just the radial (runout) part, which the exact path also adds."""
     R = spec.tooth.pitch_radius
@@ -148,7 +150,7 @@ def gap_offsets_rad(spec, err: ToothErrors, *, rigid_only: bool = False) -> NDAr
     return np.stack([t + half + radial, -t + half + radial])
 
 
-def crown_radius_for_drop(spec, drop_mm: float) -> float:
+def crown_radius_for_drop(spec: CouplingSpec, drop_mm: float) -> float:
     """Crowning radius (mm) of a circular crown with drop ``drop_mm`` at the face end."""
     if spec.hub.crowning.kind != "circular":
         raise SpecError("hub.crowning.kind", spec.hub.crowning.kind,
@@ -160,38 +162,39 @@ def crown_radius_for_drop(spec, drop_mm: float) -> float:
     return (b * b + drop_mm * drop_mm) / (2.0 * drop_mm)
 
 
-def nominal_drop_mm(spec) -> float:
+def nominal_drop_mm(spec: CouplingSpec) -> float:
     rc = spec.hub.crowning.radius
     b = 0.5 * spec.hub.face_width
     return rc - math.sqrt(rc * rc - b * b)
 
 
-def rotations(spec, steps: int) -> NDArray[np.float64]:
+def rotations(spec: CouplingSpec, steps: int) -> NDArray[np.float64]:
     """Rotations ``psi`` (rad) over a full turn, ``steps`` per tooth pitch: every tooth's
     turning angles then lie on one grid of ``N * steps`` angles."""
     N = spec.tooth.teeth
     return 2.0 * np.pi * np.arange(N * steps) / (N * steps)
 
 
-def _theta(spec, psi):
+def _theta(spec: CouplingSpec, psi):
     N = spec.tooth.teeth
     return psi[None, :] + 2.0 * np.pi * np.arange(N)[:, None] / N  # (N, M)
 
 
-def _gap_map(spec, mis: float, theta_both, tolerance_mm: float, periodic: bool = True):
+def _gap_map(spec: CouplingSpec,
+             mis: float, theta_both, tolerance_mm: float, periodic: bool = True):
     mins, _ = flank_minima(spec, mis, theta_both, tolerance_mm=tolerance_mm, periodic=periodic)
     with np.errstate(invalid="ignore", divide="ignore"):
         g = mins["normal"] / spec.tooth.base_radius / mins["rate"]
     return np.where(np.isfinite(g), g, np.inf)
 
 
-def ideal_map(spec, mis: float, psi, tolerance_mm: float) -> NDArray[np.float64]:
+def ideal_map(spec: CouplingSpec, mis: float, psi, tolerance_mm: float) -> NDArray[np.float64]:
     """Gap angles ``(2, N, M)`` of the ideal teeth (cw at theta, ccw at pi - theta)."""
     th = _theta(spec, psi)
     return _gap_map(spec, mis, np.stack([th, np.pi - th]), tolerance_mm)
 
 
-def exact_map(spec, mis: float, psi, err: ToothErrors, tolerance_mm: float
+def exact_map(spec: CouplingSpec, mis: float, psi, err: ToothErrors, tolerance_mm: float
               ) -> NDArray[np.float64]:
     """Per-tooth gap angles ``(2, N, M)`` with every tooth flank's own geometry: each
     distinct (flank thickness, crowning radius) is one spec variant through the kernel."""
@@ -221,7 +224,7 @@ def exact_map(spec, mis: float, psi, err: ToothErrors, tolerance_mm: float
 class CrownMaps:
     """Ideal maps at Chebyshev nodes of crown height; per-tooth barycentric interpolation."""
 
-    def __init__(self, spec, mis: float, psi, crown_sd_mm: float, tolerance_mm: float,
+    def __init__(self, spec: CouplingSpec, mis: float, psi, crown_sd_mm: float, tolerance_mm: float,
                  nodes: int = CROWN_NODES):
         self.spec, self.psi, self.mis, self.tolerance_mm = spec, psi, mis, tolerance_mm
         self.nominal = ideal_map(spec, mis, psi, tolerance_mm)
@@ -258,7 +261,8 @@ class CrownMaps:
         return np.einsum("kn,nfkm->fkm", c, self.maps)
 
 
-def model_outputs(spec, skeleton, gap: NDArray[np.float64], torque_Nm: float, model: str
+def model_outputs(spec: CouplingSpec,
+                  skeleton, gap: NDArray[np.float64], torque_Nm: float, model: str
                   ) -> dict[str, float]:
     """:func:`linear_outputs` through the load analysis (``model`` linear or compliance) on
     the ideal sweep ``skeleton`` with the gap angles ``gap`` ``(2, N, M)``."""
@@ -277,7 +281,8 @@ def model_outputs(spec, skeleton, gap: NDArray[np.float64], torque_Nm: float, mo
             "capacity_Nm": float(cap.capacity_Nm)}
 
 
-def linear_outputs(spec, gap: NDArray[np.float64], torque_Nm: float) -> dict[str, float]:
+def linear_outputs(spec: CouplingSpec,
+                   gap: NDArray[np.float64], torque_Nm: float) -> dict[str, float]:
     """Backlash, teeth in contact, largest tooth load at ``torque_Nm`` and the capacity of
     one gap map ``(2, N, M)`` under Renzo's linear model (module docstring)."""
     P_i = spec.load.allowable_tooth_load_N
@@ -302,7 +307,8 @@ def linear_outputs(spec, gap: NDArray[np.float64], torque_Nm: float) -> dict[str
 _CACHE: dict[Any, Any] = {}
 
 
-def _maps(spec, mis_deg: float, steps: int, crown_sd: float, tolerance_mm: float) -> CrownMaps:
+def _maps(spec: CouplingSpec,
+          mis_deg: float, steps: int, crown_sd: float, tolerance_mm: float) -> CrownMaps:
     key = (spec, spec.name, mis_deg, steps, crown_sd, tolerance_mm)
     if key not in _CACHE:
         if len(_CACHE) > 8:
@@ -312,7 +318,8 @@ def _maps(spec, mis_deg: float, steps: int, crown_sd: float, tolerance_mm: float
     return _CACHE[key]
 
 
-def tolerance_sample(spec, misalignment_deg: float, tol: Tolerances, seed: int, sample: int, *,
+def tolerance_sample(spec: CouplingSpec,
+                     misalignment_deg: float, tol: Tolerances, seed: int, sample: int, *,
                      path: str = "fast", torque_Nm: float | None = None, steps: int = 4,
                      tolerance_mm: float = 1e-7, model: str = "renzo") -> dict[str, float]:
     """One Monte Carlo sample (errors seeded by ``(seed, sample)``, so any chunking gives

@@ -14,6 +14,7 @@ import socket
 from pathlib import Path
 
 from ..io import write_text
+from ..spec import CouplingSpec
 from .nodes import CouplingScene, ViewSettings, import_viser
 
 
@@ -34,7 +35,7 @@ def save_html(scene: CouplingScene, path: str | os.PathLike) -> Path:
     return write_text(path, scene_html(scene))
 
 
-def write_html(spec, path: str | os.PathLike, *, settings: ViewSettings | None = None,
+def write_html(spec: CouplingSpec, path: str | os.PathLike, *, settings: ViewSettings | None = None,
                tolerance_mm: float | None = None) -> Path:
     """Write the static HTML of a coupling scene.
 
@@ -71,7 +72,7 @@ def write_html(spec, path: str | os.PathLike, *, settings: ViewSettings | None =
             server.stop()
 
 
-def _design_deg(spec) -> float:
+def _design_deg(spec: CouplingSpec) -> float:
     import math
 
     return math.degrees(spec.design_misalignment)

@@ -25,6 +25,7 @@ import numpy as np
 
 from ..errors import ArgumentError, BackendError
 from ..geometry import FLANKS, rot_z
+from ..spec import CouplingSpec
 from .scene import (
     COLOR_MODES,
     CUTAWAYS,
@@ -106,7 +107,8 @@ class CouplingScene:
         which has no GUI panel).
     """
 
-    def __init__(self, server, spec, settings: ViewSettings, tolerance_mm: float | None = None,
+    def __init__(self, server, spec: CouplingSpec,
+                 settings: ViewSettings, tolerance_mm: float | None = None,
                  *, legend_in_scene: bool = False):
         self.server = server
         self.spec = spec

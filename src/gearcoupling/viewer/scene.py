@@ -31,6 +31,7 @@ from ..geometry import FLANKS, hub_flank_model, hub_model, hub_to_sleeve, rot_z
 from ..interference import PreparedPart, affine, flank_index, nearest_tooth
 from ..loading import load_from_sweep
 from ..parts import SURFACE_KINDS, build_part, check_tolerance
+from ..spec import CouplingSpec
 
 if TYPE_CHECKING:
     import trimesh
@@ -112,7 +113,7 @@ def split_hub(mesh) -> HubPieces:
     return HubPieces(body, (pieces[0], pieces[1]))
 
 
-def lod_tolerance(spec, lod: str) -> float:
+def lod_tolerance(spec: CouplingSpec, lod: str) -> float:
     """Chordal tolerance (mm) of a level of detail (:data:`LOD_DIVISORS`)."""
     if lod not in LOD_DIVISORS:
         raise ArgumentError(f"lod = {lod!r}: must be one of {tuple(LOD_DIVISORS)}")
@@ -153,7 +154,7 @@ class SceneMeshes:
         return len(self.hub.faces) + len(self.sleeve.faces)
 
 
-def view_tolerance(spec, tolerance_mm: float | None = None) -> float:
+def view_tolerance(spec: CouplingSpec, tolerance_mm: float | None = None) -> float:
     """The meshes' chordal tolerance (mm; default ``coarse``), or :class:`SpecError`."""
     tol = lod_tolerance(spec, "coarse") if tolerance_mm is None else tolerance_mm
     try:
@@ -162,7 +163,7 @@ def view_tolerance(spec, tolerance_mm: float | None = None) -> float:
         raise ArgumentError("tolerance_mm", tolerance_mm, str(err).split(": ", 1)[-1]) from err
 
 
-def build_scene_meshes(spec, tolerance_mm: float | None = None) -> SceneMeshes:
+def build_scene_meshes(spec: CouplingSpec, tolerance_mm: float | None = None) -> SceneMeshes:
     """Mesh hub and sleeve for viewing (default: the ``coarse`` level of detail)."""
     tol = view_tolerance(spec, tolerance_mm)
     return SceneMeshes(spec, tol, build_part(spec, "hub", tolerance_mm=tol),
@@ -299,7 +300,8 @@ class PoseState:
         return "\n".join(lines)
 
 
-def pose_state(spec, misalignment_deg: float, psi_deg: float, *, band_mm: float = 0.005,
+def pose_state(spec: CouplingSpec,
+               misalignment_deg: float, psi_deg: float, *, band_mm: float = 0.005,
                tolerance_mm: float = VIEW_SWEEP_TOLERANCE_MM,
                pressure: bool = False) -> PoseState:
     """Exact clearances, contact points and interference at one pose.
@@ -344,7 +346,7 @@ def pose_state(spec, misalignment_deg: float, psi_deg: float, *, band_mm: float 
                      else 0.0, _pressure(spec, res) if pressure else None)
 
 
-def _pressure(spec, res) -> NDArray[np.float64]:
+def _pressure(spec: CouplingSpec, res) -> NDArray[np.float64]:
     """Interior contact pressure ``(2, N)`` of the loaded flank's teeth at the spec's torque
     (the ``surface`` load model; 0 on the other flank and on unloaded teeth)."""
     loads = load_from_sweep(res, model="surface")
@@ -372,7 +374,8 @@ def flank_values(state: PoseState, mode: str = "clearance") -> NDArray[np.float6
     return np.where(state.interfering, c, np.maximum(sep, 0.0))
 
 
-def flank_colors(state: PoseState, mode: str, scale_mm: float, spec) -> NDArray[np.uint8]:
+def flank_colors(state: PoseState, mode: str, scale_mm: float,
+                 spec: CouplingSpec) -> NDArray[np.uint8]:
     """RGB ``(2, N, 3)`` of the flanks in a colour mode (:data:`COLOR_MODES`)."""
     if mode != "pressure":
         return clearance_colors(flank_values(state, mode), scale_mm)
@@ -393,7 +396,7 @@ def pressure_colors(pressure_MPa: ArrayLike, allowable_MPa: float) -> NDArray[np
     return np.rint(rgb).astype(np.uint8)
 
 
-def default_color_scale_mm(spec) -> float:
+def default_color_scale_mm(spec: CouplingSpec) -> float:
     """Clearance shown at the free end of the colour scale: half the aligned backlash
     (the clearance of every flank when aligned)."""
     return 0.5 * float(spec.derived["aligned_backlash_mm"])
@@ -474,7 +477,8 @@ class ClearanceCurve:
     clearance_mm: NDArray[np.float64]
 
 
-def clearance_curve(spec, misalignment_deg: float, samples: int = DEFAULT_PLOT_SAMPLES, *,
+def clearance_curve(spec: CouplingSpec,
+                    misalignment_deg: float, samples: int = DEFAULT_PLOT_SAMPLES, *,
                     tolerance_mm: float = VIEW_SWEEP_TOLERANCE_MM) -> ClearanceCurve:
     """Clearance against θ from one sweep over one pitch (every tooth gives its θ).
 

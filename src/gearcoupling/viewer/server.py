@@ -25,6 +25,7 @@ import numpy as np
 
 from ..errors import ArgumentError, GearCouplingError
 from ..io import default_output_dir
+from ..spec import CouplingSpec
 from .html import save_html
 from .nodes import FRAMES, CouplingScene, ViewSettings, import_viser
 from .scene import (
@@ -110,7 +111,7 @@ class ViewerApp:
         Where the "save static HTML" button writes.
     """
 
-    def __init__(self, spec, *, host: str = "127.0.0.1", port: int = 8080,
+    def __init__(self, spec: CouplingSpec, *, host: str = "127.0.0.1", port: int = 8080,
                  settings: ViewSettings | None = None, lod: str = "coarse",
                  tolerance_mm: float | None = None, html_path=None):
         viser = import_viser()
@@ -341,6 +342,6 @@ def _scales(data) -> dict:
     return {"x": {"time": False}, "y": {"auto": False, "range": [lo, hi]}}
 
 
-def serve(spec, **kwargs) -> ViewerApp:
+def serve(spec: CouplingSpec, **kwargs) -> ViewerApp:
     """Start a :class:`ViewerApp` (returns at once; the server runs in threads)."""
     return ViewerApp(spec, **kwargs)
