@@ -7,6 +7,7 @@ when called; a missing one raises :class:`gearcoupling.errors.BackendError` nami
 
 from .backends import ccx_path, gmsh_module
 from .mesh import DEFAULT_SECTOR_TEETH, check_size, default_size, mesh_part, sector_teeth
+from .reference import FEContactResult, fe_contact
 from .stiffness import (
     ComplianceTable,
     compute_compliance_table,
@@ -20,11 +21,13 @@ __all__ = [
     "DEFAULT_SECTOR_TEETH",
     "FORMATS",
     "ComplianceTable",
+    "FEContactResult",
     "VolumeMesh",
     "ccx_path",
     "check_size",
     "compute_compliance_table",
     "default_size",
+    "fe_contact",
     "gmsh_module",
     "mesh_part",
     "pitch_point_compliance",

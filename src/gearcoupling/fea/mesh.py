@@ -79,7 +79,9 @@ def sector_teeth(spec: CouplingSpec, count) -> list[int] | None:
 
 def mesh_part(spec: CouplingSpec, part: str, *, sector: int | None = DEFAULT_SECTOR_TEETH,
               size_mm: float | None = None, body_size_mm: float | None = None,
-              tolerance_mm: float | None = None, order: int = 2) -> VolumeMesh:
+              tolerance_mm: float | None = None, order: int = 2,
+              periodic: bool = False, contact: tuple[float, float] | None = None
+              ) -> VolumeMesh:
     """Quadratic tetrahedral mesh of a sector of ``sector`` teeth (``None``: the whole part).
 
     Parameters
@@ -97,6 +99,12 @@ def mesh_part(spec: CouplingSpec, part: str, *, sector: int | None = DEFAULT_SEC
         Chordal tolerance of the STEP solid (default module / 200).
     order : {1, 2}
         Element order (2: C3D10; 1 only for tests of the pipeline).
+    periodic : bool
+        Mesh the ccw cut face as the cw cut face turned by the sector angle, node for
+        node, so the cuts can be joined by cyclic-symmetry equations.
+    contact : (size_mm, half_length_mm), optional
+        A finer size on the ccw flanks within ``half_length_mm`` of mid-face, where an
+        aligned coupling's contact patch lies (growing at half the distance beyond).
 
     Returns
     -------
@@ -117,13 +125,15 @@ def mesh_part(spec: CouplingSpec, part: str, *, sector: int | None = DEFAULT_SEC
         step = write_step(shape, Path(tmp) / f"{part}.step", name=f"{spec.name}-{part}")
         t_cad = time.perf_counter() - t0
         with gmsh_session() as gmsh:
-            vm = _mesh_in_gmsh(gmsh, spec, part, step, labelled, teeth, size, body, order)
+            vm = _mesh_in_gmsh(gmsh, spec, part, step, labelled, teeth, size, body, order,
+                               periodic, contact)
     vm.quality["cad_seconds"] = t_cad
     return vm
 
 
 def _mesh_in_gmsh(gmsh, spec: CouplingSpec,
-                  part, step, labelled, teeth, size, body, order) -> VolumeMesh:
+                  part, step, labelled, teeth, size, body, order, periodic,
+                  contact=None) -> VolumeMesh:
     occ = gmsh.model.occ
     vols = occ.importShapes(str(step))
     occ.synchronize()
@@ -137,7 +147,10 @@ def _mesh_in_gmsh(gmsh, spec: CouplingSpec,
     names = classify_surfaces(gmsh, spec, part, labelled, surfaces)
     gmsh.model.mesh.clear()
     teeth_faces = [s for s in surfaces if names[s][0].startswith("T")]
-    _size_field(gmsh, teeth_faces, size, body, spec.tooth.module)
+    flanks = [s for s in surfaces if names[s][0].endswith("_FLANK_CCW")]
+    _size_field(gmsh, teeth_faces, size, body, spec.tooth.module, flanks, contact)
+    if periodic and teeth is not None:
+        _periodic_cuts(gmsh, names, 2 * math.pi * len(teeth) / spec.tooth.teeth)
     gmsh.option.setNumber("Mesh.ElementOrder", order)
     gmsh.option.setNumber("Mesh.SecondOrderLinear", 0)
     gmsh.option.setNumber("Mesh.Optimize", 1)
@@ -147,20 +160,47 @@ def _mesh_in_gmsh(gmsh, spec: CouplingSpec,
     return extract_mesh(gmsh, part, names, teeth, size, order, t_mesh)
 
 
-def _size_field(gmsh, faces, size, body, module) -> None:
+def _size_field(gmsh, faces, size, body, module, flanks=(), contact=None) -> None:
     f = gmsh.model.mesh.field
+    fields = [_threshold(f, faces, size, body, 0.25 * module, 2.0 * (body - size))]
+    if contact is not None:
+        c, half = contact
+        near = _threshold(f, flanks, c, body, c, 4.0 * (body - c), sampling=200)
+        box = f.add("MathEval")  # + half the distance beyond |z| = half
+        f.setString(box, "F", f"F{near} + 0.25 * (abs(z) - {half} + abs(abs(z) - {half}))")
+        fields.append(box)
+    top = f.add("Min")
+    f.setNumbers(top, "FieldsList", fields)
+    f.setAsBackgroundMesh(top)
+    for key in ("MeshSizeExtendFromBoundary", "MeshSizeFromPoints", "MeshSizeFromCurvature"):
+        gmsh.option.setNumber(f"Mesh.{key}", 0)
+
+
+def _threshold(f, faces, size, body, dist_min, ramp, sampling=20) -> int:
+    """A size field: ``size`` within ``dist_min`` of ``faces``, growing to ``body`` over
+    ``ramp``."""
     dist = f.add("Distance")
     f.setNumbers(dist, "SurfacesList", faces)
-    f.setNumber(dist, "Sampling", 20)
+    f.setNumber(dist, "Sampling", sampling)
     thr = f.add("Threshold")
     f.setNumber(thr, "InField", dist)
     f.setNumber(thr, "SizeMin", size)
     f.setNumber(thr, "SizeMax", body)
-    f.setNumber(thr, "DistMin", 0.25 * module)
-    f.setNumber(thr, "DistMax", 0.25 * module + 2.0 * (body - size))
-    f.setAsBackgroundMesh(thr)
-    for key in ("MeshSizeExtendFromBoundary", "MeshSizeFromPoints", "MeshSizeFromCurvature"):
-        gmsh.option.setNumber(f"Mesh.{key}", 0)
+    f.setNumber(thr, "DistMin", dist_min)
+    f.setNumber(thr, "DistMax", dist_min + ramp)
+    return thr
+
+
+def _periodic_cuts(gmsh, names, angle: float) -> None:
+    """Make gmsh mesh the ccw cut faces as the cw ones turned by ``angle`` about z."""
+    cw = [s for s, (n, _) in names.items() if n == "CUT_CW"]
+    ccw = [s for s, (n, _) in names.items() if n == "CUT_CCW"]
+    if len(cw) != 1 or len(ccw) != 1:
+        raise GeometryError(f"a periodic sector needs one face per cut, got {len(cw)} cw and "
+                            f"{len(ccw)} ccw faces")
+    c, s = math.cos(angle), math.sin(angle)
+    affine = [c, -s, 0, 0, s, c, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]
+    gmsh.model.mesh.setPeriodic(2, ccw, cw, affine)
 
 
 def classify_surfaces(gmsh, spec: CouplingSpec,

@@ -1,0 +1,232 @@
+"""The aligned contact reference: one tooth pitch of hub and sleeve in frictionless
+CalculiX contact, loaded by the torque, with cyclic-symmetry equations on the cut faces.
+
+At misalignment 0 every tooth carries the same load, so one pitch with rotationally
+periodic cuts is the whole coupling. The hub and sleeve sectors of one pitch are meshed
+by gmsh with node-for-node periodic cuts (:func:`~gearcoupling.fea.mesh_part`,
+``periodic=True``); every node of a ccw cut face follows its cw partner turned by the
+pitch angle (``*EQUATION``, three per node). The hub bore is fixed; the sleeve outside
+diameter is a rigid body whose rotation node carries the moment ``T / N``. Step 1 turns
+the sleeve (displacement control) to just past the sweep's first touch, so the contact is
+closed when step 2 releases it and applies the moment. The hub ccw flank (slave) meets
+the sleeve ccw flank (master) through a stiff linear penalty law.
+
+Measured per run: the wind-up (the sleeve's rotation against the fixed bore) and the part
+beyond the exact first touch, the tooth's tangential load (its contact moment / pitch
+radius; equilibrium says ``T / (N R)``), the peak and interior contact pressure, the patch
+extent across the face and along the profile, and solver time and memory.
+"""
+
+from __future__ import annotations
+
+import math
+import resource
+from dataclasses import asdict, dataclass, field
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..clearance import min_backlash_rad
+from ..errors import ArgumentError
+from ..io import inp_id_lines, inp_number
+from ..spec import CouplingSpec
+from .ccx import run_ccx, solver_dir
+from .contact import merge
+from .mesh import check_size, mesh_part
+from .stiffness import material
+from .volume import VolumeMesh
+from .write import inp_mesh_lines
+
+PENALTY_FACTOR = 50.0  # penalty stiffness = factor * E / element size (MPa/mm)
+TOUCH_MARGIN = 0.03  # step 1 closes the gap to (1 + margin) x first touch
+
+
+@dataclass(frozen=True)
+class FEContactResult:
+    """One aligned contact reference pose (module docstring). Lengths mm, angles rad."""
+
+    spec: str
+    torque_Nm: float
+    size_mm: float
+    windup_rad: float
+    first_touch_rad: float
+    windup_from_first_touch_rad: float
+    tooth_load_N: float
+    equilibrium_tooth_load_N: float
+    peak_pressure_MPa: float
+    interior_pressure_MPa: float
+    patch_face_mm: float
+    patch_profile_mm: float
+    nodes: int
+    solve_seconds: float
+    max_rss_MB: float
+    settings: dict = field(default_factory=dict)
+
+    def to_dict(self) -> dict:
+        """Plain values, for ``fea_contact.json``."""
+        return asdict(self)
+
+
+def fe_contact(spec: CouplingSpec, *, torque_Nm: float | None = None,
+               misalignment_deg: float = 0.0, size_mm: float | None = None,
+               contact_size_mm: float | None = None, workdir=None) -> FEContactResult:
+    """Solve the aligned contact reference of ``spec`` at ``torque_Nm`` (module docstring).
+
+    Parameters
+    ----------
+    spec : CouplingSpec
+    torque_Nm : float, optional
+        Positive torque (N m); default the spec's load torque.
+    misalignment_deg : float
+        Only 0: a misaligned reference needs a sector of many pitches (not built).
+    size_mm : float, optional
+        Element size on the teeth (default module / 4).
+    contact_size_mm : float, optional
+        Element size on the loaded flanks near mid-face, where the patch lies (the accuracy
+        knob; default ``size_mm``); refused when fewer than two elements span the patch.
+    workdir : path, optional
+        Keep the deck, log and printout here (default: a temporary folder, kept on failure).
+    """
+    if misalignment_deg != 0.0:
+        raise ArgumentError("misalignment_deg", misalignment_deg,
+                            "0 only: the one-pitch cyclic reference holds for aligned shafts")
+    T = spec.load.torque_Nm if torque_Nm is None else torque_Nm
+    if not (isinstance(T, int | float) and math.isfinite(T) and T > 0):
+        raise ArgumentError("torque_Nm", torque_Nm, "a positive finite torque (N m)")
+    size = min(check_size(spec, "hub", size_mm), check_size(spec, "sleeve", size_mm))
+    c = size if contact_size_mm is None else check_size(spec, "hub", contact_size_mm)
+    refine = (c, 0.25 * spec.hub.face_width)
+    hub = mesh_part(spec, "hub", sector=1, size_mm=size, periodic=True, contact=refine)
+    sleeve = mesh_part(spec, "sleeve", sector=1, size_mm=size, periodic=True, contact=refine)
+    pair = merge(hub, sleeve, np.eye(3))
+    touch = 0.5 * min_backlash_rad(spec, 0.0)
+    E, _ = material(spec, "hub")
+    deck = torque_deck(pair, spec, moment_Nmm=1e3 * T / spec.tooth.teeth,
+                       preturn_rad=touch * (1 + TOUCH_MARGIN), penalty=PENALTY_FACTOR * E / size)
+    with solver_dir(workdir) as work:
+        res = run_ccx(deck, work, "fe_contact")
+        pressure = frd_nodal(res.job.with_suffix(".frd").read_text(), "CONTACT")
+    out = _result(spec, T, c, touch, pair, res, pressure)
+    if out.patch_face_mm < 2.0 * c:
+        raise ArgumentError("contact_size_mm", c, f"at most {out.patch_face_mm / 2:.3g} mm: "
+                            f"the patch is {out.patch_face_mm:.3g} mm long across the face and "
+                            "needs two elements at least")
+    return out
+
+
+def cyclic_equations(vm: VolumeMesh, cw: str, ccw: str, angle: float,
+                     skip: NDArray[np.int64]) -> list[str]:
+    """``*EQUATION`` lines tying every node of the ``ccw`` cut to its ``cw`` partner turned
+    by ``angle`` about z (u_ccw = R u_cw), except nodes in ``skip`` (0-based)."""
+    from scipy.spatial import cKDTree
+
+    a, b = vm.node_set(cw), vm.node_set(ccw)
+    c, s = math.cos(angle), math.sin(angle)
+    rot = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+    dist, idx = cKDTree(vm.nodes[b]).query(vm.nodes[a] @ rot.T)
+    if len(a) != len(b) or dist.max() > 1e-3 * vm.size_mm:
+        raise ArgumentError("periodic cuts", f"{len(a)} and {len(b)} nodes, worst match "
+                            f"{dist.max():.3g} mm", "node-for-node periodic cut meshes")
+    lines = ["*EQUATION"]
+    skipped = set(skip.tolist())
+    for i, j in zip(a + 1, b[idx] + 1, strict=True):
+        if j - 1 in skipped:
+            continue
+        lines += ["3", f"{j}, 1, 1.0, {i}, 1, {inp_number(-c)}, {i}, 2, {inp_number(s)}",
+                  "3", f"{j}, 2, 1.0, {i}, 1, {inp_number(-s)}, {i}, 2, {inp_number(-c)}",
+                  "2", f"{j}, 3, 1.0, {i}, 3, -1.0"]
+    return lines
+
+
+def torque_deck(pair: VolumeMesh, spec: CouplingSpec, *, moment_Nmm: float, preturn_rad: float,
+                penalty: float, increment: float = 0.25) -> str:
+    """The deck (module docstring): step 1 turns the sleeve by ``-preturn_rad``, step 2
+    applies ``-moment_Nmm`` about z to it instead."""
+    E, nu = material(spec, "hub")
+    ref, rot = len(pair.nodes) + 1, len(pair.nodes) + 2
+    bore, outer = pair.node_set("H_BORE"), pair.node_set("S_OUTER")
+    angle = 2 * math.pi / spec.tooth.teeth
+    lines = inp_mesh_lines(pair)
+    lines += ["*NODE", f"{ref}, 0.0, 0.0, 0.0", f"{rot}, 0.0, 0.0, 0.0",
+              "*NSET, NSET=ROTN", f"{rot}", "*NSET, NSET=SRIGID", *inp_id_lines(outer + 1),
+              "*NSET, NSET=HFIX", *inp_id_lines(bore + 1)]
+    lines += cyclic_equations(pair, "H_CUT_CW", "H_CUT_CCW", angle, bore)
+    lines += cyclic_equations(pair, "S_CUT_CW", "S_CUT_CCW", angle, outer)
+    lines += ["*MATERIAL, NAME=STEEL", "*ELASTIC", f"{inp_number(E)}, {inp_number(nu)}",
+              "*SOLID SECTION, ELSET=EALL, MATERIAL=STEEL",
+              f"*RIGID BODY, NSET=SRIGID, REF NODE={ref}, ROT NODE={rot}",
+              "*SURFACE INTERACTION, NAME=SI",
+              "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR", f"{inp_number(penalty)}",
+              "*CONTACT PAIR, INTERACTION=SI, TYPE=SURFACE TO SURFACE",
+              "S_H_T0_FLANK_CCW, S_S_T0_FLANK_CCW",
+              "*BOUNDARY", "HFIX, 1, 3, 0.0", f"{ref}, 1, 3, 0.0", f"{rot}, 1, 2, 0.0",
+              "*STEP, INC=100", "*STATIC", "0.5, 1.0", "*BOUNDARY",
+              f"{rot}, 3, 3, {inp_number(-preturn_rad)}", "*END STEP",
+              "*STEP, INC=200", "*STATIC", f"{increment}, 1.0",
+              "*BOUNDARY, OP=NEW", "HFIX, 1, 3, 0.0", f"{ref}, 1, 3, 0.0", f"{rot}, 1, 2, 0.0",
+              "*CLOAD", f"{rot}, 3, {inp_number(-moment_Nmm)}",
+              "*NODE PRINT, NSET=ROTN", "U",
+              "*CONTACT PRINT, SLAVE=S_H_T0_FLANK_CCW, MASTER=S_S_T0_FLANK_CCW", "CF",
+              "*CONTACT FILE", "CSTR", "*END STEP"]
+    return "\n".join(lines) + "\n"
+
+
+def _result(spec, T, size, touch, pair, res, pressure) -> FEContactResult:
+    R = spec.tooth.pitch_radius
+    windup = -float(res.get("displacements", "ROTN")[-1][0, 3])
+    stats = res.get("statistics", "S_H_T0_FLANK_CCW")[-1][0, :6]
+    load = abs(float(stats[5])) / R
+    peak, interior, face, profile = patch_figures(spec, pair, pressure)
+    return FEContactResult(
+        spec=spec.name, torque_Nm=float(T), size_mm=size, windup_rad=windup,
+        first_touch_rad=touch, windup_from_first_touch_rad=windup - touch,
+        tooth_load_N=load, equilibrium_tooth_load_N=1e3 * T / (spec.tooth.teeth * R),
+        peak_pressure_MPa=peak, interior_pressure_MPa=interior, patch_face_mm=face,
+        patch_profile_mm=profile, nodes=len(pair.nodes), solve_seconds=res.seconds,
+        max_rss_MB=resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024,
+        settings={"penalty_factor": PENALTY_FACTOR, "touch_margin": TOUCH_MARGIN,
+                  "element": "C3D10", "cuts": "cyclic equations, one pitch"})
+
+
+def frd_nodal(text: str, block: str) -> dict[int, NDArray[np.float64]]:
+    """Node -> values of the last ``block`` (e.g. ``"CONTACT"``) of a ccx ``.frd`` text
+    (fixed columns: ``-1``, node I10, values E12)."""
+    found: dict[int, NDArray[np.float64]] = {}
+    current: dict[int, NDArray[np.float64]] | None = None
+    for line in text.splitlines():
+        if line.startswith(" -4"):
+            current = {} if line.split()[1] == block else None
+        elif line.startswith(" -3") and current is not None:
+            found, current = current, None
+        elif line.startswith(" -1") and current is not None:
+            vals = [float(line[i:i + 12]) for i in range(13, len(line.rstrip()), 12)]
+            current[int(line[3:13])] = np.array(vals)
+    return found
+
+
+def developed_mm(r: NDArray[np.float64], base_radius: float) -> NDArray[np.float64]:
+    """Arc length of the involute from the base circle to radius ``r`` (mm)."""
+    return (np.square(r) - base_radius**2) / (2.0 * base_radius)
+
+
+def patch_figures(spec: CouplingSpec, pair: VolumeMesh, pressure: dict
+                  ) -> tuple[float, float, float, float]:
+    """Peak and interior pressure (MPa), patch extent across the face and along the
+    developed profile (mm) of the slave flank's nodal pressure ``node id -> CPRESS``.
+
+    Interior: nodes at least a tenth of the active depth from the flank's edges (the ends
+    of the face and of the depth both flanks share), as the surface model reports it."""
+    rb = spec.tooth.base_radius
+    hub, sleeve = pair.node_set("H_T0_FLANK_CCW"), pair.node_set("S_T0_FLANK_CCW")
+    r_of = np.hypot(pair.nodes[:, 0], pair.nodes[:, 1])
+    s_lo, s_hi = developed_mm(np.array([max(r_of[hub].min(), r_of[sleeve].min()),
+                                        min(r_of[hub].max(), r_of[sleeve].max())]), rb)
+    p = np.array([pressure.get(int(n) + 1, np.zeros(4))[3] for n in hub])
+    s, z = developed_mm(r_of[hub], rb), pair.nodes[hub, 2]
+    d = 0.1 * (s_hi - s_lo)
+    inner = (s >= s_lo + d) & (s <= s_hi - d) & (z >= z.min() + d) & (z <= z.max() - d)
+    peak = float(p.max(initial=0.0))
+    on = p > 1e-3 * peak
+    if not on.any():
+        return 0.0, 0.0, 0.0, 0.0
+    return (peak, float(p[inner].max(initial=0.0)), float(np.ptp(z[on])), float(np.ptp(s[on])))
