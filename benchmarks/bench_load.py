@@ -114,11 +114,11 @@ def knobs(quick):
         print(f"| {tol:g} | {c:.3f} | {e1:.1e} | {e2:.1e} |")
     print("\nRotations per tooth pitch searched by `capacity` (compliance, 1°), against 97:\n")
     print("| rotations | time s | capacity rel. err |\n|---|---|---|")
-    ref = capacity(spec, 1.0, angles=np.linspace(0, 7.2, 97, endpoint=False))["capacity_Nm"]
+    ref = capacity(spec, 1.0, angles_deg=np.linspace(0, 7.2, 97, endpoint=False)).capacity_Nm
     for n in (3, 5, 9, 25, 49):
         a = np.linspace(0, 7.2, n, endpoint=False)
-        c, _, out = timed(lambda a=a: capacity(spec, 1.0, angles=a), 1)
-        print(f"| {n} | {c:.2f} | {abs(out['capacity_Nm'] / ref - 1):.1e} |")
+        c, _, out = timed(lambda a=a: capacity(spec, 1.0, angles_deg=a), 1)
+        print(f"| {n} | {c:.2f} | {abs(out.capacity_Nm / ref - 1):.1e} |")
     print()
 
 
@@ -183,13 +183,13 @@ def crowns(quick):
             c = capacity(spec, a, model="compliance")
             caps[(n, a)] = c
             fe = c.face_end_torque_Nm
-            cells.append(f"{c['capacity_Nm']:.0f} ({c['governing'][:4]}) / "
-                         f"{c['criteria_Nm']['tooth_load']:.0f} / {fe:.0f}")
+            cells.append(f"{c.capacity_Nm:.0f} ({c.governing[:4]}) / "
+                         f"{c.criteria_Nm['tooth_load']:.0f} / {fe:.0f}")
         print(f"| {n} | " + " | ".join(cells) + " |")
     for a in angles:
-        r1 = caps[(names[1], a)]["capacity_Nm"] / caps[(names[0], a)]["capacity_Nm"]
-        r2 = (caps[(names[1], a)]["criteria_Nm"]["tooth_load"]
-              / caps[(names[0], a)]["criteria_Nm"]["tooth_load"])
+        r1 = caps[(names[1], a)].capacity_Nm / caps[(names[0], a)].capacity_Nm
+        r2 = (caps[(names[1], a)].criteria_Nm["tooth_load"]
+              / caps[(names[0], a)].criteria_Nm["tooth_load"])
         print(f"\nVari-Crown / uniform at {a}°: governing {r1:.2f}, tooth load {r2:.2f}", end="")
     print("\n")
 

@@ -1,5 +1,5 @@
-"""Finite elements: a quadratic tet mesh of a hub sector and the CalculiX tooth stiffness
-(the fea extra and Debian's calculix-ccx).
+"""Finite elements: a quadratic tet mesh of a hub sector, the CalculiX tooth stiffness and
+the aligned contact reference (the fea extra and Debian's calculix-ccx).
 
 Run: python examples/07_finite_elements.py
 """
@@ -11,3 +11,7 @@ mesh = gc.mesh_part(spec, "hub", sector=1, size_mm=1.0)
 print(gc.write_mesh(mesh, "outputs/examples/hub-sector-1.inp"), mesh.quality["elements"])
 table = gc.tooth_compliance_table(spec, size_mm=1.0, sector=1)  # cached per spec
 print("mesh stiffness C", round(table.mesh_stiffness_N_per_mm), "N/mm")
+# the aligned contact reference: one pitch in CalculiX contact, loaded by the torque
+ref: gc.FEContactResult = gc.fe_contact(spec, torque_Nm=400.0, size_mm=1.0)
+print("wind-up beyond first touch", round(ref.windup_from_first_touch_rad * 1e6, 1), "µrad;",
+      "tooth load", round(ref.tooth_load_N, 1), "N of", round(ref.equilibrium_tooth_load_N, 1))

@@ -15,6 +15,8 @@ from .errors import GearCouplingError as GearCouplingError
 from .errors import GeometryError as GeometryError
 from .errors import SpecError as SpecError
 from .export import export_part as export_part
+from .fea import FEContactResult as FEContactResult
+from .fea import fe_contact as fe_contact
 from .fea import mesh_part as mesh_part
 from .fea import tooth_compliance_table as tooth_compliance_table
 from .fea import write_mesh as write_mesh

@@ -2,7 +2,9 @@
 
 Tooth ``k`` at a rotation closes by the normal approach ``d_k = r_b (dpsi - g_k)``; its
 normal load ``W_k`` solves ``c_k W + delta_c,k(W) = d_k`` (``c_k`` the pair's bending +
-foundation compliance at its contact point, ``delta_c`` the contact approach of
+foundation compliance at the load centre: the middle of the active profile at the contact's
+face position, where a patch spread across the depth acts, as the ``surface`` model puts
+its springs at the pressure centre; ``delta_c`` the contact approach of
 :class:`~.contact.ContactModel`, concave and increasing), and the wind-up solves
 ``r_b sum_k W_k = T``. Both are monotone: the inner solve is Newton on a concave increasing
 function (globally convergent, monotone after the first step), the outer Newton on the
@@ -20,7 +22,7 @@ from numpy.typing import NDArray
 
 from ..errors import ArgumentError, SpecError
 from ..spec import CouplingSpec
-from .contact import contact_model
+from .contact import contact_model, patch_centre_radius
 
 INNER_ITER, OUTER_ITER = 60, 100
 
@@ -44,11 +46,12 @@ def pair_laws(spec: CouplingSpec, z_mm, r_mm, compliance):
     """Normal bending compliance ``c`` (mm/N) and contact law ``law(W) -> (delta, slope)`` of
     every contact, with the contact model and its geometry."""
     cphi = math.cos(spec.tooth.pressure_angle)
-    c = compliance.pair_compliance_mm_per_N(z_mm, r_mm) * cphi**2  # normal mm/N
+    cm = contact_model(spec)
+    r_load = patch_centre_radius(*cm.depth_limits(z_mm))
+    c = compliance.pair_compliance_mm_per_N(z_mm, r_load) * cphi**2  # normal mm/N
     if not np.all(np.isfinite(c) & (c > 0)):
         raise SpecError("load.stiffness", float(np.min(c)), "tooth compliance must be "
                         "positive and finite")
-    cm = contact_model(spec)
     geo = cm.geometry(z_mm, r_mm)
     constants = cm.laws(geo)
 

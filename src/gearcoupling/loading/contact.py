@@ -11,7 +11,8 @@ over ``(|z|, depth)`` once per spec).
 Regimes (per tooth, reported as ``contact_regime``):
 
 - ``hertz`` while the ellipse semi-axis across the depth fits in the active profile (the
-  roll length from the lower to the upper end of contact): Hamrock-Brewe closed forms of the
+  involute's arc length from the lower to the upper end of contact, ``(r_hi² - r_lo²) /
+  (2 r_b)``; the contact line lies on the flank): Hamrock-Brewe closed forms of the
   elliptic Hertz contact, ``delta ∝ W^(2/3)``;
 - ``line`` beyond the load ``W*`` where it stops fitting: a line contact of the active
   profile length ``L`` (cylinder of radius ``1/A_f`` on a plane), half-width
@@ -42,6 +43,18 @@ from .inputs import tooth_compliance
 LN_FLOOR = 1.0
 REGIMES = ("none", "hertz", "line")  # contact_regime codes: no load, elliptic, truncated line
 REGIME = {name: code for code, name in enumerate(REGIMES)}
+
+
+def profile_arc_mm(r_lo, r_hi, base_radius: float):
+    """Arc length of an involute of base radius ``base_radius`` from radius ``r_lo`` to
+    ``r_hi`` (mm): ``s(r) = (r² - r_b²) / (2 r_b)``."""
+    return (np.square(r_hi) - np.square(r_lo)) / (2.0 * base_radius)
+
+
+def patch_centre_radius(r_lo, r_hi):
+    """Radius of the middle (by arc length) of the involute from ``r_lo`` to ``r_hi``:
+    where a load spread over the whole active profile acts."""
+    return np.sqrt(0.5 * (np.square(r_lo) + np.square(r_hi)))
 
 
 class ContactModel:
@@ -111,6 +124,11 @@ class ContactModel:
              + wz * ((1 - wt) * table[i0 + 1, j0] + wt * table[i0 + 1, j0 + 1]))
         return v, lo, hi
 
+    def depth_limits(self, z: NDArray) -> tuple[NDArray, NDArray]:
+        """Lower and upper radius of the active profile at face positions ``z`` (mm)."""
+        az = np.clip(np.abs(np.asarray(z, dtype=float)), 0.0, self.half_face)
+        return np.interp(az, self.z_tab, self.r_lo), np.interp(az, self.z_tab, self.r_hi)
+
     def geometry(self, z: NDArray, r: NDArray) -> dict[str, NDArray]:
         """Per-contact constants (arrays like ``z``): curvatures, profile length ``L``,
         Hertz constants and the switch load ``W*`` (N) from elliptic to line contact."""
@@ -120,8 +138,7 @@ class ContactModel:
         A_p, _, _ = self._lookup(self.A_p, z, r)
         A_f = np.maximum(A_f, 1e-9)
         A_p = np.minimum(A_p, A_f)  # A_p <= A_f: profile is the long axis
-        roll = lambda x: np.sqrt(np.maximum(x**2 - self.r_b**2, 0.0))  # noqa: E731
-        L = np.maximum(roll(hi) - roll(lo), 1e-6)
+        L = np.maximum(profile_arc_mm(lo, hi, self.r_b), 1e-6)
         ratio = np.where(A_p > 0, A_f / np.maximum(A_p, 1e-300), np.inf)  # R_y / R_x >= 1
         with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
             k = ratio ** (2 / math.pi)

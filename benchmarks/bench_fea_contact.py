@@ -1,0 +1,148 @@
+"""The aligned contact reference: convergence, cost, and the load models against it.
+
+Run: ``python benchmarks/bench_fea_contact.py [--specs A B] [--sizes MM ...] [--runs FILE]
+[--golden]``. For each spec, :func:`gearcoupling.fe_contact` at the spec's torque on a
+ladder of contact-zone element sizes (ratio sqrt 2; the rest of the teeth at module / 4),
+each run also giving the half-torque point of its load curve. Printed: per size the nodes,
+solve time, memory, wind-up beyond first touch and interior pressure; the Richardson
+extrapolation of both with the observed order; then the ``linear``, ``compliance`` and
+``surface`` models at the same poses with their errors and time per pose (the accuracy
+ladder of docs/load.md). ``--runs`` keeps the FE runs in a JSON file and reuses those
+already there; ``--golden`` writes the extrapolated figures to
+``tests/golden/fe_contact_reference.json``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import os
+import time
+from pathlib import Path
+
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+import numpy as np
+
+import gearcoupling as gc
+
+ROOT = Path(__file__).resolve().parent.parent
+GOLDEN = ROOT / "tests" / "golden" / "fe_contact_reference.json"
+SIZES = {"renzo-1967": (0.6, 0.42, 0.3), "industrial-m2": (0.5, 0.35, 0.25)}
+
+
+def fe_runs(names, sizes, store: Path) -> dict:
+    """``{spec: {size: result dict}}``, from ``store`` where there, else solved (and kept)."""
+    runs = json.loads(store.read_text()) if store.exists() else {}
+    for name in names:
+        spec = gc.load_spec(name)
+        for c in sizes or SIZES[name]:
+            key = f"{c:g}"
+            if key in runs.get(name, {}):
+                continue
+            res = gc.fe_contact(spec, size_mm=spec.tooth.module / 4, contact_size_mm=c)
+            runs.setdefault(name, {})[key] = res.to_dict()
+            store.parent.mkdir(parents=True, exist_ok=True)
+            store.write_text(json.dumps(runs, indent=1))
+    return runs
+
+
+def richardson(h: list[float], f: list[float]) -> tuple[float, float]:
+    """Extrapolated value and observed order of ``f`` on three sizes ``h`` of one ratio
+    (the finest value and NaN where the differences do not shrink monotonically)."""
+    r = h[0] / h[1]
+    d1, d2 = f[0] - f[1], f[1] - f[2]
+    if d1 == 0 or d2 == 0 or d1 * d2 < 0 or abs(d2) >= abs(d1):
+        return f[2], math.nan
+    p = math.log(d1 / d2) / math.log(r)
+    return f[2] + d2 / (r**p - 1), p
+
+
+def half_point(run: dict) -> float:
+    """Wind-up beyond first touch at half the torque, from the run's load curve."""
+    T, w = np.array(run["windup_curve"]).T
+    return float(np.interp(0.5 * run["torque_Nm"], T, w))
+
+
+def convergence(name: str, runs: dict) -> dict:
+    """Print the size ladder of one spec; return the reference figures per torque."""
+    rows = sorted(runs.items(), key=lambda kv: -float(kv[0]))
+    print(f"\n### {name}\n")
+    print("| contact size mm | nodes | solve s | memory MB | wind-up µrad at T/2 | at T | "
+          "interior MPa | peak MPa | patch face × profile mm | tooth load / T/(NR) |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    for key, r in rows:
+        print(f"| {key} | {r['nodes']} | {r['solve_seconds']:.0f} | {r['max_rss_MB']:.0f} | "
+              f"{half_point(r) * 1e6:.2f} | {r['windup_from_first_touch_rad'] * 1e6:.2f} | "
+              f"{r['interior_pressure_MPa']:.0f} | {r['peak_pressure_MPa']:.0f} | "
+              f"{r['patch_face_mm']:.2f} × {r['patch_profile_mm']:.2f} | "
+              f"{r['tooth_load_N'] / r['equilibrium_tooth_load_N']:.4f} |")
+    T = rows[0][1]["torque_Nm"]
+    out = {}
+    for torque, pick in ((T, lambda r: r["windup_from_first_touch_rad"]), (0.5 * T, half_point)):
+        ref = {"windup_from_first_touch_rad": [pick(r) for _, r in rows]}
+        if torque == T:
+            ref["interior_pressure_MPa"] = [r["interior_pressure_MPa"] for _, r in rows]
+        fig = {}
+        for key, values in ref.items():
+            if len(rows) >= 3:
+                fig[key], p = richardson([float(k) for k, _ in rows[-3:]], values[-3:])
+                print(f"\n{key} at {torque:g} N·m: extrapolated {fig[key]:.6g} (finest "
+                      f"{values[-1]:.6g}, observed order {p:.2f})", end="")
+            else:
+                fig[key] = values[-1]
+        out[f"{torque:g}"] = fig
+    print()
+    return out
+
+
+def models(name: str, refs: dict) -> None:
+    """The three load models at the reference poses: errors and time per pose."""
+    spec = gc.load_spec(name)
+    touch = 0.5 * gc.min_backlash_rad(spec, 0.0)
+    print(f"\n| {name} | torque N·m | wind-up µrad (error) | interior MPa (error) | "
+          "time per pose s |\n|---|---|---|---|---|")
+    for torque, ref in refs.items():
+        for model in ("linear", "compliance", "surface"):
+            t0 = time.perf_counter()
+            res = gc.load(spec, 0.0, [0.0], torque_Nm=float(torque), model=model)
+            dt = time.perf_counter() - t0
+            w = float(res.windup_rad[0]) - touch
+            e_w = w / ref["windup_from_first_touch_rad"] - 1
+            cell = "—"
+            if "interior_pressure_MPa" in ref:
+                p = float(res.interior_pressure_MPa.max())
+                cell = f"{p:.0f} ({p / ref['interior_pressure_MPa'] - 1:+.0%})"
+            print(f"| {model} | {float(torque):g} | {w * 1e6:.1f} ({e_w:+.0%}) | {cell} | "
+                  f"{dt:.2f} |")
+        print(f"| CalculiX reference | {float(torque):g} | "
+              f"{ref['windup_from_first_touch_rad'] * 1e6:.1f} | "
+              f"{ref.get('interior_pressure_MPa', math.nan):.0f} | — |")
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--specs", nargs="*", default=list(SIZES))
+    ap.add_argument("--sizes", nargs="*", type=float, default=None)
+    ap.add_argument("--runs", type=Path, default=ROOT / "outputs" / "bench_fea_contact.json")
+    ap.add_argument("--golden", action="store_true")
+    a = ap.parse_args()
+    runs = fe_runs(a.specs, a.sizes, a.runs)
+    print("## The aligned contact reference (one pitch, cyclic, loaded by the torque)")
+    refs = {name: convergence(name, runs[name]) for name in a.specs}
+    print("\n## The load models against it (aligned, each spec's torque and half of it)")
+    for name in a.specs:
+        models(name, refs[name])
+    if a.golden:
+        GOLDEN.write_text(json.dumps({
+            "about": "CalculiX contact reference, aligned, one pitch with cyclic equations, "
+                     "Richardson-extrapolated over the contact-zone sizes of "
+                     "benchmarks/bench_fea_contact.py; wind-up in rad beyond the exact first "
+                     "touch, interior pressure in MPa (at the spec's torque)",
+            "references": refs}, indent=1) + "\n")
+        print(f"\nwrote {GOLDEN}")
+
+
+if __name__ == "__main__":
+    main()
