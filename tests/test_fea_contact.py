@@ -30,7 +30,8 @@ def involute_points(rb: float, r: np.ndarray) -> np.ndarray:
     return rb * np.stack([np.cos(t) + t * np.sin(t), np.sin(t) - t * np.cos(t)], axis=1)
 
 
-@pytest.mark.parametrize("rb, lo, hi", [(59.67, 61.3, 66.0), (35.7, 36.4, 40.0), (10.0, 10.0, 14.0)])
+@pytest.mark.parametrize("rb, lo, hi", [(59.67, 61.3, 66.0), (35.7, 36.4, 40.0),
+                                        (10.0, 10.0, 14.0)])
 def test_profile_length_is_the_involute_arc_not_the_roll_length(rb, lo, hi):
     pts = involute_points(rb, np.linspace(lo, hi, 200001))
     arc = np.sum(np.linalg.norm(np.diff(pts, axis=0), axis=1))

@@ -19,8 +19,8 @@ def register(sub) -> None:
     p = sub.add_parser("fea-contact", help="CalculiX contact reference of the aligned coupling "
                                            "(one pitch, cyclic symmetry, loaded by the torque)")
     add_spec_arguments(p)
-    p.add_argument("--torque", type=number_in(0.0, MAX_TORQUE_NM, "N·m", open_lo=True), default=None,
-                   metavar="NM", help="torque in N·m, > 0 (default: the spec's)")
+    p.add_argument("--torque", type=number_in(0.0, MAX_TORQUE_NM, "N·m", open_lo=True),
+                   default=None, metavar="NM", help="torque in N·m, > 0 (default: the spec's)")
     p.add_argument("--misalignment", type=float, default=0.0, metavar="DEG",
                    help="0 only (the one-pitch reference holds for aligned shafts)")
     p.add_argument("--size", type=positive_length, default=None, metavar="MM",

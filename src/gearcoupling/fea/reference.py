@@ -110,9 +110,9 @@ def fe_contact(spec: CouplingSpec, *, torque_Nm: float | None = None,
     size = min(check_size(spec, "hub", size_mm), check_size(spec, "sleeve", size_mm))
     c = size if contact_size_mm is None else check_size(spec, "hub", contact_size_mm)
     tol = TOLERANCE_MODULES * spec.tooth.module if tolerance_mm is None else tolerance_mm
-    kw = {"sector": 1, "size_mm": size, "periodic": True, "tolerance_mm": tol,
-          "contact": (c, 0.25 * spec.hub.face_width)}
-    hub, sleeve = mesh_part(spec, "hub", **kw), mesh_part(spec, "sleeve", **kw)
+    hub, sleeve = (mesh_part(spec, part, sector=1, size_mm=size, periodic=True,
+                             tolerance_mm=tol, contact=(c, 0.25 * spec.hub.face_width))
+                   for part in ("hub", "sleeve"))
     pair = merge(hub, sleeve, np.eye(3))
     touch = 0.5 * min_backlash_rad(spec, 0.0)
     E, _ = material(spec, "hub")

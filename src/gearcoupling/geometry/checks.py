@@ -7,7 +7,6 @@ impossibility into a :class:`~gearcoupling.errors.SpecError` naming the field to
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -23,9 +22,7 @@ from .hub import (
 )
 from .renzo import renzo_z0_mm
 from .sleeve import sleeve_model
-
-if TYPE_CHECKING:
-    from ..spec import CouplingSpec
+from .speclike import SpecLike
 
 _Z_SAMPLES = 17  # planes from the midplane to the face end checked for undercut and points
 _PATH_SAMPLES = 401  # points of a table crown's splined path checked between its samples
@@ -75,7 +72,7 @@ def _check_table_path(m: HubModel, crowning) -> None:
                         "be thicker than at the midplane; add samples or smooth the table")
 
 
-def check_spec(spec: CouplingSpec) -> None:
+def check_spec(spec: SpecLike) -> None:
     """Raise :class:`SpecError` if the spec's geometry cannot be built as specified."""
     t, hub, sl = spec.tooth, spec.hub, spec.sleeve
     R, m_ = t.pitch_radius, t.module
@@ -203,7 +200,7 @@ def check_spec(spec: CouplingSpec) -> None:
         raise SpecError("spec", spec.name, "geometry is not finite (please report this spec)")
 
 
-def derived_values(spec: CouplingSpec) -> dict[str, float]:
+def derived_values(spec: SpecLike) -> dict[str, float]:
     """Derived sizes (mm, degrees) a designer checks, keyed with their unit.
 
     Includes Renzo's maximum separation ``z0 = R_c cot(phi) tan^2(i) / 2`` (eq. 4) at the

@@ -23,16 +23,13 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from functools import lru_cache
-from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import ArgumentError, GeometryError
 from .feedpath import FeedPath, feed_path
-
-if TYPE_CHECKING:
-    from ..spec import CouplingSpec
+from .speclike import SpecLike
 
 FLANKS = ("cw", "ccw")
 
@@ -67,7 +64,7 @@ class HubModel:
 
 
 @lru_cache(maxsize=128)
-def hub_model(spec: CouplingSpec) -> HubModel:
+def hub_model(spec: SpecLike) -> HubModel:
     """The :class:`HubModel` of a :class:`~gearcoupling.spec.CouplingSpec` (cached)."""
     t, h = spec.tooth, spec.hub
     R = t.pitch_radius
@@ -242,7 +239,7 @@ def hub_flank_model(m: HubModel, flank: str, z_mm: ArrayLike, r_mm: ArrayLike, *
     return pts, nrm, h
 
 
-def hub_flank(spec: CouplingSpec, flank: str, z_mm: ArrayLike, r_mm: ArrayLike):
+def hub_flank(spec: SpecLike, flank: str, z_mm: ArrayLike, r_mm: ArrayLike):
     """Exact points and unit normals of tooth 0's flank at axial positions and radii.
 
     Parameters

@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
@@ -19,9 +18,7 @@ from ..errors import ArgumentError, GeometryError
 from .hub import HubModel, envelope, flank_depth, flank_u, hub_model, root_radius, round_point
 from .hub import tip_radius as hub_tip_radius
 from .sleeve import SleeveModel, flank_point, sleeve_model
-
-if TYPE_CHECKING:
-    from ..spec import CouplingSpec
+from .speclike import SpecLike
 
 PARTS = ("hub", "sleeve")
 _MAX_POINTS = 2_000_000
@@ -144,7 +141,7 @@ def _tile(outline: NDArray, teeth: int) -> NDArray[np.float64]:
     return np.stack([x.ravel(), y.ravel()], axis=-1)
 
 
-def transverse_section(spec: CouplingSpec,
+def transverse_section(spec: SpecLike,
                        part: str, z_mm: float, tolerance_mm: float) -> NDArray[np.float64]:
     """Closed section polygon of all teeth of ``part`` at axial position ``z_mm``.
 

@@ -11,7 +11,6 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from functools import lru_cache
-from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -19,9 +18,7 @@ from numpy.typing import ArrayLike
 from ..errors import ArgumentError, GeometryError
 from .hub import FLANKS
 from .involute import inv, roll_angle
-
-if TYPE_CHECKING:
-    from ..spec import CouplingSpec
+from .speclike import SpecLike
 
 
 @dataclass(frozen=True)
@@ -79,7 +76,7 @@ def flank_point(m: SleeveModel, r: ArrayLike):
 
 
 @lru_cache(maxsize=128)
-def sleeve_model(spec: CouplingSpec) -> SleeveModel:
+def sleeve_model(spec: SpecLike) -> SleeveModel:
     """The :class:`SleeveModel` of a spec (cached); raises ``GeometryError`` if it cannot fit."""
     t, sl = spec.tooth, spec.sleeve
     R, phi = t.pitch_radius, t.pressure_angle
@@ -113,7 +110,7 @@ def sleeve_model(spec: CouplingSpec) -> SleeveModel:
                        rho, 0.5 * sl.face_width, r_form, r_fillet, centre)
 
 
-def sleeve_flank(spec: CouplingSpec, flank: str, z_mm: ArrayLike, r_mm: ArrayLike):
+def sleeve_flank(spec: SpecLike, flank: str, z_mm: ArrayLike, r_mm: ArrayLike):
     """Points and unit normals of sleeve space 0's flank facing hub tooth 0's ``flank``.
 
     Parameters
