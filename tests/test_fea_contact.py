@@ -86,17 +86,6 @@ def test_cyclic_equations_hold_for_a_rigid_rotation_and_not_for_a_shift():
     assert np.max(np.abs(residuals(shift))) > 1e-5
 
 
-def test_fea_contact_refuses_a_misaligned_pose_in_one_line(tmp_path, capsys):
-    pytest.importorskip("gmsh")
-    code = main(["fea-contact", "renzo-1967", "--misalignment", "1", "--out", str(tmp_path)])
-    err = capsys.readouterr().err.strip().splitlines()
-    if code == 2 and "ccx" in err[-1]:
-        pytest.skip("CalculiX ccx is not installed")
-    assert code == 2
-    assert "misalignment_deg" in err[-1] and "0 only" in err[-1]
-    assert not list(tmp_path.rglob("fea_contact.json"))
-
-
 @pytest.mark.slow
 @pytest.mark.needs_fea
 def test_aligned_reference_carries_the_torque_and_converges(tmp_path):

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import sys
 
+from ..errors import ArgumentError
 from ..fea import ccx_path, check_size, fe_contact, gmsh_module
 from ..io import write_json
 from .common import add_spec_arguments, number_in, output_dir, positive_length, spec_from_args
@@ -30,6 +31,9 @@ def register(sub) -> None:
 
 def run(args) -> int:
     spec = spec_from_args(args)
+    if args.misalignment != 0:
+        raise ArgumentError("--misalignment", args.misalignment, "0 only: the one-pitch "
+                            "cyclic reference holds for aligned shafts")
     for part in ("hub", "sleeve"):
         check_size(spec, part, args.size)
     gmsh_module()
