@@ -198,7 +198,7 @@ def _result(spec, T, size, touch, pair, res, pressure) -> FEContactResult:
     mesh_touch = w1 - t1 * (w2 - w1) / (t2 - t1)
     stats = res.get("statistics", "S_H_T0_FLANK_CCW")[-1][0, :6]
     load = abs(float(stats[5])) / R
-    peak, interior, face, profile = patch_figures(spec, pair, pressure)
+    peak, interior, face, profile = patch_figures(spec, pair, pressure, size)
     return FEContactResult(
         spec=spec.name, torque_Nm=float(T), size_mm=size, windup_rad=windup,
         first_touch_rad=touch, windup_from_first_touch_rad=windup - touch,
@@ -245,13 +245,16 @@ def developed_mm(r: NDArray[np.float64], base_radius: float) -> NDArray[np.float
     return (np.square(r) - base_radius**2) / (2.0 * base_radius)
 
 
-def patch_figures(spec: CouplingSpec, pair: VolumeMesh, pressure: dict
+def patch_figures(spec: CouplingSpec, pair: VolumeMesh, pressure: dict, size: float
                   ) -> tuple[float, float, float, float]:
     """Peak and interior pressure (MPa), patch extent across the face and along the
     developed profile (mm) of the slave flank's nodal pressure ``node id -> CPRESS``.
 
-    Interior: nodes at least a tenth of the active depth from the flank's edges (the ends
-    of the face and of the depth both flanks share), as the surface model reports it."""
+    Interior: the mean over the nodes within half an element ``size`` of the patch's centre
+    line across the face (its load-weighted ``z``) and at least a tenth of the active depth
+    from the ends of the depth both flanks share (the surface model's interior distance).
+    Quadratic elements' nodal contact pressures alternate between corner and mid-side nodes;
+    the mean along the centre line is the converging measure, the peak is not."""
     rb = spec.tooth.base_radius
     hub, sleeve = pair.node_set("H_T0_FLANK_CCW"), pair.node_set("S_T0_FLANK_CCW")
     r_of = np.hypot(pair.nodes[:, 0], pair.nodes[:, 1])
@@ -259,10 +262,12 @@ def patch_figures(spec: CouplingSpec, pair: VolumeMesh, pressure: dict
                                         min(r_of[hub].max(), r_of[sleeve].max())]), rb)
     p = np.array([pressure.get(int(n) + 1, np.zeros(4))[3] for n in hub])
     s, z = developed_mm(r_of[hub], rb), pair.nodes[hub, 2]
-    d = 0.1 * (s_hi - s_lo)
-    inner = (s >= s_lo + d) & (s <= s_hi - d) & (z >= z.min() + d) & (z <= z.max() - d)
     peak = float(p.max(initial=0.0))
     on = p > 1e-3 * peak
     if not on.any():
         return 0.0, 0.0, 0.0, 0.0
-    return (peak, float(p[inner].max(initial=0.0)), float(np.ptp(z[on])), float(np.ptp(s[on])))
+    d = 0.1 * (s_hi - s_lo)
+    z_c = float(np.sum(p * z) / np.sum(p))
+    line = (np.abs(z - z_c) <= 0.5 * size) & (s >= s_lo + d) & (s <= s_hi - d)
+    interior = float(np.mean(p[line])) if line.any() else peak
+    return peak, interior, float(np.ptp(z[on])), float(np.ptp(s[on]))
