@@ -16,7 +16,7 @@ beyond the exact first touch, the tooth's tangential load (its contact moment / 
 radius; equilibrium says ``T / (N R)``), the peak and interior contact pressure, the patch
 extent across the face and along the profile, and solver time and memory. The load curve
 (the end of step 1, half and the whole torque) also gives the mesh's own first touch: the
-straight line through its last two points, at zero torque. Its distance from the exact
+parabola through its points, at zero torque. Its distance from the exact
 first touch is the error of the meshed flanks, in the one measure that matters here; the
 solid is therefore built to a tight chordal tolerance (``tolerance_mm``).
 """
@@ -194,8 +194,8 @@ def _result(spec, T, size, touch, pair, res, pressure) -> FEContactResult:
     R = spec.tooth.pitch_radius
     curve = load_curve(res, T, spec.tooth.teeth)
     windup = curve[-1][1]
-    (t1, w1), (t2, w2) = curve[-2:]
-    mesh_touch = w1 - t1 * (w2 - w1) / (t2 - t1)
+    torques, turns = np.array(curve).T
+    mesh_touch = float(np.polyfit(torques, turns, min(2, len(curve) - 1))[-1])
     stats = res.get("statistics", "S_H_T0_FLANK_CCW")[-1][0, :6]
     load = abs(float(stats[5])) / R
     peak, interior, face, profile = patch_figures(spec, pair, pressure, size)
