@@ -180,7 +180,7 @@ def torque_deck(pair: VolumeMesh, spec: CouplingSpec, *, moment_Nmm: float, pret
               "*BOUNDARY", "HFIX, 1, 3, 0.0", f"{ref}, 1, 3, 0.0", f"{rot}, 1, 2, 0.0",
               "*STEP, INC=100", "*STATIC", "0.5, 1.0", "*BOUNDARY",
               f"{rot}, 3, 3, {inp_number(-preturn_rad)}",
-              "*NODE PRINT, NSET=ROTN, FREQUENCY=100", "U, RF", "*END STEP",
+              "*NODE PRINT, NSET=ROTN", "U, RF", "*END STEP",
               "*STEP, INC=200", "*STATIC", f"{increment}, 1.0, 1e-4, {increment}",
               "*BOUNDARY, OP=NEW", "HFIX, 1, 3, 0.0", f"{ref}, 1, 3, 0.0", f"{rot}, 1, 2, 0.0",
               "*CLOAD", f"{rot}, 3, {inp_number(-moment_Nmm)}",
@@ -217,7 +217,7 @@ def load_curve(res, T: float, teeth: int) -> list[tuple[float, float]]:
     rows = {t: r for k, name, t, r in res.blocks if k == "displacements" and name == "ROTN"}
     forces = {t: r for k, name, t, r in res.blocks if k == "forces" and name == "ROTN"}
     out = []
-    for t in sorted(rows):
+    for t in sorted(t for t in rows if t >= 1.0):  # the end of step 1, then step 2
         torque = (-float(forces[t][0, 3]) * teeth * 1e-3 if t <= 1.0 and t in forces
                   else T * (t - 1.0))
         out.append((torque, -float(rows[t][0, 3])))
