@@ -174,3 +174,14 @@ def test_zero_misalignment_capacity_is_equal_sharing(renzo):
     c = capacity(renzo, 0.0, model="compliance", angles_deg=[0.0])
     assert c.criteria_Nm["tooth_load"] == pytest.approx(c.aligned_capacity_Nm, rel=1e-9)
     assert c.q == pytest.approx(1.0, rel=1e-9)
+
+
+@pytest.mark.slow
+def test_surface_capacity_near_binding_is_finite_and_agrees_with_compliance():
+    # mill-spindle at 5.23° (the teeth bind: backlash < 0): the surface search once reached
+    # a vanishing torque and divided by zero; bending governs in both models
+    spec = gc.load_spec("mill-spindle")
+    surface = gc.capacity(spec, 5.2327423095703125, model="surface")
+    compliance = gc.capacity(spec, 5.2327423095703125, model="compliance")
+    assert surface.governing == compliance.governing == "bending_stress"
+    assert surface.capacity_Nm == pytest.approx(compliance.capacity_Nm, rel=0.05)

@@ -164,3 +164,13 @@ def test_load_split_from_laws_sums_to_the_load():
     split = load_split([0.0, 1e-3, 1.0], law, 500.0)
     assert float(np.sum(split)) == pytest.approx(500.0, rel=1e-12)
     assert split[0] > split[1] > 0 and split[2] == 0
+
+
+def test_load_split_of_a_vanishing_load_is_finite_and_carried():
+    # 6e-13 N on laws whose loads underflow (mill-spindle's surface capacity search at
+    # 5.23° reached it): the first-touching grids share the load, no division by zero
+    law = np.array([[1.27e-6, 1.27e-6], [0.9, 0.9], [4.5e-6, 4.5e-6]])
+    split = load_split([-0.17336792, -0.17336792], law, 5.7e-13)
+    assert np.all(np.isfinite(split))
+    assert float(np.sum(split)) == pytest.approx(5.7e-13, rel=1e-12)
+    assert split[0] == pytest.approx(split[1], rel=1e-12)

@@ -275,7 +275,7 @@ def _surface_capacity(limits: _SurfaceLimits, name: str, guess_Nmm: NDArray) -> 
     start = np.where(np.isfinite(guess_Nmm) & (guess_Nmm > 0), guess_Nmm, fallback)
     first = int(np.argmin(start))
     best = _rotation_root(limits, name, first, float(start[first]))
-    if not math.isfinite(best):
+    if not math.isfinite(best) or best <= 0.0:  # never reached, or over it at no torque
         return best
     estimate: dict[int, float] = {}
     for j in range(M):
@@ -316,6 +316,8 @@ def _secant_root(ratio, T0: float, slope: float, rtol: float = SURFACE_RTOL) -> 
     for _ in range(100):
         if x1 > LOG_T_MAX:
             return math.inf
+        if x1 < LOG_T_MIN:  # over the limit at a vanishing torque (binding teeth)
+            return 0.0
         f1 = math.log(max(ratio(math.exp(x1)), 1e-300))
         if f1 >= 0:
             hi = min(hi, x1)

@@ -662,8 +662,9 @@ def _law_loads(x, k, e, c):
     Newton from a lower bound climbs monotonically) and ``dw/dx``."""
     pos = x > 0
     xs = np.where(pos, x, 1.0)
-    w = np.minimum((0.5 * xs / k) ** (1.0 / e), np.where(c > 0, 0.5 * xs / np.where(
-        c > 0, c, 1.0), np.inf))
+    with np.errstate(over="ignore"):  # a power past the float range: the linear bound wins
+        w = np.minimum((0.5 * xs / k) ** (1.0 / e), np.where(c > 0, 0.5 * xs / np.where(
+            c > 0, c, 1.0), np.inf))
     for _ in range(30):
         f = k * w**e + c * w - xs
         fp = e * k * w ** (e - 1.0) + c
@@ -690,7 +691,12 @@ def _model_split(gmin, k, e, c, W: float) -> NDArray[np.float64]:
         if excess <= 1e-13 * W or slope <= 0:
             break
         a -= excess / slope
-    return w * (W / float(np.sum(w)))
+    total = float(np.sum(w))
+    if total > 0:
+        return w * (W / total)
+    # a load so small that every law's load underflows: the first-touching grids share it
+    first = finite & (g <= np.min(np.where(finite, g, np.inf)))
+    return np.where(first, W / max(int(np.sum(first)), 1), 0.0)
 
 
 def _given_approach(grids: _Grids, approach: float, p0) -> tuple[NDArray, int, float]:
