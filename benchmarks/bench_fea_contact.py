@@ -33,10 +33,11 @@ GOLDEN = ROOT / "tests" / "golden" / "fe_contact_reference.json"
 SIZES = {"renzo-1967": (0.85, 0.6, 0.42), "industrial-m2": (0.7, 0.5, 0.35)}
 
 
-def fe_runs(names, sizes, store: Path) -> dict:
-    """``{spec: {size: result dict}}``, from ``store`` where there, else solved (and kept)."""
+def fe_runs(names, sizes, store: Path, solve: bool = True) -> dict:
+    """``{spec: {size: result dict}}``, from ``store`` where there, else solved (and kept;
+    ``solve=False``: only what the store has)."""
     runs = json.loads(store.read_text()) if store.exists() else {}
-    for name in names:
+    for name in names if solve else ():
         spec = gc.load_spec(name)
         for c in sizes or SIZES[name]:
             key = f"{c:g}"
@@ -58,12 +59,12 @@ def richardson(h: list[float], f: list[float]) -> tuple[float, float]:
     if d1 == 0 or d2 == 0 or d1 * d2 < 0 or abs(d2) >= abs(d1):
         return f[2], math.nan
     p = math.log(d1 / d2) / math.log(r)
-    return f[2] + d2 / (r**p - 1), p
+    return f[2] - d2 / (r**p - 1), p
 
 
 def half_point(run: dict) -> float:
     """Wind-up beyond first touch at half the torque, from the run's load curve."""
-    T, w = np.array(run["windup_curve"]).T
+    T, w = np.array(sorted(run["windup_curve"])).T
     return float(np.interp(0.5 * run["torque_Nm"], T, w))
 
 
@@ -94,6 +95,8 @@ def convergence(name: str, runs: dict) -> dict:
                       f"{values[-1]:.6g}, observed order {p:.2f})", end="")
             else:
                 fig[key] = values[-1]
+                print(f"\n{key} at {torque:g} N·m: finest {values[-1]:.6g} (two sizes only; "
+                      f"{values[-1] / values[0] - 1:+.1%} from the coarser)", end="")
         out[f"{torque:g}"] = fig
     print()
     return out
@@ -118,9 +121,10 @@ def models(name: str, refs: dict) -> None:
                 cell = f"{p:.0f} ({p / ref['interior_pressure_MPa'] - 1:+.0%})"
             print(f"| {model} | {float(torque):g} | {w * 1e6:.1f} ({e_w:+.0%}) | {cell} | "
                   f"{dt:.2f} |")
+        p_ref = ref.get("interior_pressure_MPa")
         print(f"| CalculiX reference | {float(torque):g} | "
               f"{ref['windup_from_first_touch_rad'] * 1e6:.1f} | "
-              f"{ref.get('interior_pressure_MPa', math.nan):.0f} | — |")
+              f"{'—' if p_ref is None else f'{p_ref:.0f}'} | — |")
 
 
 def main() -> None:
@@ -129,8 +133,9 @@ def main() -> None:
     ap.add_argument("--sizes", nargs="*", type=float, default=None)
     ap.add_argument("--runs", type=Path, default=ROOT / "outputs" / "bench_fea_contact.json")
     ap.add_argument("--golden", action="store_true")
+    ap.add_argument("--stored", action="store_true", help="only the runs in --runs")
     a = ap.parse_args()
-    runs = fe_runs(a.specs, a.sizes, a.runs)
+    runs = fe_runs(a.specs, a.sizes, a.runs, solve=not a.stored)
     print("## The aligned contact reference (one pitch, cyclic, loaded by the torque)")
     refs = {name: convergence(name, runs[name]) for name in a.specs}
     print("\n## The load models against it (aligned, each spec's torque and half of it)")
