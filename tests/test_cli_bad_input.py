@@ -117,6 +117,7 @@ BAD = [
     (["fea", T, "--format", "stl"], "--format"),
     (["fea-contact", T, "--torque", "0"], "--torque"),
     (["fea-contact", T, "--size", "-1"], "--size"),
+    (["fea-contact", T, "--contact-size", "50"], "size_mm"),
     (["fea-contact", T, "--misalignment", "1"], "--misalignment"),
     (["stiffness", T, "--size", "-1"], "--size"),
     (["stiffness", T, "--nz", "1"], "--nz"),

@@ -94,7 +94,7 @@ def test_aligned_reference_carries_the_torque_and_converges(tmp_path):
     # within 10 % of the Richardson-extrapolated figure of the converged runs
     T = 400.0
     assert main(["fea-contact", "industrial-m2", "--torque", str(T), "--size", "1.0",
-                 "--out", str(tmp_path)]) == 0
+                 "-o", str(tmp_path)]) == 0
     res = json.loads(next(tmp_path.rglob("fea_contact.json")).read_text())
     spec = gc.load_spec("industrial-m2")
     assert res["tooth_load_N"] == pytest.approx(1e3 * T / (spec.tooth.teeth

@@ -26,6 +26,9 @@ def register(sub) -> None:
                    help="0 only (the one-pitch reference holds for aligned shafts)")
     p.add_argument("--size", type=positive_length, default=None, metavar="MM",
                    help="element size on the teeth in mm (default module / 4)")
+    p.add_argument("--contact-size", type=positive_length, default=None, metavar="MM",
+                   help="element size on the loaded flanks near mid-face, the accuracy "
+                        "knob (default --size; docs/fea.md has the convergence table)")
     p.set_defaults(func=run)
 
 
@@ -36,12 +39,14 @@ def run(args) -> int:
                             "cyclic reference holds for aligned shafts")
     for part in ("hub", "sleeve"):
         check_size(spec, part, args.size)
+        check_size(spec, part, args.contact_size)
     gmsh_module()
     ccx_path()
     out = output_dir(args, spec)
     print(f"{spec.name}: meshing and solving one pitch in contact (minutes)", file=sys.stderr)
     res = fe_contact(spec, torque_Nm=args.torque, misalignment_deg=args.misalignment,
-                     size_mm=args.size, workdir=out / "fea_contact")
+                     size_mm=args.size, contact_size_mm=args.contact_size,
+                     workdir=out / "fea_contact")
     print(f"{spec.name}: wind-up {res.windup_from_first_touch_rad * 1e6:.1f} µrad beyond first "
           f"touch at {res.torque_Nm:g} N·m; tooth load {res.tooth_load_N:.1f} N "
           f"(equilibrium {res.equilibrium_tooth_load_N:.1f} N); interior pressure "
