@@ -110,11 +110,14 @@ def fe_contact(spec: CouplingSpec, *, torque_Nm: float | None = None,
     size = min(check_size(spec, "hub", size_mm), check_size(spec, "sleeve", size_mm))
     c = size if contact_size_mm is None else check_size(spec, "hub", contact_size_mm)
     tol = TOLERANCE_MODULES * spec.tooth.module if tolerance_mm is None else tolerance_mm
+    touch = 0.5 * min_backlash_rad(spec, 0.0)
+    if not touch > 0:
+        raise ArgumentError("spec", spec.name, "aligned backlash above 0: these teeth touch or "
+                            "bind at no load, which the reference's first step cannot start from")
     hub, sleeve = (mesh_part(spec, part, sector=1, size_mm=size, periodic=True,
                              tolerance_mm=tol, contact=(c, 0.25 * spec.hub.face_width))
                    for part in ("hub", "sleeve"))
     pair = merge(hub, sleeve, np.eye(3))
-    touch = 0.5 * min_backlash_rad(spec, 0.0)
     E, _ = material(spec, "hub")
     deck = torque_deck(pair, spec, moment_Nmm=1e3 * T / spec.tooth.teeth,
                        preturn_rad=touch * (1 + TOUCH_MARGIN), penalty=PENALTY_FACTOR * E / size)
