@@ -80,10 +80,13 @@ def test_cyclic_equations_hold_for_a_rigid_rotation_and_not_for_a_shift():
         return np.array(out)
 
     x = vm.nodes
-    turn = 1e-3 * np.stack([-x[:, 1], x[:, 0], np.zeros(len(x))], axis=1)  # rigid about z
-    assert np.max(np.abs(residuals(turn))) < 1e-9 * np.max(np.abs(turn))
-    shift = np.tile([1e-3, 0.0, 0.0], (len(x), 1))  # a translation is not cyclic
-    assert np.max(np.abs(residuals(shift))) > 1e-5
+    # a rigid turn by w about z: each residual is w times the distance between the partner
+    # nodes, at most the 1e-2 size the equations accept (gmsh's periodic copy: ~µm)
+    w = 1e-3
+    turn = w * np.stack([-x[:, 1], x[:, 0], np.zeros(len(x))], axis=1)
+    assert np.max(np.abs(residuals(turn))) <= w * 1e-2 * vm.size_mm
+    shift = np.tile([w, 0.0, 0.0], (len(x), 1))  # a translation is not cyclic: w sin a
+    assert np.max(np.abs(residuals(shift))) > 0.5 * w * 2 * math.pi / spec.tooth.teeth
 
 
 @pytest.mark.slow
@@ -107,7 +110,7 @@ def test_aligned_reference_carries_the_torque_and_converges(tmp_path):
     # (module / 200) this mesh touched 63 µrad early, most of the wind-up at this torque
     assert abs(res["mesh_first_touch_rad"] - res["first_touch_rad"]) < 10e-6
     assert 0 < res["interior_pressure_MPa"] <= res["peak_pressure_MPa"]
-    assert res["patch_face_mm"] >= 2.0 * res["size_mm"]
+    assert res["patch_face_mm"] >= 1.5 * res["size_mm"]  # the resolution it insists on
 
 
 @pytest.mark.parametrize("name", sorted(GOLDEN))

@@ -110,11 +110,12 @@ def test_stiffness_cli_refuses_an_even_sector(tmp_path, capsys):
 def test_fe_table_drives_the_compliance_load_model(table):
     """The compliance load model takes the FE table through the protocol: at misalignment 0
     every tooth carries T / (N R), and the wind-up differs from the cantilever model's by
-    exactly P (c_fe - c_cantilever) / R at the contact point (same gaps and contact law)."""
+    exactly P (c_fe - c_cantilever) / R at the load centre (same gaps and contact law)."""
     pytest.importorskip("gearcoupling.loading.compliance")
     from gearcoupling.clearance import sweep
     from gearcoupling.loading.cantilever import CantileverCompliance
     from gearcoupling.loading.compliance import solve_compliance
+    from gearcoupling.loading.contact import contact_model, patch_centre_radius
 
     t, _ = table
     spec = load_spec("industrial-m2")
@@ -127,7 +128,8 @@ def test_fe_table_drives_the_compliance_load_model(table):
     R, N = spec.tooth.pitch_radius, spec.tooth.teeth
     P = T / (N * R)
     np.testing.assert_allclose(fe["tangential_force_N"], P, rtol=1e-6)
-    dc = t.pair_compliance_mm_per_N(z[0], r[0]) - cant.pair_compliance_mm_per_N(z[0], r[0])
+    r_load = patch_centre_radius(*contact_model(spec).depth_limits(z[0]))
+    dc = t.pair_compliance_mm_per_N(z[0], r_load) - cant.pair_compliance_mm_per_N(z[0], r_load)
     np.testing.assert_allclose(fe["windup_rad"] - ref["windup_rad"], P * dc / R,
                                rtol=0.02, atol=1e-9)
 
