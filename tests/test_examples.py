@@ -15,12 +15,14 @@ ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = sorted((ROOT / "examples").glob("[0-9][0-9]_*.py"))
 HEAVY = {"07_finite_elements.py": "needs_fea", "08_studies.py": "needs_dask",
          "10_viewer_and_report.py": "needs_viewer"}
+SLOW = {"06_outputs_pipeline.py", *HEAVY}  # over about 5 s
 
 
 def _params():
     for path in EXAMPLES:
-        marks = [pytest.mark.slow, getattr(pytest.mark, HEAVY[path.name])] \
-            if path.name in HEAVY else []
+        marks = [pytest.mark.slow] if path.name in SLOW else []
+        if path.name in HEAVY:
+            marks.append(getattr(pytest.mark, HEAVY[path.name]))
         yield pytest.param(path, id=path.stem, marks=marks)
 
 

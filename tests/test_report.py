@@ -145,6 +145,7 @@ def test_overall_verdict_names_failures_and_counts_what_was_not_judged():
     assert overall([none])[1].startswith("NOT JUDGED")
 
 
+@pytest.mark.slow
 def test_cli_report_exit_status_follows_the_verdict(tmp_path, capsys):
     quick = ["--no-viewer", "--angles", "36", "--capacity-count", "3", "--check-angles", "4",
              "-o", str(tmp_path)]
