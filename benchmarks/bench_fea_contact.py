@@ -53,12 +53,15 @@ def fe_runs(names, sizes, store: Path, solve: bool = True) -> dict:
 
 def richardson(h: list[float], f: list[float]) -> tuple[float, float]:
     """Extrapolated value and observed order of ``f`` on three sizes ``h`` of one ratio
-    (the finest value and NaN where the differences do not shrink monotonically)."""
+    (the finest value and NaN where the differences do not shrink monotonically at an order
+    from 1 to 5: no asymptotic range, no extrapolation)."""
     r = h[0] / h[1]
     d1, d2 = f[0] - f[1], f[1] - f[2]
     if d1 == 0 or d2 == 0 or d1 * d2 < 0 or abs(d2) >= abs(d1):
         return f[2], math.nan
     p = math.log(d1 / d2) / math.log(r)
+    if not 1.0 <= p <= 5.0:
+        return f[2], p
     return f[2] - d2 / (r**p - 1), p
 
 
@@ -91,7 +94,8 @@ def convergence(name: str, runs: dict) -> dict:
         for key, values in ref.items():
             if len(rows) >= 3:
                 fig[key], p = richardson([float(k) for k, _ in rows[-3:]], values[-3:])
-                print(f"\n{key} at {torque:g} N·m: extrapolated {fig[key]:.6g} (finest "
+                how = "extrapolated" if fig[key] != values[-1] else "not extrapolated"
+                print(f"\n{key} at {torque:g} N·m: {how} {fig[key]:.6g} (finest "
                       f"{values[-1]:.6g}, observed order {p:.2f})", end="")
             else:
                 fig[key] = values[-1]

@@ -116,13 +116,13 @@ def test_aligned_reference_carries_the_torque_and_converges(tmp_path):
 @pytest.mark.parametrize("name", sorted(GOLDEN))
 def test_compliance_model_pressure_matches_the_reference(name):
     # the line contact's length is the involute arc the contact line lies on; with the
-    # roll length (2.7 times longer on renzo-1967) the pressure was 28-46 % low
+    # roll length (2.7 times longer on renzo-1967) the pressure was 27-29 % low
     spec = gc.load_spec(name)
     for torque, ref in GOLDEN[name].items():
         res = gc.load(spec, 0.0, [0.0], torque_Nm=float(torque), model="compliance")
-        if "interior_pressure_MPa" in ref:  # FE pressure: 9-24 % apart on the two finest
-            assert float(res.interior_pressure_MPa.max()) == pytest.approx(  # meshes
-                ref["interior_pressure_MPa"], rel=0.25)
+        if "interior_pressure_MPa" in ref:  # the FE pressure moves up to 26 % between
+            assert float(res.interior_pressure_MPa.max()) == pytest.approx(  # its two finest
+                ref["interior_pressure_MPa"], rel=0.25)  # meshes: the tolerance is its own
 
 
 @pytest.mark.parametrize("name", sorted(GOLDEN))
