@@ -33,6 +33,19 @@ def browser():
         pytest.fail(f"{err} (run `bash scripts/test.sh`)")
 
 
+def settled_box(locator, timeout_s: float = 10.0) -> dict:
+    """The locator's bounding box once two readings 0.2 s apart agree within half a pixel."""
+    last, deadline = None, time.time() + timeout_s
+    while time.time() < deadline:
+        box = locator.bounding_box()
+        if box and last and all(abs(box[k] - last[k]) < 0.5 for k in box):
+            return box
+        last = box
+        time.sleep(0.2)
+    assert last is not None, "the slider never appeared"
+    return last
+
+
 def test_live_viewer_renders_and_the_rotation_slider_moves_the_hub(browser, renzo):
     from gearcoupling.viewer.html import free_port
     from gearcoupling.viewer.nodes import ViewSettings
@@ -63,7 +76,7 @@ def test_live_viewer_renders_and_the_rotation_slider_moves_the_hub(browser, renz
         # move the rotation slider: click a quarter along its track (psi = 90°)
         slider_id = page.locator("label", has_text="rotation ψ (°)").get_attribute("for")
         track = page.locator(f'[id="{slider_id}"] .mantine-Slider-track')
-        box = track.bounding_box()
+        box = settled_box(track)  # the panel slides back in: click where it comes to rest
         updates = app.pose_updates
         page.mouse.click(box["x"] + 0.25 * box["width"], box["y"] + 0.5 * box["height"])
         deadline = time.time() + 20
