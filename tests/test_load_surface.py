@@ -132,11 +132,12 @@ def test_crowned_patch_length_matches_line_contact_from_lead_curvature(renzo):
 
 
 def gap_width(spec):
-    from gearcoupling.loading.gapfield import depth_range, developed_s
+    from gearcoupling.geometry import developed_arc
+    from gearcoupling.loading.gapfield import depth_range
 
     lo, hi = depth_range(spec, 0.0)
     r_b = spec.tooth.base_radius
-    return float(developed_s(hi, r_b) - developed_s(lo, r_b))
+    return float(developed_arc(hi, r_b) - developed_arc(lo, r_b))
 
 
 def test_edge_contact_flagged_past_the_critical_misalignment(renzo):

@@ -133,7 +133,7 @@ def mesh_part(spec: CouplingSpec, part: str, *, sector: int | None = DEFAULT_SEC
 
 def _mesh_in_gmsh(gmsh, spec: CouplingSpec,
                   part, step, labelled, teeth, size, body, order, periodic,
-                  contact=None) -> VolumeMesh:
+                  contact) -> VolumeMesh:
     occ = gmsh.model.occ
     vols = occ.importShapes(str(step))
     occ.synchronize()

@@ -32,6 +32,7 @@ from numpy.typing import NDArray
 
 from ..clearance import min_backlash_rad
 from ..errors import ArgumentError, GeometryError
+from ..geometry import developed_arc
 from ..io import inp_id_lines, inp_number
 from ..spec import CouplingSpec
 from .ccx import run_ccx, solver_dir
@@ -243,11 +244,6 @@ def frd_nodal(text: str, block: str) -> dict[int, NDArray[np.float64]]:
     return found
 
 
-def developed_mm(r: NDArray[np.float64], base_radius: float) -> NDArray[np.float64]:
-    """Arc length of the involute from the base circle to radius ``r`` (mm)."""
-    return (np.square(r) - base_radius**2) / (2.0 * base_radius)
-
-
 def patch_figures(spec: CouplingSpec, pair: VolumeMesh, pressure: dict, size: float
                   ) -> tuple[float, float, float, float]:
     """Peak and interior pressure (MPa), patch extent across the face and along the
@@ -257,14 +253,15 @@ def patch_figures(spec: CouplingSpec, pair: VolumeMesh, pressure: dict, size: fl
     line across the face (its load-weighted ``z``) and at least a tenth of the active depth
     from the ends of the depth both flanks share (the surface model's interior distance).
     Quadratic elements' nodal contact pressures alternate between corner and mid-side nodes;
-    the mean along the centre line is the converging measure, the peak is not."""
+    the mean along the centre line smooths that out (it still moves with the mesh: docs/fea.md),
+    the peak grows with refinement at the depth ends."""
     rb = spec.tooth.base_radius
     hub, sleeve = pair.node_set("H_T0_FLANK_CCW"), pair.node_set("S_T0_FLANK_CCW")
     r_of = np.hypot(pair.nodes[:, 0], pair.nodes[:, 1])
-    s_lo, s_hi = developed_mm(np.array([max(r_of[hub].min(), r_of[sleeve].min()),
+    s_lo, s_hi = developed_arc(np.array([max(r_of[hub].min(), r_of[sleeve].min()),
                                         min(r_of[hub].max(), r_of[sleeve].max())]), rb)
     p = np.array([pressure.get(int(n) + 1, np.zeros(4))[3] for n in hub])
-    s, z = developed_mm(r_of[hub], rb), pair.nodes[hub, 2]
+    s, z = developed_arc(r_of[hub], rb), pair.nodes[hub, 2]
     peak = float(p.max(initial=0.0))
     on = p > 1e-3 * peak
     if not on.any():

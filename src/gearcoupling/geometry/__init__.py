@@ -21,7 +21,7 @@ from .hub import (
     round_point,
     tip_radius,
 )
-from .involute import inv, inv_inverse
+from .involute import developed_arc, inv, inv_inverse
 from .pose import hub_to_sleeve, map_polar, rot_z, turning_angles
 from .renzo import renzo_z0_mm
 from .section import PARTS, sleeve_space_outline, transverse_section
@@ -36,6 +36,7 @@ __all__ = [
     "SleeveModel",
     "check_spec",
     "derived_values",
+    "developed_arc",
     "envelope",
     "feed_path",
     "flank_depth",

@@ -59,6 +59,13 @@ def inv_inverse(y: ArrayLike, *, rtol: float = 1e-15,
     return sign * a
 
 
+def developed_arc(r: ArrayLike, r_base: float) -> NDArray[np.float64]:
+    """Arc length of the involute of base radius ``r_base`` from the base circle to radius
+    ``r``: ``(r² - r_b²) / (2 r_b)`` (the developed flank's depth co-ordinate)."""
+    r = np.asarray(r, dtype=float)
+    return (r * r - r_base * r_base) / (2.0 * r_base)
+
+
 def roll_angle(r: ArrayLike, r_base: float) -> NDArray[np.float64]:
     """Pressure angle ``arccos(r_base / r)`` at radius ``r`` of an involute of base ``r_base``."""
     r = np.asarray(r, dtype=float)

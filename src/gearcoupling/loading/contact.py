@@ -35,7 +35,7 @@ from functools import lru_cache
 import numpy as np
 from numpy.typing import NDArray
 
-from ..geometry import form_radius, hub_flank_model, hub_model, tip_radius
+from ..geometry import developed_arc, form_radius, hub_flank_model, hub_model, tip_radius
 from ..spec import CouplingSpec
 from .cantilever import CantileverCompliance
 from .inputs import tooth_compliance
@@ -43,12 +43,6 @@ from .inputs import tooth_compliance
 LN_FLOOR = 1.0
 REGIMES = ("none", "hertz", "line")  # contact_regime codes: no load, elliptic, truncated line
 REGIME = {name: code for code, name in enumerate(REGIMES)}
-
-
-def profile_arc_mm(r_lo, r_hi, base_radius: float):
-    """Arc length of an involute of base radius ``base_radius`` from radius ``r_lo`` to
-    ``r_hi`` (mm): ``s(r) = (r² - r_b²) / (2 r_b)``."""
-    return (np.square(r_hi) - np.square(r_lo)) / (2.0 * base_radius)
 
 
 def patch_centre_radius(r_lo, r_hi):
@@ -114,8 +108,7 @@ class ContactModel:
         fz = np.interp(az, self.z_tab, np.arange(self.z_tab.size))
         i0 = np.clip(np.floor(fz).astype(int), 0, self.z_tab.size - 2)
         wz = fz - i0
-        lo = np.interp(az, self.z_tab, self.r_lo)
-        hi = np.interp(az, self.z_tab, self.r_hi)
+        lo, hi = self.depth_limits(z)
         t = np.clip((r - lo) / np.maximum(hi - lo, 1e-12), 0.0, 1.0)
         ft = t * (self.t_tab.size - 1)
         j0 = np.clip(np.floor(ft).astype(int), 0, self.t_tab.size - 2)
@@ -138,7 +131,7 @@ class ContactModel:
         A_p, _, _ = self._lookup(self.A_p, z, r)
         A_f = np.maximum(A_f, 1e-9)
         A_p = np.minimum(A_p, A_f)  # A_p <= A_f: profile is the long axis
-        L = np.maximum(profile_arc_mm(lo, hi, self.r_b), 1e-6)
+        L = np.maximum(developed_arc(hi, self.r_b) - developed_arc(lo, self.r_b), 1e-6)
         ratio = np.where(A_p > 0, A_f / np.maximum(A_p, 1e-300), np.inf)  # R_y / R_x >= 1
         with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
             k = ratio ** (2 / math.pi)

@@ -32,7 +32,14 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..clearance import flank_table
 from ..errors import ArgumentError
-from ..geometry import FLANKS, hub_model, hub_to_sleeve, sleeve_model, tip_radius
+from ..geometry import (
+    FLANKS,
+    developed_arc,
+    hub_model,
+    hub_to_sleeve,
+    sleeve_model,
+    tip_radius,
+)
 from ..spec import CouplingSpec
 
 FIXED_POINT_STEPS = 3
@@ -75,12 +82,6 @@ class GapField:
     hub_z_mm: NDArray[np.float64]
     hub_r_mm: NDArray[np.float64]
     base_radius: float
-
-
-def developed_s(r: ArrayLike, r_base: float) -> NDArray[np.float64]:
-    """Involute arc length from the base circle at radius ``r``: ``(r^2 - r_b^2) / (2 r_b)``."""
-    r = np.asarray(r, dtype=float)
-    return (r * r - r_base * r_base) / (2.0 * r_base)
 
 
 def depth_range(spec: CouplingSpec, misalignment: float) -> tuple[float, float]:
@@ -222,7 +223,7 @@ def gap_field(spec: CouplingSpec,
     table = flank_table(spec, FLANK_TABLE_TOLERANCE_MM)
     r_b = sm.r_base
     r_lo, r_hi = depth_range(spec, misalignment)
-    s_lo, s_hi = developed_s(r_lo, r_b), developed_s(r_hi, r_b)
+    s_lo, s_hi = developed_arc(r_lo, r_b), developed_arc(r_hi, r_b)
     ds = (s_hi - s_lo) / n_depth
     s = s_lo + (np.arange(n_depth) + 0.5) * ds
     r = np.sqrt(r_b * r_b + 2.0 * r_b * s)

@@ -19,6 +19,7 @@ from numpy.typing import NDArray
 
 from ..clearance import sweep
 from ..errors import ArgumentError
+from ..geometry import developed_arc
 from .contact import REGIMES, contact_model
 from .inputs import tooth_compliance
 from .surface import solve_surface
@@ -61,12 +62,6 @@ class PatchMap:
         return float(np.max(self.pressure_MPa, initial=0.0))
 
 
-def developed_arc(r: NDArray | float, r_base: float) -> NDArray[np.float64]:
-    """Involute arc length from the base circle at radius ``r``: ``(r² - r_b²) / (2 r_b)``."""
-    r = np.asarray(r, dtype=float)
-    return (r * r - r_base * r_base) / (2.0 * r_base)
-
-
 def most_loaded(res, rotation: int, count: int) -> NDArray[np.intp]:
     """The ``count`` most loaded teeth at ``rotation`` (largest normal load first)."""
     W = res.normal_force_N[:, rotation]
@@ -107,9 +102,7 @@ def patch_maps(res, rotation: int = 0, teeth=None, *, count: int = 6,
 
 def _profile(cm, r_b: float, z: NDArray) -> tuple[NDArray, NDArray]:
     """Active profile ``(s_lo, s_hi)`` at axial positions ``z``."""
-    az = np.clip(np.abs(z), 0.0, cm.half_face)
-    lo = np.interp(az, cm.z_tab, cm.r_lo)
-    hi = np.interp(az, cm.z_tab, cm.r_hi)
+    lo, hi = cm.depth_limits(z)
     return developed_arc(lo, r_b), developed_arc(hi, r_b)
 
 

@@ -70,12 +70,11 @@ from numpy.typing import NDArray
 from scipy import ndimage
 
 from ..errors import ArgumentError, GearCouplingError
-from ..geometry import FLANKS
+from ..geometry import FLANKS, developed_arc
 from ..spec import CouplingSpec
 from .gapfield import (
     GapField,
     depth_range,
-    developed_s,
     gap_field,
     lattice_windows,
     touch_z,
@@ -701,7 +700,7 @@ def solve_surface(spec: CouplingSpec,
                 fields[j] = {**extra, "teeth": np.mod(extra["teeth"] - s, N)}
     res["gap_angle_rad"] = np.where(np.isfinite(res["gap_angle_rad"]), res["gap_angle_rad"],
                                     0.0)
-    s_lo, s_hi = (developed_s(v, r_b) for v in depth_range(spec, solver.mis))
+    s_lo, s_hi = (developed_arc(v, r_b) for v in depth_range(spec, solver.mis))
     res.update({
         "windup_rad": windup, "torque_Nm": T, "loaded_flank": flank, "model": "surface",
         "grid": tuple(int(v) for v in grid), "cell_mm": cell,
