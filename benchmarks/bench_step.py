@@ -20,6 +20,7 @@ import numpy as np
 
 import gearcoupling as gc
 from gearcoupling.export import export_part
+from gearcoupling.fea.backends import gmsh_initialize
 from gearcoupling.parts.deviation import exact_samples
 
 
@@ -44,7 +45,7 @@ def measure(name: str, part: str, per_module: float, samples: int, out: Path) ->
     t0 = time.perf_counter()
     path = export_part(spec, part, out / f"{name}-{part}.step", tolerance_mm=tol)
     seconds = time.perf_counter() - t0
-    gmsh.initialize(readConfigFiles=False)
+    gmsh_initialize(gmsh, readConfigFiles=False)
     try:
         gmsh.option.setNumber("General.Terminal", 0)
         gmsh.model.occ.importShapes(str(path))

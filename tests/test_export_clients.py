@@ -19,6 +19,7 @@ import pytest
 import gearcoupling as gc
 from gearcoupling.export import export_part
 from gearcoupling.export.meshes import GLB_CREASE_DEG
+from gearcoupling.fea.backends import gmsh_initialize
 from gearcoupling.parts import SURFACE_KINDS, build_part
 from gearcoupling.parts.deviation import exact_samples
 
@@ -49,7 +50,7 @@ def _counts(values) -> dict[int, int]:
 @pytest.fixture()
 def gmsh():
     gmsh = clients.module("gmsh", "pip install gmsh (in the test extra)")
-    gmsh.initialize(readConfigFiles=False)
+    gmsh_initialize(gmsh, readConfigFiles=False)
     gmsh.option.setNumber("General.Terminal", 0)
     gmsh.logger.start()
     yield gmsh

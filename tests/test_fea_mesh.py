@@ -157,3 +157,32 @@ def test_missing_gmsh_names_the_extra(monkeypatch):
     monkeypatch.setitem(sys.modules, "gmsh", None)
     with pytest.raises(BackendError, match=r"gearcoupling\[fea\]"):
         gmsh_module()
+
+
+@pytest.mark.skipif(not hasattr(__import__("signal"), "SIGPIPE"), reason="POSIX signal")
+def test_gmsh_session_keeps_python_ignoring_sigpipe():
+    """gmsh's initialise resets SIGPIPE to the default action: a later write to a closed
+    socket (the viewer's websocket) killed the test process with exit status 141. The
+    kernel's own record of ignored signals must still list SIGPIPE after a session."""
+    import os
+    import signal
+    import socket
+
+    from gearcoupling.fea.backends import gmsh_session
+
+    def sigpipe_ignored() -> bool:
+        with open("/proc/self/status") as f:
+            mask = next(int(line.split()[1], 16) for line in f if line.startswith("SigIgn"))
+        return bool(mask >> (signal.SIGPIPE - 1) & 1)
+
+    if not os.path.exists("/proc/self/status"):
+        pytest.skip("needs /proc")
+    assert sigpipe_ignored()
+    with gmsh_session():
+        pass
+    assert sigpipe_ignored()
+    a, b = socket.socketpair()
+    b.close()
+    with pytest.raises(BrokenPipeError):  # not the end of the process
+        a.sendall(b"x" * 100_000)
+    a.close()

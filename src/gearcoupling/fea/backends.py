@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import os
 import shutil
+import signal
+import threading
 from contextlib import contextmanager
 
 from ..errors import BackendError
@@ -22,13 +24,27 @@ def gmsh_module():
     return gmsh
 
 
+def gmsh_initialize(gmsh, **options) -> None:
+    """``gmsh.initialize(**options)`` keeping Python's SIGPIPE disposition.
+
+    gmsh's initialisation resets SIGPIPE to the system default, so a later write to a
+    closed socket or pipe (a browser tab closing on the viewer's websocket) kills the
+    whole process instead of raising :class:`BrokenPipeError`.
+    """
+    sigpipe = getattr(signal, "SIGPIPE", None)
+    saved = signal.getsignal(sigpipe) if sigpipe is not None else None
+    gmsh.initialize(**options)
+    if saved is not None and threading.current_thread() is threading.main_thread():
+        signal.signal(sigpipe, saved)
+
+
 @contextmanager
 def gmsh_session():
     """An initialised, silent gmsh with an empty model; finalised on exit."""
     gmsh = gmsh_module()
     if gmsh.isInitialized():
         gmsh.finalize()
-    gmsh.initialize(readConfigFiles=False, interruptible=False)
+    gmsh_initialize(gmsh, readConfigFiles=False, interruptible=False)
     try:
         gmsh.option.setNumber("General.Terminal", 0)
         gmsh.option.setNumber("General.Verbosity", 1)
