@@ -31,11 +31,13 @@ def gmsh_initialize(gmsh, **options) -> None:
     closed socket or pipe (a browser tab closing on the viewer's websocket) kills the
     whole process instead of raising :class:`BrokenPipeError`.
     """
-    sigpipe = getattr(signal, "SIGPIPE", None)
-    saved = signal.getsignal(sigpipe) if sigpipe is not None else None
+    if not hasattr(signal, "SIGPIPE"):  # Windows
+        gmsh.initialize(**options)
+        return
+    saved = signal.getsignal(signal.SIGPIPE)
     gmsh.initialize(**options)
     if saved is not None and threading.current_thread() is threading.main_thread():
-        signal.signal(sigpipe, saved)
+        signal.signal(signal.SIGPIPE, saved)
 
 
 @contextmanager
