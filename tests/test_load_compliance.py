@@ -116,18 +116,16 @@ def test_huge_torque_stays_finite_and_flags_edge_contact(renzo):
     assert np.all((r.edge_load_share >= 0) & (r.edge_load_share < 1))
 
 
-def test_fe_stiffness_without_the_fe_branch_is_a_clear_error(renzo):
-    spec, sw = renzo
-    spec.replace(**{"load.stiffness": "fe"})
-    try:
-        import gearcoupling.fea as fea
-        has = hasattr(fea, "tooth_compliance_table")
-    except ImportError:
-        has = False
-    if has:
-        pytest.skip("the FE tooth-compliance table is installed")
-    with pytest.raises(BackendError, match="tooth_compliance_table"):
-        load_from_sweep(sw, torque_Nm=100.0, model="compliance")
+def test_fe_stiffness_without_gmsh_is_a_clear_error(monkeypatch, tmp_path):
+    """``[load] stiffness = "fe"`` with no cached table and no gmsh: the error names the
+    extra to install, before any solve."""
+    import sys
+
+    monkeypatch.setenv("GEARCOUPLING_CACHE", str(tmp_path))
+    monkeypatch.setitem(sys.modules, "gmsh", None)
+    spec = gc.load_spec("industrial-m2", **{"load.stiffness": "fe"})
+    with pytest.raises(BackendError, match=r"gearcoupling\[fea\]"):
+        gc.load(spec, 0.0, [0.0], torque_Nm=100.0, model="compliance")
 
 
 def test_bad_load_spec_values_are_refused():

@@ -18,12 +18,20 @@ conjugate ``sum f_i . u_i`` (mm/N): the circumferential displacement at the pitc
 per unit tangential load there, the measure of Renzo's mesh stiffness C. It includes the
 local deformation under the patch (which shrinks slowly as the patch grows); Hertzian
 contact compliance is not part of it.
+
+Far field: the load models add the local (contact) deformation themselves, from the
+contact law or the half-space influence of the pressure, so the compliance they read
+(:meth:`ComplianceTable.pair_compliance_mm_per_N`) is the FE value less the half-space
+(Boussinesq) work of the same nodal forces (:func:`halfspace_work_mm_per_N`): the
+standard hybrid of a finite-element far field and a surface-integral near field, which
+counts the local part once.
 """
 
 from __future__ import annotations
 
 import hashlib
 import json
+import math
 import os
 import time
 from collections.abc import Callable
@@ -42,9 +50,47 @@ from .mesh import DEFAULT_SECTOR_TEETH, check_size, mesh_part
 from .volume import VolumeMesh
 
 CACHE_ENV = "GEARCOUPLING_CACHE"
-VERSION = 1  # bump when the set-up changes: old cache entries are then ignored
+VERSION = 2  # bump when the set-up changes: old cache entries are then ignored
 LOADED_FLANK = {"hub": "CCW", "sleeve": "CCW"}  # the sleeve ccw flank meets the hub ccw flank
 INTO_SIGN = {"hub": -1.0, "sleeve": 1.0}  # sign of the force's polar component
+
+
+SQUARE_MEAN_INVERSE_DISTANCE = 4.0 * (math.log(1.0 + math.sqrt(2.0)) - (math.sqrt(2.0) - 1.0) / 3.0)
+"""Mean of ``1 / |x - y|`` over pairs of points of the unit square (2.9732)."""
+
+
+def halfspace_work_mm_per_N(points: NDArray[np.float64], forces: NDArray[np.float64],
+                            area_mm2: float, youngs_modulus_MPa: float,
+                            poisson_ratio: float) -> float:
+    """Work ``sum f_i . u_i`` of nodal forces on an elastic half-space (Boussinesq).
+
+    Each force is spread uniformly over a square of the node's share of the loaded area;
+    pairs act through ``(1 - nu²) / (pi E |x_i - x_j|)``, a node on itself through the mean
+    inverse distance of its square. The normal to the plane is the forces' mean direction;
+    tangential parts of the forces are left out (frictionless flank loads are normal).
+
+    Parameters
+    ----------
+    points : (n, 3) float
+        Node positions (mm).
+    forces : (n, 3) float
+        Nodal forces (N).
+    area_mm2 : float
+        Loaded area the ``n`` nodes share (mm²).
+
+    Returns
+    -------
+    float
+        Work per the forces' scale squared (mm/N when the forces are per unit load).
+    """
+    n = forces.sum(axis=0)
+    n = n / np.linalg.norm(n)
+    fn = forces @ n
+    d = np.linalg.norm(points[:, None, :] - points[None, :, :], axis=-1)
+    side = math.sqrt(area_mm2 / len(points))
+    inv = np.where(d > 0, 1.0 / np.where(d > 0, d, 1.0), 0.0)
+    np.fill_diagonal(inv, SQUARE_MEAN_INVERSE_DISTANCE / side)
+    return float((1.0 - poisson_ratio**2) / (math.pi * youngs_modulus_MPa) * fn @ inv @ fn)
 
 
 def material(spec: CouplingSpec, part: str) -> tuple[float, float]:
@@ -56,8 +102,10 @@ def material(spec: CouplingSpec, part: str) -> tuple[float, float]:
 
 
 def spec_hash(spec: CouplingSpec, **settings) -> str:
-    """Hash of the spec and the FE settings (the cache key)."""
-    text = repr(spec) + json.dumps(settings, sort_keys=True) + f"v{VERSION}"
+    """Hash of what the table depends on (teeth, hub, sleeve, material) and the FE settings:
+    the cache key, the same for specs differing only in their load, name or inspection."""
+    solid = (spec.tooth, spec.hub, spec.sleeve, spec.material)
+    text = repr(solid) + json.dumps(settings, sort_keys=True) + f"v{VERSION}"
     return hashlib.sha256(text.encode()).hexdigest()[:16]
 
 
@@ -85,6 +133,9 @@ class ComplianceTable:
         Largest principal stress in the fillets of the loaded hub / sleeve tooth per unit
         tangential load at the pitch radius.
     pitch_radius_mm : float
+    near_field_mm_per_N : (2, nz, nr) float
+        Half-space work of the same loads on hub / sleeve (the local part, module
+        docstring); zeros for a table computed before it was recorded.
     info : dict
         Spec name and hash, size, sector, supports, mesh and solve figures.
     """
@@ -95,7 +146,13 @@ class ComplianceTable:
     sleeve_mm_per_N: NDArray[np.float64]
     root_stress_MPa_per_N: NDArray[np.float64]
     pitch_radius_mm: float
+    near_field_mm_per_N: NDArray[np.float64] | None = None
     info: dict = field(default_factory=dict)
+
+    def __post_init__(self):
+        if self.near_field_mm_per_N is None:
+            object.__setattr__(self, "near_field_mm_per_N",
+                               np.zeros((2, *np.shape(self.hub_mm_per_N))))
 
     def _interp(self, values, z_mm, r_mm) -> NDArray[np.float64]:
         from scipy.interpolate import RegularGridInterpolator
@@ -106,15 +163,25 @@ class ComplianceTable:
         f = RegularGridInterpolator((self.z_mm, self.r_mm), values, method="linear")
         return f(np.stack([z.ravel(), r.ravel()], axis=1)).reshape(z.shape)
 
+    @property
+    def far_field_mm_per_N(self) -> NDArray[np.float64]:
+        """Hub + sleeve compliance less the half-space near field ``(nz, nr)`` (mm/N)."""
+        near = np.asarray(self.near_field_mm_per_N)
+        return self.hub_mm_per_N + self.sleeve_mm_per_N - near[0] - near[1]
+
     def pair_compliance_mm_per_N(self, z_mm: ArrayLike, r_mm: ArrayLike) -> NDArray:
-        """Hub + sleeve tooth compliance (mm/N) at hub flank points ``(z, r)``
-        (broadcast; bilinear in ``(|z|, r)``, held constant outside the table)."""
-        return self._interp(self.hub_mm_per_N + self.sleeve_mm_per_N, z_mm, r_mm)
+        """Far-field hub + sleeve tooth compliance (mm/N) at hub flank points ``(z, r)``:
+        bending, shear and the body under the tooth, without the local deformation the load
+        models' contact adds (broadcast; bilinear in ``(|z|, r)``, held constant outside the
+        table)."""
+        return self._interp(self.far_field_mm_per_N, z_mm, r_mm)
 
     @property
     def mesh_stiffness_N_per_mm(self) -> float:
-        """Renzo's C of one tooth pair: 1 / compliance at mid-face and the pitch radius."""
-        return float(1.0 / self.pair_compliance_mm_per_N(0.0, self.pitch_radius_mm))
+        """Renzo's C of one tooth pair: 1 / the whole FE compliance (with the local
+        deformation under the patch) at mid-face and the pitch radius."""
+        return float(1.0 / self._interp(self.hub_mm_per_N + self.sleeve_mm_per_N, 0.0,
+                                        self.pitch_radius_mm))
 
     def to_dict(self) -> dict:
         d = asdict(self)
@@ -124,7 +191,10 @@ class ComplianceTable:
     def from_dict(cls, d: dict) -> ComplianceTable:
         arrays = {k: np.asarray(d[k], dtype=float) for k in
                   ("z_mm", "r_mm", "hub_mm_per_N", "sleeve_mm_per_N", "root_stress_MPa_per_N")}
-        return cls(**arrays, pitch_radius_mm=float(d["pitch_radius_mm"]), info=d["info"])
+        near = d.get("near_field_mm_per_N")
+        return cls(**arrays, pitch_radius_mm=float(d["pitch_radius_mm"]),
+                   near_field_mm_per_N=None if near is None else np.asarray(near, dtype=float),
+                   info=d["info"])
 
     def rows(self) -> list[dict]:
         """One row per grid point (``stiffness.csv``)."""
@@ -132,9 +202,13 @@ class ComplianceTable:
         for i, z in enumerate(self.z_mm):
             for j, r in enumerate(self.r_mm):
                 h, s = self.hub_mm_per_N[i, j], self.sleeve_mm_per_N[i, j]
+                near = np.asarray(self.near_field_mm_per_N)[:, i, j]
                 out.append({"z_mm": z, "r_mm": r, "hub_um_per_N": 1e3 * h,
                             "sleeve_um_per_N": 1e3 * s, "pair_um_per_N": 1e3 * (h + s),
                             "pair_stiffness_N_per_mm": 1.0 / (h + s),
+                            "hub_near_field_um_per_N": 1e3 * near[0],
+                            "sleeve_near_field_um_per_N": 1e3 * near[1],
+                            "pair_far_field_um_per_N": 1e3 * self.far_field_mm_per_N[i, j],
                             "hub_root_stress_MPa_per_N": self.root_stress_MPa_per_N[0, i, j],
                             "sleeve_root_stress_MPa_per_N":
                                 self.root_stress_MPa_per_N[1, i, j]})
@@ -188,8 +262,9 @@ def _loaded_tooth(vm: VolumeMesh) -> int:
 
 
 def load_case(vm: VolumeMesh, z: float, r: float, pitch_radius: float,
-              patch_mm: float) -> LoadCase:
-    """Forces on the loaded flank patch around ``(z, r)`` (module docstring)."""
+              patch_mm: float) -> tuple[LoadCase, float]:
+    """Forces on the loaded flank patch around ``(z, r)`` (module docstring) and the
+    patch's area (mm²: the flank triangles whose centres lie in it)."""
     k = _loaded_tooth(vm)
     region = f"T{k}_FLANK_{LOADED_FLANK[vm.part]}"
     tri = vm.regions[region]
@@ -214,16 +289,25 @@ def load_case(vm: VolumeMesh, z: float, r: float, pitch_radius: float,
     moment = np.mean(pts[:, 0] * n[1] - pts[:, 1] * n[0])  # about z, per unit force
     scale = pitch_radius / abs(moment)  # total normal force for a moment of 1 N x R
     forces = np.tile(n * scale / len(patch), (len(patch), 1))
-    return LoadCase(patch, forces)
+    in_box = ((np.abs(cen[:, 2] - z * zs) <= patch_mm)
+              & (np.abs(np.hypot(cen[:, 0], cen[:, 1]) - r) <= patch_mm))
+    area = 0.5 * float(np.linalg.norm(normal[in_box], axis=1).sum())
+    return LoadCase(patch, forces), area
 
 
 def part_compliance(vm: VolumeMesh, spec: CouplingSpec, z_mm, r_mm, *, patch_mm: float, workdir,
-                    job: str) -> tuple[NDArray, NDArray, dict]:
-    """Compliance ``(nz, nr)`` (mm/N) and fillet stress per N ``(nz, nr)`` of one part."""
+                    job: str) -> tuple[NDArray, NDArray, NDArray, dict]:
+    """Compliance ``(nz, nr)`` (mm/N), its half-space near field ``(nz, nr)`` (mm/N) and
+    the fillet stress per N ``(nz, nr)`` of one part."""
     R = spec.tooth.pitch_radius
-    cases = [load_case(vm, z, r, R, patch_mm) for z in z_mm for r in r_mm]
-    fillets = loaded_fillets(vm)
     E, nu = material(spec, vm.part)
+    cases, near = [], []
+    for z in z_mm:
+        for r in r_mm:
+            case, area = load_case(vm, z, r, R, patch_mm)
+            cases.append(case)
+            near.append(halfspace_work_mm_per_N(vm.nodes[case.nodes], case.forces, area, E, nu))
+    fillets = loaded_fillets(vm)
     prints = [(f"P{i}", c.nodes) for i, c in enumerate(cases)]
     deck = static_deck(vm, youngs_modulus_MPa=E, poisson_ratio=nu,
                        fixed=_fixed_sets(vm), cases=cases, node_print=prints,
@@ -244,7 +328,8 @@ def part_compliance(vm: VolumeMesh, spec: CouplingSpec, z_mm, r_mm, *, patch_mm:
     shape = (len(z_mm), len(r_mm))
     if not np.all(np.isfinite(comp) & (comp > 0)):
         raise GeometryError(f"non-positive {vm.part} compliance from ccx: {comp}")
-    return comp.reshape(shape), stress.reshape(shape), {"solve_seconds": res.seconds}
+    return (comp.reshape(shape), np.reshape(near, shape), stress.reshape(shape),
+            {"solve_seconds": res.seconds})
 
 
 def compute_compliance_table(spec: CouplingSpec, *, size_mm: float | None = None,
@@ -266,11 +351,11 @@ def compute_compliance_table(spec: CouplingSpec, *, size_mm: float | None = None
     z, r = load_grid(spec, meshes["hub"], meshes["sleeve"], nz, nr)
     patch = (max(meshes["hub"].size_mm, spec.tooth.module / 4.0) if patch_mm is None
              else float(patch_mm))
-    comp, stress, times = {}, {}, {}
+    comp, near, stress, times = {}, {}, {}, {}
     with solver_dir(workdir) as work:
         for part, vm in meshes.items():
-            comp[part], stress[part], info = part_compliance(vm, spec, z, r, patch_mm=patch,
-                                                             workdir=work, job=part)
+            comp[part], near[part], stress[part], info = part_compliance(
+                vm, spec, z, r, patch_mm=patch, workdir=work, job=part)
             times[part] = info["solve_seconds"]
             if progress:
                 progress(2 + len(times), 4)
@@ -285,9 +370,18 @@ def compute_compliance_table(spec: CouplingSpec, *, size_mm: float | None = None
         "mesh": {p: vm.quality for p, vm in meshes.items()},
         "solve_seconds": times, "total_seconds": time.perf_counter() - t0,
     }
-    return ComplianceTable(z, r, comp["hub"], comp["sleeve"],
-                           np.stack([stress["hub"], stress["sleeve"]]),
-                           spec.tooth.pitch_radius, info)
+    table = ComplianceTable(z, r, comp["hub"], comp["sleeve"],
+                            np.stack([stress["hub"], stress["sleeve"]]),
+                            spec.tooth.pitch_radius, np.stack([near["hub"], near["sleeve"]]),
+                            info)
+    if not np.all(table.far_field_mm_per_N > 0):
+        raise ArgumentError(
+            f"size_mm = {meshes['hub'].size_mm:g}, sector = {sector}: the FE compliance is "
+            f"below its half-space part under the {patch:g} mm load patch (a mesh too coarse "
+            f"for the patch, or a sector so small that its fixed cuts hold the loaded "
+            f"tooth); use size_mm at most module / 4 = {spec.tooth.module / 4:g} mm and "
+            f"sector at least 3")
+    return table
 
 
 def tooth_compliance_table(spec: CouplingSpec, *, size_mm: float | None = None,
@@ -320,6 +414,7 @@ def pitch_point_compliance(table: ComplianceTable) -> dict:
     R = table.pitch_radius_mm
     hub = float(table._interp(table.hub_mm_per_N, 0.0, R))
     sleeve = float(table._interp(table.sleeve_mm_per_N, 0.0, R))
+    far = float(table.pair_compliance_mm_per_N(0.0, R))
     return {"hub_um_per_N": 1e3 * hub, "sleeve_um_per_N": 1e3 * sleeve,
-            "pair_um_per_N": 1e3 * (hub + sleeve), "mesh_stiffness_N_per_mm":
-                1.0 / (hub + sleeve), "pitch_radius_mm": R}
+            "pair_um_per_N": 1e3 * (hub + sleeve), "pair_far_field_um_per_N": 1e3 * far,
+            "mesh_stiffness_N_per_mm": 1.0 / (hub + sleeve), "pitch_radius_mm": R}
