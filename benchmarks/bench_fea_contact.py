@@ -7,9 +7,10 @@ the contact size where that is coarser),
 each run also giving the half-torque point of its load curve. Printed: per size the nodes,
 solve time, memory, wind-up beyond first touch and interior pressure; the Richardson
 extrapolation of both with the observed order; then the ``linear``, ``compliance`` and
-``surface`` models at the same poses with their errors and time per pose (the accuracy
-ladder of docs/load.md). ``--runs`` keeps the FE runs in a JSON file and reuses those
-already there; ``--golden`` writes the extrapolated figures to
+``surface`` models at the same poses, with the tapered-cantilever and the FE far-field
+tooth springs, their wind-up plus the bodies' torsion against the reference and their time
+per pose (the accuracy ladder of docs/load.md). ``--runs`` keeps the FE runs in a JSON
+file and reuses those already there; ``--golden`` writes the extrapolated figures to
 ``tests/golden/fe_contact_reference.json``.
 """
 
@@ -27,6 +28,7 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 import numpy as np
 
 import gearcoupling as gc
+from gearcoupling.fea import tooth_compliance_table
 
 ROOT = Path(__file__).resolve().parent.parent
 GOLDEN = ROOT / "tests" / "golden" / "fe_contact_reference.json"
@@ -106,27 +108,40 @@ def convergence(name: str, runs: dict) -> dict:
     return out
 
 
+MODELS = (("linear", "cantilever"), ("compliance", "cantilever"), ("surface", "cantilever"),
+          ("compliance", "fe"), ("surface", "fe"))
+
+
 def models(name: str, refs: dict) -> None:
-    """The three load models at the reference poses: errors and time per pose."""
-    spec = gc.load_spec(name)
-    touch = 0.5 * gc.min_backlash_rad(spec, 0.0)
-    print(f"\n| {name} | torque N·m | wind-up µrad (error) | interior MPa (error) | "
-          "time per pose s |\n|---|---|---|---|---|")
+    """The load models at the reference poses, with the cantilever and the FE far-field
+    tooth springs: wind-up (teeth + the bodies' closed-form torsion) and interior pressure
+    against the reference, and the time per pose (the FE table's one-off cost apart)."""
+    t0 = time.perf_counter()
+    tooth_compliance_table(gc.load_spec(name))
+    print(f"\n{name}: FE tooth-compliance table (3 teeth, module / 4; cached after) "
+          f"{time.perf_counter() - t0:.0f} s")
+    print(f"\n| {name} | stiffness | torque N·m | teeth µrad | + bodies µrad | "
+          "wind-up µrad (error) | interior MPa (error) | time per pose s |\n"
+          "|---|---|---|---|---|---|---|---|")
     for torque, ref in refs.items():
-        for model in ("linear", "compliance", "surface"):
+        T = float(torque)
+        for model, stiffness in MODELS:
+            spec = gc.load_spec(name, **{"load.stiffness": stiffness})
+            touch = 0.5 * gc.min_backlash_rad(spec, 0.0)
+            body = gc.body_windup_rad(spec, T)["body_rad"]
             t0 = time.perf_counter()
-            res = gc.load(spec, 0.0, [0.0], torque_Nm=float(torque), model=model)
+            res = gc.load(spec, 0.0, [0.0], torque_Nm=T, model=model)
             dt = time.perf_counter() - t0
             w = float(res.windup_rad[0]) - touch
-            e_w = w / ref["windup_from_first_touch_rad"] - 1
+            e_w = (w + body) / ref["windup_from_first_touch_rad"] - 1
             cell = "—"
             if "interior_pressure_MPa" in ref:
                 p = float(res.interior_pressure_MPa.max())
                 cell = f"{p:.0f} ({p / ref['interior_pressure_MPa'] - 1:+.0%})"
-            print(f"| {model} | {float(torque):g} | {w * 1e6:.1f} ({e_w:+.0%}) | {cell} | "
-                  f"{dt:.2f} |")
+            print(f"| {model} | {stiffness} | {T:g} | {w * 1e6:.1f} | {body * 1e6:.1f} | "
+                  f"{(w + body) * 1e6:.1f} ({e_w:+.1%}) | {cell} | {dt:.2f} |")
         p_ref = ref.get("interior_pressure_MPa")
-        print(f"| CalculiX reference | {float(torque):g} | "
+        print(f"| CalculiX reference | — | {T:g} | — | — | "
               f"{ref['windup_from_first_touch_rad'] * 1e6:.1f} | "
               f"{'—' if p_ref is None else f'{p_ref:.0f}'} | — |")
 

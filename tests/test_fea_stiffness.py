@@ -197,3 +197,23 @@ def test_stiffness_cli_writes_the_table_from_the_cache(table, tmp_path):
         assert float(row["pair_um_per_N"]) == pytest.approx(1e3 * (h + s), rel=1e-5)
     summary = json.loads((tmp_path / "stiffness.json").read_text())["pitch_point"]
     assert summary["mesh_stiffness_N_per_mm"] == pytest.approx(t.mesh_stiffness_N_per_mm)
+
+
+def test_fe_table_gives_root_stresses_to_the_load_models(table):
+    """With ``stiffness = "fe"`` the bending criterion reads the FE fillet stresses: the
+    normal load W at a grid point gives ``W r_b / R`` times the table's larger stress per
+    unit tangential load, and the compliance model reports it (it reported 0, silently
+    dropping the bending criterion from the capacity)."""
+    t, _ = table
+    spec = load_spec("industrial-m2")
+    W = 1000.0
+    z, r = t.z_mm[1], t.r_mm[0]
+    expected = W * spec.tooth.base_radius / spec.tooth.pitch_radius * max(
+        t.root_stress_MPa_per_N[0, 1, 0], t.root_stress_MPa_per_N[1, 1, 0])
+    assert float(t.root_stress_MPa(W, z, r)) == pytest.approx(expected, rel=1e-12)
+    from gearcoupling.loading.compliance import solve_compliance
+
+    out = solve_compliance(spec, np.zeros((spec.tooth.teeth, 1)),
+                           np.zeros((spec.tooth.teeth, 1)),
+                           np.full((spec.tooth.teeth, 1), spec.tooth.pitch_radius), 400e3, t)
+    assert np.all(out["root_stress_MPa"] > 0)

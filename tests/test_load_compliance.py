@@ -194,3 +194,41 @@ def test_max_tooth_load_grows_with_misalignment_and_crowning_radius():
     peaks = [peak(spec, i) for i in (0.25, 0.5, 1.0, 2.0)]
     assert np.all(np.diff(peaks) > 0), peaks
     assert peak(flat, 1.0) > peaks[2]
+
+
+def _line_slope(stiffness: str):
+    """Slope of the compliance model's approach well into the line regime (renzo-1967, mid
+    face, pitch radius), with the contact model and its geometry."""
+    from gearcoupling.loading.contact import ContactModel
+
+    spec = gc.load_spec("renzo-1967", **{"load.stiffness": stiffness})
+    cm = ContactModel(spec)
+    g = cm.geometry(np.array([0.0]), np.array([spec.tooth.pitch_radius]))
+    law = cm.laws(g)
+    W = 4.0 * float(g["w_star"][0]) + 100.0
+    dW = 1e-4 * W
+    d1 = cm.approach_mm(np.array([W + dW]), law)[0]
+    d0 = cm.approach_mm(np.array([W]), law)[0]
+    return float((d1 - d0)[0] / dW), W, dW, cm, g
+
+
+def test_fe_stiffness_takes_the_half_space_strip_as_the_line_contact_law():
+    """With the FE far field the local part is the half-space's: the line-contact approach
+    grows like the mean deflection of a half-space under a uniform strip L x 1.745 b (the
+    exact rectangle integral, Johnson ch. 3), summed over hub and sleeve; with the
+    cantilever it is Weber's, referred to the tooth's half thickness (smaller here)."""
+
+    def rectangle(a, b):  # integral of 1/|x - y| over pairs of points of an a x b rectangle
+        return ((2 / 3) * (a**3 + b**3 - (a * a + b * b) ** 1.5)
+                + 2 * a * a * b * math.asinh(b / a) + 2 * a * b * b * math.asinh(a / b))
+
+    slope, W, dW, cm, g = _line_slope("fe")
+    L, A_f = float(g["L"][0]), float(g["A_f"][0])
+    per_N = sum((1 - m.poisson_ratio**2) / (math.pi * m.youngs_modulus_MPa) for m in cm.mats)
+
+    def delta(load):
+        w = 1.7451714787309207 * math.sqrt(4 * load / (A_f * math.pi * L * cm.E_star))
+        return per_N * load * rectangle(L, w) / (L * w) ** 2
+
+    assert slope == pytest.approx((delta(W + dW) - delta(W)) / dW, rel=0.03)
+    assert slope > _line_slope("cantilever")[0]

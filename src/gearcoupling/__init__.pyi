@@ -32,6 +32,7 @@ from .hob import measuring_charts as measuring_charts
 from .inspection import compare_part as compare_part
 from .interference import check_interference as check_interference
 from .loading import LoadResult as LoadResult
+from .loading import body_windup_rad as body_windup_rad
 from .loading import capacity as capacity
 from .loading import capacity_curve as capacity_curve
 from .loading import load as load

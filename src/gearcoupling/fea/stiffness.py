@@ -50,7 +50,7 @@ from .mesh import DEFAULT_SECTOR_TEETH, check_size, mesh_part
 from .volume import VolumeMesh
 
 CACHE_ENV = "GEARCOUPLING_CACHE"
-VERSION = 2  # bump when the set-up changes: old cache entries are then ignored
+VERSION = 3  # bump when the set-up changes: old cache entries are then ignored
 LOADED_FLANK = {"hub": "CCW", "sleeve": "CCW"}  # the sleeve ccw flank meets the hub ccw flank
 INTO_SIGN = {"hub": -1.0, "sleeve": 1.0}  # sign of the force's polar component
 
@@ -136,6 +136,9 @@ class ComplianceTable:
     near_field_mm_per_N : (2, nz, nr) float
         Half-space work of the same loads on hub / sleeve (the local part, module
         docstring); zeros for a table computed before it was recorded.
+    base_radius_mm : float
+        Base radius: a normal flank load ``W`` has the moment of ``W r_b / R`` at the
+        pitch radius (NaN for a table computed before it was recorded).
     info : dict
         Spec name and hash, size, sector, supports, mesh and solve figures.
     """
@@ -147,6 +150,7 @@ class ComplianceTable:
     root_stress_MPa_per_N: NDArray[np.float64]
     pitch_radius_mm: float
     near_field_mm_per_N: NDArray[np.float64] | None = None
+    base_radius_mm: float = math.nan
     info: dict = field(default_factory=dict)
 
     def __post_init__(self):
@@ -176,6 +180,18 @@ class ComplianceTable:
         table)."""
         return self._interp(self.far_field_mm_per_N, z_mm, r_mm)
 
+    def root_stress_MPa(self, normal_force_N: ArrayLike, z_mm: ArrayLike,
+                        r_mm: ArrayLike) -> NDArray[np.float64]:
+        """Larger FE fillet stress of hub and sleeve tooth under normal flank loads at hub
+        flank points ``(z, r)`` (MPa; broadcast, bilinear like the compliance)."""
+        if not math.isfinite(self.base_radius_mm):
+            raise ArgumentError("this FE table predates its root stresses' scale; recompute "
+                                "it (tooth_compliance_table(..., refresh=True))")
+        F_t = np.asarray(normal_force_N, dtype=float) * self.base_radius_mm / self.pitch_radius_mm
+        per_N = np.maximum(self._interp(self.root_stress_MPa_per_N[0], z_mm, r_mm),
+                           self._interp(self.root_stress_MPa_per_N[1], z_mm, r_mm))
+        return F_t * per_N
+
     @property
     def mesh_stiffness_N_per_mm(self) -> float:
         """Renzo's C of one tooth pair: 1 / the whole FE compliance (with the local
@@ -194,7 +210,7 @@ class ComplianceTable:
         near = d.get("near_field_mm_per_N")
         return cls(**arrays, pitch_radius_mm=float(d["pitch_radius_mm"]),
                    near_field_mm_per_N=None if near is None else np.asarray(near, dtype=float),
-                   info=d["info"])
+                   base_radius_mm=float(d.get("base_radius_mm", math.nan)), info=d["info"])
 
     def rows(self) -> list[dict]:
         """One row per grid point (``stiffness.csv``)."""
@@ -373,7 +389,7 @@ def compute_compliance_table(spec: CouplingSpec, *, size_mm: float | None = None
     table = ComplianceTable(z, r, comp["hub"], comp["sleeve"],
                             np.stack([stress["hub"], stress["sleeve"]]),
                             spec.tooth.pitch_radius, np.stack([near["hub"], near["sleeve"]]),
-                            info)
+                            spec.tooth.base_radius, info)
     if not np.all(table.far_field_mm_per_N > 0):
         raise ArgumentError(
             f"size_mm = {meshes['hub'].size_mm:g}, sector = {sector}: the FE compliance is "

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from .api import load, load_from_sweep
+from .body import body_windup_rad
 from .cantilever import CantileverCompliance
 from .capacity import (
     Capacity,
@@ -36,6 +37,7 @@ __all__ = [
     "CapacityCurve",
     "LoadResult",
     "PatchMap",
+    "body_windup_rad",
     "capacity",
     "capacity_curve",
     "capacity_from_sweep",

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import math
 
+from ..errors import ArgumentError
 from ..spec import CouplingSpec
 
 
@@ -37,6 +38,8 @@ def body_windup_rad(spec: CouplingSpec, torque_Nm: float) -> dict[str, float]:
     dict
         ``hub_rad``, ``sleeve_rad`` and their sum ``body_rad`` (signed like the torque).
     """
+    if not math.isfinite(torque_Nm):
+        raise ArgumentError("torque_Nm", torque_Nm, "a finite torque in N·m")
     T = float(torque_Nm) * 1e3
     hub, sleeve = spec.hub, spec.sleeve
     root = spec.tooth.pitch_radius - hub.root.dedendum

@@ -155,6 +155,11 @@ class CantileverCompliance:
         hub, sl = self.normal_compliance_mm_per_N(z_mm, r_mm)
         return (hub + sl) / math.cos(self.phi) ** 2
 
+    @property
+    def mesh_stiffness_N_per_mm(self) -> float:
+        """Renzo's C of one tooth pair: 1 / pair compliance at mid-face and the pitch radius."""
+        return float(1.0 / self.pair_compliance_mm_per_N(0.0, self.R))
+
     def root_stress_MPa(self, normal_force_N: ArrayLike, z_mm: ArrayLike,
                         r_mm: ArrayLike) -> NDArray[np.float64]:
         """Larger root bending stress of hub and sleeve tooth, ``6 F cos(beta) y_F /

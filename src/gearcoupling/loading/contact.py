@@ -20,6 +20,13 @@ Regimes (per tooth, reported as ``contact_regime``):
   Weber-Banaschek ``delta = 2 W / (pi L) sum (1 - nu²)/E (ln(2 h / b) - nu / (2 (1 - nu)))``
   (``h`` the half tooth thickness; the bracket is floored at 1 to stay monotone), added to
   the Hertz approach at ``W*`` so the load-approach curve is continuous and increasing.
+  Weber's depth ``h`` is where the cantilever's beam takes over. With the FE table's far
+  field (``[load] stiffness = "fe"``, the FE compliance less the half-space work of its
+  load) the local part must be the half-space's too: the mean approach of a half-space
+  under a thin strip ``L x w``, ``(1 - nu²) W / (pi E) (2 / L) (ln(2 L / w) + 1/2)``, with
+  ``w = 1.745 b`` the uniform width of the same logarithmic energy as the semi-elliptic
+  pressure of half-width ``b``; i.e. the same law with ``ln(2 L / b) - ln 1.745 + 1/2`` in
+  the bracket.
 
 A patch that reaches a face end is flagged ``edge_contact``; ``edge_load_share`` is the
 share of the (semi-elliptic) pressure distribution beyond the face end, and
@@ -41,6 +48,9 @@ from .cantilever import CantileverCompliance
 from .inputs import tooth_compliance
 
 LN_FLOOR = 1.0
+ELLIPTIC_STRIP_WIDTH = 0.5 * math.exp(1.25)
+"""Uniform strip width per half-width ``b`` with the log energy of a semi-elliptic
+pressure: ``ln(w) - 3/2 = ln(b / 2) - 1/4`` gives ``w = (b / 2) e^(5/4) = 1.745 b``."""
 REGIMES = ("none", "hertz", "line")  # contact_regime codes: no load, elliptic, truncated line
 REGIME = {name: code for code, name in enumerate(REGIMES)}
 
@@ -177,10 +187,14 @@ class ContactModel:
             a_h = F * np.cbrt(9 / (2 * g["eps"] * g["Rp"]) / (math.pi * g["k"] * E2) ** 2)
         beta = np.sqrt(4 / (g["A_f"] * math.pi * g["L"] * self.E_star))  # b = beta sqrt(W)
         kap, lam = [], []
+        halfspace = self.spec.load.stiffness == "fe"  # module docstring
         for mat, h in zip(self.mats, self._half_thickness(g["r"]), strict=True):
             nu, E = mat.poisson_ratio, mat.youngs_modulus_MPa
             kap.append(2 * (1 - nu**2) / (math.pi * g["L"] * E))
-            lam.append(np.log(2 * np.maximum(h, 1e-9) / beta) - nu / (2 * (1 - nu)))
+            if halfspace:
+                lam.append(np.log(2 * g["L"] / beta) - math.log(ELLIPTIC_STRIP_WIDTH) + 0.5)
+            else:
+                lam.append(np.log(2 * np.maximum(h, 1e-9) / beta) - nu / (2 * (1 - nu)))
         law = {"a_h": np.where(np.isfinite(a_h), a_h, 0.0), "w_star": g["w_star"],
                "kap": kap, "lam": lam}
         law["d_star"] = law["a_h"] * np.cbrt(g["w_star"] ** 2)

@@ -14,12 +14,12 @@ from .linear import solve_windup
 
 
 def mesh_stiffness_N_per_mm(spec: CouplingSpec) -> float:
-    """Renzo's ``C``: ``[load] mesh_stiffness_N_per_mm``, else the cantilever pair stiffness
-    at the pitch point in the midplane."""
+    """Renzo's ``C``: ``[load] mesh_stiffness_N_per_mm``, else the tooth-pair stiffness of
+    ``[load] stiffness`` at the pitch point in the midplane (the cantilever's, or the whole
+    FE value with the local deformation under its load patch)."""
     if spec.load.mesh_stiffness_N_per_mm is not None:
         return spec.load.mesh_stiffness_N_per_mm
-    c = tooth_compliance(spec).pair_compliance_mm_per_N(0.0, spec.tooth.pitch_radius)
-    return float(1.0 / c)
+    return float(tooth_compliance(spec).mesh_stiffness_N_per_mm)
 
 
 def solve_linear(spec: CouplingSpec, gap_rad: NDArray, z_mm: NDArray, r_mm: NDArray,

@@ -100,7 +100,8 @@ def summarise(res) -> dict[str, Any]:
     regimes = {name: int(np.sum(res.contact_regime == k)) for k, name in enumerate(REGIMES)
                if k > 0}
     out = {
-        "spec": res.spec.name, "model": res.model, "torque_Nm": res.torque_Nm,
+        "spec": res.spec.name, "model": res.model, "stiffness": res.spec.load.stiffness,
+        "torque_Nm": res.torque_Nm,
         "loaded_flank": res.loaded_flank, "misalignment_deg": res.misalignment_deg,
         "angles": int(res.angles_deg.size), "teeth": res.teeth,
         "max_tooth_load_N": float(np.max(P)), "max_normal_force_N":
