@@ -199,21 +199,30 @@ def test_stiffness_cli_writes_the_table_from_the_cache(table, tmp_path):
     assert summary["mesh_stiffness_N_per_mm"] == pytest.approx(t.mesh_stiffness_N_per_mm)
 
 
-def test_fe_table_gives_root_stresses_to_the_load_models(table):
-    """With ``stiffness = "fe"`` the bending criterion reads the FE fillet stresses: the
-    normal load W at a grid point gives ``W r_b / R`` times the table's larger stress per
-    unit tangential load, and the compliance model reports it (it reported 0, silently
-    dropping the bending criterion from the capacity)."""
+def test_fe_springs_keep_the_nominal_root_stress_criterion(table):
+    """With ``stiffness = "fe"`` the bending criterion stays the nominal (cantilever) root
+    stress the allowable is meant for: it was silently dropped (root stress 0, no bending
+    criterion in the capacity). The table's own fillet stress, ``W r_b / R`` times its
+    larger stress per unit tangential load, holds the fillet's stress concentration and is
+    larger."""
+    from gearcoupling.loading.cantilever import CantileverCompliance
+    from gearcoupling.loading.compliance import solve_compliance
+
     t, _ = table
     spec = load_spec("industrial-m2")
     W = 1000.0
     z, r = t.z_mm[1], t.r_mm[0]
     expected = W * spec.tooth.base_radius / spec.tooth.pitch_radius * max(
         t.root_stress_MPa_per_N[0, 1, 0], t.root_stress_MPa_per_N[1, 1, 0])
-    assert float(t.root_stress_MPa(W, z, r)) == pytest.approx(expected, rel=1e-12)
-    from gearcoupling.loading.compliance import solve_compliance
+    assert float(t.fillet_stress_MPa(W, z, r)) == pytest.approx(expected, rel=1e-12)
+    N, R = spec.tooth.teeth, spec.tooth.pitch_radius
+    zeros = np.zeros((N, 1))
+    out = solve_compliance(spec, zeros, zeros, np.full((N, 1), R), 400e3, t)
+    nominal = CantileverCompliance(spec).root_stress_MPa(out["normal_force_N"], zeros,
+                                                         np.full((N, 1), R))
+    np.testing.assert_allclose(out["root_stress_MPa"], nominal, rtol=1e-12)
+    assert np.all(nominal > 0)
+    from gearcoupling.loading.capacity import limit_loads
 
-    out = solve_compliance(spec, np.zeros((spec.tooth.teeth, 1)),
-                           np.zeros((spec.tooth.teeth, 1)),
-                           np.full((spec.tooth.teeth, 1), spec.tooth.pitch_radius), 400e3, t)
-    assert np.all(out["root_stress_MPa"] > 0)
+    limits = limit_loads(spec, zeros, np.full((N, 1), R), t)
+    assert np.all(np.isfinite(limits["bending_stress"]) & (limits["bending_stress"] > 0))

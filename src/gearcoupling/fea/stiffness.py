@@ -180,10 +180,12 @@ class ComplianceTable:
         table)."""
         return self._interp(self.far_field_mm_per_N, z_mm, r_mm)
 
-    def root_stress_MPa(self, normal_force_N: ArrayLike, z_mm: ArrayLike,
-                        r_mm: ArrayLike) -> NDArray[np.float64]:
+    def fillet_stress_MPa(self, normal_force_N: ArrayLike, z_mm: ArrayLike,
+                          r_mm: ArrayLike) -> NDArray[np.float64]:
         """Larger FE fillet stress of hub and sleeve tooth under normal flank loads at hub
-        flank points ``(z, r)`` (MPa; broadcast, bilinear like the compliance)."""
+        flank points ``(z, r)`` (MPa; broadcast, bilinear like the compliance). The peak
+        principal stress, with the fillet's stress concentration: not the nominal root
+        stress the load models judge against the allowable bending stress."""
         if not math.isfinite(self.base_radius_mm):
             raise ArgumentError("this FE table predates its root stresses' scale; recompute "
                                 "it (tooth_compliance_table(..., refresh=True))")

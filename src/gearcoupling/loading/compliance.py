@@ -23,6 +23,7 @@ from numpy.typing import NDArray
 from ..errors import ArgumentError, SpecError
 from ..spec import CouplingSpec
 from .contact import contact_model, patch_centre_radius
+from .inputs import root_stress_source
 
 INNER_ITER, OUTER_ITER = 60, 100
 
@@ -137,6 +138,5 @@ def solve_compliance(spec: CouplingSpec,
            "tangential_force_N": W * cphi, "normal_force_N": W,
            "mesh_stiffness_Nm_per_rad": r_b * r_b * np.sum(dW, axis=0) * 1e-3}
     out.update(cm.estimates(W, geo))
-    if hasattr(compliance, "root_stress_MPa"):
-        out["root_stress_MPa"] = compliance.root_stress_MPa(W, z_mm, r_mm)
+    out["root_stress_MPa"] = root_stress_source(spec, compliance).root_stress_MPa(W, z_mm, r_mm)
     return out

@@ -45,7 +45,7 @@ from numpy.typing import NDArray
 from ..geometry import developed_arc, form_radius, hub_flank_model, hub_model, tip_radius
 from ..spec import CouplingSpec
 from .cantilever import CantileverCompliance
-from .inputs import tooth_compliance
+from .inputs import root_stress_source, tooth_compliance
 
 LN_FLOOR = 1.0
 ELLIPTIC_STRIP_WIDTH = 0.5 * math.exp(1.25)
@@ -293,7 +293,6 @@ def contact_estimates(spec: CouplingSpec, normal_force_N: NDArray, z_mm: NDArray
     cm = contact_model(spec)
     g = cm.geometry(z_mm, r_mm)
     out = cm.estimates(normal_force_N, g)
-    c = tooth_compliance(spec)
-    if hasattr(c, "root_stress_MPa"):
-        out["root_stress_MPa"] = c.root_stress_MPa(normal_force_N, z_mm, r_mm)
+    source = root_stress_source(spec, tooth_compliance(spec))
+    out["root_stress_MPa"] = source.root_stress_MPa(normal_force_N, z_mm, r_mm)
     return out

@@ -80,6 +80,14 @@ def tooth_compliance(spec: CouplingSpec):
     return _cantilever(spec)
 
 
+def root_stress_source(spec: CouplingSpec, compliance):
+    """What gives the nominal root bending stress (``root_stress_MPa(W, z, r)``) that the
+    allowable bending stress is compared with: the tooth compliance when it has one, else
+    the tapered cantilever (the FE table's fillet stresses hold the fillet's stress
+    concentration; they are reported in ``stiffness.csv``, not judged)."""
+    return compliance if hasattr(compliance, "root_stress_MPa") else _cantilever(spec)
+
+
 @lru_cache(maxsize=32)
 def _cantilever(spec: CouplingSpec) -> CantileverCompliance:
     return CantileverCompliance(spec)
