@@ -149,9 +149,10 @@ def renzo_examples():
     rc = spec.derived["crowning_radius_midplane_mm"] / IN
     print("## Renzo's Examples 1-3 (total tangential load K q N P_i, lb)\n")
     print("| i | Renzo | eq. 8, Renzo's z0 | eq. 4 z0 from the spec, 50 teeth | exact geometry, "
-          "linear | exact geometry, compliance | sweep z0 (pitch line, normal) in | "
-          "sweep peak-to-peak over the whole flank in |")
-    print("|---|---|---|---|---|---|---|---|")
+          "linear | exact geometry, compliance | the same, FE springs | sweep z0 (pitch line, "
+          "normal) in | sweep peak-to-peak over the whole flank in |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    fe_spec = load_spec("renzo-1967", **{"load.stiffness": "fe"})
     for i, z0r, lb in ((1.0, 0.001, 8720), (0.5, 0.00025, 20000), (2.0, 0.004, 4280)):
         z0 = 0.5 * rc * math.tan(math.radians(i)) ** 2 / math.tan(spec.tooth.pressure_angle)
         a = K * renzo_q(zc / z0r) * N * P_i
@@ -159,25 +160,32 @@ def renzo_examples():
         R = spec.tooth.pitch_radius
         lin = capacity(spec, i, model="linear").criteria_Nm["tooth_load"] * 1e3 / R / LBF
         com = capacity(spec, i, model="compliance").criteria_Nm["tooth_load"] * 1e3 / R / LBF
+        fe = capacity(fe_spec, i, model="compliance").criteria_Nm["tooth_load"] * 1e3 / R / LBF
         sw = sweep(spec, i, np.arange(0, 360.0, 2.0))
         summ = sw.summary()
         z0_sweep = summ["pitch_line_peak_to_peak_normal_mm"]["ccw"] / IN
         z0_flank = summ["flank_peak_to_peak_normal_mm"]["ccw"] / IN
-        print(f"| {i}° | {lb} | {a:.0f} | {b:.0f} | {lin:.0f} | {com:.0f} | {z0_sweep:.5f} "
+        print(f"| {i}° | {lb} | {a:.0f} | {b:.0f} | {lin:.0f} | {com:.0f} | {fe:.0f} | "
+              f"{z0_sweep:.5f} "
               f"(eq. 4: {z0:.5f}) | {z0_flank:.5f} |")
     print()
 
 
-def crowns(quick):
+def crowns():
+    for stiffness in ("cantilever", "fe"):
+        crowns_with(stiffness)
+
+
+def crowns_with(stiffness: str):
     names = ("renzo-1967", "renzo-1967-vari-crown", "renzo-1967-end-round")
     angles = (0.5, 1.0, 2.0, 3.0)
-    print("## Capacity vs misalignment (compliance model, K applied, N·m): governing / tooth "
-          "load / face-end torque\n")
+    print(f"## Capacity vs misalignment (compliance model, {stiffness} springs, K applied, "
+          "N·m): governing / tooth load / face-end torque\n")
     print("| spec | " + " | ".join(f"{a}°" for a in angles) + " |")
     print("|---|" + "---|" * len(angles))
     caps = {}
     for n in names:
-        spec = load_spec(n)
+        spec = load_spec(n, **{"load.stiffness": stiffness})
         cells = []
         for a in angles:
             c = capacity(spec, a, model="compliance")
@@ -233,7 +241,7 @@ def main():
     renzo_examples()
     iso()
     regimes()
-    crowns(args.quick)
+    crowns()
     knobs(args.quick)
 
 
