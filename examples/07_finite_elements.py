@@ -9,9 +9,14 @@ import gearcoupling as gc
 spec = gc.load_spec("industrial-m2")
 mesh = gc.mesh_part(spec, "hub", sector=1, size_mm=1.0)
 print(gc.write_mesh(mesh, "outputs/examples/hub-sector-1.inp"), mesh.quality["elements"])
-table = gc.tooth_compliance_table(spec, size_mm=1.0, sector=1)  # cached per spec
-print("mesh stiffness C", round(table.mesh_stiffness_N_per_mm), "N/mm")
+table = gc.tooth_compliance_table(spec, size_mm=1.0, sector=3)  # cached per spec
+print("mesh stiffness C", round(table.mesh_stiffness_N_per_mm), "N/mm; far field at the pitch "
+      "point", round(1e3 * float(table.pair_compliance_mm_per_N(0.0, 38.0)), 5), "µm/N")
 # the aligned contact reference: one pitch in CalculiX contact, loaded by the torque
 ref: gc.FEContactResult = gc.fe_contact(spec, torque_Nm=400.0, size_mm=1.0)
 print("wind-up beyond first touch", round(ref.windup_from_first_touch_rad * 1e6, 1), "µrad;",
       "tooth load", round(ref.tooth_load_N, 1), "N of", round(ref.equilibrium_tooth_load_N, 1))
+# the reference's wind-up runs from the bore to the sleeve's outside diameter: the bodies'
+# torsion is part of it (the load models' wind-up is at the teeth)
+print("of which the bodies' torsion", round(gc.body_windup_rad(spec, 400.0)["body_rad"] * 1e6, 1),
+      "µrad")
