@@ -78,7 +78,9 @@ def run(args) -> int:
     written = write_table(table, out)
     c = table.mesh_stiffness_N_per_mm
     print(f"{spec.name}: mesh stiffness C = {c:.4g} N/mm per tooth pair "
-          f"({c / spec.hub.face_width / 1e3:.3g} N/(mm·µm) per hub face width); "
+          f"({c / spec.hub.face_width / 1e3:.3g} N/(mm·µm) per hub face width); far field "
+          f"at the pitch point {pitch_point_compliance(table)['pair_far_field_um_per_N']:.4g} "
+          f"µm/N (the load models' springs with [load] stiffness = \"fe\"); "
           f"{table.z_mm.size * table.r_mm.size} load points", file=sys.stderr)
     for path in written:
         print(path)
