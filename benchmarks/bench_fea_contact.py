@@ -146,6 +146,23 @@ def models(name: str, refs: dict) -> None:
               f"{'—' if p_ref is None else f'{p_ref:.0f}'} | — |")
 
 
+def misaligned(name: str, torques) -> None:
+    """No misaligned reference: the two contact models against each other at 1° and 2°
+    (largest tooth load over five rotations across a pitch), with either spring."""
+    print(f"\n| {name} | springs | misalignment | torque N·m | largest tooth load, compliance "
+          "· surface N | compliance / surface |\n|---|---|---|---|---|---|")
+    for stiffness in ("cantilever", "fe"):
+        spec = gc.load_spec(name, **{"load.stiffness": stiffness})
+        angles = np.linspace(0.0, 360.0 / spec.tooth.teeth, 5, endpoint=False)
+        for mis in (1.0, 2.0):
+            for T in torques:
+                P = [float(gc.load(spec, mis, angles, torque_Nm=T,
+                                   model=m).tangential_force_N.max())
+                     for m in ("compliance", "surface")]
+                print(f"| | {stiffness} | {mis:g}° | {T:g} | {P[0]:.0f} · {P[1]:.0f} | "
+                      f"{P[0] / P[1] - 1:+.1%} |")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--specs", nargs="*", default=list(SIZES))
@@ -160,6 +177,9 @@ def main() -> None:
     print("\n## The load models against it (aligned, each spec's torque and half of it)")
     for name in a.specs:
         models(name, refs[name])
+    print("\n## Misaligned: the contact models against each other (no reference yet)")
+    for name in a.specs:
+        misaligned(name, sorted(float(t) for t in refs[name]))
     if a.golden:
         GOLDEN.write_text(json.dumps({
             "about": "CalculiX contact reference, aligned, one pitch with cyclic equations, "
