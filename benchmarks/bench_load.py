@@ -171,12 +171,7 @@ def renzo_examples():
     print()
 
 
-def crowns():
-    for stiffness in ("cantilever", "fe"):
-        crowns_with(stiffness)
-
-
-def crowns_with(stiffness: str):
+def crowns(stiffness: str):
     names = ("renzo-1967", "renzo-1967-vari-crown", "renzo-1967-end-round")
     angles = (0.5, 1.0, 2.0, 3.0)
     print(f"## Capacity vs misalignment (compliance model, {stiffness} springs, K applied, "
@@ -241,7 +236,8 @@ def main():
     renzo_examples()
     iso()
     regimes()
-    crowns()
+    for stiffness in ("cantilever", "fe"):
+        crowns(stiffness)
     knobs(args.quick)
 
 

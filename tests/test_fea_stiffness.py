@@ -202,19 +202,13 @@ def test_stiffness_cli_writes_the_table_from_the_cache(table, tmp_path):
 def test_fe_springs_keep_the_nominal_root_stress_criterion(table):
     """With ``stiffness = "fe"`` the bending criterion stays the nominal (cantilever) root
     stress the allowable is meant for: it was silently dropped (root stress 0, no bending
-    criterion in the capacity). The table's own fillet stress, ``W r_b / R`` times its
-    larger stress per unit tangential load, holds the fillet's stress concentration and is
-    larger."""
+    criterion in the capacity). The table's fillet stresses hold the fillet's stress
+    concentration; they are reported, not judged."""
     from gearcoupling.loading.cantilever import CantileverCompliance
     from gearcoupling.loading.compliance import solve_compliance
 
     t, _ = table
     spec = load_spec("industrial-m2")
-    W = 1000.0
-    z, r = t.z_mm[1], t.r_mm[0]
-    expected = W * spec.tooth.base_radius / spec.tooth.pitch_radius * max(
-        t.root_stress_MPa_per_N[0, 1, 0], t.root_stress_MPa_per_N[1, 1, 0])
-    assert float(t.fillet_stress_MPa(W, z, r)) == pytest.approx(expected, rel=1e-12)
     N, R = spec.tooth.teeth, spec.tooth.pitch_radius
     zeros = np.zeros((N, 1))
     out = solve_compliance(spec, zeros, zeros, np.full((N, 1), R), 400e3, t)

@@ -135,10 +135,7 @@ class ComplianceTable:
     pitch_radius_mm : float
     near_field_mm_per_N : (2, nz, nr) float
         Half-space work of the same loads on hub / sleeve (the local part, module
-        docstring); zeros for a table computed before it was recorded.
-    base_radius_mm : float
-        Base radius: a normal flank load ``W`` has the moment of ``W r_b / R`` at the
-        pitch radius (NaN for a table computed before it was recorded).
+        docstring).
     info : dict
         Spec name and hash, size, sector, supports, mesh and solve figures.
     """
@@ -149,14 +146,8 @@ class ComplianceTable:
     sleeve_mm_per_N: NDArray[np.float64]
     root_stress_MPa_per_N: NDArray[np.float64]
     pitch_radius_mm: float
-    near_field_mm_per_N: NDArray[np.float64] | None = None
-    base_radius_mm: float = math.nan
+    near_field_mm_per_N: NDArray[np.float64]
     info: dict = field(default_factory=dict)
-
-    def __post_init__(self):
-        if self.near_field_mm_per_N is None:
-            object.__setattr__(self, "near_field_mm_per_N",
-                               np.zeros((2, *np.shape(self.hub_mm_per_N))))
 
     def _interp(self, values, z_mm, r_mm) -> NDArray[np.float64]:
         from scipy.interpolate import RegularGridInterpolator
@@ -170,7 +161,7 @@ class ComplianceTable:
     @property
     def far_field_mm_per_N(self) -> NDArray[np.float64]:
         """Hub + sleeve compliance less the half-space near field ``(nz, nr)`` (mm/N)."""
-        near = np.asarray(self.near_field_mm_per_N)
+        near = self.near_field_mm_per_N
         return self.hub_mm_per_N + self.sleeve_mm_per_N - near[0] - near[1]
 
     def pair_compliance_mm_per_N(self, z_mm: ArrayLike, r_mm: ArrayLike) -> NDArray:
@@ -179,20 +170,6 @@ class ComplianceTable:
         models' contact adds (broadcast; bilinear in ``(|z|, r)``, held constant outside the
         table)."""
         return self._interp(self.far_field_mm_per_N, z_mm, r_mm)
-
-    def fillet_stress_MPa(self, normal_force_N: ArrayLike, z_mm: ArrayLike,
-                          r_mm: ArrayLike) -> NDArray[np.float64]:
-        """Larger FE fillet stress of hub and sleeve tooth under normal flank loads at hub
-        flank points ``(z, r)`` (MPa; broadcast, bilinear like the compliance). The peak
-        principal stress, with the fillet's stress concentration: not the nominal root
-        stress the load models judge against the allowable bending stress."""
-        if not math.isfinite(self.base_radius_mm):
-            raise ArgumentError("this FE table predates its root stresses' scale; recompute "
-                                "it (tooth_compliance_table(..., refresh=True))")
-        F_t = np.asarray(normal_force_N, dtype=float) * self.base_radius_mm / self.pitch_radius_mm
-        per_N = np.maximum(self._interp(self.root_stress_MPa_per_N[0], z_mm, r_mm),
-                           self._interp(self.root_stress_MPa_per_N[1], z_mm, r_mm))
-        return F_t * per_N
 
     @property
     def mesh_stiffness_N_per_mm(self) -> float:
@@ -208,11 +185,9 @@ class ComplianceTable:
     @classmethod
     def from_dict(cls, d: dict) -> ComplianceTable:
         arrays = {k: np.asarray(d[k], dtype=float) for k in
-                  ("z_mm", "r_mm", "hub_mm_per_N", "sleeve_mm_per_N", "root_stress_MPa_per_N")}
-        near = d.get("near_field_mm_per_N")
-        return cls(**arrays, pitch_radius_mm=float(d["pitch_radius_mm"]),
-                   near_field_mm_per_N=None if near is None else np.asarray(near, dtype=float),
-                   base_radius_mm=float(d.get("base_radius_mm", math.nan)), info=d["info"])
+                  ("z_mm", "r_mm", "hub_mm_per_N", "sleeve_mm_per_N", "root_stress_MPa_per_N",
+                   "near_field_mm_per_N")}
+        return cls(**arrays, pitch_radius_mm=float(d["pitch_radius_mm"]), info=d["info"])
 
     def rows(self) -> list[dict]:
         """One row per grid point (``stiffness.csv``)."""
@@ -220,7 +195,7 @@ class ComplianceTable:
         for i, z in enumerate(self.z_mm):
             for j, r in enumerate(self.r_mm):
                 h, s = self.hub_mm_per_N[i, j], self.sleeve_mm_per_N[i, j]
-                near = np.asarray(self.near_field_mm_per_N)[:, i, j]
+                near = self.near_field_mm_per_N[:, i, j]
                 out.append({"z_mm": z, "r_mm": r, "hub_um_per_N": 1e3 * h,
                             "sleeve_um_per_N": 1e3 * s, "pair_um_per_N": 1e3 * (h + s),
                             "pair_stiffness_N_per_mm": 1.0 / (h + s),
@@ -391,7 +366,7 @@ def compute_compliance_table(spec: CouplingSpec, *, size_mm: float | None = None
     table = ComplianceTable(z, r, comp["hub"], comp["sleeve"],
                             np.stack([stress["hub"], stress["sleeve"]]),
                             spec.tooth.pitch_radius, np.stack([near["hub"], near["sleeve"]]),
-                            spec.tooth.base_radius, info)
+                            info)
     if not np.all(table.far_field_mm_per_N > 0):
         raise ArgumentError(
             f"size_mm = {meshes['hub'].size_mm:g}, sector = {sector}: the FE compliance is "

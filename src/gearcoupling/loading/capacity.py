@@ -37,7 +37,7 @@ from ..tables import dataframe
 from .api import load_from_sweep
 from .compliance import first_limit_torque_Nmm
 from .contact import contact_model
-from .inputs import LoadProblem, load_problem, resolve_model, root_stress_source
+from .inputs import LoadProblem, load_problem, nominal_root_stress_MPa, resolve_model
 from .linear_model import mesh_stiffness_N_per_mm
 from .surface import BendingSprings, SurfaceSolver, flank_offsets
 
@@ -58,7 +58,7 @@ def limit_loads(spec: CouplingSpec, z: NDArray, r: NDArray, compliance) -> dict[
     p_allow = min(mat.hub.allowable_contact_stress_MPa, mat.sleeve.allowable_contact_stress_MPa)
     out["contact_stress"] = cm.pressure_limit_load(p_allow, geo)
     s_allow = min(mat.hub.allowable_bending_stress_MPa, mat.sleeve.allowable_bending_stress_MPa)
-    per_N = root_stress_source(spec, compliance).root_stress_MPa(np.ones(z.shape), z, r)
+    per_N = nominal_root_stress_MPa(spec, np.ones(z.shape), z, r)
     out["bending_stress"] = s_allow / per_N
     room = np.maximum(cm.half_face - np.abs(geo["z"]), 0.0)
     out["face_end"] = np.where(room > 0, cm.half_length_limit_load(room, geo), 0.0)
@@ -249,9 +249,8 @@ class _SurfaceLimits:
         if name == "face_end":
             return 2.0 if np.any(out["edge_contact"]) else 0.5
         if name == "bending_stress":
-            comp = root_stress_source(self.problem.spec, self.problem.compliance)
-            value = comp.root_stress_MPa(out["normal_force_N"], out["contact_z_mm"],
-                                         out["contact_r_mm"])
+            value = nominal_root_stress_MPa(self.problem.spec, out["normal_force_N"],
+                                            out["contact_z_mm"], out["contact_r_mm"])
         else:
             value = out[{"tooth_load": "tangential_force_N",
                          "contact_stress": "interior_pressure_MPa"}[name]]

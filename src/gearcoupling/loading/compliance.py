@@ -23,7 +23,7 @@ from numpy.typing import NDArray
 from ..errors import ArgumentError, SpecError
 from ..spec import CouplingSpec
 from .contact import contact_model, patch_centre_radius
-from .inputs import root_stress_source
+from .inputs import nominal_root_stress_MPa
 
 INNER_ITER, OUTER_ITER = 60, 100
 
@@ -138,5 +138,5 @@ def solve_compliance(spec: CouplingSpec,
            "tangential_force_N": W * cphi, "normal_force_N": W,
            "mesh_stiffness_Nm_per_rad": r_b * r_b * np.sum(dW, axis=0) * 1e-3}
     out.update(cm.estimates(W, geo))
-    out["root_stress_MPa"] = root_stress_source(spec, compliance).root_stress_MPa(W, z_mm, r_mm)
+    out["root_stress_MPa"] = nominal_root_stress_MPa(spec, W, z_mm, r_mm)
     return out

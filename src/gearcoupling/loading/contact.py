@@ -45,7 +45,7 @@ from numpy.typing import NDArray
 from ..geometry import developed_arc, form_radius, hub_flank_model, hub_model, tip_radius
 from ..spec import CouplingSpec
 from .cantilever import CantileverCompliance
-from .inputs import root_stress_source, tooth_compliance
+from .inputs import nominal_root_stress_MPa
 
 LN_FLOOR = 1.0
 ELLIPTIC_STRIP_WIDTH = 0.5 * math.exp(1.25)
@@ -187,14 +187,14 @@ class ContactModel:
             a_h = F * np.cbrt(9 / (2 * g["eps"] * g["Rp"]) / (math.pi * g["k"] * E2) ** 2)
         beta = np.sqrt(4 / (g["A_f"] * math.pi * g["L"] * self.E_star))  # b = beta sqrt(W)
         kap, lam = [], []
-        halfspace = self.spec.load.stiffness == "fe"  # module docstring
+        halfspace = self.spec.load.stiffness == "fe"  # the strip's bracket (docstring)
+        strip = np.log(2 * g["L"] / beta) - math.log(ELLIPTIC_STRIP_WIDTH) + 0.5 if halfspace \
+            else None
         for mat, h in zip(self.mats, self._half_thickness(g["r"]), strict=True):
             nu, E = mat.poisson_ratio, mat.youngs_modulus_MPa
             kap.append(2 * (1 - nu**2) / (math.pi * g["L"] * E))
-            if halfspace:
-                lam.append(np.log(2 * g["L"] / beta) - math.log(ELLIPTIC_STRIP_WIDTH) + 0.5)
-            else:
-                lam.append(np.log(2 * np.maximum(h, 1e-9) / beta) - nu / (2 * (1 - nu)))
+            lam.append(strip if halfspace else
+                       np.log(2 * np.maximum(h, 1e-9) / beta) - nu / (2 * (1 - nu)))
         law = {"a_h": np.where(np.isfinite(a_h), a_h, 0.0), "w_star": g["w_star"],
                "kap": kap, "lam": lam}
         law["d_star"] = law["a_h"] * np.cbrt(g["w_star"] ** 2)
@@ -293,6 +293,5 @@ def contact_estimates(spec: CouplingSpec, normal_force_N: NDArray, z_mm: NDArray
     cm = contact_model(spec)
     g = cm.geometry(z_mm, r_mm)
     out = cm.estimates(normal_force_N, g)
-    source = root_stress_source(spec, tooth_compliance(spec))
-    out["root_stress_MPa"] = source.root_stress_MPa(normal_force_N, z_mm, r_mm)
+    out["root_stress_MPa"] = nominal_root_stress_MPa(spec, normal_force_N, z_mm, r_mm)
     return out

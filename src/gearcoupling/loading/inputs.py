@@ -80,12 +80,12 @@ def tooth_compliance(spec: CouplingSpec):
     return _cantilever(spec)
 
 
-def root_stress_source(spec: CouplingSpec, compliance):
-    """What gives the nominal root bending stress (``root_stress_MPa(W, z, r)``) that the
-    allowable bending stress is compared with: the tooth compliance when it has one, else
-    the tapered cantilever (the FE table's fillet stresses hold the fillet's stress
-    concentration; they are reported in ``stiffness.csv``, not judged)."""
-    return compliance if hasattr(compliance, "root_stress_MPa") else _cantilever(spec)
+def nominal_root_stress_MPa(spec: CouplingSpec, normal_force_N, z_mm, r_mm) -> NDArray:
+    """The root bending stress the allowable bending stress is compared with: the tapered
+    cantilever's nominal stress, whichever tooth springs ``[load] stiffness`` chooses (the
+    FE table's fillet stresses hold the fillet's stress concentration; they are reported in
+    ``stiffness.csv``, not judged)."""
+    return _cantilever(spec).root_stress_MPa(normal_force_N, z_mm, r_mm)
 
 
 @lru_cache(maxsize=32)

@@ -16,7 +16,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from .compliance import solve_compliance
-from .inputs import LoadProblem, root_stress_source
+from .inputs import LoadProblem, nominal_root_stress_MPa
 from .linear_model import solve_linear
 from .surface import solve_surface
 
@@ -107,7 +107,7 @@ def _surface(problem: LoadProblem, progress: Progress = None) -> ModelOutput:
     Fn = np.asarray(out["normal_force_N"])
     z, r = out["contact_z_mm"], out["contact_r_mm"]
     out.setdefault("contact_regime", np.where(Fn > 0, 2, 0))
-    out.setdefault("root_stress_MPa", root_stress_source(spec, c).root_stress_MPa(Fn, z, r))
+    out.setdefault("root_stress_MPa", nominal_root_stress_MPa(spec, Fn, z, r))
     k = spec.tooth.pitch_radius ** 2 / c.pair_compliance_mm_per_N(problem.z_mm, problem.r_mm)
     out.setdefault("mesh_stiffness_Nm_per_rad",
                    np.sum(np.where(Fn > 0, k, 0.0), axis=0) * 1e-3)
