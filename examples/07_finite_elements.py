@@ -20,3 +20,15 @@ print("wind-up beyond first touch", round(ref.windup_from_first_touch_rad * 1e6,
 # torsion is part of it (the load models' wind-up is at the teeth)
 print("of which the bodies' torsion", round(gc.body_windup_rad(spec, 400.0)["body_rad"] * 1e6, 1),
       "µrad")
+# the same deck a misaligned pose uses, on one tooth at 0°: the hub bore turned to the
+# reference's wind-up carries the reference's tooth load
+one: gc.FESectorResult = gc.fe_contact_sector(spec, misalignment_deg=0.0, rotation_deg=0.0,
+                                              windup_rad=ref.windup_rad, sector=1, size_mm=1.0)
+print("turned to that wind-up, one tooth carries", round(one.tangential_force_N[0], 1), "N")
+# misaligned: the load model at the pose, then a five-tooth sector on its most loaded tooth
+# turned by the model's wind-up plus the bodies' (a coarse mesh here; docs/fea.md)
+chk: gc.SectorCheck = gc.sector_check(spec, 1.0, rotation_deg=7.1, torque_Nm=400.0,
+                                      sector=5, size_mm=1.0)
+for k, ratio in zip(chk.compared, chk.ratio, strict=True):
+    print("tooth", chk.fe.teeth[k], "FE", round(chk.fe.tangential_force_N[k]), "N;", chk.model,
+          round(chk.model_tangential_force_N[k]), "N; FE / model", round(ratio, 3))

@@ -8,6 +8,7 @@ figures (``tests/golden/fe_contact_reference.json``, written by
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 from pathlib import Path
@@ -19,7 +20,7 @@ import gearcoupling as gc
 from gearcoupling.cli import main
 from gearcoupling.errors import ArgumentError
 from gearcoupling.fea.reference import cyclic_equations, frd_nodal
-from gearcoupling.geometry import developed_arc
+from gearcoupling.geometry import developed_arc, hub_to_sleeve, rot_z
 from gearcoupling.loading.contact import patch_centre_radius
 
 GOLDEN = json.loads((Path(__file__).parent / "golden" / "fe_contact_reference.json")
@@ -67,7 +68,7 @@ def test_frd_reader_takes_the_last_block_in_fixed_columns():
 def test_cyclic_equations_hold_for_a_rigid_rotation_and_not_for_a_shift():
     spec = gc.load_spec("industrial-m2")
     vm = gc.mesh_part(spec, "hub", sector=1, size_mm=1.0, periodic=True)
-    lines = cyclic_equations(vm, "CUT_CW", "CUT_CCW", 2 * math.pi / spec.tooth.teeth,
+    lines = cyclic_equations(vm, "CUT_CW", "CUT_CCW", rot_z(2 * math.pi / spec.tooth.teeth),
                              np.zeros(0, dtype=np.int64))
     assert len(vm.node_set("CUT_CW")) == len(vm.node_set("CUT_CCW")) > 20
 
@@ -89,6 +90,16 @@ def test_cyclic_equations_hold_for_a_rigid_rotation_and_not_for_a_shift():
     assert np.max(np.abs(residuals(turn))) <= w * 1e-2 * vm.size_mm
     shift = np.tile([w, 0.0, 0.0], (len(x), 1))  # a translation is not cyclic: w sin a
     assert np.max(np.abs(residuals(shift))) > 0.5 * w * 2 * math.pi / spec.tooth.teeth
+
+    # the same cut on a hub tilted by 2 degrees (a misaligned sector): the equations turn
+    # about the tilted axis, and a rigid turn about it satisfies them
+    M = hub_to_sleeve(math.radians(2.0), 0.7)
+    tilted = dataclasses.replace(vm, nodes=x @ M.T)
+    lines = cyclic_equations(tilted, "CUT_CW", "CUT_CCW",
+                             M @ rot_z(2 * math.pi / spec.tooth.teeth) @ M.T,
+                             np.zeros(0, dtype=np.int64))
+    assert np.max(np.abs(residuals(w * np.cross(M[:, 2], tilted.nodes)))) <= w * 1e-2 * vm.size_mm
+    assert np.max(np.abs(residuals(w * np.cross([0.0, 0.0, 1.0], tilted.nodes)))) > 1e-3 * w
 
 
 @pytest.mark.slow
@@ -113,6 +124,13 @@ def test_aligned_reference_carries_the_torque_and_converges(tmp_path):
     assert abs(res["mesh_first_touch_rad"] - res["first_touch_rad"]) < 10e-6
     assert 0 < res["interior_pressure_MPa"] <= res["peak_pressure_MPa"]
     assert res["patch_face_mm"] >= 1.5 * res["size_mm"]  # the resolution it insists on
+    # the misaligned sector's deck at 0°, one tooth: its hub bore turned to the reference's
+    # wind-up (displacement control, cyclic cuts about the hub axis) carries the torque the
+    # reference applied (load control, sleeve turned) on the same mesh
+    sec = gc.fe_contact_sector(spec, misalignment_deg=0.0, rotation_deg=0.0, sector=1,
+                            windup_rad=res["windup_rad"], size_mm=1.0)
+    assert sec.tangential_force_N[0] == pytest.approx(res["tooth_load_N"], rel=0.02)
+    assert sec.sector_torque_Nm * spec.tooth.teeth == pytest.approx(T, rel=0.02)
 
 
 @pytest.mark.parametrize("name", sorted(GOLDEN))
@@ -219,3 +237,28 @@ def test_body_torsion_of_a_thin_ring_is_the_thin_walled_shear():
     assert one["body_rad"] == pytest.approx(one["hub_rad"] + one["sleeve_rad"])
     with pytest.raises(ArgumentError, match="torque_Nm"):
         gc.body_windup_rad(spec, math.nan)
+
+
+@pytest.mark.parametrize("kwargs, field", [
+    ({"misalignment_deg": 7.0}, "misalignment_deg"),
+    ({"misalignment_deg": float("nan")}, "misalignment_deg"),
+    ({"rotation_deg": 400.0}, "rotation_deg"),
+    ({"sector": 38}, "sector"),
+    ({"sector": 0}, "sector"),
+    ({"first_tooth": -1}, "first_tooth"),
+    ({"windup_rad": 1e-4}, "windup_rad"),  # short of the first touch, 2.86e-3
+    ({"windup_rad": float("inf")}, "windup_rad"),
+])
+def test_sector_refuses_bad_poses_before_meshing(kwargs, field):
+    spec = gc.load_spec("industrial-m2")
+    args = {"misalignment_deg": 1.0, "rotation_deg": 0.0, "windup_rad": 3e-3} | kwargs
+    with pytest.raises(ArgumentError, match=field):
+        gc.fe_contact_sector(spec, **args)
+
+
+@pytest.mark.parametrize("kwargs, field", [({"sector": 3}, "sector"),
+                                           ({"torque_Nm": 0.0}, "torque_Nm"),
+                                           ({"torque_Nm": float("nan")}, "torque_Nm")])
+def test_sector_check_refuses_a_sector_without_compared_teeth_and_no_torque(kwargs, field):
+    with pytest.raises(ArgumentError, match=field):
+        gc.sector_check(gc.load_spec("industrial-m2"), 1.0, **kwargs)

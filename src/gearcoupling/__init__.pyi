@@ -16,7 +16,9 @@ from .errors import GeometryError as GeometryError
 from .errors import SpecError as SpecError
 from .export import export_part as export_part
 from .fea import FEContactResult as FEContactResult
+from .fea import FESectorResult as FESectorResult
 from .fea import fe_contact as fe_contact
+from .fea import fe_contact_sector as fe_contact_sector
 from .fea import mesh_part as mesh_part
 from .fea import tooth_compliance_table as tooth_compliance_table
 from .fea import write_mesh as write_mesh
@@ -32,11 +34,13 @@ from .hob import measuring_charts as measuring_charts
 from .inspection import compare_part as compare_part
 from .interference import check_interference as check_interference
 from .loading import LoadResult as LoadResult
+from .loading import SectorCheck as SectorCheck
 from .loading import body_windup_rad as body_windup_rad
 from .loading import capacity as capacity
 from .loading import capacity_curve as capacity_curve
 from .loading import load as load
 from .loading import load_from_sweep as load_from_sweep
+from .loading import sector_check as sector_check
 from .outputs import RunResult as RunResult
 from .outputs import run as run
 from .parts import build_part as build_part

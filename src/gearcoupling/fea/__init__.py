@@ -8,6 +8,7 @@ when called; a missing one raises :class:`gearcoupling.errors.BackendError` nami
 from .backends import ccx_path, gmsh_module
 from .mesh import DEFAULT_SECTOR_TEETH, check_size, default_size, mesh_part, sector_teeth
 from .reference import FEContactResult, fe_contact
+from .sector import FESectorResult, fe_contact_sector
 from .stiffness import (
     ComplianceTable,
     compute_compliance_table,
@@ -22,12 +23,14 @@ __all__ = [
     "FORMATS",
     "ComplianceTable",
     "FEContactResult",
+    "FESectorResult",
     "VolumeMesh",
     "ccx_path",
     "check_size",
     "compute_compliance_table",
     "default_size",
     "fe_contact",
+    "fe_contact_sector",
     "gmsh_module",
     "mesh_part",
     "pitch_point_compliance",

@@ -32,7 +32,7 @@ from numpy.typing import NDArray
 
 from ..clearance import min_backlash_rad
 from ..errors import ArgumentError, GeometryError
-from ..geometry import developed_arc
+from ..geometry import developed_arc, rot_z
 from ..io import inp_id_lines, inp_number
 from ..spec import CouplingSpec
 from .ccx import run_ccx, solver_dir
@@ -91,7 +91,8 @@ def fe_contact(spec: CouplingSpec, *, torque_Nm: float | None = None,
     torque_Nm : float, optional
         Positive torque (N m); default the spec's load torque.
     misalignment_deg : float
-        Only 0: a misaligned reference needs a sector of many pitches (not built).
+        Only 0: a misaligned pose needs a sector of several pitches
+        (:func:`~gearcoupling.fea.sector.fe_contact_sector`).
     size_mm : float, optional
         Element size on the teeth (default module / 4).
     contact_size_mm : float, optional
@@ -104,7 +105,8 @@ def fe_contact(spec: CouplingSpec, *, torque_Nm: float | None = None,
     """
     if misalignment_deg != 0.0:
         raise ArgumentError("misalignment_deg", misalignment_deg,
-                            "0 only: the one-pitch cyclic reference holds for aligned shafts")
+                            "0 only: the one-pitch cyclic reference holds for aligned shafts; "
+                            "a misaligned pose is a sector (fe_contact_sector, sector_check)")
     T = spec.load.torque_Nm if torque_Nm is None else torque_Nm
     if not (isinstance(T, int | float) and math.isfinite(T) and T > 0):
         raise ArgumentError("torque_Nm", torque_Nm, "a positive finite torque (N m)")
@@ -134,15 +136,15 @@ def fe_contact(spec: CouplingSpec, *, torque_Nm: float | None = None,
     return out
 
 
-def cyclic_equations(vm: VolumeMesh, cw: str, ccw: str, angle: float,
+def cyclic_equations(vm: VolumeMesh, cw: str, ccw: str, rotation: NDArray[np.float64],
                      skip: NDArray[np.int64]) -> list[str]:
     """``*EQUATION`` lines tying every node of the ``ccw`` cut to its ``cw`` partner turned
-    by ``angle`` about z (u_ccw = R u_cw), except nodes in ``skip`` (0-based)."""
+    by ``rotation (3, 3)`` (u_ccw = R u_cw; the partner lies at R x_cw), except nodes in
+    ``skip`` (0-based)."""
     from scipy.spatial import cKDTree
 
     a, b = vm.node_set(cw), vm.node_set(ccw)
-    c, s = math.cos(angle), math.sin(angle)
-    rot = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+    rot = np.asarray(rotation, dtype=float)
     dist, idx = cKDTree(vm.nodes[b]).query(vm.nodes[a] @ rot.T)
     if len(a) != len(b) or dist.max() > 1e-2 * vm.size_mm:
         raise GeometryError(f"the cut faces of the {vm.part} sector do not match node for "
@@ -153,9 +155,10 @@ def cyclic_equations(vm: VolumeMesh, cw: str, ccw: str, angle: float,
     for i, j in zip(a + 1, b[idx] + 1, strict=True):
         if j - 1 in skipped:
             continue
-        lines += ["3", f"{j}, 1, 1.0, {i}, 1, {inp_number(-c)}, {i}, 2, {inp_number(s)}",
-                  "3", f"{j}, 2, 1.0, {i}, 1, {inp_number(-s)}, {i}, 2, {inp_number(-c)}",
-                  "2", f"{j}, 3, 1.0, {i}, 3, -1.0"]
+        for d in range(3):
+            terms = [f"{j}, {d + 1}, 1.0"] + [f"{i}, {e + 1}, {inp_number(-rot[d, e])}"
+                                             for e in range(3) if abs(rot[d, e]) > 1e-15]
+            lines += [str(len(terms)), ", ".join(terms)]
     return lines
 
 
@@ -167,13 +170,13 @@ def torque_deck(pair: VolumeMesh, spec: CouplingSpec, *, moment_Nmm: float, pret
     E, nu = material(spec, "hub")
     ref, rot = len(pair.nodes) + 1, len(pair.nodes) + 2
     bore, outer = pair.node_set("H_BORE"), pair.node_set("S_OUTER")
-    angle = 2 * math.pi / spec.tooth.teeth
+    turn = rot_z(2 * math.pi / spec.tooth.teeth)
     lines = inp_mesh_lines(pair)
     lines += ["*NODE", f"{ref}, 0.0, 0.0, 0.0", f"{rot}, 0.0, 0.0, 0.0",
               "*NSET, NSET=ROTN", f"{rot}", "*NSET, NSET=SRIGID", *inp_id_lines(outer + 1),
               "*NSET, NSET=HFIX", *inp_id_lines(bore + 1)]
-    lines += cyclic_equations(pair, "H_CUT_CW", "H_CUT_CCW", angle, bore)
-    lines += cyclic_equations(pair, "S_CUT_CW", "S_CUT_CCW", angle, outer)
+    lines += cyclic_equations(pair, "H_CUT_CW", "H_CUT_CCW", turn, bore)
+    lines += cyclic_equations(pair, "S_CUT_CW", "S_CUT_CCW", turn, outer)
     lines += ["*MATERIAL, NAME=STEEL", "*ELASTIC", f"{inp_number(E)}, {inp_number(nu)}",
               "*SOLID SECTION, ELSET=EALL, MATERIAL=STEEL",
               f"*RIGID BODY, NSET=SRIGID, REF NODE={ref}, ROT NODE={rot}",

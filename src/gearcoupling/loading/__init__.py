@@ -28,6 +28,7 @@ from .plots import (
     renzo_q,
 )
 from .result import CSV_COLUMNS, LoadResult
+from .sector_check import SectorCheck, sector_check
 from .summary import machine_loads, rotation_table
 
 __all__ = [
@@ -37,6 +38,7 @@ __all__ = [
     "CapacityCurve",
     "LoadResult",
     "PatchMap",
+    "SectorCheck",
     "body_windup_rad",
     "capacity",
     "capacity_curve",
@@ -56,6 +58,7 @@ __all__ = [
     "renzo_q",
     "resolve_torque_Nm",
     "rotation_table",
+    "sector_check",
     "solve_windup",
     "write_capacity_csv",
 ]

@@ -1,0 +1,130 @@
+"""The misaligned contact reference: a CalculiX tooth sector against the load models.
+
+Run: ``python benchmarks/bench_fea_sector.py [--runs FILE] [--stored] [--sectors K ...]``.
+For each pose (spec, misalignment, turning angle, torque), :func:`gearcoupling.sector_check`
+with the ``surface`` model and the FE tooth springs picks the wind-up (model + bodies) and
+the most loaded tooth; the FE sector of ``K`` teeth on it is turned by that wind-up. Printed
+per pose and sector: nodes, solve time, memory and the FE tooth loads; then the sector's
+growth (the compared tooth's load from ``K`` to the next ``K``: the cut conditions' effect)
+and every model and spring at the same wind-up (:func:`loads_at_windup`): the torque it
+needs for it and its loads on the compared teeth against the FE's. ``--runs`` keeps the FE
+runs in a JSON file and reuses those already there; ``--stored`` solves nothing new.
+"""
+
+from __future__ import annotations
+
+import argparse
+import itertools
+import json
+import os
+from dataclasses import replace
+from pathlib import Path
+
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+import numpy as np
+
+import gearcoupling as gc
+from gearcoupling.loading.sector_check import loads_at_windup
+
+ROOT = Path(__file__).resolve().parent.parent
+# (spec, misalignment °, turning angle °: the most loaded teeth at 180° + a quarter pitch,
+# torque N m, element size mm: the coarsest of the aligned ladder, within 1.5-3 % of it)
+POSES = [("renzo-1967", 1.0, 3.6, 2259.7, 0.85), ("renzo-1967", 1.0, 3.6, 1129.85, 0.85),
+         ("industrial-m2", 1.0, 7.105263157894737, 400.0, 0.7)]
+SPRINGS = ("fe", "cantilever")
+MODELS = ("surface", "compliance", "linear")
+
+
+def key(pose, sector: int) -> str:
+    name, mis, rot, T, size = pose
+    return f"{name}|{mis:g}|{rot:.4f}|{T:g}|{size:g}|{sector}"
+
+
+def with_springs(spec: gc.CouplingSpec, springs: str) -> gc.CouplingSpec:
+    return replace(spec, load=replace(spec.load, stiffness=springs))
+
+
+def fe_runs(poses, sectors, store: Path, solve: bool = True) -> dict:
+    """``{key: SectorCheck dict}``, from ``store`` where there, else solved (and kept)."""
+    runs = json.loads(store.read_text()) if store.exists() else {}
+    for pose in poses if solve else ():
+        name, mis, rot, T, size = pose
+        for k in sectors:
+            if key(pose, k) in runs:
+                continue
+            spec = with_springs(gc.load_spec(name), "fe")
+            work = store.parent / f"fe_sector-{key(pose, k)}".replace("|", "_")
+            chk = gc.sector_check(spec, mis, rotation_deg=rot, torque_Nm=T, model="surface",
+                                  sector=k, size_mm=size, workdir=work)
+            runs[key(pose, k)] = chk.to_dict()
+            store.parent.mkdir(parents=True, exist_ok=True)
+            store.write_text(json.dumps(runs, indent=1))
+    return runs
+
+
+def fe_table(pose, runs: dict, sectors) -> None:
+    print("\n| sector | nodes | solve s | memory MB | teeth | FE tangential load N |")
+    print("|---|---|---|---|---|---|")
+    for k in sectors:
+        if (run := runs.get(key(pose, k))) is None:
+            continue
+        fe = run["fe"]
+        print(f"| {k} | {fe['nodes']} | {fe['solve_seconds']:.0f} | {fe['max_rss_MB']:.0f} | "
+              f"{fe['teeth'][0]}-{fe['teeth'][-1]} | "
+              f"{' · '.join(f'{w:.0f}' for w in fe['tangential_force_N'])} |")
+
+
+def growth(pose, runs: dict, sectors) -> None:
+    """The most loaded tooth's FE load as the sector grows."""
+    got = [(k, runs[key(pose, k)]) for k in sectors if key(pose, k) in runs]
+    for (k0, a), (k1, b) in itertools.pairwise(got):
+        t = a["fe"]["teeth"][k0 // 2]
+        w0 = a["fe"]["tangential_force_N"][k0 // 2]
+        w1 = b["fe"]["tangential_force_N"][b["fe"]["teeth"].index(t)]
+        print(f"\nsector {k0} -> {k1}: tooth {t} {w0:.0f} -> {w1:.0f} N "
+              f"({100 * (w1 / w0 - 1):+.1f} %)")
+
+
+def models_at_windup(pose, run: dict) -> None:
+    """Every model and spring at the FE run's wind-up, on its compared teeth."""
+    name, mis, rot = pose[:3]
+    fe = run["fe"]
+    teeth = [fe["teeth"][k] for k in run["compared"]]
+    W_fe = np.array([fe["tangential_force_N"][k] for k in run["compared"]])
+    print(f"\nAt the wind-up {fe['windup_rad'] * 1e6:.1f} µrad (teeth {teeth}; FE "
+          f"{' · '.join(f'{w:.0f}' for w in W_fe)} N; the sector's first touch "
+          f"{min(fe['gap_angle_rad']) * 1e6:.1f} µrad):\n")
+    print("| model | springs | torque for this wind-up N·m | compared loads N | FE / model |")
+    print("|---|---|---|---|---|")
+    spec = gc.load_spec(name)
+    for model in MODELS:
+        for springs in SPRINGS if model != "linear" else ("template C",):
+            s = with_springs(spec, "cantilever" if model == "linear" else springs)
+            Tm, W = loads_at_windup(s, mis, rot, fe["windup_rad"], model=model)
+            Wm = W[teeth]
+            print(f"| {model} | {springs} | {Tm:.0f} | {' · '.join(f'{w:.0f}' for w in Wm)} | "
+                  f"{' · '.join(f'{r:.3f}' for r in W_fe / Wm)} |")
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--runs", type=Path, default=ROOT / "outputs" / "bench_fea_sector.json")
+    ap.add_argument("--sectors", nargs="*", type=int, default=[5, 7])
+    ap.add_argument("--stored", action="store_true", help="only the runs in --runs")
+    a = ap.parse_args()
+    runs = fe_runs(POSES, a.sectors, a.runs, solve=not a.stored)
+    print("## The misaligned sector reference (cyclic cuts, turned by the wind-up)")
+    for pose in POSES:
+        have = [k for k in a.sectors if key(pose, k) in runs]
+        if not have:
+            continue
+        print(f"\n### {pose[0]}, {pose[1]:g}°, turning angle {pose[2]:.2f}°, {pose[3]:g} N·m, "
+              f"element size {pose[4]:g} mm")
+        fe_table(pose, runs, a.sectors)
+        growth(pose, runs, a.sectors)
+        models_at_windup(pose, runs[key(pose, max(have))])
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,210 @@
+"""The misaligned contact reference: a sector of teeth at one pose, turned by a wind-up.
+
+At a misalignment every tooth meets its space at its own gap, so the teeth share the
+torque unequally and one pitch no longer stands for the coupling. A sector of ``sector``
+hub and sleeve teeth, meshed by gmsh with periodic cuts, is posed as the coupling's teeth
+``first_tooth ..`` at the turning angle ``rotation_deg`` (the hub in the sleeve frame by
+``Rz(-psi) Rx(i) Rz(psi)``, ``psi`` the turning angle of the sector's first tooth;
+docs/conventions.md, Frames). The hub bore, a rigid body, turns by the wind-up about the
+hub axis: displacement control, since the share of the torque a sector carries is what is
+sought. The sleeve outside diameter is fixed. The cuts carry cyclic equations, each about
+its own part's axis, so the body beneath the teeth continues as an annulus would instead
+of ending clamped or free; the sector's size is the accuracy knob whose effect the
+benchmark measures by growing it. Step 1 turns the hub to just short of the sector's first
+touch (the sweep's exact gap angles), step 2 on to the wind-up in increments; every hub
+ccw flank (slave) meets the sleeve ccw flank of its space (master) through the reference's
+stiff linear penalty law.
+
+Per tooth: the tangential load (the contact moment about the hub axis / pitch radius),
+the peak contact pressure and where the patch lies across the face (load-weighted ``z``,
+sleeve frame).
+"""
+
+from __future__ import annotations
+
+import math
+import resource
+from dataclasses import asdict, dataclass, field
+
+import numpy as np
+
+from ..clearance import sweep
+from ..errors import ArgumentError
+from ..geometry import hub_to_sleeve, rot_z
+from ..io import inp_id_lines, inp_number
+from ..spec import CouplingSpec
+from .ccx import run_ccx, solver_dir
+from .contact import merge
+from .mesh import check_size, mesh_part
+from .reference import PENALTY_FACTOR, TOLERANCE_MODULES, cyclic_equations, frd_nodal
+from .stiffness import material
+from .volume import VolumeMesh
+from .write import inp_mesh_lines
+
+TOUCH_SHORT = 0.99  # step 1 turns the hub to this share of the sector's first touch
+MAX_MISALIGNMENT_DEG = 6.0
+
+
+@dataclass(frozen=True)
+class FESectorResult:
+    """One misaligned contact reference pose (module docstring). Per-tooth lists follow
+    ``teeth`` (the coupling's tooth numbers); angles rad unless named ``_deg``; the
+    ``gap_angle_rad`` is each tooth's exact first touch (the sweep's), ``windup_rad`` the
+    imposed turn from the unloaded pose, measured like :attr:`LoadResult.windup_rad`."""
+
+    spec: str
+    misalignment_deg: float
+    rotation_deg: float
+    windup_rad: float
+    teeth: list[int]
+    theta_deg: list[float]
+    gap_angle_rad: list[float]
+    tangential_force_N: list[float]
+    peak_pressure_MPa: list[float]
+    patch_z_mm: list[float | None]
+    sector_torque_Nm: float
+    size_mm: float
+    nodes: int
+    solve_seconds: float
+    max_rss_MB: float
+    settings: dict = field(default_factory=dict)
+
+    def to_dict(self) -> dict:
+        """Plain values, for a JSON file."""
+        return asdict(self)
+
+
+def fe_contact_sector(spec: CouplingSpec, *, misalignment_deg: float, rotation_deg: float,
+                      windup_rad: float, first_tooth: int = 0, sector: int = 5,
+                      size_mm: float | None = None, tolerance_mm: float | None = None,
+                      workdir=None) -> FESectorResult:
+    """Solve one pose of a tooth sector turned by ``windup_rad`` (module docstring).
+
+    Parameters
+    ----------
+    spec : CouplingSpec
+    misalignment_deg : float
+        From 0 to 6.
+    rotation_deg : float
+        Turning angle of the coupling (of its tooth 0), as in :func:`gearcoupling.load`.
+    windup_rad : float
+        The hub's turn from the unloaded pose; beyond the sector's first touch.
+    first_tooth : int
+        The coupling's tooth that is the sector's first; the sector holds ``sector`` teeth
+        on from it. The teeth two pitches or more from a cut are the ones to compare.
+    sector : int
+        Teeth in the sector (the cut conditions' accuracy knob), 1 to N - 1.
+    size_mm : float, optional
+        Element size on the teeth (default module / 4).
+    tolerance_mm : float, optional
+        Chordal tolerance of the solids (default module x 2e-4).
+    workdir : path, optional
+        Keep the deck, log and printout here (default: a temporary folder, kept on failure).
+    """
+    N = spec.tooth.teeth
+    i = _angle(misalignment_deg, "misalignment_deg", 0.0, MAX_MISALIGNMENT_DEG)
+    rot = _angle(rotation_deg, "rotation_deg", -360.0, 360.0)
+    if not (isinstance(sector, int) and 1 <= sector < N):
+        raise ArgumentError("sector", sector, f"a whole number of teeth from 1 to {N - 1}")
+    if not (isinstance(first_tooth, int) and 0 <= first_tooth < N):
+        raise ArgumentError("first_tooth", first_tooth, f"a tooth number from 0 to {N - 1}")
+    teeth = [(first_tooth + k) % N for k in range(sector)]
+    gaps = sweep(spec, i, [rot]).gap_angle_rad[1][teeth, 0]
+    touch = float(np.min(gaps))
+    if not (math.isfinite(windup_rad) and windup_rad > touch):
+        raise ArgumentError("windup_rad", windup_rad, f"a turn (rad) beyond the sector's first "
+                            f"touch, {touch:.6g}: below it no tooth carries load")
+    size = min(check_size(spec, "hub", size_mm), check_size(spec, "sleeve", size_mm))
+    tol = TOLERANCE_MODULES * spec.tooth.module if tolerance_mm is None else tolerance_mm
+    hub, sleeve = (mesh_part(spec, part, sector=sector, size_mm=size, periodic=True,
+                             tolerance_mm=tol) for part in ("hub", "sleeve"))
+    psi = math.radians(rot) + 2 * math.pi * first_tooth / N
+    M = hub_to_sleeve(math.radians(i), psi)
+    pair = merge(hub, sleeve, M)
+    E, _ = material(spec, "hub")
+    deck = sector_deck(pair, spec, hub_to_sleeve_matrix=M, windup_rad=windup_rad,
+                       touch_rad=TOUCH_SHORT * touch, penalty=PENALTY_FACTOR * E / size)
+    with solver_dir(workdir) as work:
+        res = run_ccx(deck, work, "fe_sector")
+        pressure = frd_nodal(res.job.with_suffix(".frd").read_text(), "CONTACT")
+    R = spec.tooth.pitch_radius
+    loads = [_tooth_load(res, k, M[:, 2], R) for k in range(sector)]
+    peaks, centres = zip(*(_patch(pair, pressure, k) for k in range(sector)), strict=True)
+    moment = res.get("forces", "ROTN")[-1][0, 1:4]
+    return FESectorResult(
+        spec=spec.name, misalignment_deg=i, rotation_deg=rot, windup_rad=float(windup_rad),
+        teeth=teeth, theta_deg=[float(np.degrees(psi) + 360.0 * k / N) for k in range(sector)],
+        gap_angle_rad=[float(g) for g in gaps], tangential_force_N=loads,
+        peak_pressure_MPa=list(peaks), patch_z_mm=list(centres),
+        sector_torque_Nm=abs(float(moment @ M[:, 2])) * 1e-3, size_mm=size,
+        nodes=len(pair.nodes), solve_seconds=res.seconds,
+        max_rss_MB=resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024,
+        settings={"penalty_factor": PENALTY_FACTOR, "sector": sector, "element": "C3D10",
+                  "tolerance_mm": tol, "cuts": "cyclic equations about each part's axis",
+                  "loading": "hub bore turned by the wind-up, sleeve outside fixed"})
+
+
+def _angle(value, name: str, lo: float, hi: float) -> float:
+    """``value`` as a finite float in ``[lo, hi]`` (degrees), or :class:`ArgumentError`."""
+    if not (isinstance(value, int | float) and math.isfinite(value) and lo <= value <= hi):
+        raise ArgumentError(name, value, f"an angle from {lo:g} to {hi:g} degrees")
+    return float(value)
+
+
+def sector_deck(pair: VolumeMesh, spec: CouplingSpec, *, hub_to_sleeve_matrix: np.ndarray,
+                windup_rad: float, touch_rad: float, penalty: float,
+                increment: float = 0.25) -> str:
+    """The deck (module docstring) of a merged sector pair whose hub was posed by
+    ``hub_to_sleeve_matrix (3, 3)``: step 1 turns the rigid bore by ``touch_rad`` about the
+    hub axis, step 2 by ``windup_rad`` in increments of at most ``increment`` of the step."""
+    E, nu = material(spec, "hub")
+    M = np.asarray(hub_to_sleeve_matrix, dtype=float)
+    axis = M[:, 2]
+    ref, rot = len(pair.nodes) + 1, len(pair.nodes) + 2
+    bore, outer = pair.node_set("H_BORE"), pair.node_set("S_OUTER")
+    teeth = pair.teeth or [0]
+    turn = rot_z(2 * math.pi * len(teeth) / spec.tooth.teeth)
+    lines = inp_mesh_lines(pair)
+    lines += ["*NODE", f"{ref}, 0.0, 0.0, 0.0", f"{rot}, 0.0, 0.0, 0.0",
+              "*NSET, NSET=ROTN", f"{rot}", "*NSET, NSET=HRIGID", *inp_id_lines(bore + 1),
+              "*NSET, NSET=SFIX", *inp_id_lines(outer + 1)]
+    lines += cyclic_equations(pair, "H_CUT_CW", "H_CUT_CCW", M @ turn @ M.T, bore)
+    lines += cyclic_equations(pair, "S_CUT_CW", "S_CUT_CCW", turn, outer)
+    lines += ["*MATERIAL, NAME=STEEL", "*ELASTIC", f"{inp_number(E)}, {inp_number(nu)}",
+              "*SOLID SECTION, ELSET=EALL, MATERIAL=STEEL",
+              f"*RIGID BODY, NSET=HRIGID, REF NODE={ref}, ROT NODE={rot}",
+              "*SURFACE INTERACTION, NAME=SI",
+              "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR", f"{inp_number(penalty)}"]
+    for k in teeth:
+        lines += ["*CONTACT PAIR, INTERACTION=SI, TYPE=SURFACE TO SURFACE",
+                  f"S_H_T{k}_FLANK_CCW, S_S_T{k}_FLANK_CCW"]
+    lines += ["*BOUNDARY", "SFIX, 1, 3, 0.0", f"{ref}, 1, 3, 0.0"]
+    for step, (angle, inc) in enumerate(((touch_rad, 1.0), (windup_rad, increment))):
+        lines += [f"*STEP, INC={100 if step == 0 else 200}", "*STATIC",
+                  f"{inc}, 1.0, 1e-4, {inc}", "*BOUNDARY"]
+        lines += [f"{rot}, {d + 1}, {d + 1}, {inp_number(angle * axis[d])}" for d in range(3)]
+        lines += ["*NODE PRINT, NSET=ROTN", "U, RF"]
+        if step == 1:
+            for k in teeth:
+                lines += [f"*CONTACT PRINT, SLAVE=S_H_T{k}_FLANK_CCW, "
+                          f"MASTER=S_S_T{k}_FLANK_CCW", "CF"]
+            lines += ["*CONTACT FILE", "CSTR"]
+        lines += ["*END STEP"]
+    return "\n".join(lines) + "\n"
+
+
+def _tooth_load(res, k: int, axis: np.ndarray, R: float) -> float:
+    """Tangential load (N) of sector tooth ``k``: its contact moment about ``axis`` / R."""
+    stats = res.get("statistics", f"S_H_T{k}_FLANK_CCW")
+    fm = stats[-1][0, :6] if stats and stats[-1].shape[1] >= 6 else np.zeros(6)
+    return abs(float(np.nan_to_num(fm[3:6]) @ axis)) / R
+
+
+def _patch(pair: VolumeMesh, pressure: dict, k: int) -> tuple[float, float | None]:
+    """Peak pressure (MPa) and load-weighted ``z`` (mm; None: unloaded) of sector tooth
+    ``k``'s hub flank."""
+    nodes = pair.node_set(f"H_T{k}_FLANK_CCW")
+    p = np.array([pressure.get(int(n) + 1, np.zeros(4))[3] for n in nodes])
+    if not np.any(p > 0):
+        return 0.0, None
+    return float(p.max()), float(np.sum(p * pair.nodes[nodes, 2]) / np.sum(p))

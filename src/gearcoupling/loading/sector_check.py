@@ -1,0 +1,118 @@
+"""A load model against the misaligned finite-element sector at one pose.
+
+The model (:func:`gearcoupling.load`) solves the pose at the torque; the finite-element
+sector (:func:`gearcoupling.fea.fe_contact_sector`) is then centred on the model's
+most loaded tooth and turned by the model's wind-up plus the bodies' torsion
+(:func:`body_windup_rad`), the same total the aligned reference measures. Equal wind-up,
+since a sector cannot be given its share of the torque: the share is the answer sought.
+The teeth at least two pitches from a cut are the compared ones (their loads change by
+little when the sector grows: docs/fea.md has the measured figure).
+"""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass
+
+import numpy as np
+from scipy.optimize import brentq
+
+from ..errors import ArgumentError
+from ..fea import FESectorResult, fe_contact_sector
+from ..spec import CouplingSpec
+from .api import load
+from .body import body_windup_rad
+from .inputs import resolve_torque_Nm
+
+CUT_DISTANCE_PITCHES = 2  # compared teeth stand at least this far from a cut
+
+
+@dataclass(frozen=True)
+class SectorCheck:
+    """A model and the FE sector at one pose. Lists follow ``fe.teeth``; ``compared``
+    indexes the teeth far enough from the cuts; ``ratio`` is FE / model tooth load there."""
+
+    model: str
+    stiffness: str
+    torque_Nm: float
+    model_windup_rad: float
+    body_rad: float
+    model_tangential_force_N: list[float]
+    model_peak_pressure_MPa: list[float]
+    compared: list[int]
+    ratio: list[float]
+    fe: FESectorResult
+
+    def to_dict(self) -> dict:
+        """Plain values, for ``fea_contact.json``."""
+        return asdict(self)
+
+
+def sector_check(spec: CouplingSpec, misalignment_deg: float, *, rotation_deg: float = 0.0,
+                 torque_Nm: float | None = None, model: str | None = None, sector: int = 5,
+                 size_mm: float | None = None, workdir=None) -> SectorCheck:
+    """Compare ``model`` with the FE sector at one misaligned pose (module docstring).
+
+    Parameters
+    ----------
+    spec : CouplingSpec
+    misalignment_deg, rotation_deg : float
+        The pose, as in :func:`gearcoupling.load`.
+    torque_Nm : float, optional
+        Default the spec's load torque.
+    model : str, optional
+        Default the spec's load model; its tooth springs are the spec's ``load.stiffness``.
+    sector : int
+        Teeth in the FE sector, at least 5 (the accuracy knob of the cut conditions).
+    size_mm : float, optional
+        FE element size on the teeth (default module / 4).
+    workdir : path, optional
+        Keep the solver's deck, log and printout here.
+    """
+    lo = 2 * CUT_DISTANCE_PITCHES + 1
+    if not (isinstance(sector, int) and lo <= sector < spec.tooth.teeth):
+        raise ArgumentError("sector", sector, f"a whole number of teeth from {lo} (teeth "
+                            f"{CUT_DISTANCE_PITCHES} pitches from a cut) to "
+                            f"{spec.tooth.teeth - 1}")
+    T = resolve_torque_Nm(spec, torque_Nm)
+    if not T > 0:
+        raise ArgumentError("torque_Nm", T, "a torque above 0 N·m: unloaded, nothing touches")
+    res = load(spec, misalignment_deg, [rotation_deg], torque_Nm=T, model=model)
+    W = res.tangential_force_N[:, 0]
+    N = W.size
+    first = (int(np.argmax(W)) - sector // 2) % N
+    body = body_windup_rad(spec, T)["body_rad"]
+    fe = fe_contact_sector(spec, misalignment_deg=misalignment_deg, rotation_deg=rotation_deg,
+                           windup_rad=float(res.windup_rad[0]) + body, first_tooth=first,
+                           sector=sector, size_mm=size_mm, workdir=workdir)
+    compared = list(range(CUT_DISTANCE_PITCHES, sector - CUT_DISTANCE_PITCHES))
+    ratio = [fe.tangential_force_N[k] / W[fe.teeth[k]] for k in compared]
+    return SectorCheck(model=res.model, stiffness=spec.load.stiffness, torque_Nm=T,
+                       model_windup_rad=float(res.windup_rad[0]), body_rad=body,
+                       model_tangential_force_N=[float(W[t]) for t in fe.teeth],
+                       model_peak_pressure_MPa=[float(res.max_pressure_MPa[t, 0])
+                                                for t in fe.teeth],
+                       compared=compared, ratio=ratio, fe=fe)
+
+
+def loads_at_windup(spec: CouplingSpec, misalignment_deg: float, rotation_deg: float,
+                    windup_rad: float, *, model: str | None = None,
+                    rtol: float = 1e-4) -> tuple[float, np.ndarray]:
+    """The torque (N m) at which ``model`` plus the bodies' torsion winds up by
+    ``windup_rad`` at one pose, and its tangential tooth loads ``(N,)`` there: a model
+    compared with the FE sector at equal wind-up (module docstring). ``rtol``: the
+    torque's relative tolerance."""
+    def excess(T: float) -> float:
+        res = load(spec, misalignment_deg, [rotation_deg], torque_Nm=T, model=model)
+        return float(res.windup_rad[0]) + body_windup_rad(spec, T)["body_rad"] - windup_rad
+
+    hi = max(resolve_torque_Nm(spec, None), 1.0)
+    while excess(hi) < 0:
+        hi *= 2.0
+    lo = hi / 2.0
+    while excess(lo) > 0 and lo > 1e-6 * hi:
+        lo /= 2.0
+    if excess(lo) > 0:
+        raise ArgumentError("windup_rad", windup_rad, "a turn beyond the pose's first touch")
+    T = float(brentq(excess, lo, hi, rtol=rtol))
+    res = load(spec, misalignment_deg, [rotation_deg], torque_Nm=T, model=model)
+    return T, res.tangential_force_N[:, 0]
