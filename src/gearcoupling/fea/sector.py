@@ -10,10 +10,11 @@ hub axis: displacement control, since the share of the torque a sector carries i
 sought. The sleeve outside diameter is fixed. The cuts carry cyclic equations, each about
 its own part's axis, so the body beneath the teeth continues as an annulus would instead
 of ending clamped or free; the sector's size is the accuracy knob whose effect the
-benchmark measures by growing it. Step 1 turns the hub to just short of the sector's first
-touch (the sweep's exact gap angles), step 2 on to the wind-up in increments; every hub
-ccw flank (slave) meets the sleeve ccw flank of its space (master) through the reference's
-stiff linear penalty law.
+benchmark measures by growing it. The hub is meshed turned to just short of the sector's
+first touch (the sweep's exact gap angles; exact, as a rotation of the nodes, and from
+teeth that touch before the nominal pose as well), and the solver turns it on to the
+wind-up; every hub ccw flank (slave) meets the sleeve ccw flank of its space (master)
+through the reference's stiff linear penalty law.
 
 Per tooth: the tangential load (the contact moment about the hub axis / pitch radius),
 the peak contact pressure and where the patch lies across the face (load-weighted ``z``,
@@ -41,7 +42,7 @@ from .stiffness import material
 from .volume import VolumeMesh
 from .write import inp_mesh_lines
 
-TOUCH_SHORT = 0.99  # step 1 turns the hub to this share of the sector's first touch
+SHORT_OF_TOUCH = 0.01  # the hub is meshed this share of the lift short of first touch
 MAX_MISALIGNMENT_DEG = 6.0
 
 
@@ -120,10 +121,12 @@ def fe_contact_sector(spec: CouplingSpec, *, misalignment_deg: float, rotation_d
                              tolerance_mm=tol) for part in ("hub", "sleeve"))
     psi = math.radians(rot) + 2 * math.pi * first_tooth / N
     M = hub_to_sleeve(math.radians(i), psi)
-    pair = merge(hub, sleeve, M)
+    start = touch - SHORT_OF_TOUCH * (windup_rad - touch)
+    pair = merge(hub, sleeve, M @ rot_z(start))
     E, _ = material(spec, "hub")
-    deck = sector_deck(pair, spec, hub_to_sleeve_matrix=M, windup_rad=windup_rad,
-                       touch_rad=TOUCH_SHORT * touch, penalty=PENALTY_FACTOR * E / size)
+    deck = sector_deck(pair, spec, hub_axis=M[:, 2], hub_cut_rotation=M @ rot_z(
+        2 * math.pi * sector / N) @ M.T, turn_rad=windup_rad - start,
+                       penalty=PENALTY_FACTOR * E / size)
     with solver_dir(workdir) as work:
         res = run_ccx(deck, work, "fe_sector")
         pressure = frd_nodal(res.job.with_suffix(".frd").read_text(), "CONTACT")
@@ -151,25 +154,27 @@ def _angle(value, name: str, lo: float, hi: float) -> float:
     return float(value)
 
 
-def sector_deck(pair: VolumeMesh, spec: CouplingSpec, *, hub_to_sleeve_matrix: np.ndarray,
-                windup_rad: float, touch_rad: float, penalty: float,
-                increment: float = 0.25) -> str:
-    """The deck (module docstring) of a merged sector pair whose hub was posed by
-    ``hub_to_sleeve_matrix (3, 3)``: step 1 turns the rigid bore by ``touch_rad`` about the
-    hub axis, step 2 by ``windup_rad`` in increments of at most ``increment`` of the step."""
+def sector_deck(pair: VolumeMesh, spec: CouplingSpec, *, hub_axis: np.ndarray,
+                hub_cut_rotation: np.ndarray, turn_rad: float, penalty: float,
+                increment: float = 1.0) -> str:
+    """The deck (module docstring) of a merged sector pair: the rigid hub bore turns by
+    ``turn_rad`` about ``hub_axis (3,)``, the hub's cuts tied by ``hub_cut_rotation (3, 3)``
+    (the sector angle about the hub axis), the sleeve's by the same angle about z; the
+    step starts with ``increment`` of the turn (the solver cuts it where contact does not
+    converge). Frictionless and elastic, the answer does not depend on the path: on
+    renzo-1967's one-tooth sector at 0° one increment gave the load of four quarter
+    increments within 5e-5 in 52 s instead of 89 s."""
     E, nu = material(spec, "hub")
-    M = np.asarray(hub_to_sleeve_matrix, dtype=float)
-    axis = M[:, 2]
     ref, rot = len(pair.nodes) + 1, len(pair.nodes) + 2
     bore, outer = pair.node_set("H_BORE"), pair.node_set("S_OUTER")
     teeth = pair.teeth or [0]
-    turn = rot_z(2 * math.pi * len(teeth) / spec.tooth.teeth)
     lines = inp_mesh_lines(pair)
     lines += ["*NODE", f"{ref}, 0.0, 0.0, 0.0", f"{rot}, 0.0, 0.0, 0.0",
               "*NSET, NSET=ROTN", f"{rot}", "*NSET, NSET=HRIGID", *inp_id_lines(bore + 1),
               "*NSET, NSET=SFIX", *inp_id_lines(outer + 1)]
-    lines += cyclic_equations(pair, "H_CUT_CW", "H_CUT_CCW", M @ turn @ M.T, bore)
-    lines += cyclic_equations(pair, "S_CUT_CW", "S_CUT_CCW", turn, outer)
+    lines += cyclic_equations(pair, "H_CUT_CW", "H_CUT_CCW", hub_cut_rotation, bore)
+    lines += cyclic_equations(pair, "S_CUT_CW", "S_CUT_CCW",
+                              rot_z(2 * math.pi * len(teeth) / spec.tooth.teeth), outer)
     lines += ["*MATERIAL, NAME=STEEL", "*ELASTIC", f"{inp_number(E)}, {inp_number(nu)}",
               "*SOLID SECTION, ELSET=EALL, MATERIAL=STEEL",
               f"*RIGID BODY, NSET=HRIGID, REF NODE={ref}, ROT NODE={rot}",
@@ -178,18 +183,14 @@ def sector_deck(pair: VolumeMesh, spec: CouplingSpec, *, hub_to_sleeve_matrix: n
     for k in teeth:
         lines += ["*CONTACT PAIR, INTERACTION=SI, TYPE=SURFACE TO SURFACE",
                   f"S_H_T{k}_FLANK_CCW, S_S_T{k}_FLANK_CCW"]
-    lines += ["*BOUNDARY", "SFIX, 1, 3, 0.0", f"{ref}, 1, 3, 0.0"]
-    for step, (angle, inc) in enumerate(((touch_rad, 1.0), (windup_rad, increment))):
-        lines += [f"*STEP, INC={100 if step == 0 else 200}", "*STATIC",
-                  f"{inc}, 1.0, 1e-4, {inc}", "*BOUNDARY"]
-        lines += [f"{rot}, {d + 1}, {d + 1}, {inp_number(angle * axis[d])}" for d in range(3)]
-        lines += ["*NODE PRINT, NSET=ROTN", "U, RF"]
-        if step == 1:
-            for k in teeth:
-                lines += [f"*CONTACT PRINT, SLAVE=S_H_T{k}_FLANK_CCW, "
-                          f"MASTER=S_S_T{k}_FLANK_CCW", "CF"]
-            lines += ["*CONTACT FILE", "CSTR"]
-        lines += ["*END STEP"]
+    lines += ["*BOUNDARY", "SFIX, 1, 3, 0.0", f"{ref}, 1, 3, 0.0",
+              "*STEP, INC=200", "*STATIC", f"{increment}, 1.0, 1e-4, {increment}", "*BOUNDARY"]
+    lines += [f"{rot}, {d + 1}, {d + 1}, {inp_number(turn_rad * hub_axis[d])}"
+              for d in range(3)]
+    lines += ["*NODE PRINT, NSET=ROTN", "U, RF"]
+    for k in teeth:
+        lines += [f"*CONTACT PRINT, SLAVE=S_H_T{k}_FLANK_CCW, MASTER=S_S_T{k}_FLANK_CCW", "CF"]
+    lines += ["*CONTACT FILE", "CSTR", "*END STEP"]
     return "\n".join(lines) + "\n"
 
 
