@@ -225,29 +225,31 @@ def test_fe_far_field_springs_reproduce_the_reference_windup(fe_cache_industrial
 @pytest.mark.slow
 @pytest.mark.needs_fea
 def test_misaligned_sector_carries_what_the_fe_spring_model_predicts(fe_cache_industrial,
-                                                                     monkeypatch):
+                                                                     monkeypatch, tmp_path):
     """industrial-m2 at 1°, 400 N·m: a five-tooth sector (1 mm, cyclic cuts) turned by the
     surface model's wind-up plus the bodies'. Its middle tooth, two pitches from either cut,
-    carries the model's load within 12 % (measured 0.95-1.0 on this mesh, which at 0° is
-    9 % stiffer than the converged one; the bodies' torsion counted per tooth instead of
-    for the whole coupling would move the model 20 % the other way). The cantilever-spring
-    model at the same wind-up carries less than 1/1.4 of it (too soft, as at 0°), and the
-    rigid body's reaction balances the contact loads."""
+    carries the model's load within 12 % (benchmarks/bench_fea_sector.py: 0.94-1.00 on the
+    compared teeth of seven on this mesh, which at 0° is 9 % stiffer than the converged one;
+    the bodies' torsion counted per tooth instead of for the whole coupling would move the
+    model about 20 % the other way). The cantilever-spring model at the same wind-up
+    carries less than 1/1.4 of it (too soft, as at 0°: 1.8 measured), and the rigid body's
+    reaction balances the contact loads."""
     from gearcoupling.loading.sector_check import loads_at_windup
 
     base, _ = fe_cache_industrial
     monkeypatch.setenv("GEARCOUPLING_CACHE", str(base))
-    spec = gc.load_spec("industrial-m2", **{"load.stiffness": "fe"})
-    chk = gc.sector_check(spec, 1.0, rotation_deg=7.1, torque_Nm=400.0, model="surface",
-                          sector=5, size_mm=1.0)
-    fe = chk.fe
-    assert chk.compared == [2]
-    assert abs(chk.ratio[0] - 1) < 0.12
+    assert main(["fea-contact", "industrial-m2", "--misalignment", "1", "--rotation", "7.1",
+                 "--torque", "400", "--model", "surface", "--size", "1.0",
+                 "--set", "load.stiffness=fe", "-o", str(tmp_path)]) == 0
+    chk = json.loads(next(tmp_path.rglob("fea_contact.json")).read_text())
+    fe, spec = chk["fe"], gc.load_spec("industrial-m2")
+    assert chk["compared"] == [2] and len(fe["teeth"]) == 5
+    assert abs(chk["ratio"][0] - 1) < 0.12
     R = spec.tooth.pitch_radius
-    assert fe.sector_torque_Nm == pytest.approx(1e-3 * R * sum(fe.tangential_force_N), rel=0.01)
-    soft = gc.load_spec("industrial-m2", **{"load.stiffness": "cantilever"})
-    _, W = loads_at_windup(soft, 1.0, 7.1, fe.windup_rad, model="surface")
-    assert fe.tangential_force_N[2] > 1.4 * W[fe.teeth[2]]
+    assert fe["sector_torque_Nm"] == pytest.approx(1e-3 * R * sum(fe["tangential_force_N"]),
+                                                   rel=0.01)
+    _, W = loads_at_windup(spec, 1.0, 7.1, fe["windup_rad"], model="surface")  # cantilever
+    assert fe["tangential_force_N"][2] > 1.4 * W[fe["teeth"][2]]
 
 def test_body_torsion_of_a_thin_ring_is_the_thin_walled_shear():
     """A thin ring of radius a and wall t in circumferential shear twists by
