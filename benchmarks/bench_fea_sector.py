@@ -35,8 +35,11 @@ ROOT = Path(__file__).resolve().parent.parent
 POSES = [("renzo-1967", 1.0, 3.6, 2259.7, 0.85, "surface", "fe"),
          ("renzo-1967", 1.0, 3.6, 1129.85, 0.85, "surface", "fe"),
          ("renzo-1967", 2.0, 3.6, 2259.7, 0.85, "surface", "fe"),
+         ("renzo-1967", 2.0, 3.6, 1129.85, 0.85, "surface", "fe"),
          ("industrial-m2", 1.0, 7.1, 400.0, 1.0, "compliance", "cantilever"),
-         ("industrial-m2", 2.0, 7.1, 400.0, 1.0, "surface", "fe")]
+         ("industrial-m2", 1.0, 7.1, 200.0, 1.0, "surface", "fe"),
+         ("industrial-m2", 2.0, 7.1, 400.0, 1.0, "surface", "fe"),
+         ("industrial-m2", 2.0, 7.1, 200.0, 1.0, "surface", "fe")]
 SPRINGS = ("fe", "cantilever")
 MODELS = ("surface", "compliance", "linear")
 

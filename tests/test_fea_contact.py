@@ -292,3 +292,19 @@ def test_sector_refuses_bad_poses_before_meshing(kwargs, field):
 def test_sector_check_refuses_a_sector_without_compared_teeth_and_no_torque(kwargs, field):
     with pytest.raises(ArgumentError, match=field):
         gc.sector_check(gc.load_spec("industrial-m2"), 1.0, **kwargs)
+
+
+def test_loads_at_windup_inverts_the_models_windup():
+    # the torque at which the model plus the bodies reach a wind-up is the torque that gave
+    # it, whatever torque the bracket starts from; short of the first touch: refused
+    from gearcoupling.loading.sector_check import loads_at_windup
+
+    spec = gc.load_spec("renzo-1967")
+    res = gc.load(spec, 1.0, [3.6], torque_Nm=1500.0, model="compliance")
+    w = float(res.windup_rad[0]) + gc.body_windup_rad(spec, 1500.0)["body_rad"]
+    T, W = loads_at_windup(spec, 1.0, 3.6, w, model="compliance")
+    assert T == pytest.approx(1500.0, rel=1e-3)
+    np.testing.assert_allclose(W, res.tangential_force_N[:, 0], rtol=2e-3, atol=1e-6)
+    with pytest.raises(ArgumentError, match="windup_rad"):
+        loads_at_windup(spec, 1.0, 3.6, float(res.gap_angle_rad.min()) - 1e-5,
+                        model="compliance")

@@ -102,6 +102,48 @@ def fe_contact_sector(spec: CouplingSpec, *, misalignment_deg: float, rotation_d
     workdir : path, optional
         Keep the deck, log and printout here (default: a temporary folder, kept on failure).
     """
+    i, rot, teeth, gaps = _pose(spec, misalignment_deg, rotation_deg, first_tooth, sector)
+    touch = float(np.min(gaps))
+    if not (isinstance(windup_rad, int | float) and math.isfinite(windup_rad)
+            and windup_rad > touch):
+        raise ArgumentError("windup_rad", windup_rad, f"a turn (rad) beyond the sector's first "
+                            f"touch, {touch:.6g}: below it no tooth carries load")
+    size = min(check_size(spec, "hub", size_mm), check_size(spec, "sleeve", size_mm))
+    tol = TOLERANCE_MODULES * spec.tooth.module if tolerance_mm is None else tolerance_mm
+    hub, sleeve = (mesh_part(spec, part, sector=sector, size_mm=size, periodic=True,
+                             tolerance_mm=tol) for part in ("hub", "sleeve"))
+    psi = math.radians(rot) + 2 * math.pi * first_tooth / spec.tooth.teeth
+    M = hub_to_sleeve(math.radians(i), psi)
+    start = touch - SHORT_OF_TOUCH * (windup_rad - touch)
+    pair = merge(hub, sleeve, M @ rot_z(start))
+    E, _ = material(spec, "hub")
+    deck = sector_deck(pair, spec, hub_axis=M[:, 2],
+                       hub_cut_rotation=M @ rot_z(2 * math.pi * sector / spec.tooth.teeth) @ M.T,
+                       turn_rad=windup_rad - start, penalty=PENALTY_FACTOR * E / size)
+    with solver_dir(workdir) as work:
+        res = run_ccx(deck, work, "fe_sector")
+        pressure = frd_nodal(res.job.with_suffix(".frd").read_text(), "CONTACT")
+    R = spec.tooth.pitch_radius
+    peaks, centres = zip(*(_patch(pair, pressure, k) for k in range(sector)), strict=True)
+    moment = res.get("forces", "ROTN")[-1][0, 1:4]
+    return FESectorResult(
+        spec=spec.name, misalignment_deg=i, rotation_deg=rot, windup_rad=float(windup_rad),
+        teeth=teeth, theta_deg=[float(np.degrees(psi)) + 360.0 * k / spec.tooth.teeth
+                                for k in range(sector)],
+        gap_angle_rad=[float(g) for g in gaps],
+        tangential_force_N=[_tooth_load(res, k, M[:, 2], R) for k in range(sector)],
+        peak_pressure_MPa=list(peaks), patch_z_mm=list(centres),
+        sector_torque_Nm=abs(float(moment @ M[:, 2])) * 1e-3, size_mm=size,
+        nodes=len(pair.nodes), solve_seconds=res.seconds,
+        max_rss_MB=resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024,
+        settings={"penalty_factor": PENALTY_FACTOR, "sector": sector, "element": "C3D10",
+                  "tolerance_mm": tol, "cuts": "cyclic equations about each part's axis",
+                  "loading": "hub bore turned by the wind-up, sleeve outside fixed"})
+
+
+def _pose(spec: CouplingSpec, misalignment_deg, rotation_deg, first_tooth, sector):
+    """The checked pose: misalignment and rotation (degrees), the sector's coupling teeth
+    and their exact gap angles (rad, the loaded ccw flank), or :class:`ArgumentError`."""
     N = spec.tooth.teeth
     i = _angle(misalignment_deg, "misalignment_deg", 0.0, MAX_MISALIGNMENT_DEG)
     rot = _angle(rotation_deg, "rotation_deg", -360.0, 360.0)
@@ -110,41 +152,7 @@ def fe_contact_sector(spec: CouplingSpec, *, misalignment_deg: float, rotation_d
     if not (isinstance(first_tooth, int) and 0 <= first_tooth < N):
         raise ArgumentError("first_tooth", first_tooth, f"a tooth number from 0 to {N - 1}")
     teeth = [(first_tooth + k) % N for k in range(sector)]
-    gaps = sweep(spec, i, [rot]).gap_angle_rad[1][teeth, 0]
-    touch = float(np.min(gaps))
-    if not (math.isfinite(windup_rad) and windup_rad > touch):
-        raise ArgumentError("windup_rad", windup_rad, f"a turn (rad) beyond the sector's first "
-                            f"touch, {touch:.6g}: below it no tooth carries load")
-    size = min(check_size(spec, "hub", size_mm), check_size(spec, "sleeve", size_mm))
-    tol = TOLERANCE_MODULES * spec.tooth.module if tolerance_mm is None else tolerance_mm
-    hub, sleeve = (mesh_part(spec, part, sector=sector, size_mm=size, periodic=True,
-                             tolerance_mm=tol) for part in ("hub", "sleeve"))
-    psi = math.radians(rot) + 2 * math.pi * first_tooth / N
-    M = hub_to_sleeve(math.radians(i), psi)
-    start = touch - SHORT_OF_TOUCH * (windup_rad - touch)
-    pair = merge(hub, sleeve, M @ rot_z(start))
-    E, _ = material(spec, "hub")
-    deck = sector_deck(pair, spec, hub_axis=M[:, 2], hub_cut_rotation=M @ rot_z(
-        2 * math.pi * sector / N) @ M.T, turn_rad=windup_rad - start,
-                       penalty=PENALTY_FACTOR * E / size)
-    with solver_dir(workdir) as work:
-        res = run_ccx(deck, work, "fe_sector")
-        pressure = frd_nodal(res.job.with_suffix(".frd").read_text(), "CONTACT")
-    R = spec.tooth.pitch_radius
-    loads = [_tooth_load(res, k, M[:, 2], R) for k in range(sector)]
-    peaks, centres = zip(*(_patch(pair, pressure, k) for k in range(sector)), strict=True)
-    moment = res.get("forces", "ROTN")[-1][0, 1:4]
-    return FESectorResult(
-        spec=spec.name, misalignment_deg=i, rotation_deg=rot, windup_rad=float(windup_rad),
-        teeth=teeth, theta_deg=[float(np.degrees(psi) + 360.0 * k / N) for k in range(sector)],
-        gap_angle_rad=[float(g) for g in gaps], tangential_force_N=loads,
-        peak_pressure_MPa=list(peaks), patch_z_mm=list(centres),
-        sector_torque_Nm=abs(float(moment @ M[:, 2])) * 1e-3, size_mm=size,
-        nodes=len(pair.nodes), solve_seconds=res.seconds,
-        max_rss_MB=resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024,
-        settings={"penalty_factor": PENALTY_FACTOR, "sector": sector, "element": "C3D10",
-                  "tolerance_mm": tol, "cuts": "cyclic equations about each part's axis",
-                  "loading": "hub bore turned by the wind-up, sleeve outside fixed"})
+    return i, rot, teeth, sweep(spec, i, [rot]).gap_angle_rad[1][teeth, 0]
 
 
 def _angle(value, name: str, lo: float, hi: float) -> float:

@@ -11,6 +11,7 @@ little when the sector grows: docs/fea.md has the measured figure).
 
 from __future__ import annotations
 
+import math
 from dataclasses import asdict, dataclass
 
 import numpy as np
@@ -101,18 +102,23 @@ def loads_at_windup(spec: CouplingSpec, misalignment_deg: float, rotation_deg: f
     ``windup_rad`` at one pose, and its tangential tooth loads ``(N,)`` there: a model
     compared with the FE sector at equal wind-up (module docstring). ``rtol``: the
     torque's relative tolerance."""
+    if not (isinstance(windup_rad, int | float) and math.isfinite(windup_rad)):
+        raise ArgumentError("windup_rad", windup_rad, "a finite turn in rad")
+
     def excess(T: float) -> float:
         res = load(spec, misalignment_deg, [rotation_deg], torque_Nm=T, model=model)
         return float(res.windup_rad[0]) + body_windup_rad(spec, T)["body_rad"] - windup_rad
 
-    hi = max(resolve_torque_Nm(spec, None), 1.0)
-    while excess(hi) < 0:
-        hi *= 2.0
-    lo = hi / 2.0
-    while excess(lo) > 0 and lo > 1e-6 * hi:
-        lo /= 2.0
-    if excess(lo) > 0:
+    lo = hi = abs(spec.load.torque_Nm or 1000.0)
+    for _ in range(60):  # bracket the root by halving and doubling (2^60: any torque)
+        if excess(lo) > 0:
+            lo /= 2.0
+        elif excess(hi) < 0:
+            hi *= 2.0
+        else:
+            break
+    else:
         raise ArgumentError("windup_rad", windup_rad, "a turn beyond the pose's first touch")
-    T = float(brentq(excess, lo, hi, rtol=rtol))
+    T = float(brentq(excess, lo, hi, rtol=rtol)) if lo < hi else lo
     res = load(spec, misalignment_deg, [rotation_deg], torque_Nm=T, model=model)
     return T, res.tangential_force_N[:, 0]

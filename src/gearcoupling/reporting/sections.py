@@ -101,11 +101,11 @@ def _sweep_settings(sw) -> str:
 #: what the accuracy ladder (docs/load.md) measured for each tooth spring
 SPRING_ACCURACY = {
     "cantilever": "wind-up 58–87 % more compliant than the CalculiX contact reference; "
-                  "at 1° the most loaded teeth carry 1.4–1.8 times less than a CalculiX "
+                  "at 1–2° the most loaded teeth carry 1.4–1.8 times less than a CalculiX "
                   "sector at equal wind-up; [load] stiffness = \"fe\" brings the wind-up "
                   "within 9 %",
     "fe": "FE far-field springs: wind-up within 9 % of the CalculiX contact reference; "
-          "at 1° the most loaded teeth carry 0–8 % (surface) and 8–30 % (compliance) "
+          "at 1–2° the most loaded teeth carry 0–17 % (surface) and 8–36 % (compliance) "
           "more than a CalculiX sector at equal wind-up",
 }
 
