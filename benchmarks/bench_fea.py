@@ -1,7 +1,8 @@
 """FE meshes and CalculiX tooth stiffness: the tables docs/fea.md publishes.
 
-Run: ``python benchmarks/bench_fea.py [cantilever] [convergence] [compare] [contact]``
-(default all).
+Run: ``python benchmarks/bench_fea.py [cantilever] [convergence] [compare]`` (default all;
+the contact references are ``bench_fea_contact.py``, aligned, and ``bench_fea_sector.py``,
+misaligned).
 
 - ``cantilever``: gmsh C3D10 + ccx tip deflection of a clamped 100 x 10 x 10 mm steel
   cantilever against Timoshenko at several element sizes.
@@ -125,42 +126,10 @@ def compare(names=("renzo-1967", "industrial-m2")) -> None:
               f"{iso:.4g} | {iso * pair:.2f} | {secs:.0f} |")
 
 
-def contact(misalignment_deg=1.0, psi_deg=20.0, size_mm=1.0) -> None:
-    """renzo-1967 at its spec torque: the surface load model's wind-up, then CalculiX contact
-    of a 3-tooth hub sector in a 3-tooth sleeve sector turned by that wind-up."""
-    from gearcoupling.fea.contact import contact_pose
-    from gearcoupling.loading import load
-
-    spec = load_spec("renzo-1967")
-    t0 = time.perf_counter()
-    surf = load(spec, misalignment_deg, [psi_deg], model="surface")
-    t_surf = time.perf_counter() - t0
-    w = float(surf.windup_rad[0])
-    fe = contact_pose(spec, misalignment_deg=misalignment_deg, psi_deg=psi_deg, windup_rad=w,
-                      sector=3, size_mm=size_mm)
-    print(f"\n### Contact pose: renzo-1967, i = {misalignment_deg}°, psi = {psi_deg}°, "
-          f"torque {surf.torque_Nm:.0f} N m, wind-up {w:.4e} rad\n")
-    print("| tooth | theta ° | gap rad | surface P N | FE P N | FE / surface | surface share "
-          "| FE share | surface p_max MPa | surface interior MPa | FE p_max MPa |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|")
-    p_s = surf.tangential_force_N[:3, 0]
-    for k, row in enumerate(fe["teeth"]):
-        print(f"| {k} | {surf.theta_deg[k, 0]:.1f} | {surf.gap_angle_rad[k, 0]:.4e} | "
-              f"{p_s[k]:.0f} | {row['tangential_force_N']:.0f} | "
-              f"{row['tangential_force_N'] / p_s[k]:.2f} | {p_s[k] / p_s.sum():.3f} | "
-              f"{row['load_share']:.3f} | {surf.max_pressure_MPa[k, 0]:.0f} | "
-              f"{surf.interior_pressure_MPa[k, 0]:.0f} | {row['max_pressure_MPa']:.0f} |")
-    print(f"\nFE: {fe['elements']} C3D10 at size {fe['size_mm']} mm, penalty "
-          f"{fe['penalty_MPa_per_mm']:.3g} MPa/mm, mesh {fe['mesh_seconds']:.0f} s, solve "
-          f"{fe['solve_seconds']:.0f} s; sector torque {fe['torque_Nm']:.1f} N m. Surface "
-          f"model {t_surf:.1f} s.")
-
-
 def main(argv) -> None:
-    steps = argv or ["cantilever", "convergence", "compare", "contact"]
+    steps = argv or ["cantilever", "convergence", "compare"]
     for step in steps:
-        {"cantilever": cantilever, "convergence": convergence, "compare": compare,
-         "contact": contact}[step]()
+        {"cantilever": cantilever, "convergence": convergence, "compare": compare}[step]()
 
 
 if __name__ == "__main__":

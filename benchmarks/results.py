@@ -34,6 +34,7 @@ QUICK = [
 FULL = [
     ("bench_fea.py", [], "FE: cantilever check, convergence, FE vs cantilever vs ISO"),
     ("bench_fea_contact.py", [], "FE contact reference: convergence and model errors"),
+    ("bench_fea_sector.py", [], "misaligned FE sector: the models at equal wind-up"),
     ("bench_study.py", [], "studies on dask.distributed"),
     ("bench_random_specs.py", [], "1000 seeded random specs: accepted, finite, closed parts"),
 ]
