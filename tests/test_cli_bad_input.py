@@ -121,6 +121,7 @@ BAD = [
     (["fea-contact", T, "--misalignment", "7"], "--misalignment"),
     (["fea-contact", T, "--misalignment", "1", "--sector", "3"], "--sector"),
     (["fea-contact", T, "--misalignment", "1", "--rotation", "400"], "--rotation"),
+    (["fea-contact", T, "--misalignment", "1", "--contact-size", "0.5"], "--contact-size"),
     (["stiffness", T, "--size", "-1"], "--size"),
     (["stiffness", T, "--nz", "1"], "--nz"),
     (["stiffness", T, "--nr", "10"], "--nr"),

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import sys
 
+from ..errors import ArgumentError
 from ..fea import ccx_path, check_size, fe_contact, gmsh_module
 from ..io import write_json
 from ..loading import sector_check
@@ -51,6 +52,9 @@ def register(sub) -> None:
 
 def run(args) -> int:
     spec = spec_from_args(args)
+    if args.misalignment > 0 and args.contact_size is not None:
+        raise ArgumentError("--contact-size", args.contact_size, "aligned poses only: a "
+                            "misaligned sector takes one --size")
     for part in ("hub", "sleeve"):
         check_size(spec, part, args.size)
         check_size(spec, part, args.contact_size)
