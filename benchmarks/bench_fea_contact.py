@@ -147,8 +147,9 @@ def models(name: str, refs: dict) -> None:
 
 
 def misaligned(name: str, torques) -> None:
-    """No misaligned reference: the two contact models against each other at 1° and 2°
-    (largest tooth load over five rotations across a pitch), with either spring."""
+    """The two contact models against each other at 1° and 2° and equal torque (largest
+    tooth load over five rotations across a pitch), with either spring; against the
+    misaligned FE sector at equal wind-up: ``bench_fea_sector.py``."""
     print(f"\n| {name} | springs | misalignment | torque N·m | largest tooth load, compliance "
           "· surface N | compliance / surface |\n|---|---|---|---|---|---|")
     for stiffness in ("cantilever", "fe"):
@@ -177,7 +178,7 @@ def main() -> None:
     print("\n## The load models against it (aligned, each spec's torque and half of it)")
     for name in a.specs:
         models(name, refs[name])
-    print("\n## Misaligned: the contact models against each other (no reference yet)")
+    print("\n## Misaligned: the contact models against each other at equal torque")
     for name in a.specs:
         misaligned(name, sorted(float(t) for t in refs[name]))
     if a.golden:

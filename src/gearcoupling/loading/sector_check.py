@@ -17,10 +17,11 @@ from dataclasses import asdict, dataclass
 import numpy as np
 from scipy.optimize import brentq
 
+from ..clearance import sweep
 from ..errors import ArgumentError
 from ..fea import FESectorResult, fe_contact_sector
 from ..spec import CouplingSpec
-from .api import load
+from .api import load, load_from_sweep
 from .body import body_windup_rad
 from .inputs import resolve_torque_Nm
 
@@ -105,20 +106,24 @@ def loads_at_windup(spec: CouplingSpec, misalignment_deg: float, rotation_deg: f
     if not (isinstance(windup_rad, int | float) and math.isfinite(windup_rad)):
         raise ArgumentError("windup_rad", windup_rad, "a finite turn in rad")
 
+    sw = sweep(spec, misalignment_deg, [rotation_deg])  # the pose's gaps: one sweep
+
     def excess(T: float) -> float:
-        res = load(spec, misalignment_deg, [rotation_deg], torque_Nm=T, model=model)
+        res = load_from_sweep(sw, torque_Nm=T, model=model)
         return float(res.windup_rad[0]) + body_windup_rad(spec, T)["body_rad"] - windup_rad
 
     lo = hi = abs(spec.load.torque_Nm or 1000.0)
+    f_lo = f_hi = excess(lo)
     for _ in range(60):  # bracket the root by halving and doubling (2^60: any torque)
-        if excess(lo) > 0:
+        if f_lo > 0:
             lo /= 2.0
-        elif excess(hi) < 0:
+            f_lo = excess(lo)
+        elif f_hi < 0:
             hi *= 2.0
+            f_hi = excess(hi)
         else:
             break
     else:
         raise ArgumentError("windup_rad", windup_rad, "a turn beyond the pose's first touch")
     T = float(brentq(excess, lo, hi, rtol=rtol)) if lo < hi else lo
-    res = load(spec, misalignment_deg, [rotation_deg], torque_Nm=T, model=model)
-    return T, res.tangential_force_N[:, 0]
+    return T, load_from_sweep(sw, torque_Nm=T, model=model).tangential_force_N[:, 0]
