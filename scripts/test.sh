@@ -3,7 +3,8 @@
 # bash scripts/test.sh --fast leaves out the slow tests; other arguments go to pytest.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-python3 -m pip install --quiet --disable-pip-version-check -e '.[test]'
+# the project's own virtual environment .venv, made if missing (scripts/setup.sh)
+python="$(bash scripts/setup.sh test | tail -n 1)"
 # the browser tests drive Debian's chromium through playwright (never `playwright install`)
 if [ ! -x /usr/bin/chromium ]; then
     if [ "$(id -u)" -eq 0 ]; then sudo=""; else sudo="sudo"; fi
@@ -25,11 +26,11 @@ if [ ! -d .cache/npm/node_modules/gltf-validator ]; then
     fi
     npm install --silent --prefix .cache/npm gltf-validator
 fi
-python3 -m ruff check src tests benchmarks examples
-python3 -m mypy
+"$python" -m ruff check src tests benchmarks examples
+"$python" -m mypy
 # --fast: leave out the tests marked slow (under a minute on two cores); CI runs everything
 if [ "${1:-}" = "--fast" ]; then
     shift
     set -- -m "not slow" "$@"
 fi
-python3 -m pytest "$@"
+"$python" -m pytest "$@"
