@@ -6,7 +6,14 @@ import argparse
 from pathlib import Path
 
 from ..loadspec import LOAD_MODELS
-from ..rotordynamics import MAX_TORQUE_NM, ROSS_SUFFIXES, coupling_data, import_ross, write_ross
+from ..rotordynamics import (
+    MAX_TORQUE_NM,
+    ROSS_SUFFIXES,
+    check_inputs,
+    coupling_data,
+    import_ross,
+    write_ross,
+)
 from .common import (
     add_misalignment_argument,
     add_spec_arguments,
@@ -60,6 +67,7 @@ def ross_file(text: str) -> Path:
 def run(args) -> int:
     spec = spec_from_args(args)
     mis = misalignment_deg(args, spec)
+    check_inputs(spec, args.torque)
     if args.ross is not None:
         import_ross()  # a missing extra is refused before the computation
     out = output_dir(args, spec)

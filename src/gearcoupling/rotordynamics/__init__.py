@@ -6,7 +6,14 @@ from __future__ import annotations
 
 from .accuracy import TOOTH_LOAD_RATIO, WINDUP_ERROR_PCT
 from .allowable import AllowableLoads, allowable_loads
-from .data import DATASHEET_COLUMNS, FILES, MAX_TORQUE_NM, CouplingData, coupling_data
+from .data import (
+    DATASHEET_COLUMNS,
+    FILES,
+    MAX_TORQUE_NM,
+    CouplingData,
+    check_inputs,
+    coupling_data,
+)
 from .mass import MassProperties, mass_properties, mesh_mass_properties
 from .pose import generalized_forces, tilt_pose, translation_gap_offsets
 from .ross import ROSS_SUFFIXES, coupling_element, import_ross, write_ross
@@ -28,6 +35,7 @@ __all__ = [
     "StiffnessMatrix",
     "TorsionalStiffness",
     "allowable_loads",
+    "check_inputs",
     "coupling_data",
     "coupling_element",
     "generalized_forces",

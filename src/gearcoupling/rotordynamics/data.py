@@ -218,8 +218,12 @@ class CouplingData:
 MAX_TORQUE_NM = 1e9  # as the load command: far above any coupling
 
 
-def check_torque(spec: CouplingSpec, torque_Nm: float | None) -> float:
-    """The operating torque: the argument, else the spec's; finite and not zero."""
+def check_inputs(spec: CouplingSpec, torque_Nm: float | None) -> float:
+    """What :func:`coupling_data` refuses before computing anything: the parts' densities
+    (:class:`SpecError` where one is missing) and the torque (the argument, else the
+    spec's; finite and not zero). Returns the torque."""
+    for part in ("hub", "sleeve"):
+        getattr(spec.material, part).mass_density_kg_per_m3()
     T = resolve_torque_Nm(spec, torque_Nm)
     if T == 0 or abs(T) > MAX_TORQUE_NM:
         raise ArgumentError("torque_Nm", T, f"a torque from -{MAX_TORQUE_NM:g} to "
@@ -270,7 +274,7 @@ def coupling_data(spec: CouplingSpec, misalignment_deg: float | None = None,
     t0 = time.perf_counter()
     mis = (spec.design_misalignment_deg if misalignment_deg is None else
            check_misalignment_deg(misalignment_deg, "misalignment_deg", ArgumentError))
-    T = check_torque(spec, torque_Nm)
+    T = check_inputs(spec, torque_Nm)
     def step(done: int) -> None:
         if progress is not None:
             progress(done, 4)
@@ -292,4 +296,4 @@ def coupling_data(spec: CouplingSpec, misalignment_deg: float | None = None,
 
 
 __all__ = ["DATASHEET_COLUMNS", "FILES", "MAX_TORQUE_NM", "NOT_MODELLED", "CouplingData",
-           "check_torque", "coupling_data"]
+           "check_inputs", "coupling_data"]

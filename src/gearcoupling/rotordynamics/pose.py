@@ -14,9 +14,10 @@ axis is the operating tilt axis:
 The hub is ``exp([v]) Rz(psi + chi)`` and the sleeve ``Rz(psi)`` at the rotation ``psi``:
 a tilt vector of length ``A`` at direction ``phi`` is the sweep's pose ``(A, psi - phi)``
 turned by ``phi`` about the sleeve axis, exactly (the teeth are all alike). A translation
-``d`` moves each hub flank along its normal ``n``: tooth ``k``'s gap angle changes by
-``-(d . n_k) / ((z_hub x p_k) . n_k)`` to first order (``p_k`` its first-touch point; the
-sleeve's straight teeth make an axial shift exact: their normals have no axial part).
+``d`` closes tooth ``k``'s gap by ``d . n_k`` (``n_k`` the sleeve flank normal at its
+first-touch point ``p_k``), so its gap angle changes by ``-(d . n_k) / |(a x p_k) . n_k|``
+to first order (``a`` the hub axis); the sleeve's straight teeth have transverse normals,
+so an axial shift changes no gap, exactly.
 """
 
 from __future__ import annotations
@@ -67,22 +68,42 @@ def generalized_forces(force_hub: NDArray, moment_hub: NDArray, misalignment_rad
     return np.concatenate([F, Q[:, :2]], axis=1)
 
 
+def sleeve_normals(spec, points: NDArray, flank: str) -> NDArray[np.float64]:
+    """Unit normals ``(..., 3)`` of the straight involute sleeve flank facing the hub's
+    ``flank`` at sleeve-frame ``points`` ``(..., 3)``, pointing from the hub toward it: the
+    normal gap falls by ``n . dp`` when a hub point moves by ``dp``. Transverse (the
+    sleeve's teeth are straight), tangent to the base circle: ``+-cos(phi_r) e_beta +
+    sin(phi_r) e_r`` with ``cos(phi_r) = r_b / r`` (``+`` for ``ccw``)."""
+    x, y = points[..., 0], points[..., 1]
+    rho = np.hypot(x, y)
+    c = np.clip(spec.tooth.base_radius / rho, -1.0, 1.0)
+    s = np.sqrt(1.0 - c * c)
+    sign = 1.0 if flank == "ccw" else -1.0
+    e_r = np.stack([x / rho, y / rho, np.zeros_like(x)], axis=-1)
+    e_b = np.stack([-y / rho, x / rho, np.zeros_like(x)], axis=-1)
+    return sign * c[..., None] * e_b + s[..., None] * e_r
+
+
 def translation_gap_offsets(spec, sweep_result, flank: str, column: int,
                             d_mm: NDArray) -> NDArray[np.float64]:
     """Per-tooth gap-angle change ``(N,)`` of the loaded ``flank`` when the hub moves by
-    ``d_mm`` (3,) in the sleeve frame, at rotation ``column`` of ``sweep_result``; zero
-    where a tooth has no first-touch point."""
+    ``d_mm`` (3,) in the sleeve frame, at rotation ``column`` of ``sweep_result``: the
+    normal gap at the first-touch point ``p`` falls by ``n . d`` (``n`` the sleeve flank
+    normal there, also at a touch on a profile end) and a turn ``chi`` of the hub about its
+    axis ``a`` closes it by ``chi |n . (a x p)|``; zero where a tooth has no first touch."""
     f = 0 if flank == "cw" else 1
     z = sweep_result.contact_z_mm[f][:, column]
     r = sweep_result.contact_r_mm[f][:, column]
     ok = np.isfinite(z) & np.isfinite(r)
     th = sweep_result.theta_deg[:, column]
-    p, n = contact_frames(spec, flank, th[:, None], np.where(ok, z, 0.0)[:, None],
+    p, _ = contact_frames(spec, flank, th[:, None], np.where(ok, z, 0.0)[:, None],
                           np.where(ok, r, spec.tooth.pitch_radius)[:, None])
-    p, n = p[:, 0], n[:, 0]
-    d_hub = rot_x(math.radians(sweep_result.misalignment_deg)).T @ np.asarray(d_mm, float)
-    rate = np.abs(p[:, 0] * n[:, 1] - p[:, 1] * n[:, 0])  # (z x p) . n
-    return np.where(ok, -(n @ d_hub) / rate, 0.0)
+    R = rot_x(math.radians(sweep_result.misalignment_deg))
+    p = p[:, 0] @ R.T  # the sleeve frame, x along the tilt axis
+    n = sleeve_normals(spec, p, flank)
+    rate = np.abs(np.sum(n * np.cross(R[:, 2], p), axis=-1))
+    return np.where(ok, -(n @ np.asarray(d_mm, float)) / rate, 0.0)
 
 
-__all__ = ["generalized_forces", "left_jacobian", "tilt_pose", "translation_gap_offsets"]
+__all__ = ["generalized_forces", "left_jacobian", "sleeve_normals", "tilt_pose",
+           "translation_gap_offsets"]
