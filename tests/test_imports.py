@@ -66,8 +66,8 @@ LAYERS = {
                 "interference", "loading", "viewer"},
     "viewer": {"io", "errors", "geometry", "spec", "parts", "export", "clearance",
                "interference", "loading", "inspection"},
-    "rotordynamics": {"io", "errors", "geometry", "spec", "loadspec", "parts", "clearance",
-                      "loading", "tables"},
+    "rotordynamics": {"io", "errors", "geometry", "spec", "loadspec", "plots", "parts",
+                      "clearance", "loading", "tables"},
 }
 
 

@@ -15,6 +15,7 @@ from .data import (
     coupling_data,
 )
 from .mass import MassProperties, mass_properties, mesh_mass_properties
+from .plots import plot_allowable_loads, plot_windup
 from .pose import generalized_forces, tilt_pose, translation_gap_offsets
 from .ross import ROSS_SUFFIXES, coupling_element, import_ross, write_ross
 from .stiffness import DOFS, StiffnessMatrix, stiffness_matrix
@@ -43,6 +44,8 @@ __all__ = [
     "import_ross",
     "mass_properties",
     "mesh_mass_properties",
+    "plot_allowable_loads",
+    "plot_windup",
     "stiffness_matrix",
     "tilt_pose",
     "translation_gap_offsets",

@@ -18,6 +18,7 @@ from ..spec import CouplingSpec
 
 MM3_TO_M3 = 1e-9
 MM5_TO_M5 = 1e-15
+ROUND_OFF_MM = 1e-9
 
 
 @dataclass(frozen=True, eq=False)
@@ -65,7 +66,9 @@ def mesh_mass_properties(mesh, density_kg_per_m3: float, name: str) -> MassPrope
     """Mass properties of a closed, outward-wound triangle mesh in mm (a trimesh mesh)."""
     volume = float(mesh.volume)
     rho = float(density_kg_per_m3)
-    return MassProperties(name, rho * volume * MM3_TO_M3, np.asarray(mesh.center_mass, float),
+    cg = np.asarray(mesh.center_mass, float)
+    cg = np.where(np.abs(cg) < ROUND_OFF_MM, 0.0, cg)  # symmetric parts: exactly on O
+    return MassProperties(name, rho * volume * MM3_TO_M3, cg,
                           rho * np.asarray(mesh.moment_inertia, float) * MM5_TO_M5, volume)
 
 

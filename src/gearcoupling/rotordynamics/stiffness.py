@@ -224,7 +224,7 @@ def stiffness_from_sweep(sw: SweepResult, torque_Nm: float, *, model: str | None
     steps = {"translation_mm": h_t, "tilt_rad": h_a, "torque_Nm": h_T,
              "relative_step": float(relative_step), "rotations": n}
     return StiffnessMatrix(float(sw.misalignment_deg), case.torque_Nm, res0.model,
-                           springs(spec, res0.model), K + 0.0, k_body, slip, Qbar, spread,
+                           springs(spec, res0.model), _round_off(K), k_body, slip, Qbar, spread,
                            steps, mu, tuple(notes))
 
 
@@ -272,6 +272,14 @@ def _tilts(case: _Case, sw: SweepResult, h: float, dQdu: NDArray, dcdu: NDArray)
     for col, (plus, minus) in pairs.items():
         dQdu[:, :, col] = (found[plus][0] - found[minus][0]) / (2 * h)
         dcdu[:, col] = (found[plus][1] - found[minus][1]) / (2 * h)
+
+
+def _round_off(K: NDArray) -> NDArray[np.float64]:
+    """``K`` with the entries below 1e-9 of their block's scale set to 0: round-off where
+    symmetry makes them vanish (translations and rotations are scaled apart)."""
+    d = np.abs(np.diag(K))
+    scale = np.where(np.arange(6) < _TRANSLATIONS, d[:_TRANSLATIONS].max(), d[3:].max())
+    return np.where(np.abs(K) < 1e-9 * np.sqrt(np.outer(scale, scale)), 0.0, K)
 
 
 def _held_windup(dQdu: NDArray, dcdu: NDArray, dQdT: NDArray, dcdT: float) -> NDArray:
