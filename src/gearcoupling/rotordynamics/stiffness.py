@@ -27,8 +27,9 @@ from numpy.typing import NDArray
 from ..clearance import SweepResult, sweep
 from ..errors import ArgumentError
 from ..loading import body_windup_rad, load_from_sweep, resolve_torque_Nm
+from ..spec import MISALIGNMENT_RANGE_DEG
 from .accuracy import springs
-from .pose import generalized_forces, tilt_pose, translation_gap_offsets
+from .pose import generalized_forces, translation_gap_offsets
 from .wrench import hub_wrench
 
 DOFS = ("x", "y", "z", "tilt_x", "tilt_y", "torsion")
@@ -191,7 +192,7 @@ def stiffness_from_sweep(sw: SweepResult, torque_Nm: float, *, model: str | None
                      "Coulomb force has no linear part at zero sliding); the slip force holds")
         mu = 0.0
     case = _Case(spec, float(torque_Nm), model, mu, sw.tolerance_mm)
-    Q0, _, res0 = case.state(sw)
+    Q0, c0, res0 = case.state(sw)
     deflection = float(np.mean(np.max(res0.deflection_mm, axis=0)))
     if not deflection > 0:
         raise ArgumentError("torque_Nm", torque_Nm, "a torque that loads the teeth: the "
@@ -200,12 +201,12 @@ def stiffness_from_sweep(sw: SweepResult, torque_Nm: float, *, model: str | None
     h_t = relative_step * deflection
     h_a = h_t / spec.tooth.pitch_radius
     if alpha > 0:
-        h_a = min(h_a, 0.5 * alpha)
+        h_a = min(h_a, 0.25 * alpha)
     h_T = relative_step * abs(case.torque_Nm)
     n = sw.angles_deg.size
     dQdu, dcdu = np.zeros((n, 5, 5)), np.zeros((n, 5))
     _translations(case, sw, res0.loaded_flank, h_t, dQdu, dcdu)
-    _tilts(case, sw, h_a, dQdu, dcdu)
+    _tilts(case, sw, h_a, (Q0, c0), dQdu, dcdu)
     Qp, cp, _ = case.state(sw, torque=case.torque_Nm + h_T)
     Qm, cm, _ = case.state(sw, torque=case.torque_Nm - h_T)
     per_rotation = np.array([_held_windup(dQdu[j], dcdu[j], (Qp[j] - Qm[j]) / (2 * h_T),
@@ -247,20 +248,21 @@ def _translations(case: _Case, sw: SweepResult, flank: str, h: float, dQdu: NDAr
             dcdu[j, e] = (out[0][1] - out[1][1]) / (2 * h)
 
 
-def _tilts(case: _Case, sw: SweepResult, h: float, dQdu: NDArray, dcdu: NDArray) -> None:
+def _tilts(case: _Case, sw: SweepResult, h: float, base: tuple[NDArray, NDArray],
+           dQdu: NDArray, dcdu: NDArray) -> None:
     """Fill the tilt columns from sweeps at the neighbouring tilt vectors, turned back onto
-    the operating tilt axis: about ``x`` at a misalignment (the ``y`` column follows from
+    the operating tilt axis: about ``x`` at a misalignment (central, or backward from the
+    operating point ``base`` = (Q, chi) within ``h`` of 6°; the ``y`` column follows from
     the mean forces), about ``x`` and ``y`` aligned (vectors of length ``h`` along +-x and
     +-y, one sweep)."""
     alpha = math.radians(sw.misalignment_deg)
     psi = np.asarray(sw.angles_deg, float)
     n = psi.size
-    if alpha > 0:
-        poses = [tilt_pose(alpha, s * h, 0.0) for s in (1.0, -1.0)]
-        pairs = {_TILT_X: (0, 1)}
-    else:
+    backward = alpha + h > math.radians(MISALIGNMENT_RANGE_DEG[1])
+    if alpha == 0:
         poses = [(h, p) for p in (0.0, math.pi, 0.5 * math.pi, -0.5 * math.pi)]
-        pairs = {_TILT_X: (0, 1), _TILT_Y: (2, 3)}
+    else:
+        poses = [(alpha + s * h, 0.0) for s in ((-1.0, -2.0) if backward else (1.0, -1.0))]
     found = {}
     for A in {A for A, _ in poses}:
         same = [k for k, (Ak, _) in enumerate(poses) if Ak == A]
@@ -269,6 +271,12 @@ def _tilts(case: _Case, sw: SweepResult, h: float, dQdu: NDArray, dcdu: NDArray)
         for m, k in enumerate(same):
             part = slice(m * n, (m + 1) * n)
             found[k] = (generalized_forces(F[part], M[part], A, poses[k][1]), chi[part])
+    if backward:  # (3 f(i) - 4 f(i - h) + f(i - 2h)) / 2h, second order as the central one
+        for out, col, k in ((dQdu, (slice(None), slice(None), _TILT_X), 0),
+                            (dcdu, (slice(None), _TILT_X), 1)):
+            out[col] = (3 * base[k] - 4 * found[0][k] + found[1][k]) / (2 * h)
+        return
+    pairs = {_TILT_X: (0, 1), _TILT_Y: (2, 3)} if alpha == 0 else {_TILT_X: (0, 1)}
     for col, (plus, minus) in pairs.items():
         dQdu[:, :, col] = (found[plus][0] - found[minus][0]) / (2 * h)
         dcdu[:, col] = (found[plus][1] - found[minus][1]) / (2 * h)
