@@ -13,7 +13,7 @@ PARTS = ("hub", "sleeve", "coupling")
 
 
 def datasheet(ctx: Context) -> Section:
-    sec = Section("datasheet", "Coupling data sheet for rotordynamics (API 671)")
+    sec = Section("datasheet", "Coupling data sheet for rotordynamics, after API 671")
     if ctx.torque_Nm is None or ctx.torque_Nm == 0:
         sec.blocks.append(Note("Not made: the stiffness and the loads are those of loaded "
                                "teeth; give [load] torque_Nm or --torque.", "skip"))
