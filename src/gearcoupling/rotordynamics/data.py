@@ -55,9 +55,9 @@ NOT_MODELLED = (
     "damping (none is computed)",
 )
 
-MASS_ACCURACY = ("closed part meshes within the chordal tolerance of the exact surfaces; "
-                 "within 0.5 % of the STEP solid's OpenCASCADE mass properties and of a "
-                 "hand-computed annulus (tests/test_rotordynamics.py)")
+MASS_ACCURACY = ("closed part meshes within the chordal tolerance of the exact surfaces: "
+                 "volume and inertia within 0.03 % of the STEP solid's OpenCASCADE "
+                 "integration on the templates (docs/rotordynamics.md)")
 
 
 @dataclass(frozen=True, eq=False)
@@ -132,58 +132,14 @@ class CouplingData:
         """``datasheet.csv``: ``(section, quantity, value, unit, source)`` in the order of an
         API 671 coupling data sheet; values are numbers (or None), words go to source."""
         acc = self.accuracy()
-        out: list[tuple[str, str, float | None, str, str]] = [
-            ("operating point", "misalignment", self.misalignment_deg, "deg", ""),
-            ("operating point", "torque", self.torque_Nm, "N·m",
-             f"{self.model} model, {self.springs} springs, friction "
-             f"{self.spec.load.friction:g}"),
-        ]
-        for name, m in self.mass.items():
-            src = acc["mass"]
-            out += [("mass", f"{name} mass", m.mass_kg, "kg", src),
-                    ("mass", f"{name} centre of gravity z", float(m.centre_of_gravity_mm[2]),
-                     "mm", "from the midplane of the hub teeth, along the axis"),
-                    ("mass", f"{name} polar inertia", m.polar_inertia_kg_m2, "kg·m²", src),
-                    ("mass", f"{name} transverse inertia", m.transverse_inertia_kg_m2,
-                     "kg·m²", "about its centre of gravity")]
-        t = self.torsion
-        k_body = self.stiffness.body_torsional_Nm_per_rad
-        out += [("torsion", "secant stiffness at the torque", t.secant_Nm_per_rad, "N·m/rad",
-                 acc["torsion"]),
-                ("torsion", "tangent stiffness at the torque", t.tangent_Nm_per_rad,
-                 "N·m/rad", acc["torsion"]),
-                ("torsion", "bodies' torsional stiffness",
-                 k_body if math.isfinite(k_body) else None,
-                 "N·m/rad", "bore to sleeve outside diameter (none: the hub has no bore)"),
-                ("torsion", "capacity at the misalignment", self.capacity_Nm, "N·m",
-                 "the wind-up curve ends here (datasheet.json)")]
-        K, s = self.stiffness.matrix, self.stiffness
-        units = ("N/m", "N/m", "N/m", "N·m/rad", "N·m/rad", "N·m/rad")
-        for i, dof in enumerate(DOFS):
-            lo_hi = s.rotation_spread.get(dof)
-            spread = (f"; over the pitch {lo_hi[0]:.4g} to {lo_hi[1]:.4g}" if lo_hi else
-                      "; pitch mean (from the mean forces turned with the tilt axis)")
-            out.append(("stiffness", f"K {dof}-{dof}", float(K[i, i]), units[i],
-                        acc["stiffness"] + spread))
-        cc = s.cross_coupled()
-        out += [("stiffness", f"cross-coupled tilt {k.removesuffix('_Nm_per_rad')}", v,
-                 "N·m/rad", "moment on the hub about -x per tilt about y (k_xy), about -y "
-                 "per tilt about x (k_yx); stiffness_matrix.csv holds the whole matrix")
-                for k, v in cc.items()]
-        out += [("stiffness", "axial slip force", s.axial_slip_force_N, "N",
-                 "friction times the tooth normal loads: the thrust at which the teeth slide")]
-        a = self.allowable
-        out += [("allowable", "allowable misalignment", a.misalignment_deg, "deg",
-                 f"limited by the {a.criterion}"
-                 + (f" ({a.capacity_criterion})" if a.capacity_criterion else "")),
-                ("allowable", "critical misalignment", a.critical_misalignment_deg, "deg",
-                 "contact on the pivot teeth reaches a face end")]
-        for key, ext in a.extremes().items():
-            name, unit = key.rsplit("_", 1)
-            for stat in ("min", "max"):
-                out.append(("allowable", f"{name.replace('_', ' ')} {stat} over a turn",
-                            ext[stat], UNITS[unit], acc["allowable"]))
-        return out
+        return [("operating point", "misalignment", self.misalignment_deg, "deg", ""),
+                ("operating point", "torque", self.torque_Nm, "N·m",
+                 f"{self.model} model, {self.springs} springs, friction "
+                 f"{self.spec.load.friction:g}"),
+                *_mass_rows(self.mass, acc["mass"]),
+                *_torsion_rows(self, acc["torsion"]),
+                *_stiffness_rows(self.stiffness, acc["stiffness"]),
+                *_allowable_rows(self.allowable, acc["allowable"])]
 
     def to_dataframe(self):
         """:meth:`rows` as a pandas DataFrame with the columns of ``datasheet.csv``
@@ -213,6 +169,65 @@ class CouplingData:
         """A ``ross.CouplingElement`` of these data (the ``rotordynamics`` extra); options as
         :func:`gearcoupling.rotordynamics.coupling_element`."""
         return coupling_element(self, **options)
+
+
+Rows = list[tuple[str, str, float | None, str, str]]
+STIFFNESS_UNITS = ("N/m", "N/m", "N/m", "N·m/rad", "N·m/rad", "N·m/rad")
+
+
+def _mass_rows(mass: dict[str, MassProperties], accuracy: str) -> Rows:
+    out: Rows = []
+    for name, m in mass.items():
+        out += [("mass", f"{name} mass", m.mass_kg, "kg", accuracy),
+                ("mass", f"{name} centre of gravity z", float(m.centre_of_gravity_mm[2]),
+                 "mm", "from the midplane of the hub teeth, along the axis"),
+                ("mass", f"{name} polar inertia", m.polar_inertia_kg_m2, "kg·m²", accuracy),
+                ("mass", f"{name} transverse inertia", m.transverse_inertia_kg_m2, "kg·m²",
+                 "about its centre of gravity")]
+    return out
+
+
+def _torsion_rows(data: CouplingData, accuracy: str) -> Rows:
+    t, k_body = data.torsion, data.stiffness.body_torsional_Nm_per_rad
+    return [("torsion", "secant stiffness at the torque", t.secant_Nm_per_rad, "N·m/rad",
+             accuracy),
+            ("torsion", "tangent stiffness at the torque", t.tangent_Nm_per_rad, "N·m/rad",
+             accuracy),
+            ("torsion", "bodies' torsional stiffness", k_body if math.isfinite(k_body) else
+             None, "N·m/rad", "bore to sleeve outside diameter (none: the hub has no bore)"),
+            ("torsion", "capacity at the misalignment", data.capacity_Nm, "N·m",
+             "the wind-up curve ends here (datasheet.json)")]
+
+
+def _stiffness_rows(s: StiffnessMatrix, accuracy: str) -> Rows:
+    K = s.matrix
+    out: Rows = []
+    for i, dof in enumerate(DOFS):
+        lo_hi = s.rotation_spread.get(dof)
+        spread = (f"; over the pitch {lo_hi[0]:.4g} to {lo_hi[1]:.4g}" if lo_hi else
+                  "; pitch mean (from the mean forces turned with the tilt axis)")
+        out.append(("stiffness", f"K {dof}-{dof}", float(K[i, i]), STIFFNESS_UNITS[i],
+                    accuracy + spread))
+    out += [("stiffness", f"cross-coupled tilt {k.removesuffix('_Nm_per_rad')}", v, "N·m/rad",
+             "moment on the hub about -x per tilt about y (k_xy), about -y per tilt about x "
+             "(k_yx); stiffness_matrix.csv holds the whole matrix")
+            for k, v in s.cross_coupled().items()]
+    out.append(("stiffness", "axial slip force", s.axial_slip_force_N, "N",
+                "friction times the tooth normal loads: the thrust at which the teeth slide"))
+    return out
+
+
+def _allowable_rows(a: AllowableLoads, accuracy: str) -> Rows:
+    out: Rows = [("allowable", "allowable misalignment", a.misalignment_deg, "deg",
+                  f"limited by the {a.criterion}"
+                  + (f" ({a.capacity_criterion})" if a.capacity_criterion else "")),
+                 ("allowable", "critical misalignment", a.critical_misalignment_deg, "deg",
+                  "contact on the pivot teeth reaches a face end")]
+    for key, ext in a.extremes().items():
+        name, unit = key.rsplit("_", 1)
+        out += [("allowable", f"{name.replace('_', ' ')} {stat} over a turn", ext[stat],
+                 UNITS[unit], accuracy) for stat in ("min", "max")]
+    return out
 
 
 MAX_TORQUE_NM = 1e9  # as the load command: far above any coupling

@@ -272,9 +272,9 @@ def _tilts(case: _Case, sw: SweepResult, h: float, base: tuple[NDArray, NDArray]
             part = slice(m * n, (m + 1) * n)
             found[k] = (generalized_forces(F[part], M[part], A, poses[k][1]), chi[part])
     if backward:  # (3 f(i) - 4 f(i - h) + f(i - 2h)) / 2h, second order as the central one
-        for out, col, k in ((dQdu, (slice(None), slice(None), _TILT_X), 0),
-                            (dcdu, (slice(None), _TILT_X), 1)):
-            out[col] = (3 * base[k] - 4 * found[0][k] + found[1][k]) / (2 * h)
+        (Q1, c1), (Q2, c2) = found[0], found[1]
+        dQdu[:, :, _TILT_X] = (3 * base[0] - 4 * Q1 + Q2) / (2 * h)
+        dcdu[:, _TILT_X] = (3 * base[1] - 4 * c1 + c2) / (2 * h)
         return
     pairs = {_TILT_X: (0, 1), _TILT_Y: (2, 3)} if alpha == 0 else {_TILT_X: (0, 1)}
     for col, (plus, minus) in pairs.items():
