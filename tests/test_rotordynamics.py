@@ -335,6 +335,23 @@ def test_friction_adds_the_antisymmetric_part_of_its_moment(name, deg):
     assert with_f[3, 4] == pytest.approx(mf / a, rel=0.05)
 
 
+def test_the_torques_sign_mirrors_the_frictionless_matrix(renzo):
+    """The cw flanks are the mirror image of the ccw ones: without friction a reversed
+    torque gives the same diagonal and reversed tilt-torsion terms."""
+    ahead = stiffness_matrix(renzo, 1.0, 2000.0, friction=0.0, rotations=2).matrix
+    back = stiffness_matrix(renzo, 1.0, -2000.0, friction=0.0, rotations=2).matrix
+    assert np.diag(back) == pytest.approx(np.diag(ahead), rel=1e-6)
+    assert back[3, 5] == pytest.approx(-ahead[3, 5], rel=1e-6)
+
+
+def test_the_matrix_is_continuous_at_the_end_of_the_range(renzo):
+    """Within a step of 6° the tilt difference turns backward (second order too): the
+    matrix at 6° continues the one at 5.99°."""
+    inside = stiffness_matrix(renzo, 5.99, rotations=2).matrix
+    end = stiffness_matrix(renzo, 6.0, rotations=2).matrix
+    assert np.diag(end) == pytest.approx(np.diag(inside), rel=0.01)
+
+
 def test_aligned_friction_is_left_out_and_said_so(renzo):
     K = stiffness_matrix(renzo, 0.0)
     assert K.friction == 0.0 and any("friction" in n for n in K.notes)
