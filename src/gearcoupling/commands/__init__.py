@@ -20,6 +20,7 @@ from . import (
     templates,
     view,
 )
+from .common import WRITING
 
 COMMANDS = [
     spec,
@@ -42,4 +43,4 @@ COMMANDS = [
     report,
 ]
 
-__all__ = ["COMMANDS"]
+__all__ = ["COMMANDS", "WRITING"]
