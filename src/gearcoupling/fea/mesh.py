@@ -61,31 +61,49 @@ def fillet_radius(spec: CouplingSpec, part: str) -> float:
     return spec.hub.root.fillet_radius if part == "hub" else spec.sleeve.root_fillet_radius
 
 
-def size_range(spec: CouplingSpec, part: str) -> tuple[float, float]:
-    """Smallest and largest element size on a part's teeth (mm): module / 40 and the
-    smaller of module / 2 and twice the root fillet radius (:func:`check_size`)."""
+def size_range(spec: CouplingSpec) -> tuple[float, float]:
+    """Smallest and largest element size on the teeth (mm): module / 40 and module / 2
+    (two elements across the tooth at least)."""
     m = spec.tooth.module
-    return m / 40.0, min(m / 2.0, 2.0 * fillet_radius(spec, part))
+    return m / 40.0, m / 2.0
+
+
+def fillet_size(spec: CouplingSpec, part: str, size: float) -> float:
+    """Element size on a part's root fillets: ``size``, or twice the fillet radius where
+    that is smaller (a coarser mesh cannot follow the fillet, where the root stress is), but
+    not below module / 40."""
+    rho = fillet_radius(spec, part)
+    return size if rho <= 0 else min(size, max(size_range(spec)[0], 2.0 * rho))
+
+
+def fillet_notes(spec: CouplingSpec, size_mm: float | None,
+                 parts=("hub", "sleeve")) -> list[str]:
+    """One line per part whose root fillets are meshed finer than the teeth (for the
+    commands to say so)."""
+    size = check_size(spec, "hub", size_mm)
+    notes = []
+    for part in parts:
+        fs = fillet_size(spec, part, size)
+        if fs < size:
+            notes.append(f"the {part} root fillets (radius {fillet_radius(spec, part):.3g} mm) "
+                         f"are meshed at {fs:.3g} mm, the teeth at {size:.3g} mm")
+    return notes
 
 
 def check_size(spec: CouplingSpec, part: str, size_mm) -> float:
-    """The element size as a float, or :class:`ArgumentError` naming the allowed range.
-
-    Allowed: from module / 40 to the smaller of module / 2 and twice the part's root
-    fillet radius (a coarser size cannot follow the fillet, where the root stress is).
-    """
+    """The element size on the teeth as a float, or :class:`ArgumentError` naming the
+    allowed range, module / 40 to module / 2 (:func:`size_range`). The root fillets follow
+    at :func:`fillet_size`."""
     size = default_size(spec) if size_mm is None else size_mm
     try:
         size = float(size)
     except (TypeError, ValueError) as err:
         raise ArgumentError("size_mm", size_mm, "must be a number (mm)") from err
-    m = spec.tooth.module
-    lo, hi = size_range(spec, part)
+    lo, hi = size_range(spec)
     if not (math.isfinite(size) and lo <= size <= hi):
-        why = ("twice the root fillet radius: a coarser mesh cannot follow the fillet"
-               if hi < m / 2.0 else "module / 2: two elements across the tooth at least")
         raise ArgumentError("size_mm", size_mm, f"must be from {lo:.3g} to {hi:.3g} mm for the "
-                        f"{part} of this spec (module / 40 to {why}); choose a smaller size")
+                            f"{part} of this spec (module / 40 to module / 2: two elements "
+                            "across the tooth at least); choose a smaller size")
     return size
 
 
@@ -173,6 +191,7 @@ def mesh_part(spec: CouplingSpec, part: str, *, sector: int | None = DEFAULT_SEC
                                periodic, contact, loaded)
     vm.quality["cad_seconds"] = t_cad
     vm.quality["algorithm"] = algorithm
+    vm.quality["fillet_size_mm"] = fillet_size(spec, part, size)
     if loaded is not None:
         vm.quality["loaded_tooth"] = asdict(loaded)
     return vm
@@ -195,7 +214,12 @@ def _mesh_in_gmsh(gmsh, spec: CouplingSpec,
     gmsh.model.mesh.clear()
     teeth_faces = [s for s in surfaces if names[s][0].startswith("T")]
     flanks = [s for s in surfaces if names[s][0].endswith("_FLANK_CCW")]
-    top = _size_field(gmsh, teeth_faces, size, body, spec.tooth.module, flanks, contact)
+    coarsest = size if loaded is None else loaded.far_size_mm  # on any tooth
+    fs = fillet_size(spec, part, coarsest)
+    fillets = ([s for s in surfaces if "_FILLET_" in names[s][0]] if fs < coarsest else [],
+               fs)
+    top = _size_field(gmsh, teeth_faces, size, body, spec.tooth.module, flanks, contact,
+                      fillets)
     if loaded is not None:
         regions = loaded_faces(part, teeth)
         _loaded_size_field(gmsh, top, [s for s in surfaces if names[s][0] in regions],
@@ -234,9 +258,13 @@ def _generate_volume(gmsh) -> None:
         raise GeometryError(f"gmsh could not mesh the volume: {errors[0]}")
 
 
-def _size_field(gmsh, faces, size, body, module, flanks=(), contact=None) -> int:
+def _size_field(gmsh, faces, size, body, module, flanks=(), contact=None,
+                fillets=((), 0.0)) -> int:
     f = gmsh.model.mesh.field
     fields = [_threshold(f, faces, size, body, 0.25 * module, 2.0 * (body - size))]
+    if fillets[0]:  # follow a fillet too small for the teeth's size
+        fields.append(_threshold(f, fillets[0], fillets[1], body, 0.0,
+                                 2.0 * (body - fillets[1])))
     if contact is not None:
         c, half = contact
         near = _threshold(f, flanks, c, body, c, 4.0 * (body - c), sampling=200)

@@ -346,10 +346,11 @@ def _loaded_sector(spec: CouplingSpec, part: str, sector: int, size: float,
     """The sector a part's load cases are solved on: ``size`` on the loaded tooth,
     :data:`FLANK_SIZE` of it on the loaded flank in ``z_window``, the largest size
     :func:`~gearcoupling.fea.mesh.check_size` allows (up to :data:`FAR_SIZE` times
-    ``size``) on the other teeth. gmsh's HXT mesher first; its Delaunay mesher when HXT
-    leaves an inverted element."""
+    ``size``) on the other teeth, the root fillets at
+    :func:`~gearcoupling.fea.mesh.fillet_size`. gmsh's HXT mesher first; its Delaunay
+    mesher when HXT leaves an inverted element."""
     m = spec.tooth.module
-    far = max(size, min(FAR_SIZE * size, size_range(spec, part)[1]))
+    far = max(size, min(FAR_SIZE * size, size_range(spec)[1]))
     loaded = LoadedTooth(far_size_mm=far, flank_size_mm=FLANK_SIZE * size, z_mm=z_window,
                          zone_mm=LOADED_ZONE * m)
     try:
