@@ -1,4 +1,5 @@
-"""Watertight hub and sleeve solids as triangle meshes at a chosen chordal tolerance.
+"""Watertight hub and sleeve solids as triangle meshes at a chosen chordal tolerance, and
+as exact OpenCASCADE solids (:func:`part_solid`, the ``step`` extra).
 
 :func:`build_part` returns a :class:`trimesh.Trimesh` whose ``face_attributes`` hold the
 surface kind (``"kind"``, codes into :data:`SURFACE_KINDS`) and the tooth index
@@ -23,6 +24,7 @@ from .builder import SURFACE_KINDS, MeshBuilder, Run, tile, tooth_runs
 from .deviation import measure_deviation
 from .hub import build_hub_run, hub_layout
 from .sleeve import build_sleeve_run, sleeve_layout
+from .solid import hub_solid, part_solid, shape_volume, sleeve_solid
 from .validity import PartCheck, check_part
 
 # part -> (layout(spec, tol), add_run(builder, layout, run))
@@ -97,7 +99,6 @@ def build_part(spec: CouplingSpec, part: str, tolerance_mm: float | None = None,
     return mesh
 
 
-
 __all__ = [
     "PARTS",
     "SURFACE_KINDS",
@@ -108,8 +109,12 @@ __all__ = [
     "check_tolerance",
     "default_tolerance",
     "hub_layout",
+    "hub_solid",
     "measure_deviation",
+    "part_solid",
+    "shape_volume",
     "sleeve_layout",
+    "sleeve_solid",
     "tile",
     "tooth_runs",
 ]
