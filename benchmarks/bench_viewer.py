@@ -28,7 +28,8 @@ from pathlib import Path
 import numpy as np
 
 import gearcoupling as gc
-from gearcoupling.viewer import browser as br
+from gearcoupling.browser import chromium
+from gearcoupling.viewer import pixels as br
 from gearcoupling.viewer.html import free_port, write_html
 from gearcoupling.viewer.nodes import CouplingScene, ViewSettings, import_viser
 from gearcoupling.viewer.scene import LOD_DIVISORS, lod_tolerance
@@ -109,7 +110,7 @@ def main(name: str = "renzo-1967") -> None:
                        for p in ("hub", "sleeve"))
             paths[lod] = path
             print(f"| {lod} | {tol:.4g} | {tris} | {path.stat().st_size / 1e6:.2f} | {dt:.2f} |")
-        with br.chromium() as browser:
+        with chromium() as browser:
             page = browser.new_page(viewport=VIEWPORT)
             t = time.perf_counter()
             page.goto(paths["coarse"].as_uri())

@@ -206,8 +206,8 @@ def test_patch_figure_has_a_map_per_tooth_and_the_overview(renzo):
 @pytest.mark.needs_browser
 @pytest.mark.slow
 def test_report_renders_in_chromium_and_prints_a_page_per_section(made, tmp_path):
-    from gearcoupling.reporting.pdf import drawn_fraction, print_pdf, viewer_picture
-    from gearcoupling.viewer import chromium
+    from gearcoupling.browser import chromium, drawn_fraction, png_pixels
+    from gearcoupling.reporting.pdf import print_pdf, viewer_picture
 
     res, text = made
     n_figures = len(figures(text))
@@ -224,7 +224,7 @@ def test_report_renders_in_chromium_and_prints_a_page_per_section(made, tmp_path
             assert all(done and width > 100 for done, width in images), images
             shot = viewer_picture(page)
             assert shot is not None, "the 3D view did not draw"
-            assert drawn_fraction(shot) > 0.05
+            assert drawn_fraction(png_pixels(shot)) > 0.05
             assert problems == [], problems
         finally:
             page.close()

@@ -14,8 +14,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from gearcoupling.browser import chromium, drawn_fraction
 from gearcoupling.errors import BackendError
-from gearcoupling.viewer import browser as br
+from gearcoupling.viewer import pixels as br
 
 pytestmark = [pytest.mark.needs_browser, pytest.mark.slow]
 
@@ -27,7 +28,7 @@ VIEWPORT = {"width": 800, "height": 560}  # larger views cost seconds per frame
 def browser():
     SHOTS.mkdir(parents=True, exist_ok=True)
     try:
-        with br.chromium() as b:
+        with chromium() as b:
             yield b
     except BackendError as err:  # CI installs both: a missing browser is a failure
         pytest.fail(f"{err} (run `bash scripts/test.sh`)")
@@ -60,7 +61,7 @@ def test_live_viewer_renders_and_the_rotation_slider_moves_the_hub(browser, renz
         before, _ = br.wait_rendered(page)
         print(f"\nlive viewer: first render {time.perf_counter() - t_start:.1f} s after start")
         page.screenshot(path=str(SHOTS / "live-initial.png"))
-        assert br.drawn_fraction(before) > 0.05
+        assert drawn_fraction(before) > 0.05
         assert br.reddish_pixels(before) > 200  # interfering flanks at 3° are drawn red
 
         # the scene tree (viser's settings panel) lists hub and sleeve
@@ -113,7 +114,7 @@ def test_static_html_opens_from_disk_and_renders(browser, renzo):
         view, seconds = br.wait_rendered(page)
         print(f"\nstatic HTML ({path.stat().st_size / 1e6:.2f} MB): rendered in {seconds:.1f} s")
         page.screenshot(path=str(SHOTS / "static-html.png"))
-        assert br.drawn_fraction(view) > 0.05
+        assert drawn_fraction(view) > 0.05
         assert br.reddish_pixels(view) > 200
         # its scene tree lists hub, sleeve and the colour legend (labels are drawn in 3D)
         page.locator('[aria-label="Show scene tree"]').first.click()

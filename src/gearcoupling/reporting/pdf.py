@@ -9,26 +9,15 @@ from __future__ import annotations
 
 import base64
 import contextlib
-import io
 import time
 from pathlib import Path
 from typing import Any, cast
 
-import numpy as np
-
+from ..browser import chromium, drawn_fraction, png_pixels
 from ..io import atomic_path
-from ..viewer import chromium
 
 VIEWPORT = {"width": 1240, "height": 900}
 RENDER_TIMEOUT_S = 90.0
-
-
-def drawn_fraction(png: bytes) -> float:
-    """Share of the picture's pixels that differ from its corner pixel (the background)."""
-    from PIL import Image
-
-    img = np.asarray(Image.open(io.BytesIO(png)).convert("RGB"), dtype=np.int16)
-    return float(np.mean(np.abs(img - img[-1, 0]).max(axis=-1) > 40))
 
 
 def viewer_picture(page, timeout_s: float = RENDER_TIMEOUT_S) -> bytes | None:
@@ -45,7 +34,7 @@ def viewer_picture(page, timeout_s: float = RENDER_TIMEOUT_S) -> bytes | None:
             with contextlib.suppress(Exception):
                 notes.nth(i).click(timeout=1000)
         shot = frame.first.screenshot()
-        if drawn_fraction(shot) > 0.05 and last is not None and shot == last:
+        if drawn_fraction(png_pixels(shot)) > 0.05 and last is not None and shot == last:
             return shot
         last = shot
         time.sleep(1.0)

@@ -7,7 +7,6 @@ viser is imported only when a server is made and is an optional extra
 (``pip install 'gearcoupling[viewer]'``).
 """
 
-from .browser import chromium
 from .html import write_html
 from .nodes import FRAMES, ViewSettings
 from .scene import (
@@ -31,7 +30,6 @@ __all__ = [
     "ViewSettings",
     "build_scene_meshes",
     "check_pose",
-    "chromium",
     "exposure_warning",
     "lod_tolerance",
     "pose_state",
