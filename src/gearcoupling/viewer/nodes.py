@@ -25,13 +25,17 @@ import numpy as np
 
 from ..errors import ArgumentError, BackendError
 from ..geometry import FLANKS, rot_z
+from ..loading import LoadResult, load
 from ..spec import CouplingSpec
 from .scene import (
     COLOR_MODES,
     CUTAWAYS,
+    INTERFERENCE_RGB,
+    VIEW_SWEEP_TOLERANCE_MM,
     PoseState,
     SceneMeshes,
     build_scene_meshes,
+    check_pose,
     default_color_scale_mm,
     flank_colors,
     hub_rotation,
@@ -90,6 +94,14 @@ class ViewSettings:
             v = getattr(self, name)
             if not 0.0 <= v <= 1.0:
                 raise ArgumentError(f"{name} = {v!r}: must be from 0 to 1")
+
+
+def pose_loads(spec: CouplingSpec, misalignment_deg: float, psi_deg: float) -> LoadResult:
+    """The loads the pressure colours show: :func:`gearcoupling.load` at the pose and the
+    spec's torque with the ``surface`` model (about a second), on the viewer's sweep
+    accuracy."""
+    return load(spec, misalignment_deg, [psi_deg], model="surface",
+                tolerance_mm=VIEW_SWEEP_TOLERANCE_MM)
 
 
 class CouplingScene:
@@ -212,8 +224,9 @@ class CouplingScene:
         """Move the hub to a pose and recolour: no mesh is rebuilt (the interference
         solid, which is new geometry at every pose, is the only node re-added)."""
         st = self.settings
-        state = pose_state(self.spec, misalignment_deg, psi_deg, band_mm=st.band_mm,
-                           pressure=st.color_mode == "pressure")
+        mis, psi = check_pose(misalignment_deg, psi_deg)
+        loads = pose_loads(self.spec, mis, psi) if st.color_mode == "pressure" else None
+        state = pose_state(self.spec, mis, psi, band_mm=st.band_mm, loads=loads)
         st.misalignment_deg, st.psi_deg = state.misalignment_deg, state.psi_deg
         rot = hub_rotation(state.misalignment_deg, state.psi_deg)
         colors = flank_colors(state, st.color_mode, self.color_scale_mm, self.spec)
@@ -241,7 +254,7 @@ class CouplingScene:
                 self._interference = None
             if patch is not None and patch.faces.shape[0]:
                 self._interference = self.server.scene.add_mesh_simple(
-                    "/interference", patch.vertices, patch.faces, color=(220, 20, 20),
+                    "/interference", patch.vertices, patch.faces, color=INTERFERENCE_RGB,
                     side="double", visible=st.show_interference,
                     wxyz=quaternion_wxyz(ground))
         self.state = state
@@ -254,7 +267,7 @@ class CouplingScene:
             return
         st = self.settings
         if st.color_mode == "pressure" and self.state.pressure_MPa is None:
-            self.set_pose(st.misalignment_deg, st.psi_deg)  # solves the pressure
+            self.set_pose(st.misalignment_deg, st.psi_deg)  # computes the loads
             return
         colors = flank_colors(self.state, st.color_mode, self.color_scale_mm, self.spec)
         with self.server.atomic():
