@@ -21,7 +21,7 @@ import threading
 import time
 from pathlib import Path
 
-from ..errors import ArgumentError
+from ..errors import ArgumentError, GearCouplingError
 from ..io import default_output_dir
 from ..spec import CouplingSpec
 from .html import save_html
@@ -163,10 +163,14 @@ class ViewerApp:
         self._wake.set()
 
     def _plot_data(self) -> tuple:
-        mis = self.scene.settings.misalignment_deg
-        if self._curve is None or self._curve.misalignment_deg != mis:
-            self._curve = clearance_curve(self.spec, mis)
-        return plot_series(self._curve, self.scene.state)
+        """The clearance plot's data at the scene's pose (the curve is kept per
+        misalignment)."""
+        state = self.scene.state
+        if state is None:  # CouplingScene sets a pose when it is built
+            raise GearCouplingError("the viewer scene has no pose")
+        if self._curve is None or self._curve.misalignment_deg != state.misalignment_deg:
+            self._curve = clearance_curve(self.spec, state.misalignment_deg)
+        return plot_series(self._curve, state)
 
     # ------------------------------------------------------------------ worker
 
