@@ -13,7 +13,7 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -26,6 +26,9 @@ from .hub import build_hub_run, hub_layout
 from .sleeve import build_sleeve_run, sleeve_layout
 from .solid import hub_solid, part_solid, shape_volume, sleeve_solid
 from .validity import PartCheck, check_part
+
+if TYPE_CHECKING:
+    import trimesh
 
 # part -> (layout(spec, tol), add_run(builder, layout, run))
 _BUILDERS: dict[str, tuple[Callable[..., Any], Callable[..., None]]] = {
@@ -51,7 +54,8 @@ def check_tolerance(spec: CouplingSpec, tolerance_mm) -> float:
     return tol
 
 
-def build_part(spec: CouplingSpec, part: str, tolerance_mm: float | None = None, teeth=None):
+def build_part(spec: CouplingSpec, part: str, tolerance_mm: float | None = None,
+               teeth=None) -> trimesh.Trimesh:
     """Closed triangle mesh of the hub or the sleeve within a chordal tolerance.
 
     Parameters

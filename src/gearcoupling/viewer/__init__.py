@@ -19,7 +19,7 @@ from .scene import (
     lod_tolerance,
     pose_state,
 )
-from .server import exposure_warning, serve
+from .server import ViewerApp, exposure_warning, serve
 
 __all__ = [
     "COLOR_MODES",
@@ -28,6 +28,7 @@ __all__ = [
     "LOD_DIVISORS",
     "PoseState",
     "ViewSettings",
+    "ViewerApp",
     "build_scene_meshes",
     "check_pose",
     "exposure_warning",
