@@ -68,6 +68,15 @@ def test_templates_lists_every_template(capsys):
     assert main(["templates"]) == 0
     out = capsys.readouterr().out
     assert all(name in out for name in gc.template_names())
+    # each description is the header's whole first sentence, not cut at the line's end
+    from gearcoupling.commands.templates import description
+    from gearcoupling.io import bundled_dir
+
+    joined = " ".join(out.split())
+    for name in gc.template_names():
+        text = description((bundled_dir("templates") / f"{name}.toml").read_text())
+        assert text.endswith(".") and len(text) > 60, text
+        assert f"{name} {text}" in joined
 
 
 def test_atomic_writes_leave_the_old_file_on_failure_and_use_the_usual_mode(tmp_path):
