@@ -126,6 +126,7 @@ def test_plots_return_figures_draw_on_given_axes_and_never_switch_the_backend(tm
     axes = fig.subplots(1, 3)
     assert sections_figure(gc_spec(), 0.01, ax=axes) is fig
     assert all(a.has_data() for a in axes)
+    assert all(a.get_xlabel() and a.get_ylabel() for a in axes)  # the sections' axis too
     with pytest.raises(ValueError, match="3 axes"):
         sections_figure(gc_spec(), 0.01, ax=axes[:2])
 
