@@ -222,6 +222,9 @@ def test_report_renders_in_chromium_and_prints_a_page_per_section(made, tmp_path
                                    ".map(i => [i.complete, i.naturalWidth])")
             assert len(images) == n_figures
             assert all(done and width > 100 for done, width in images), images
+            # the view's still picture goes once WebGL has drawn the scene
+            page.frame_locator(".viewer iframe").locator("#gc-still").wait_for(
+                state="detached", timeout=180_000)
             shot = viewer_picture(page)
             assert shot is not None, "the 3D view did not draw"
             assert drawn_fraction(png_pixels(shot)) > 0.05

@@ -1,7 +1,8 @@
 """Print the report to PDF through headless chromium (playwright, Debian's chromium).
 
-The page is opened from disk; once the embedded 3D view has drawn (software WebGL: seconds
-to tens of seconds), its picture replaces the interactive view for print, then chromium
+The page is opened from disk; once the embedded 3D view shows a settled picture (its
+still picture, or the WebGL drawing that replaces it after seconds to tens of seconds in
+software WebGL), that picture replaces the interactive view for print, then chromium
 prints A4 pages with the section headings as the PDF outline. Never downloads a browser.
 """
 

@@ -32,6 +32,7 @@ from .scene import (
     CUTAWAYS,
     INTERFERENCE_RGB,
     VIEW_SWEEP_TOLERANCE_MM,
+    Patch,
     PoseState,
     SceneMeshes,
     build_scene_meshes,
@@ -127,6 +128,7 @@ class CouplingScene:
         self.settings = settings
         self.state: PoseState | None = None
         self.interference_volume_mm3 = 0.0
+        self.interference_patch: Patch | None = None  # sleeve frame
         self._interference = None
         self._flanks: list[list] = [[], []]
         self._legend_in_scene = legend_in_scene
@@ -195,14 +197,14 @@ class CouplingScene:
             opacity=_opacity(st.sleeve_opacity), side="double", visible=st.show_sleeve,
             wxyz=self._ground_wxyz())
 
-    def _ground(self) -> np.ndarray:
+    def ground(self) -> np.ndarray:
         """Sleeve body frame to screen: ``Rz(psi)`` in the ground frame, else identity."""
         if self.settings.frame == "ground":
             return rot_z(np.radians(self.settings.psi_deg))
         return np.eye(3)
 
     def _ground_wxyz(self) -> np.ndarray:
-        return quaternion_wxyz(self._ground())
+        return quaternion_wxyz(self.ground())
 
     def set_display(self) -> None:
         """Apply visibility and opacity from the settings to the existing nodes."""
@@ -236,7 +238,7 @@ class CouplingScene:
         # apart, the meshes cannot overlap by more than chord error at the flanks
         if np.min(state.clearance_mm) < self.meshes.tolerance_mm:
             patch, volume = interference_mesh(self.meshes, rot, state.interfering)
-        ground = self._ground()
+        ground = self.ground()
         with self.server.atomic():
             self.hub_frame.wxyz = quaternion_wxyz(ground @ rot)
             self.sleeve.wxyz = quaternion_wxyz(ground)
@@ -259,6 +261,7 @@ class CouplingScene:
                     wxyz=quaternion_wxyz(ground))
         self.state = state
         self.interference_volume_mm3 = volume
+        self.interference_patch = patch
         return state
 
     def recolor(self) -> None:
