@@ -46,6 +46,7 @@ def test_import_gearcoupling_loads_no_scipy():
 LAYERS = {
     "errors": set(),
     "io": {"errors"},
+    "browser": {"errors"},
     "tables": {"errors"},
     "loadspec": {"errors", "io"},
     "geometry": {"errors"},
@@ -64,8 +65,8 @@ LAYERS = {
     "inspection": {"io", "errors", "geometry", "spec", "plots", "parts", "hob", "tables"},
     "outputs": {"io", "errors", "geometry", "spec", "plots", "parts", "export", "clearance",
                 "interference", "loading", "viewer"},
-    "viewer": {"io", "errors", "geometry", "spec", "parts", "export", "clearance",
-               "interference", "loading", "inspection"},
+    "viewer": {"io", "errors", "browser", "geometry", "spec", "plots", "parts", "export",
+               "clearance", "interference", "loading", "inspection"},
     "rotordynamics": {"io", "errors", "geometry", "spec", "loadspec", "plots", "parts",
                       "clearance", "loading", "tables"},
 }

@@ -16,6 +16,7 @@ from ..errors import ArgumentError
 from ..geometry import sleeve_model
 from ..spec import MISALIGNMENT_RANGE_DEG, CouplingSpec
 from .kernel import DEFAULT_TOLERANCE_MM, FACE_END, minimise
+from .result import SweepResult
 from .tooth_map import check_misalignment, flank_minima, sweep
 
 ANGLE_TOLERANCE_DEG = 1e-4
@@ -184,7 +185,7 @@ def mesh_angles(offset_mm: float, angle_deg: float, span_mm: float, *,
 
 
 def double_engagement(spec: CouplingSpec, offset_mm: float, angle_deg: float, span_mm: float,
-                      angles_deg, **kwargs):
+                      angles_deg, **kwargs) -> tuple[MeshAngles, SweepResult, SweepResult]:
     """Sweeps of both gear meshes: ``(MeshAngles, result_a, result_b)``.
 
     Raises :class:`SpecError` if a mesh angle exceeds the 6° the sweeps cover.

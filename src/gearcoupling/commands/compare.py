@@ -77,9 +77,7 @@ def run(args) -> int:
         require_file(f, "file", "a scan or mesh file (STL/PLY/OBJ, CSV/XYZ)", ArgumentError)
     out = output_dir(args, spec)
     with progress("compare", 2 + STAGES * len(args.files)) as update:
-        result = compare_part(spec, args.files[0],
-                              args.files[1] if len(args.files) == 2 else None,
-                              units=args.units, limits=limits,
+        result = compare_part(spec, *args.files, units=args.units, limits=limits,
                               coarse=args.coarse, fit_points=args.fit_points, progress=update)
     units = ["lengths in mm, + = material excess / toward increasing polar angle"]
     if len(args.files) == 2:

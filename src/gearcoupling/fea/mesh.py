@@ -1,6 +1,6 @@
 """Quadratic tetrahedral meshes of hub and sleeve sectors, by gmsh from the STEP solids.
 
-The exact OpenCASCADE solid of a sector (:func:`gearcoupling.export.step.part_solid`) is
+The exact OpenCASCADE solid of a sector (:func:`gearcoupling.parts.part_solid`) is
 written to a temporary STEP file and imported into gmsh. Every B-rep face is then named by
 geometry: the nodes of a coarse surface mesh of the face vote for the surface kind and
 tooth of the nearest point of the labelled triangle mesh of the same sector
@@ -20,8 +20,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import ArgumentError, GeometryError, SpecError
-from ..export import part_solid, write_step
-from ..parts import SURFACE_KINDS, build_part, check_tolerance
+from ..export import write_step
+from ..parts import SURFACE_KINDS, build_part, check_tolerance, part_solid
 from ..spec import CouplingSpec
 from .backends import gmsh_session
 from .volume import VolumeMesh, aspect_ratios, match_faces, tet_volumes

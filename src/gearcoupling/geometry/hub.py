@@ -239,7 +239,8 @@ def hub_flank_model(m: HubModel, flank: str, z_mm: ArrayLike, r_mm: ArrayLike, *
     return pts, nrm, h
 
 
-def hub_flank(spec: SpecLike, flank: str, z_mm: ArrayLike, r_mm: ArrayLike):
+def hub_flank(spec: SpecLike, flank: str, z_mm: ArrayLike, r_mm: ArrayLike
+              ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Exact points and unit normals of tooth 0's flank at axial positions and radii.
 
     Parameters

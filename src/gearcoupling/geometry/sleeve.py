@@ -13,7 +13,7 @@ from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, NDArray
 
 from ..errors import ArgumentError, GeometryError
 from .hub import FLANKS
@@ -110,7 +110,8 @@ def sleeve_model(spec: SpecLike) -> SleeveModel:
                        rho, 0.5 * sl.face_width, r_form, r_fillet, centre)
 
 
-def sleeve_flank(spec: SpecLike, flank: str, z_mm: ArrayLike, r_mm: ArrayLike):
+def sleeve_flank(spec: SpecLike, flank: str, z_mm: ArrayLike, r_mm: ArrayLike
+                 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Points and unit normals of sleeve space 0's flank facing hub tooth 0's ``flank``.
 
     Parameters

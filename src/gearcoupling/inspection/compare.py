@@ -6,7 +6,7 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import cast
+from typing import cast, overload
 
 import numpy as np
 
@@ -74,11 +74,28 @@ def _points(source, units: str):
     return pts * {"mm": 1.0, "in": 25.4, "m": 1000.0}[units], "array"
 
 
+@overload
+def compare_part(spec: CouplingSpec, source, other: None = None, *, units: str = "mm",
+                 limits=None, grade: int | None = None, coarse: str = "auto",
+                 fit_points: int = 20_000, grid: tuple[int, int] = (61, 41),
+                 outlier_mm: float | None = None, min_points: int = 30,
+                 progress: Callable[[int, int], None] | None = None) -> InspectionReport: ...
+
+
+@overload
+def compare_part(spec: CouplingSpec, source, other: str | Path | np.ndarray, *,
+                 units: str = "mm", limits=None, grade: int | None = None,
+                 coarse: str = "auto", fit_points: int = 20_000,
+                 grid: tuple[int, int] = (61, 41), outlier_mm: float | None = None,
+                 min_points: int = 30, progress: Callable[[int, int], None] | None = None
+                 ) -> PartComparison: ...
+
+
 def compare_part(spec: CouplingSpec, source, other=None, *, units: str = "mm", limits=None,
                  grade: int | None = None, coarse: str = "auto", fit_points: int = 20_000,
                  grid: tuple[int, int] = (61, 41), outlier_mm: float | None = None,
-                 min_points: int = 30,
-                 progress: Callable[[int, int], None] | None = None):
+                 min_points: int = 30, progress: Callable[[int, int], None] | None = None
+                 ) -> InspectionReport | PartComparison:
     """Inspect a measured hub against the spec's nominal, tooth by tooth.
 
     Parameters

@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -77,7 +78,7 @@ class InspectionReport:
     teeth: NDArray[np.intp]
     flank: dict[str, dict[str, NDArray[np.float64]]] = field(repr=False)
     tooth: dict[str, NDArray[np.float64]] = field(repr=False)
-    part: dict[str, object] = field(default_factory=dict)
+    part: dict[str, Any] = field(default_factory=dict)
     limits: dict[str, float] = field(default_factory=dict)
     passed: NDArray[np.bool_] | None = field(default=None, repr=False)
     sample: dict[str, NDArray] = field(default_factory=dict, repr=False)

@@ -1,4 +1,5 @@
-"""Watertight hub and sleeve solids as triangle meshes at a chosen chordal tolerance.
+"""Watertight hub and sleeve solids as triangle meshes at a chosen chordal tolerance, and
+as exact OpenCASCADE solids (:func:`part_solid`, the ``step`` extra).
 
 :func:`build_part` returns a :class:`trimesh.Trimesh` whose ``face_attributes`` hold the
 surface kind (``"kind"``, codes into :data:`SURFACE_KINDS`) and the tooth index
@@ -12,7 +13,7 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -23,7 +24,11 @@ from .builder import SURFACE_KINDS, MeshBuilder, Run, tile, tooth_runs
 from .deviation import measure_deviation
 from .hub import build_hub_run, hub_layout
 from .sleeve import build_sleeve_run, sleeve_layout
+from .solid import hub_solid, part_solid, shape_volume, sleeve_solid
 from .validity import PartCheck, check_part
+
+if TYPE_CHECKING:
+    import trimesh
 
 # part -> (layout(spec, tol), add_run(builder, layout, run))
 _BUILDERS: dict[str, tuple[Callable[..., Any], Callable[..., None]]] = {
@@ -49,7 +54,8 @@ def check_tolerance(spec: CouplingSpec, tolerance_mm) -> float:
     return tol
 
 
-def build_part(spec: CouplingSpec, part: str, tolerance_mm: float | None = None, teeth=None):
+def build_part(spec: CouplingSpec, part: str, tolerance_mm: float | None = None,
+               teeth=None) -> trimesh.Trimesh:
     """Closed triangle mesh of the hub or the sleeve within a chordal tolerance.
 
     Parameters
@@ -97,7 +103,6 @@ def build_part(spec: CouplingSpec, part: str, tolerance_mm: float | None = None,
     return mesh
 
 
-
 __all__ = [
     "PARTS",
     "SURFACE_KINDS",
@@ -108,8 +113,12 @@ __all__ = [
     "check_tolerance",
     "default_tolerance",
     "hub_layout",
+    "hub_solid",
     "measure_deviation",
+    "part_solid",
+    "shape_volume",
     "sleeve_layout",
+    "sleeve_solid",
     "tile",
     "tooth_runs",
 ]
