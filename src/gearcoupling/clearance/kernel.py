@@ -77,11 +77,6 @@ class _Sleeve:
         self.cn = math.hypot(cx, cy)
         self.gc = math.atan2(cy, cx)
 
-    def consts(self, ci: float, si: float) -> tuple[float, ...]:
-        """The sleeve constants of the compiled kernels (:mod:`._compiled`)."""
-        return (ci, si, self.r_b, self.c0, self.r_fillet, float(self.rho), self.cn, self.gc,
-                self.cx, self.cy)
-
     def delta(self, rq, aq):
         """Angular gap ``aq + sigma(rq)/2`` to the involute (its extension off the flank)."""
         # inv(arccos(r_b / rq)) = tan - angle, with tan = sqrt(rq^2 - r_b^2) / r_b
@@ -177,38 +172,15 @@ class _Planes:
         return _map_cs(r, y, z, self.ci, self.si, ct, st)
 
     def f(self, t, idx=None):
-        """``(circumferential, normal)`` gaps at heights ``t`` (compiled where numba is
-        installed and the table is in power form, :mod:`.fast`)."""
-        kernel = self._kernels()
-        if kernel is None:
-            rq, aq, _ = self.at(t, idx)
-            return self.sl.gaps(rq, aq)
-        rows = np.arange(self.z.size) if idx is None else np.asarray(idx, dtype=np.intp)
-        t2 = np.ascontiguousarray(np.broadcast_to(t, np.shape(t)[:-1] + rows.shape)
-                                  .reshape(-1, rows.size), dtype=float)
-        circ, normal = kernel.gaps(t2, rows, *self._point_args())
-        shape = np.shape(t)[:-1] + rows.shape
-        return circ.reshape(shape), normal.reshape(shape)
-
-    def _kernels(self):
-        """:func:`.fast.kernels` where they apply (the table in power form), else None."""
-        k = kernels()
-        return None if k is None or self.table._power is None else k
-
-    def _point_args(self):
-        """The per-row arrays and constants the compiled kernels evaluate points from."""
-        return (self.kz, self.lo, self.span, self.z, self.ct, self.st,
-                self.sl.consts(self.ci, self.si))
+        """``(circumferential, normal)`` gaps at heights ``t``."""
+        rq, aq, _ = self.at(t, idx)
+        return self.sl.gaps(rq, aq)
 
     def cross(self, which: str, target: float, a, b, fa, fb, idx, rel: float = 1e-11):
         """``t`` in ``[a, b]`` where ``rq`` (or ``zq``) equals ``target``; ``fa``, ``fb``
         are the values minus target at the ends (opposite signs). Secant steps on the two
         latest points, kept inside the shrinking bracket (regula falsi when they leave it);
         ``rq`` is nearly linear in ``t``, so 3-4 steps reach 1e-11 relative."""
-        kernel = self._kernels()
-        if kernel is not None:
-            return kernel.cross(which == "z", float(target), a, b, fa, fb, idx, rel,
-                                *self._point_args())
         x0, f0 = a, fa
         x1, f1 = b, fb
         tol = rel * (abs(target) + 1.0)
@@ -354,12 +326,7 @@ class _Planes:
             return T, F
         idx, a, b = idx0[pos], a0[pos], b0[pos]
         x0, g0, x1, g1 = a, GA[mis, pos], b, GB[mis, pos]
-        kernel = self._kernels()
-        if kernel is None:
-            res = self._slope_roots(idx, mis, a, b, x0, g0, x1, g1, iters, d)
-        else:
-            res = kernel.slope_roots(idx, mis, a, b, x0, g0, x1, g1, iters, d,
-                                     *self._point_args())
+        res = self._slope_roots(idx, mis, a, b, x0, g0, x1, g1, iters, d)
         T[mis, idx] = res
         F[mis, idx] = np.stack(self.f(res, idx))[mis, np.arange(idx.size)]
         return T, F
@@ -816,6 +783,29 @@ def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
     # the virtual measures (rows of _plane_minima) the requested measures fold from
     wanted = sorted({vm for m in measures for vm in _FOLD[MEASURES.index(m)]})
     sl = _Sleeve(sm)
+    compiled = kernels()
+    if compiled is not None:
+        tab, ws = _compiled_arrays(compiled, table, sl, misalignment, pitch_radius,
+                                   tolerance_mm, grid)
+        out = np.empty((6, len(measures), n))
+        compiled.minimise_rows(tab, ws, grid, theta, np.array(wanted, np.int64),
+                               np.array([MEASURES.index(m) for m in measures], np.int64),
+                               max_levels, out)
+        v, z, r, t, k, rate = out
+        return {m: Minimum(v[j], z[j], r[j], t[j], k[j].astype(np.int8), rate[j])
+                for j, m in enumerate(measures)}
+    best_v, best_z, best_t, best_k = _numpy_minima(table, sl, misalignment, theta, pitch_radius,
+                                                   tolerance_mm, grid, max_levels, wanted)
+    th_of = np.tile(np.arange(n), len(wanted))
+    return _fold(table, misalignment, theta, th_of, wanted, measures, best_v, best_z, best_t,
+                 best_k)
+
+
+def _numpy_minima(table, sl, misalignment, theta, pitch_radius, tolerance_mm, grid,
+                  max_levels, wanted):
+    """Steps 1-3 in numpy, all rows of a step at once: ``best_v, best_z, best_t, best_k``
+    each ``(len(wanted) * n,)``, measure-major."""
+    n = theta.size
     zg, v, t, k = coarse_grid(table, sl, misalignment, theta, pitch_radius, grid, wanted)
     j, j2, second = second_minima(v)
     R = v.shape[0]  # rows: (virtual measure, theta) pairs, then the extra rows
@@ -827,16 +817,32 @@ def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
                 np.concatenate([j, j2[second]]), tolerance_mm, table.half_face).run(max_levels)
     best_v, best_z, best_t, best_k = s.best_v, s.best_z, s.best_t, s.best_k
     # each row keeps the better of its own and its extra row's minimum
-    if origin.size > R:
-        ex_rows = np.arange(R, origin.size)
-        won = best_v[ex_rows] < best_v[origin[ex_rows]]
-        dst, src = origin[ex_rows][won], ex_rows[won]
-        best_v[dst], best_z[dst], best_t[dst], best_k[dst] = (best_v[src], best_z[src],
-                                                              best_t[src], best_k[src])
-        best_v, best_z, best_t, best_k = best_v[:R], best_z[:R], best_t[:R], best_k[:R]
-        th_of = th_of[:R]
-    return _fold(table, misalignment, theta, th_of, wanted, measures, best_v, best_z, best_t,
-                 best_k)
+    ex_rows = np.arange(R, origin.size)
+    won = best_v[ex_rows] < best_v[origin[ex_rows]]
+    dst, src = origin[ex_rows][won], ex_rows[won]
+    best_v[dst], best_z[dst], best_t[dst], best_k[dst] = (best_v[src], best_z[src],
+                                                          best_t[src], best_k[src])
+    return best_v[:R], best_z[:R], best_t[:R], best_k[:R]
+
+
+def _compiled_arrays(compiled, table: FlankTable, sl: _Sleeve, misalignment: float,
+                     pitch_radius: float, tolerance_mm: float, grid: int):
+    """``tab`` and ``ws`` of the compiled kernel (:mod:`._compiled`): the constants in the
+    order of its indices (``CI, SI, RB, ...``), the table's edges and plane matrices; the
+    work space with the coarse planes' ``z``."""
+    mats = table._plane_matrices  # (pieces, nt + 1, nz)
+    pieces, rows, nz = mats.shape
+    if nz > compiled.MAX_NZ:
+        raise ArgumentError(f"flank table with {nz} nodes in z: at most {compiled.MAX_NZ}")
+    consts = [math.cos(misalignment), math.sin(misalignment), sl.r_b, sl.c0, sl.r_fillet,
+              float(sl.rho), sl.cn, sl.gc, sl.cx, sl.cy, sl.r_form, sl.half_face,
+              table.half_face, pitch_radius, tolerance_mm, table.tip_radius,
+              float(table.tip_kind != "cylinder"), float(table._power is not None),
+              rows - 1, nz, pieces]
+    tab = np.concatenate([consts, table.edges, mats.ravel()])
+    ws = np.empty(compiled.workspace_size(grid, rows - 1))
+    ws[compiled.ZG:compiled.ZG + grid] = np.linspace(-table.half_face, table.half_face, grid)
+    return tab, ws
 
 
 def _fold(table, misalignment, theta, th_of, wanted, measures, best_v, best_z, best_t,
