@@ -29,7 +29,7 @@ import numba
 import numpy as np
 from numba.extending import intrinsic
 
-_jit = numba.njit(cache=True, nogil=True, error_model="numpy")
+_jit = numba.njit(cache=True, nogil=True, error_model="numpy", fastmath={"contract"})
 
 # tab: constants (kernel._compiled_arrays), then the edges and the plane matrices
 CI, SI, RB, C0, RFIL, RHO, CN, GC, CX, CY, RFORM, SHF, HF, RPITCH, TOL, TIPR, SPHERE, \
@@ -123,11 +123,17 @@ def point(tab, ws, po, ct, st, t):
     form), else by the Chebyshev recurrences of ``T_k(s)`` and ``T_k'(s)``."""
     nt = int(tab[NT])
     s = 2.0 * t - 1.0
-    if tab[POWER] != 0.0:
-        y, dy = ws[po + nt - 1], 0.0
-        for k in range(nt - 2, -1, -1):
-            dy = dy * s + y
-            y = y * s + ws[po + k]
+    if tab[POWER] != 0.0:  # even and odd powers apart: two chains in s^2 at once
+        u = s * s
+        ke, ko = (nt - 1, nt - 2) if nt % 2 else (nt - 2, nt - 1)
+        e, de, o, do = ws[po + ke], 0.0, ws[po + ko], 0.0
+        for k in range(ke - 2, -1, -2):
+            de = de * u + e
+            e = e * u + ws[po + k]
+        for k in range(ko - 2, 0, -2):
+            do = do * u + o
+            o = o * u + ws[po + k]
+        y, dy = e + s * o, o + 2.0 * s * (de + s * do)
     else:
         t0, t1, d0, d1 = 1.0, s, 0.0, 1.0
         y, dy = ws[po] + ws[po + 1] * s, ws[po + 1]
