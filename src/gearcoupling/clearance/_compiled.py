@@ -44,8 +44,12 @@ ZS, VS, TS, KS = 18, 26, 34, 42  # up to 8 planes evaluated together
 V, T, K = 50, 58, 66  # the 8 virtual measures' minima in a plane
 ALLZ, ALLV = 74, 80  # a nested grid level with its bracket ends
 TZ = 86  # T_j(x) of the plane's z, j < MAX_NZ
-ZG = 150  # the coarse planes' z (then planes and coarse minima: _layout)
-MAX_NZ = ZG - TZ
+GRID, NDYN = 150, 151  # coarse planes; planes evaluated at this turning angle beyond them
+MAX_NZ = GRID - TZ
+ENTRIES = 160  # the planes of this turning angle (_entry), the coarse ones first
+EZ, VALID, EV, ET, EK, EPL = 0, 1, 9, 17, 25, 33  # an entry: z, which rows are known, their
+# value, t and kind, then the plane
+MAX_DYN = 64  # planes kept beyond the coarse ones (then one more, kept for nothing)
 D_SLOPE = 1e-6  # shortest interval searched inside, / 8 (as the numpy path's step)
 REL = 1e-11  # crossings, relative to the target
 # the branches (virtual measures) each measure folds, -1 padded (kernel._FOLD)
@@ -54,7 +58,7 @@ FOLD = ((0, 4, 6), (1, 5, 7), (2, -1, -1), (3, -1, -1))
 
 def workspace_size(grid: int, nt: int) -> int:
     """Length of ``ws`` for ``grid`` coarse planes and ``nt`` coefficients in ``t``."""
-    return ZG + grid + (grid + 1) * (nt + 3) + 3 * 8 * grid
+    return ENTRIES + (grid + MAX_DYN + 1) * (EPL + nt + 3)
 
 
 @intrinsic
@@ -73,12 +77,9 @@ def _unmanaged(typingctx, arr):
 
 
 @_jit
-def _layout(tab, grid):
-    """Offsets in ``ws``: the first coarse plane, the plane being evaluated, the coarse
-    minima (values, ``t``, kinds: each ``(8, grid)``)."""
-    size = int(tab[NT]) + 3
-    pl0 = ZG + grid
-    return pl0, pl0 + grid * size, pl0 + (grid + 1) * size
+def _entry(tab, e):
+    """Offset of plane entry ``e`` in ``ws``."""
+    return ENTRIES + e * (EPL + int(tab[NT]) + 3)
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy", fastmath={"contract", "reassoc"})
@@ -325,23 +326,67 @@ def pitch_line(tab, ws, po, ct, st):
 
 
 @_jit
-def evaluate(tab, ws, po, z, vm, ct, st):
-    """Minimum of virtual measure ``vm`` in the plane ``z`` (put at ``po``):
-    ``(value, t, kind)``."""
-    plane_at(tab, ws, po, z)
-    if vm == 2 or vm == 3:
-        pitch_line(tab, ws, po, ct, st)
+def find(tab, ws, z):
+    """The entry of the plane ``z`` evaluated at this turning angle, -1 if none."""
+    grid = int(ws[GRID])
+    for e in range(grid + int(ws[NDYN]) - 1, grid - 1, -1):  # the latest first
+        if ws[_entry(tab, e)] == z:
+            return e
+    z0, z1 = ws[_entry(tab, 0)], ws[_entry(tab, grid - 1)]  # a coarse plane
+    g = int((z - z0) / (z1 - z0) * (grid - 1) + 0.5)
+    for e in range(max(g - 1, 0), min(g + 2, grid)):
+        if ws[_entry(tab, e)] == z:
+            return e
+    return -1
+
+
+@_jit
+def keep(ws, eo, vm):
+    """Copy row ``vm``'s minimum from ``ws[V:], ws[T:], ws[K:]`` into the entry at ``eo``."""
+    ws[eo + EV + vm], ws[eo + ET + vm], ws[eo + EK + vm] = ws[V + vm], ws[T + vm], ws[K + vm]
+    ws[eo + VALID + vm] = 1.0
+
+
+@_jit
+def evaluate(tab, ws, z, vm, ct, st):
+    """Minimum of virtual measure ``vm`` in the plane ``z``: ``(value, t, kind)``. Each plane
+    is kept with the rows found in it (as in the numpy path, rows of a turning angle
+    evaluate the same planes: the profile ends come with the whole flank, and a row whose
+    values equal another's takes the same steps); a row already found is read, else found
+    in the plane kept."""
+    e = find(tab, ws, z)
+    if e < 0:
+        e = int(ws[GRID] + ws[NDYN])
+        if ws[NDYN] < MAX_DYN:
+            ws[NDYN] += 1.0
+        eo = _entry(tab, e)
+        ws[eo + EZ] = z
+        for q in range(8):
+            ws[eo + VALID + q] = 0.0
+        plane_at(tab, ws, eo + EPL, z)
     else:
-        over_t(tab, ws, po, ct, st, vm == 0, vm == 1)
+        eo = _entry(tab, e)
+        if ws[eo + VALID + vm] != 0.0:
+            return ws[eo + EV + vm], ws[eo + ET + vm], ws[eo + EK + vm]
+    if vm == 2 or vm == 3:
+        pitch_line(tab, ws, eo + EPL, ct, st)
+        keep(ws, eo, np.int64(2))
+        keep(ws, eo, np.int64(3))
+    else:
+        over_t(tab, ws, eo + EPL, ct, st, vm == 0, vm == 1)
+        for q in range(4, 8):
+            keep(ws, eo, q)
+        if vm < 2:
+            keep(ws, eo, vm)
     return ws[V + vm], ws[T + vm], ws[K + vm]
 
 
 @_jit
-def points(tab, ws, po, m, vm, ct, st):
+def points(tab, ws, m, vm, ct, st):
     """Evaluate the planes ``ws[ZS:ZS + m]`` and keep the best where it improves the
     state: ``(index of the best, better)``."""
     for i in range(m):
-        ws[VS + i], ws[TS + i], ws[KS + i] = evaluate(tab, ws, po, ws[ZS + i], vm, ct, st)
+        ws[VS + i], ws[TS + i], ws[KS + i] = evaluate(tab, ws, ws[ZS + i], vm, ct, st)
     jj = 0
     for i in range(1, m):
         if ws[VS + i] < ws[VS + jj]:
@@ -354,10 +399,10 @@ def points(tab, ws, po, m, vm, ct, st):
 
 
 @_jit
-def triple(tab, ws, po, zc, eps, vm, ct, st):
+def triple(tab, ws, zc, eps, vm, ct, st):
     """Evaluate ``zc - eps, zc, zc + eps``; where the middle is lowest it brackets."""
     ws[ZS], ws[ZS + 1], ws[ZS + 2] = zc - eps, zc, zc + eps
-    jj, better = points(tab, ws, po, np.int64(3), vm, ct, st)
+    jj, better = points(tab, ws, np.int64(3), vm, ct, st)
     if jj == 1 and better:
         ws[AZ], ws[AV], ws[BZB], ws[BVB] = ws[ZS], ws[VS], ws[ZS + 2], ws[VS + 2]
 
@@ -368,7 +413,7 @@ def _clip(x, lo, hi):
 
 
 @_jit
-def coarse_parabola(tab, ws, po, vm, ct, st):
+def coarse_parabola(tab, ws, vm, ct, st):
     """``ZSearch.coarse_parabola`` of the row."""
     a_z, a_v, b_z, b_v, best_z, best_v = ws[AZ], ws[AV], ws[BZB], ws[BVB], ws[BZ], ws[BV]
     if not (a_z < best_z and best_z < b_z and np.isfinite(a_v) and np.isfinite(b_v)):
@@ -379,11 +424,11 @@ def coarse_parabola(tab, ws, po, vm, ct, st):
         return
     z1 = best_z - 0.5 * (b_v - a_v) / (h * curv)
     delta = min(math.sqrt(tab[TOL] / curv), 0.25 * h)
-    triple(tab, ws, po, _clip(z1, a_z + delta, b_z - delta), delta, vm, ct, st)
+    triple(tab, ws, _clip(z1, a_z + delta, b_z - delta), delta, vm, ct, st)
 
 
 @_jit
-def parabola_step(tab, ws, po, jb, vm, ct, st):
+def parabola_step(tab, ws, jb, vm, ct, st):
     """``ZSearch.parabola_step`` of the row, on the level at ``ws[ALLZ:], ws[ALLV:]``."""
     if not (jb >= 1 and jb <= 4):
         return
@@ -395,11 +440,11 @@ def parabola_step(tab, ws, po, jb, vm, ct, st):
     if not (np.isfinite(zp) and curv > 0 and zp > x0 and zp < x2):
         return
     eps = _clip(math.sqrt(tab[TOL] / curv), 1e-12 * tab[HF], 0.25 * min(zp - x0, x2 - zp))
-    triple(tab, ws, po, zp, eps, vm, ct, st)
+    triple(tab, ws, zp, eps, vm, ct, st)
 
 
 @_jit
-def v_step(tab, ws, po, jb, vm, ct, st):
+def v_step(tab, ws, jb, vm, ct, st):
     """``ZSearch.v_step`` of the row, on the level at ``ws[ALLZ:], ws[ALLV:]``."""
     if not (jb >= 2 and jb <= 3):
         return
@@ -411,23 +456,25 @@ def v_step(tab, ws, po, jb, vm, ct, st):
     if not (sl < 0 and sr > 0 and np.isfinite(zk) and zk > z1 and zk < z2):
         return
     eps = _clip(0.5 * tab[TOL] / max(-sl, sr), 1e-12 * tab[HF], 0.25 * min(zk - z1, z2 - zk))
-    triple(tab, ws, po, zk, eps, vm, ct, st)
+    triple(tab, ws, zk, eps, vm, ct, st)
 
 
 @_jit
-def form_gap(tab, ws, po, z, ct, st):
-    """``rq - r_form`` at the hub form circle (``t = 0``) in the plane ``z``."""
+def form_gap(tab, ws, z, ct, st):
+    """``rq - r_form`` at the hub form circle (``t = 0``) in the plane ``z`` (put in the
+    spare entry)."""
+    po = _entry(tab, int(ws[GRID]) + MAX_DYN) + EPL
     plane_at(tab, ws, po, z)
     return radius_z(point(tab, ws, po, ct, st, 0.0))[0] - tab[RFORM]
 
 
 @_jit
-def corner_step(tab, ws, po, vm, ct, st):
+def corner_step(tab, ws, vm, ct, st):
     """``ZSearch.corner_step`` of the row: the form circle meets the sleeve tip edge."""
     if vm == 2 or vm == 3:
         return
     za, zb = ws[AZ], ws[BZB]
-    ga, gb = form_gap(tab, ws, po, za, ct, st), form_gap(tab, ws, po, zb, ct, st)
+    ga, gb = form_gap(tab, ws, za, ct, st), form_gap(tab, ws, zb, ct, st)
     if not ((ga > 0 and gb < 0) or (ga < 0 and gb > 0)):
         return
     z0, g0, z1, g1 = za, ga, zb, gb
@@ -435,7 +482,7 @@ def corner_step(tab, ws, po, vm, ct, st):
     for _ in range(30):
         zc = z1 - g1 * (z1 - z0) / (g1 - g0)
         zc = _clip(zc, za, zb) if np.isfinite(zc) else 0.5 * (za + zb)
-        g = form_gap(tab, ws, po, zc, ct, st)
+        g = form_gap(tab, ws, zc, ct, st)
         z0, g0, z1, g1 = z1, g1, zc, g
         if abs(g) <= 1e-11 * tab[RFORM]:
             break
@@ -446,11 +493,11 @@ def corner_step(tab, ws, po, vm, ct, st):
     eps = _clip(0.5 * tab[TOL] / max(slope, 1e-12), 1e-12 * hf,
                 0.25 * min(zc - ws[AZ], ws[BZB] - zc))
     if eps > 0:
-        triple(tab, ws, po, zc, eps, vm, ct, st)
+        triple(tab, ws, zc, eps, vm, ct, st)
 
 
 @_jit
-def local_newton(tab, ws, po, vm, ct, st):
+def local_newton(tab, ws, vm, ct, st):
     """``ZSearch.local_newton`` of the row."""
     hf = tab[HF]
     a_z, b_z, x1, y1 = ws[AZ], ws[BZB], ws[BZ], ws[BV]
@@ -458,18 +505,18 @@ def local_newton(tab, ws, po, vm, ct, st):
     if not h > 1e-9 * hf:
         return
     ws[ZS], ws[ZS + 1] = x1 - h, x1 + h
-    points(tab, ws, po, np.int64(2), vm, ct, st)
+    points(tab, ws, np.int64(2), vm, ct, st)
     y0, y2 = ws[VS], ws[VS + 1]
     curv = (y0 + y2 - 2.0 * y1) / (h * h)
     zp = x1 - 0.5 * (y2 - y0) / (h * curv)
     if not (np.isfinite(zp) and curv > 0 and zp > a_z and zp < b_z):
         return
     eps = _clip(math.sqrt(tab[TOL] / curv), 1e-12 * hf, 0.25 * min(zp - a_z, b_z - zp))
-    triple(tab, ws, po, zp, eps, vm, ct, st)
+    triple(tab, ws, zp, eps, vm, ct, st)
 
 
 @_jit
-def nested_grids(tab, ws, po, max_levels, vm, ct, st):
+def nested_grids(tab, ws, max_levels, vm, ct, st):
     """``ZSearch.nested_grids`` of the row (4 planes a level); the first level tries
     :func:`local_newton` and :func:`corner_step` first."""
     tol, hf = tab[TOL], tab[HF]
@@ -477,16 +524,16 @@ def nested_grids(tab, ws, po, max_levels, vm, ct, st):
         if not (max(ws[AV], ws[BVB]) - ws[BV] > tol and ws[BZB] - ws[AZ] > 1e-12 * hf):
             return
         if level == 0:
-            local_newton(tab, ws, po, vm, ct, st)
+            local_newton(tab, ws, vm, ct, st)
             if not max(ws[AV], ws[BVB]) - ws[BV] > tol:
                 return
-            corner_step(tab, ws, po, vm, ct, st)
+            corner_step(tab, ws, vm, ct, st)
             if not max(ws[AV], ws[BVB]) - ws[BV] > tol:
                 return
         a_z, b_z = ws[AZ], ws[BZB]
         for i in range(4):
             ws[ZS + i] = a_z + (i + 1) / 5 * (b_z - a_z)
-        points(tab, ws, po, np.int64(4), vm, ct, st)
+        points(tab, ws, np.int64(4), vm, ct, st)
         ws[ALLZ], ws[ALLV], ws[ALLZ + 5], ws[ALLV + 5] = a_z, ws[AV], b_z, ws[BVB]
         for i in range(4):
             ws[ALLZ + i + 1], ws[ALLV + i + 1] = ws[ZS + i], ws[VS + i]
@@ -497,12 +544,12 @@ def nested_grids(tab, ws, po, max_levels, vm, ct, st):
         jl, jr = max(jb - 1, 0), min(jb + 1, 5)
         ws[AZ], ws[AV], ws[BZB], ws[BVB] = ws[ALLZ + jl], ws[ALLV + jl], ws[ALLZ + jr], \
             ws[ALLV + jr]
-        v_step(tab, ws, po, jb, vm, ct, st)
-        parabola_step(tab, ws, po, jb, vm, ct, st)
+        v_step(tab, ws, jb, vm, ct, st)
+        parabola_step(tab, ws, jb, vm, ct, st)
 
 
 @_jit
-def final_parabola(tab, ws, po, vm, ct, st):
+def final_parabola(tab, ws, vm, ct, st):
     """``ZSearch.final_parabola`` of the row."""
     x0, x1, x2 = ws[AZ], ws[BZ], ws[BZB]
     y0, y1, y2 = ws[AV], ws[BV], ws[BVB]
@@ -513,11 +560,11 @@ def final_parabola(tab, ws, po, vm, ct, st):
     zp = x1 - 0.5 * num / den
     if np.isfinite(zp) and zp > x0 and zp < x2:
         ws[ZS] = zp
-        points(tab, ws, po, np.int64(1), vm, ct, st)
+        points(tab, ws, np.int64(1), vm, ct, st)
 
 
 @_jit
-def settle(tab, ws, po, vm, ct, st):
+def settle(tab, ws, vm, ct, st):
     """``ZSearch.settle`` of the row: a minimum that crept to a face end sits on it; the
     minimum is evaluated exactly where it lies."""
     hf = tab[HF]
@@ -527,70 +574,80 @@ def settle(tab, ws, po, vm, ct, st):
         ws[BZ] = math.copysign(hf, bz)
         ws[EX] = 0.0
     if ws[EX] == 0.0:
-        ve, te, ke = evaluate(tab, ws, po, ws[BZ], vm, ct, st)
+        ve, te, ke = evaluate(tab, ws, ws[BZ], vm, ct, st)
         if ve <= ws[BV] + 1e-7 * tab[TOL] or near_end:
             ws[BV], ws[BT], ws[BK] = ve, te, ke
 
 
 @_jit
-def search(tab, ws, grid, j, max_levels, vm, ct, st):
+def search(tab, ws, j, max_levels, vm, ct, st):
     """``ZSearch`` of the row of virtual measure ``vm`` from its coarse plane ``j``: the
     best point in the state ``ws[BV:BVB + 1]``."""
-    _, po, cv = _layout(tab, grid)
-    cv += vm * grid  # this measure's coarse values; then its t and kinds
-    jl, jr = max(j - 1, 0), min(j + 1, grid - 1)
-    ws[BV], ws[BZ], ws[BT], ws[BK], ws[EX] = (ws[cv + j], ws[ZG + j], ws[cv + 8 * grid + j],
-                                              ws[cv + 16 * grid + j], 0.0)
-    ws[AZ], ws[AV], ws[BZB], ws[BVB] = ws[ZG + jl], ws[cv + jl], ws[ZG + jr], ws[cv + jr]
+    grid = int(ws[GRID])
+    eo, el, er = _entry(tab, j), _entry(tab, max(j - 1, 0)), _entry(tab, min(j + 1, grid - 1))
+    ws[BV], ws[BZ], ws[BT], ws[BK], ws[EX] = (ws[eo + EV + vm], ws[eo + EZ], ws[eo + ET + vm],
+                                              ws[eo + EK + vm], 0.0)
+    ws[AZ], ws[AV] = ws[el + EZ], ws[el + EV + vm]
+    ws[BZB], ws[BVB] = ws[er + EZ], ws[er + EV + vm]
     if not np.isfinite(ws[BV]):
         return
-    coarse_parabola(tab, ws, po, vm, ct, st)
-    nested_grids(tab, ws, po, max_levels, vm, ct, st)
-    final_parabola(tab, ws, po, vm, ct, st)
-    settle(tab, ws, po, vm, ct, st)
+    coarse_parabola(tab, ws, vm, ct, st)
+    nested_grids(tab, ws, max_levels, vm, ct, st)
+    final_parabola(tab, ws, vm, ct, st)
+    settle(tab, ws, vm, ct, st)
 
 
 @_jit
-def second_minimum(ws, cv, grid):
-    """``second_minima`` of the coarse values ``ws[cv:cv + grid]``: ``(j, j2, second)``."""
+def second_minimum(tab, ws, vm):
+    """``second_minima`` of row ``vm`` in the coarse planes: ``(j, j2, second)``."""
+    grid = int(ws[GRID])
+    cv, step = _entry(tab, 0) + EV + vm, _entry(tab, 1) - _entry(tab, 0)
     j = 0
     for i in range(1, grid):
-        if ws[cv + i] < ws[cv + j]:
+        if ws[cv + i * step] < ws[cv + j * step]:
             j = i
     j2, v2min = 0, np.inf
     finite_max = -np.inf
     for i in range(grid):
-        vi = ws[cv + i]
+        vi = ws[cv + i * step]
         if np.isfinite(vi):
             finite_max = max(finite_max, vi)
-            left = ws[cv + i - 1] if i > 0 else np.inf
-            right = ws[cv + i + 1] if i < grid - 1 else np.inf
+            left = ws[cv + (i - 1) * step] if i > 0 else np.inf
+            right = ws[cv + (i + 1) * step] if i < grid - 1 else np.inf
             if vi <= left and vi <= right and abs(i - j) > 1 and vi < v2min:
                 j2, v2min = i, vi
-    vj = ws[cv + j]
+    vj = ws[cv + j * step]
     return j, j2, np.isfinite(v2min) and v2min - vj <= 0.25 * (finite_max - vj)
 
 
 @_jit
-def coarse_grid(tab, ws, grid, pitch, whole, wanted, ct, st):
-    """Minima over ``t`` of the ``wanted`` virtual measures in the coarse planes."""
-    size = int(tab[NT]) + 3
-    pl0, _, cv = _layout(tab, grid)
-    for g in range(grid):
-        po = pl0 + g * size
+def coarse_grid(tab, ws, pitch, whole, ct, st):
+    """The coarse planes' minima over ``t`` (of the whole flank and its ends where
+    ``whole``, of the pitch line where ``pitch``); the planes kept beyond them dropped."""
+    ws[NDYN] = 0.0
+    for g in range(int(ws[GRID])):
+        eo = _entry(tab, g)
+        for q in range(8):
+            ws[eo + VALID + q] = 0.0
         if whole:
-            over_t(tab, ws, po, ct, st, np.bool_(True), np.bool_(True))
+            over_t(tab, ws, eo + EPL, ct, st, np.bool_(True), np.bool_(True))
+            for q in (0, 1, 4, 5, 6, 7):
+                keep(ws, eo, q)
         if pitch:
-            pitch_line(tab, ws, po, ct, st)
-        for vm in wanted:
-            at = cv + vm * grid + g
-            ws[at], ws[at + 8 * grid], ws[at + 16 * grid] = ws[V + vm], ws[T + vm], ws[K + vm]
+            pitch_line(tab, ws, eo + EPL, ct, st)
+            keep(ws, eo, np.int64(2))
+            keep(ws, eo, np.int64(3))
 
 
 @_jit
-def at_minimum(tab, ws, po, z, t, ct, st):
+def at_minimum(tab, ws, z, t, ct, st):
     """Radius and turning rate (``kernel.turning_rate``) of the flank point ``(z, t)``."""
-    plane_at(tab, ws, po, z)
+    e = find(tab, ws, z)
+    if e >= 0:
+        po = _entry(tab, e) + EPL
+    else:
+        po = _entry(tab, int(ws[GRID]) + MAX_DYN) + EPL
+        plane_at(tab, ws, po, z)
     nt = int(tab[NT])
     qx, qy, zq = point(tab, ws, po, ct, st, t)[:3]
     ci, si = tab[CI], tab[SI]
@@ -600,36 +657,34 @@ def at_minimum(tab, ws, po, z, t, ct, st):
 
 
 @_jit
-def minimise_rows(tab, ws, grid, theta, wanted, measures, max_levels, out):
+def minimise_rows(tab, ws, zg, theta, wanted, measures, max_levels, out):
     """Minima of ``measures (M,)`` (indices of ``kernel.MEASURES``) at every turning
     angle ``theta (n,)``, into ``out (6, M, n)``: value, ``z``, ``r``, ``t``, kind, rate.
-    ``wanted`` are the virtual measures they fold; ``ws[ZG:ZG + grid]`` holds the coarse
-    planes' ``z`` (set by the caller)."""
+    ``wanted`` are the virtual measures they fold, ``zg`` the coarse planes."""
     tab, ws = _unmanaged(tab), _unmanaged(ws)
-    size = int(tab[NT]) + 3
-    pl0, po, cv = _layout(tab, grid)
     hf = tab[HF]
+    ws[GRID] = zg.size
     whole = pitch = False
     for vm in wanted:
         if vm == 2 or vm == 3:
             pitch = True
         else:
             whole = True
-    for g in range(grid):
-        plane_at(tab, ws, pl0 + g * size, ws[ZG + g])
-    for i in range(8 * grid):
-        ws[cv + i], ws[cv + 8 * grid + i], ws[cv + 16 * grid + i] = np.inf, 0.0, NONE
+    for g in range(zg.size):
+        eo = _entry(tab, g)
+        ws[eo + EZ] = zg[g]
+        plane_at(tab, ws, eo + EPL, zg[g])
     best = np.empty((8, 4))  # per virtual measure: value, z, t, kind
     for i in range(theta.size):
         ct, st = math.cos(theta[i]), math.sin(theta[i])
-        coarse_grid(tab, ws, grid, pitch, whole, wanted, ct, st)
+        coarse_grid(tab, ws, pitch, whole, ct, st)
         for vm in wanted:
-            j, j2, second = second_minimum(ws, cv + vm * grid, grid)
-            search(tab, ws, grid, j, max_levels, vm, ct, st)
+            j, j2, second = second_minimum(tab, ws, vm)
+            search(tab, ws, j, max_levels, vm, ct, st)
             if second:  # the better of the two searches
                 for q in range(9):
                     ws[SAVED + q] = ws[q]
-                search(tab, ws, grid, j2, max_levels, vm, ct, st)
+                search(tab, ws, j2, max_levels, vm, ct, st)
                 if not ws[BV] < ws[SAVED + BV]:
                     for q in range(9):
                         ws[q] = ws[SAVED + q]
@@ -643,6 +698,6 @@ def minimise_rows(tab, ws, grid, theta, wanted, measures, max_levels, out):
             v, z, t, k = best[b, 0], best[b, 1], best[b, 2], best[b, 3]
             if k != NONE and abs(abs(z) - hf) <= 1e-12 * hf:
                 k = FACE_END
-            r, rate = at_minimum(tab, ws, po, z, t, ct, st)
+            r, rate = at_minimum(tab, ws, z, t, ct, st)
             out[0, mi, i], out[1, mi, i], out[2, mi, i] = v, z, r
             out[3, mi, i], out[4, mi, i], out[5, mi, i] = t, k, rate

@@ -788,7 +788,8 @@ def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
         tab, ws = _compiled_arrays(compiled, table, sl, misalignment, pitch_radius,
                                    tolerance_mm, grid)
         out = np.empty((6, len(measures), n))
-        compiled.minimise_rows(tab, ws, grid, theta, np.array(wanted, np.int64),
+        compiled.minimise_rows(tab, ws, np.linspace(-table.half_face, table.half_face, grid),
+                               theta, np.array(wanted, np.int64),
                                np.array([MEASURES.index(m) for m in measures], np.int64),
                                max_levels, out)
         v, z, r, t, k, rate = out
@@ -829,7 +830,7 @@ def _compiled_arrays(compiled, table: FlankTable, sl: _Sleeve, misalignment: flo
                      pitch_radius: float, tolerance_mm: float, grid: int):
     """``tab`` and ``ws`` of the compiled kernel (:mod:`._compiled`): the constants in the
     order of its indices (``CI, SI, RB, ...``), the table's edges and plane matrices; the
-    work space with the coarse planes' ``z``."""
+    work space."""
     mats = table._plane_matrices  # (pieces, nt + 1, nz)
     pieces, rows, nz = mats.shape
     if nz > compiled.MAX_NZ:
@@ -840,9 +841,7 @@ def _compiled_arrays(compiled, table: FlankTable, sl: _Sleeve, misalignment: flo
               float(table.tip_kind != "cylinder"), float(table._power is not None),
               rows - 1, nz, pieces]
     tab = np.concatenate([consts, table.edges, mats.ravel()])
-    ws = np.empty(compiled.workspace_size(grid, rows - 1))
-    ws[compiled.ZG:compiled.ZG + grid] = np.linspace(-table.half_face, table.half_face, grid)
-    return tab, ws
+    return tab, np.empty(compiled.workspace_size(grid, rows - 1))
 
 
 def _fold(table, misalignment, theta, th_of, wanted, measures, best_v, best_z, best_t,
