@@ -256,14 +256,30 @@ def interval(tab, ws, po, ct, st):
 
 
 @_jit
-def slope_root(tab, ws, po, ct, st, mi, a, b, ga, gb):
-    """The interior minimum of gap ``mi`` in ``[a, b]`` (slopes ``ga < 0 < gb`` at the
-    ends): secant steps on the slope, kept inside the shrinking bracket, to 1e-7 in
-    ``t``: ``(t, gap)``."""
-    x0, g0, x1, g1 = a, ga, b, gb
-    val = np.inf
+def slope_root(tab, ws, po, ct, st, mi, a, b, fa, fb, ga, gb):
+    """The interior minimum of gap ``mi`` in ``[a, b]`` (values ``fa``, ``fb`` and slopes
+    ``ga < 0 < gb`` at the ends): from the minimum of the cubic through them, secant steps
+    on the slope kept inside the shrinking bracket until the next would be shorter than
+    1e-7 in ``t``: ``(t, gap)``."""
+    h = b - a
+    d = (fb - fa) / h
+    qa, qb, qc = 3.0 * (ga + gb) - 6.0 * d, 6.0 * d - 4.0 * ga - 2.0 * gb, ga  # slope in u
+    disc = qb * qb - 4.0 * qa * qc
+    x = a + h * 2.0 * qc / (-qb - math.sqrt(disc)) if disc >= 0.0 else np.nan
+    if not (x > a and x < b):
+        x = a - ga * h / (gb - ga)
+    g = gaps(tab, point(tab, ws, po, ct, st, x))
+    val, gx = g[mi], g[2 + mi]
+    x0, g0, x1, g1 = (a, ga, x, gx) if gx > 0 else (b, gb, x, gx)
+    if gx > 0:
+        b = x
+    else:
+        a = x
     for _ in range(40):
-        x = x1 - g1 * (x1 - x0) / (g1 - g0)
+        step = g1 * (x1 - x0) / (g1 - g0)
+        if abs(step) <= 1e-7 or g1 == 0.0:  # the next step would be below 1e-7: done
+            break
+        x = x1 - step
         if not (x > a and x < b):
             x = 0.5 * (a + b)
         g = gaps(tab, point(tab, ws, po, ct, st, x))
@@ -273,8 +289,6 @@ def slope_root(tab, ws, po, ct, st, mi, a, b, ga, gb):
         else:
             a = x
         x0, g0, x1, g1 = x1, g1, x, gx
-        if abs(x1 - x0) <= 1e-7 or gx == 0.0:
-            break
     return x1, val
 
 
@@ -294,8 +308,8 @@ def over_t(tab, ws, po, ct, st, want0, want1):
     if t_a - t_lo > 8 * D_SLOPE:
         for mi in range(2):
             if (want0 if mi == 0 else want1) and fa[2 + mi] < 0 and fb[2 + mi] > 0:
-                root, val = slope_root(tab, ws, po, ct, st, mi, t_lo, t_a, fa[2 + mi],
-                                       fb[2 + mi])
+                root, val = slope_root(tab, ws, po, ct, st, mi, t_lo, t_a, fa[mi], fb[mi],
+                                       fa[2 + mi], fb[2 + mi])
                 ti = (root, ti[1]) if mi == 0 else (ti[0], root)
                 fi = (val, fi[1]) if mi == 0 else (fi[0], val)
     for mi in range(2):
