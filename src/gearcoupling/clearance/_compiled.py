@@ -163,31 +163,47 @@ def radius_z(p):
 
 
 @_jit
-def gaps(tab, p):
-    """``(circumferential, normal)`` gaps of a :func:`point` and their slopes along
-    ``t``: ``(circ, normal, dcirc, dnormal)``. Against the involute ``aq + sigma(rq)/2``
-    is one angle (``atan2`` of the point turned by the involute's roll angle at ``rq``);
-    above ``r_fillet`` against the root fillet (``_Sleeve.gaps``)."""
+def involute(tab, p):
+    """``(circumferential, normal)`` gaps of a :func:`point` to the involute (its extension
+    off the flank) and their slopes along ``t``: ``(circ, normal, dcirc, dnormal)``. The
+    angle ``aq + sigma(rq)/2`` as one ``atan2``: of the point turned by the involute's
+    roll angle at ``rq``."""
     qx, qy, _, dqx, dqy, _ = p
-    r_b, rho = tab[RB], tab[RHO]
+    r_b = tab[RB]
     rq2 = qx * qx + qy * qy
     rq = math.sqrt(rq2)
     drq = (qx * dqx + qy * dqy) / rq
-    daq = (qx * dqy - qy * dqx) / rq2
-    if rho > 0.0 and rq > tab[RFIL]:
-        cn = tab[CN]
-        cosb = min(max((rq2 + cn * cn - rho * rho) / (2.0 * rq * cn), -1.0), 1.0)
-        a_b = math.atan2(qy, qx) - (tab[GC] - math.acos(cosb))
-        dbeta = ((1.0 - (cn * cn - rho * rho) / rq2) / (2.0 * cn)
-                 / math.sqrt(max(1.0 - cosb * cosb, 1e-300)) * drq)
-        ex, ey = qx - tab[CX], qy - tab[CY]
-        dist = math.hypot(ex, ey)
-        return (rq * a_b, rho - dist, drq * a_b + rq * (daq - dbeta),
-                -(ex * dqx + ey * dqy) / dist)
     w = math.sqrt(max(rq2 - r_b * r_b, 0.0))
     d = math.atan2(qy * r_b + qx * w, qx * r_b - qy * w) + tab[C0] - w / r_b
-    dd = daq - w / (r_b * rq) * drq
+    dd = (qx * dqy - qy * dqx) / rq2 - w / (r_b * rq) * drq
     return rq * d, r_b * d, drq * d + rq * dd, r_b * dd
+
+
+@_jit
+def fillet(tab, p):
+    """As :func:`involute`, to the root fillet."""
+    qx, qy, _, dqx, dqy, _ = p
+    rho, cn = tab[RHO], tab[CN]
+    rq2 = qx * qx + qy * qy
+    rq = math.sqrt(rq2)
+    drq = (qx * dqx + qy * dqy) / rq
+    cosb = min(max((rq2 + cn * cn - rho * rho) / (2.0 * rq * cn), -1.0), 1.0)
+    a_b = math.atan2(qy, qx) - (tab[GC] - math.acos(cosb))
+    dbeta = ((1.0 - (cn * cn - rho * rho) / rq2) / (2.0 * cn)
+             / math.sqrt(max(1.0 - cosb * cosb, 1e-300)) * drq)
+    ex, ey = qx - tab[CX], qy - tab[CY]
+    dist = math.hypot(ex, ey)
+    return (rq * a_b, rho - dist, drq * a_b + rq * ((qx * dqy - qy * dqx) / rq2 - dbeta),
+            -(ex * dqx + ey * dqy) / dist)
+
+
+@_jit
+def gaps(tab, p):
+    """The gaps of a :func:`point` (:func:`involute`; above ``r_fillet`` :func:`fillet`,
+    as ``_Sleeve.gaps``)."""
+    if tab[RHO] > 0.0 and p[0] * p[0] + p[1] * p[1] > tab[RFIL] * tab[RFIL]:
+        return fillet(tab, p)
+    return involute(tab, p)
 
 
 @_jit
@@ -303,7 +319,14 @@ def over_t(tab, ws, po, ct, st, want0, want1):
             ws[V + vm], ws[T + vm], ws[K + vm] = np.inf, t_lo, NONE
         return
     fa, fh = gaps(tab, p_lo), gaps(tab, p_hi)
-    fb = gaps(tab, p_a) if t_a != t_hi else fh
+    fb = fb_min = fh  # at the upper end of [t_lo, t_a]: the slope and the minimum there
+    if t_a != t_hi:
+        fb = fb_min = gaps(tab, p_a)
+    if t_lo < t_a < t_hi:  # the fillet start: as _Sleeve.at_fillet_start
+        fb = fb_min = involute(tab, p_a)
+        if tab[RHO] > 0.0:
+            fil = fillet(tab, p_a)
+            fb_min = (min(fb[0], fil[0]), min(fb[1], fil[1]), 0.0, 0.0)
     ti, fi = (0.0, 0.0), (np.inf, np.inf)
     if t_a - t_lo > 8 * D_SLOPE:
         for mi in range(2):
@@ -314,8 +337,8 @@ def over_t(tab, ws, po, ct, st, want0, want1):
                 fi = (val, fi[1]) if mi == 0 else (fi[0], val)
     for mi in range(2):
         v, t, k = fa[mi], t_lo, k_lo
-        if fb[mi] < v:
-            v, t, k = fb[mi], t_a, k_a
+        if fb_min[mi] < v:
+            v, t, k = fb_min[mi], t_a, k_a
         if fh[mi] < v:
             v, t, k = fh[mi], t_hi, k_hi
         if fi[mi] < v:

@@ -97,17 +97,36 @@ class _Sleeve:
     def gaps(self, rq, aq):
         """``(circumferential, normal)`` gaps (mm) at sleeve radius ``rq``, polar angle
         ``aq``; above ``r_fillet`` against the root fillet."""
+        circ, normal = self.involute_gaps(rq, aq)
+        fil = rq > self.r_fillet
+        if self.rho > 0 and np.any(fil):
+            circ[fil], normal[fil] = self.fillet_gaps(rq[fil], aq[fil])
+        return circ, normal
+
+    def involute_gaps(self, rq, aq):
+        """``(circumferential, normal)`` gaps to the involute (its extension off the flank)."""
         d = self.delta(rq, aq)
         circ = rq * d
         d *= self.r_b
-        normal = d
-        fil = rq > self.r_fillet
-        if self.rho > 0 and np.any(fil):
-            r, a = rq[fil], aq[fil]
-            cosb = np.clip((r * r + self.cn**2 - self.rho**2) / (2 * r * self.cn), -1.0, 1.0)
-            beta = self.gc - np.arccos(cosb)
-            circ[fil] = r * (a - beta)
-            normal[fil] = self.rho - np.hypot(r * np.cos(a) - self.cx, r * np.sin(a) - self.cy)
+        return circ, d
+
+    def fillet_gaps(self, r, a):
+        """``(circumferential, normal)`` gaps to the root fillet."""
+        cosb = np.clip((r * r + self.cn**2 - self.rho**2) / (2 * r * self.cn), -1.0, 1.0)
+        beta = self.gc - np.arccos(cosb)
+        return r * (a - beta), self.rho - np.hypot(r * np.cos(a) - self.cx,
+                                                   r * np.sin(a) - self.cy)
+
+    def at_fillet_start(self, rq, aq):
+        """Gaps at the start of the root fillet (``rq`` at ``r_fillet`` to 1e-11): the
+        lower of those to the involute and to the fillet. Off the sleeve surface the two
+        differ (deep interference), and which one a point on the edge got depended on the
+        side its crossing converged from; the lower is the limit of the fillet part's
+        minimum, so it belongs to the minimum over the active interval."""
+        circ, normal = self.involute_gaps(rq, aq)
+        if self.rho > 0:
+            fc, fn = self.fillet_gaps(rq, aq)
+            circ, normal = np.minimum(circ, fc), np.minimum(normal, fn)
         return circ, normal
 
 
@@ -273,16 +292,21 @@ class _Planes:
         fh = self._f_or(t_hi, 1.0, self.g1)
         want = np.broadcast_to(np.asarray(interior, dtype=bool), (2, n))
         fb = fh.copy()  # the upper end of [t_lo, t_a] (only the interior search uses it)
+        fb_min = fh.copy()  # the minimum there: at the fillet start, :meth:`at_fillet_start`
         sub = np.flatnonzero(np.any(want, axis=0) & (t_a != t_hi))
         if sub.size:
-            fb[:, sub] = np.stack(self.f(t_a[sub], sub))
+            rq, aq, _ = self.at(t_a[sub], sub)
+            fb[:, sub] = fb_min[:, sub] = np.stack(self.sl.gaps(rq, aq))
+            edge = t_a[sub] > t_lo[sub]  # a crossing of r_fillet, not [t_lo, t_hi] above it
+            fb[:, sub[edge]] = np.stack(self.sl.involute_gaps(rq[edge], aq[edge]))
+            fb_min[:, sub[edge]] = np.stack(self.sl.at_fillet_start(rq[edge], aq[edge]))
         # rows not searched keep t = 0, f = inf: only their ends count
         TI, FI = self._interior(t_lo, t_a, fa, fb, feasible & want, iters=12)
         interior = np.full(n, INTERIOR, np.int8)
         cols = np.arange(n)
         V, T, K = [], [], []
         for mi in range(2):
-            F = np.stack([fa[mi], fb[mi], fh[mi], FI[mi]])
+            F = np.stack([fa[mi], fb_min[mi], fh[mi], FI[mi]])
             j = np.argmin(F, axis=0)
             V.append(np.where(feasible, F[j, cols], np.inf))
             T.append(np.stack([t_lo, t_a, t_hi, TI[mi]])[j, cols])
