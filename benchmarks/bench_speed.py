@@ -44,7 +44,7 @@ from pathlib import Path
 HERE = Path(__file__).resolve().parent.parent
 SPEC = "renzo-1967"
 
-_MAP = """
+MAP = """
 import json, time, numpy as np
 from gearcoupling import load_spec, sweep
 spec, angles = load_spec({spec!r}), np.arange(360.0)
@@ -56,7 +56,7 @@ for _ in range({repeats}):
     out.append(time.process_time() - c)
 print(json.dumps(out))
 """
-_FIRST_MAP = """
+FIRST_MAP = """
 import json, time, numpy as np
 from gearcoupling import load_spec, sweep
 spec, angles = load_spec({spec!r}), np.arange(360.0)
@@ -64,7 +64,7 @@ t = time.perf_counter()
 sweep(spec, 1.0, angles, tolerance_mm=1e-6)
 print(json.dumps([time.perf_counter() - t]))
 """
-_FE_TABLE = """
+FE_TABLE = """
 import json, sys, tempfile, time
 from dataclasses import replace
 from gearcoupling import load_spec
@@ -147,20 +147,20 @@ def rows(args) -> list[tuple[str, str, str, object]]:
     r, rc = args.repeats, args.command_repeats
     out = [
         ("map", f"full clearance map, {SPEC}, 1°, 360 rotations", "CPU",
-         python_row(_MAP.format(spec=SPEC, periodic=True, repeats=r))),
+         python_row(MAP.format(spec=SPEC, periodic=True, repeats=r))),
         ("per-tooth", "exact per-tooth map (periodic=False)", "CPU",
-         python_row(_MAP.format(spec=SPEC, periodic=False, repeats=max(1, r // 2)))),
+         python_row(MAP.format(spec=SPEC, periodic=False, repeats=max(1, r // 2)))),
         ("first-map", "first map in a new process (compiled code cached)", "wall",
-         python_row(_FIRST_MAP.format(spec=SPEC), processes=r)),
+         python_row(FIRST_MAP.format(spec=SPEC), processes=r)),
         ("first-map-compile", "first map after install (empty numba cache)", "wall",
-         python_row(_FIRST_MAP.format(spec=SPEC), NUMBA_CACHE_DIR="")),
+         python_row(FIRST_MAP.format(spec=SPEC), NUMBA_CACHE_DIR="")),
         ("run", f"gearcoupling run {SPEC}", "wall", command_row(["run", SPEC], rc)),
         ("report", f"gearcoupling report {SPEC}", "wall", command_row(["report", SPEC], rc)),
     ]
     if args.fe:
         out += [
             ("fe-table", f"FE tooth-spring table, {SPEC}, cache bypassed", "wall",
-             python_row(_FE_TABLE.format(spec=SPEC))),
+             python_row(FE_TABLE.format(spec=SPEC))),
             ("fea-contact", f"fea-contact {SPEC} aligned, default mesh", "wall",
              command_row(["fea-contact", SPEC], 1)),
             ("sector", "one misaligned sector pose, 5 teeth", "wall",
