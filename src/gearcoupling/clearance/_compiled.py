@@ -453,7 +453,7 @@ def _clip(x, lo, hi):
 def coarse_parabola(tab, ws, vm, ct, st):
     """``ZSearch.coarse_parabola`` of the row."""
     a_z, a_v, b_z, b_v, best_z, best_v = ws[AZ], ws[AV], ws[BZB], ws[BVB], ws[BZ], ws[BV]
-    if not (a_z < best_z and best_z < b_z and np.isfinite(a_v) and np.isfinite(b_v)):
+    if not (a_z < best_z and best_z < b_z and math.isfinite(a_v) and math.isfinite(b_v)):
         return
     h = b_z - best_z
     curv = (a_v + b_v - 2.0 * best_v) / (h * h)
@@ -474,7 +474,7 @@ def parabola_step(tab, ws, jb, vm, ct, st):
     d01, d12 = (y1 - y0) / (x1 - x0), (y2 - y1) / (x2 - x1)
     curv = 2.0 * (d12 - d01) / (x2 - x0)
     zp = x1 - (d01 * (x2 - x1) + d12 * (x1 - x0)) / (curv * (x2 - x0))
-    if not (np.isfinite(zp) and curv > 0 and zp > x0 and zp < x2):
+    if not (math.isfinite(zp) and curv > 0 and zp > x0 and zp < x2):
         return
     eps = _clip(math.sqrt(tab[TOL] / curv), 1e-12 * tab[HF], 0.25 * min(zp - x0, x2 - zp))
     triple(tab, ws, zp, eps, vm, ct, st)
@@ -490,7 +490,7 @@ def v_step(tab, ws, jb, vm, ct, st):
     sl = (v1 - v0) / (z1 - z0)
     sr = (v3 - v2) / (z3 - z2)
     zk = (v2 - v1 + sl * z1 - sr * z2) / (sl - sr)
-    if not (sl < 0 and sr > 0 and np.isfinite(zk) and zk > z1 and zk < z2):
+    if not (sl < 0 and sr > 0 and math.isfinite(zk) and zk > z1 and zk < z2):
         return
     eps = _clip(0.5 * tab[TOL] / max(-sl, sr), 1e-12 * tab[HF], 0.25 * min(zk - z1, z2 - zk))
     triple(tab, ws, zk, eps, vm, ct, st)
@@ -518,7 +518,7 @@ def corner_step(tab, ws, vm, ct, st):
     zc = za
     for _ in range(30):
         zc = z1 - g1 * (z1 - z0) / (g1 - g0)
-        zc = _clip(zc, za, zb) if np.isfinite(zc) else 0.5 * (za + zb)
+        zc = _clip(zc, za, zb) if math.isfinite(zc) else 0.5 * (za + zb)
         g = form_gap(tab, ws, zc, ct, st)
         z0, g0, z1, g1 = z1, g1, zc, g
         if abs(g) <= 1e-11 * tab[RFORM]:
@@ -546,7 +546,7 @@ def local_newton(tab, ws, vm, ct, st):
     y0, y2 = ws[VS], ws[VS + 1]
     curv = (y0 + y2 - 2.0 * y1) / (h * h)
     zp = x1 - 0.5 * (y2 - y0) / (h * curv)
-    if not (np.isfinite(zp) and curv > 0 and zp > a_z and zp < b_z):
+    if not (math.isfinite(zp) and curv > 0 and zp > a_z and zp < b_z):
         return
     eps = _clip(math.sqrt(tab[TOL] / curv), 1e-12 * hf, 0.25 * min(zp - a_z, b_z - zp))
     triple(tab, ws, zp, eps, vm, ct, st)
@@ -590,12 +590,12 @@ def final_parabola(tab, ws, vm, ct, st):
     """``ZSearch.final_parabola`` of the row."""
     x0, x1, x2 = ws[AZ], ws[BZ], ws[BZB]
     y0, y1, y2 = ws[AV], ws[BV], ws[BVB]
-    if not (np.isfinite(y1) and np.isfinite(y0) and np.isfinite(y2) and x0 < x1 and x1 < x2):
+    if not (math.isfinite(y1) and math.isfinite(y0) and math.isfinite(y2) and x0 < x1 and x1 < x2):
         return
     num = (x1 - x0) ** 2 * (y1 - y2) - (x1 - x2) ** 2 * (y1 - y0)
     den = (x1 - x0) * (y1 - y2) - (x1 - x2) * (y1 - y0)
     zp = x1 - 0.5 * num / den
-    if np.isfinite(zp) and zp > x0 and zp < x2:
+    if math.isfinite(zp) and zp > x0 and zp < x2:
         ws[ZS] = zp
         points(tab, ws, np.int64(1), vm, ct, st)
 
@@ -626,7 +626,7 @@ def search(tab, ws, j, max_levels, vm, ct, st):
                                               ws[eo + EK + vm], 0.0)
     ws[AZ], ws[AV] = ws[el + EZ], ws[el + EV + vm]
     ws[BZB], ws[BVB] = ws[er + EZ], ws[er + EV + vm]
-    if not np.isfinite(ws[BV]):
+    if not math.isfinite(ws[BV]):
         return
     coarse_parabola(tab, ws, vm, ct, st)
     nested_grids(tab, ws, max_levels, vm, ct, st)
@@ -647,14 +647,14 @@ def second_minimum(tab, ws, vm):
     finite_max = -np.inf
     for i in range(grid):
         vi = ws[cv + i * step]
-        if np.isfinite(vi):
+        if math.isfinite(vi):
             finite_max = max(finite_max, vi)
             left = ws[cv + (i - 1) * step] if i > 0 else np.inf
             right = ws[cv + (i + 1) * step] if i < grid - 1 else np.inf
             if vi <= left and vi <= right and abs(i - j) > 1 and vi < v2min:
                 j2, v2min = i, vi
     vj = ws[cv + j * step]
-    return j, j2, np.isfinite(v2min) and v2min - vj <= 0.25 * (finite_max - vj)
+    return j, j2, math.isfinite(v2min) and v2min - vj <= 0.25 * (finite_max - vj)
 
 
 @_jit
