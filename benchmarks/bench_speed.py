@@ -1,12 +1,14 @@
 """Before / after: the paths where users wait (issue 26's table), old and new in one run.
 
-Run: ``python benchmarks/bench_speed.py [--against OLD_CHECKOUT] [--repeats 3]
+Run: ``python benchmarks/bench_speed.py [--against OLD_CHECKOUT [--old-numpy]] [--repeats 5]
 [--command-repeats 2] [--only ROW ...] [--fe] [--ci-log NEW.log [OLD.log]] [--ci]``.
 
 Every row runs in fresh subprocesses, one per checkout, with ``PYTHONPATH=<checkout>/src``:
 the library of that checkout, the measuring code of this script for both, on the same
 machine at the same moment (old and new alternate row by row). Printed per row: the
 minimum and the median of the repeats, before and after, and the speed-up of the minima.
+``--old-numpy`` runs the old checkout with ``GEARCOUPLING_NUMBA=0``: its default install,
+where numba was an optional extra.
 
 - ``map``, ``per-tooth``: :func:`gearcoupling.sweep` of renzo-1967 at 1°, 360 rotations,
   tolerance 1e-6 mm (``benchmarks/bench_sweep.py``'s map), periodic and ``periodic=False``;
@@ -43,6 +45,7 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parent.parent
 SPEC = "renzo-1967"
+ENV: dict[Path, dict[str, str]] = {}  # per checkout: variables set for its processes
 
 MAP = """
 import json, time, numpy as np
@@ -79,7 +82,8 @@ with tempfile.TemporaryDirectory() as cache:
 
 
 def _env(checkout: Path, **extra: str) -> dict[str, str]:
-    return dict(os.environ, PYTHONPATH=str(checkout / "src"), OPENBLAS_NUM_THREADS="1", **extra)
+    return {**os.environ, "PYTHONPATH": str(checkout / "src"), "OPENBLAS_NUM_THREADS": "1",
+            **ENV.get(checkout, {}), **extra}
 
 
 def python_row(code: str, processes: int = 1, **extra: str):
@@ -186,6 +190,8 @@ def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--against", type=Path, metavar="OLD_CHECKOUT",
                     help="the checkout to compare with (its src/ is imported)")
+    ap.add_argument("--old-numpy", action="store_true",
+                    help="the old checkout with GEARCOUPLING_NUMBA=0 (its default install)")
     ap.add_argument("--repeats", type=int, default=5, help="repeats of the map rows")
     ap.add_argument("--command-repeats", type=int, default=2, help="repeats of run, report")
     ap.add_argument("--only", nargs="*", default=None, metavar="ROW",
@@ -199,6 +205,8 @@ def main(argv: list[str] | None = None) -> int:
     if args.repeats < 1 or args.command_repeats < 1:
         ap.error("--repeats and --command-repeats must be at least 1")
     checkouts = [HERE] if args.against is None else [args.against.resolve(), HERE]
+    if args.old_numpy and args.against is not None:
+        ENV[checkouts[0]] = {"GEARCOUPLING_NUMBA": "0"}
     for c in checkouts:
         if not (c / "src" / "gearcoupling").is_dir():
             ap.error(f"{c}: no src/gearcoupling in it")
@@ -206,7 +214,8 @@ def main(argv: list[str] | None = None) -> int:
         ["after (min / median)"] + (["speed-up"] if args.against else [])
     print(f"{time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, load average "
           f"{os.getloadavg()[0]:.1f}, {os.cpu_count()} cores; after = {HERE}" +
-          (f", before = {args.against}" if args.against else ""))
+          (f", before = {args.against}" if args.against else "") +
+          (" with GEARCOUPLING_NUMBA=0" if args.old_numpy and args.against else ""))
     print("\n| " + " | ".join(head) + " |\n|" + "---|" * len(head))
     for _, path, clock, measure in rows(args):
         cells = []
