@@ -68,12 +68,10 @@ sweep(spec, 1.0, angles, tolerance_mm=1e-6)
 print(json.dumps([time.perf_counter() - t]))
 """
 FE_TABLE = """
-import json, sys, tempfile, time
-from dataclasses import replace
+import json, tempfile, time
 from gearcoupling import load_spec
 from gearcoupling.fea import tooth_compliance_table
 spec = load_spec({spec!r})
-spec = replace(spec, load=replace(spec.load, stiffness="fe"))
 with tempfile.TemporaryDirectory() as cache:
     t = time.perf_counter()
     tooth_compliance_table(spec, cache=cache, refresh=True)
