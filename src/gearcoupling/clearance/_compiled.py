@@ -7,18 +7,19 @@ every (virtual measure, turning angle) row on its own with scalar state: no nump
 step, nothing allocated per point. The z search evaluates the same planes as the numpy
 path. Inside a plane the minimum over ``t`` is solved to convergence with the slopes
 along ``t`` in closed form: Newton steps for the active interval's crossings (to 1e-11
-relative), secant steps on the exact slope for an interior minimum (to 1e-7 in ``t``).
-The two paths agree to rounding (``tests/test_sweep_frozen.py`` runs both against
-frozen outputs).
+relative), for an interior minimum the minimum of the cubic through the ends, then
+secant steps on the exact slope (to 1e-7 in ``t``). The two paths agree to rounding
+(``tests/test_sweep_frozen.py``, ``tests/test_sweep_kernel.py``; docs/sweep-speed.md).
 
 Two flat arrays carry everything, so that a call passes two arrays: ``tab`` (read only)
 holds the constants of :func:`.kernel._compiled_arrays` at the indices below, the table's
 piece edges and its plane matrices ``(pieces, nt + 1, nz)``; ``ws`` is the work space:
-the search state of a row, scratch, the coarse ``z``, the planes (a plane at offset
-``po``: the ``nt`` coefficients of ``y`` in ``t``, ``r_form``, the span ``r_tip -
-r_form`` and ``z``) and the coarse minima. :func:`minimise_rows` passes views of them
-without reference counting (:func:`_unmanaged`). Integer and boolean constants are passed
-as ``np.int64``/``np.bool_``: a literal argument would compile a function once per value.
+the search state of a row, scratch, and the planes of the turning angle with the rows
+found in them (:func:`evaluate`; a plane at offset ``po``: the ``nt`` coefficients of
+``y`` in ``t``, ``r_form``, the span ``r_tip - r_form`` and ``z``). :func:`minimise_rows`
+passes views of them without reference counting (:func:`_unmanaged`). Integer and
+boolean constants are passed as ``np.int64``/``np.bool_``: a literal argument would
+compile a function once per value.
 """
 
 from __future__ import annotations

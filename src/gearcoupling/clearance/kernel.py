@@ -768,7 +768,9 @@ def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
 
     Steps: :func:`coarse_grid` (minima over ``t`` in ``grid`` planes), :func:`second_minima`
     (a second coarse minimum becomes an extra row), :class:`ZSearch` (refinement over
-    ``z``), then each measure folds its branches (:data:`_FOLD`).
+    ``z``), then each measure folds its branches (:data:`_FOLD`). The compiled kernel
+    (:mod:`.fast`, numba) takes the same steps one turning angle at a time; without
+    numba, or with ``GEARCOUPLING_NUMBA=0``, they run here in numpy (docs/sweep-speed.md).
 
     Parameters
     ----------
@@ -808,7 +810,7 @@ def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
     wanted = sorted({vm for m in measures for vm in _FOLD[MEASURES.index(m)]})
     sl = _Sleeve(sm)
     compiled = kernels()
-    if compiled is not None:
+    if compiled is not None and table.y.shape[1] <= compiled.MAX_NZ:
         tab, ws = _compiled_arrays(compiled, table, sl, misalignment, pitch_radius,
                                    tolerance_mm, grid)
         out = np.empty((6, len(measures), n))
@@ -857,8 +859,6 @@ def _compiled_arrays(compiled, table: FlankTable, sl: _Sleeve, misalignment: flo
     work space."""
     mats = table._plane_matrices  # (pieces, nt + 1, nz)
     pieces, rows, nz = mats.shape
-    if nz > compiled.MAX_NZ:
-        raise ArgumentError(f"flank table with {nz} nodes in z: at most {compiled.MAX_NZ}")
     consts = [math.cos(misalignment), math.sin(misalignment), sl.r_b, sl.c0, sl.r_fillet,
               float(sl.rho), sl.cn, sl.gc, sl.cx, sl.cy, sl.r_form, sl.half_face,
               table.half_face, pitch_radius, tolerance_mm, table.tip_radius,
