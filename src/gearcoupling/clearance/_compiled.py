@@ -168,7 +168,7 @@ def involute(tab, p):
     """``(circumferential, normal)`` gaps of a :func:`point` to the involute (its extension
     off the flank) and their slopes along ``t``: ``(circ, normal, dcirc, dnormal)``. The
     angle ``aq + sigma(rq)/2`` as one ``atan2``: of the point turned by the involute's
-    roll angle at ``rq``."""
+    pressure angle at ``rq``."""
     qx, qy, _, dqx, dqy, _ = p
     r_b = tab[RB]
     rq2 = qx * qx + qy * qy
