@@ -41,7 +41,7 @@ def flank_minima(spec: CouplingSpec, misalignment_rad: float, theta, *, toleranc
     """Minima of tooth 0's cw flank at turning angles ``theta`` (any shape), all measures.
 
     With ``periodic`` (ideal geometry) equal turning angles are evaluated once, and when the
-    hub flank is symmetric about the midplane (:meth:`FlankTable.even_in_z`) so are
+    hub flank is symmetric about the midplane (:attr:`FlankTable.symmetric`) so are
     ``theta`` and ``theta + pi``: mirroring ``z -> -z`` maps ``P(theta)`` to
     ``P(theta - pi)`` (``Mz Rx(i) Mz = Rz(pi) Rx(i) Rz(-pi)``) and the sleeve onto itself,
     so the gaps, ``r``, kind and rate are equal and the contact ``z`` changes sign. Aligned
@@ -64,7 +64,7 @@ def flank_minima(spec: CouplingSpec, misalignment_rad: float, theta, *, toleranc
     if misalignment_rad == 0.0:  # P(theta) is the identity: every turning angle alike
         th, inverse = flat[:1] * 0.0, np.zeros(flat.size, dtype=np.intp)
     elif periodic:
-        if table.even_in_z():
+        if table.symmetric:
             mirror = flat >= np.pi
             flat = np.where(mirror, flat - np.pi, flat)
         _, first, inverse = np.unique(np.round(flat * _KEY_SCALE).astype(np.int64),
