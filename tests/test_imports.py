@@ -44,6 +44,7 @@ def test_import_gearcoupling_loads_no_scipy():
 # the data flow of docs/conventions.md (docs/conventions.md): each unit may import only these
 LAYERS = {
     "errors": set(),
+    "arguments": {"errors"},
     "io": {"errors"},
     "tables": {"errors"},
     "loadspec": {"errors", "io"},
@@ -66,6 +67,9 @@ LAYERS = {
     "viewer": {"io", "errors", "geometry", "spec", "parts", "export", "clearance",
                "interference", "loading", "inspection"},
 }
+# the argument checks (numbers, counts, torques, documented maxima) sit beside the errors
+LAYERS = {k: v | {"arguments"} if k not in ("errors", "arguments") else v
+          for k, v in LAYERS.items()}
 
 
 def _type_checking_nodes(tree) -> set[int]:

@@ -65,7 +65,7 @@ def register(sub) -> None:
 def run(args) -> int:
     spec = spec_from_args(args)
     mis = misalignment_deg(args, spec)
-    mis, psi = check_pose(mis, args.angle)
+    mis, psi = check_pose(mis, args.angle, ("--misalignment", "--angle"))
     if args.html is not None:
         writing_into(writable_file(args.html, "--html").parent)
     settings = ViewSettings(misalignment_deg=mis, psi_deg=psi, cutaway=args.cutaway,

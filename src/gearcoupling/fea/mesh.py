@@ -11,6 +11,7 @@ teeth get the element size ``size_mm``; the size grows to ``body_size_mm`` away 
 from __future__ import annotations
 
 import math
+import numbers
 import tempfile
 import time
 from pathlib import Path
@@ -18,10 +19,11 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
+from ..arguments import choice, flag, is_real, shown
 from ..errors import ArgumentError, GeometryError, SpecError
 from ..export import part_solid, write_step
 from ..parts import SURFACE_KINDS, build_part, check_tolerance
-from ..spec import CouplingSpec
+from ..spec import CouplingSpec, as_spec
 from .backends import gmsh_session
 from .volume import VolumeMesh, aspect_ratios, match_faces, tet_volumes
 
@@ -40,24 +42,25 @@ def fillet_radius(spec: CouplingSpec, part: str) -> float:
     return spec.hub.root.fillet_radius if part == "hub" else spec.sleeve.root_fillet_radius
 
 
-def check_size(spec: CouplingSpec, part: str, size_mm) -> float:
-    """The element size as a float, or :class:`ArgumentError` naming the allowed range.
+def check_size(spec: CouplingSpec, part: str, size_mm, field: str = "size_mm") -> float:
+    """The element size as a float, or :class:`ArgumentError` naming ``field`` (the option,
+    on the command line) and the allowed range.
 
     Allowed: from module / 40 to the smaller of module / 2 and twice the part's root
     fillet radius (a coarser size cannot follow the fillet, where the root stress is).
     """
     size = default_size(spec) if size_mm is None else size_mm
-    try:
-        size = float(size)
-    except (TypeError, ValueError) as err:
-        raise ArgumentError("size_mm", size_mm, "must be a number (mm)") from err
+    if not is_real(size):
+        raise ArgumentError(field, shown(size_mm), "must be a number (mm)")
+    size = float(size)
     m = spec.tooth.module
     lo, hi = m / 40.0, min(m / 2.0, 2.0 * fillet_radius(spec, part))
     if not (math.isfinite(size) and lo <= size <= hi):
         why = ("twice the root fillet radius: a coarser mesh cannot follow the fillet"
                if hi < m / 2.0 else "module / 2: two elements across the tooth at least")
-        raise ArgumentError("size_mm", size_mm, f"must be from {lo:.3g} to {hi:.3g} mm for the "
-                        f"{part} of this spec (module / 40 to {why}); choose a smaller size")
+        hint = "choose a larger size" if size < lo else "choose a smaller size"
+        raise ArgumentError(field, size_mm, f"must be from {lo:.3g} to {hi:.3g} mm for the "
+                        f"{part} of this spec (module / 40 to {why}); {hint}")
     return size
 
 
@@ -67,11 +70,10 @@ def sector_teeth(spec: CouplingSpec, count) -> list[int] | None:
     n = spec.tooth.teeth
     if count is None:
         return None
-    try:
-        k = int(count)
-    except (TypeError, ValueError) as err:
-        raise ArgumentError("sector_teeth", count, f"an integer from 1 to {n}") from err
-    if k != count or not 1 <= k <= n:
+    if isinstance(count, bool) or not isinstance(count, numbers.Integral):
+        raise ArgumentError("sector", shown(count), f"an integer from 1 to {n}")
+    k = int(count)
+    if not 1 <= k <= n:
         raise ArgumentError("sector_teeth", count, f"an integer from 1 to {n} (the spec has {n} "
                         f"teeth; {n} meshes the whole part)")
     return None if k == n else list(range(k))
@@ -110,8 +112,9 @@ def mesh_part(spec: CouplingSpec, part: str, *, sector: int | None = DEFAULT_SEC
     -------
     VolumeMesh
     """
-    if part not in ("hub", "sleeve"):
-        raise ArgumentError("part", part, "hub or sleeve")
+    spec = as_spec(spec)
+    choice(part, "part", ("hub", "sleeve"))
+    flag(periodic, "periodic")
     teeth = sector_teeth(spec, sector)
     size = check_size(spec, part, size_mm)
     body = max(3.0 * size, spec.tooth.module) if body_size_mm is None else float(body_size_mm)

@@ -23,9 +23,10 @@ from itertools import pairwise
 import numpy as np
 from numpy.typing import NDArray
 
+from ..arguments import MAXIMA, count, is_real, shown
 from ..errors import ArgumentError
 from ..geometry import HubModel, hub_model, plane_rack, tip_radius
-from ..spec import CouplingSpec
+from ..spec import CouplingSpec, as_spec
 
 _DENSE = 65  # exact-curve samples per move when its chordal deviation is measured
 MAX_HOB_DIAMETER_MM = 1000.0  # hobs are made up to a few hundred mm (module 40: about 500)
@@ -39,8 +40,8 @@ def check_hob_diameter(spec: CouplingSpec,
     is made larger than :data:`MAX_HOB_DIAMETER_MM` (its approach travel ``sqrt(H (D - H))``
     would grow without end)."""
     D = hob_diameter_mm
-    if isinstance(D, bool) or not (isinstance(D, int | float) and math.isfinite(D)):
-        raise ArgumentError(field, D, "a finite hob outside diameter in mm")
+    if not (is_real(D) and math.isfinite(D)):
+        raise ArgumentError(field, shown(D), "a finite hob outside diameter in mm")
     depth = hub_model(spec).dedendum + spec.tooth.module
     if D <= 2.0 * depth:
         raise ArgumentError(field, D, f"too small to carry teeth {depth:.4g} mm deep around a "
@@ -277,17 +278,16 @@ def hob_program(spec: CouplingSpec, hob_diameter_mm: float, tolerance_mm: float 
         (every rack depth down to the root reaches both face-end planes), to the
         overtravel point; straight run-outs at constant infeed.
     """
+    spec = as_spec(spec)
     m = hub_model(spec)
     module = spec.tooth.module
     tol = module / 1000.0 if tolerance_mm is None else tolerance_mm
-    if not (isinstance(tol, int | float) and math.isfinite(tol)
-            and module * 1e-6 <= tol <= module * 0.1):
+    if not (is_real(tol) and math.isfinite(tol) and module * 1e-6 <= tol <= module * 0.1):
         raise ArgumentError("tolerance_mm", tolerance_mm,
                         f"a chordal tolerance from {module * 1e-6:.3g} to {module * 0.1:.3g} mm "
                         "(1e-6 to 0.1 module)")
     D = check_hob_diameter(spec, hob_diameter_mm)
-    if not (isinstance(table_points, int) and table_points >= 3):
-        raise ArgumentError("table_points", table_points, "an integer >= 3")
+    count(table_points, "table_points", 3, MAXIMA["points"])
     r_h = 0.5 * D - m.dedendum
     s_gen = float(m.path.solve_plane(m.half_face, m.dedendum)[0])
     z_end = m.half_face

@@ -18,11 +18,12 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, cast
 
+from ..arguments import shown
 from ..errors import ArgumentError, BackendError
 from ..interference import check_interference
 from ..io import output_folder, remove_stale_temporaries, write_json
 from ..plots import plot_sections
-from ..spec import CouplingSpec
+from ..spec import CouplingSpec, as_spec
 from ..viewer import write_html
 from .interference import write_interference
 from .load import write_load
@@ -108,13 +109,24 @@ def _timed(key: str, spec: CouplingSpec, out: Path, state: dict[str, Any] | None
 
 
 def _chosen(only: Iterable[str] | None, skip: Iterable[str]) -> list[str]:
-    only_set = set(STEPS) if only is None else set(only)
-    skip_set = set(skip)
+    only_set = set(STEPS) if only is None else _names(only, "only")
+    skip_set = _names(skip, "skip")
     unknown = (only_set | skip_set) - set(STEPS)
     if unknown:
         raise ArgumentError(f"steps {', '.join(sorted(unknown))} unknown: the steps are "
                             f"{', '.join(STEPS)}")
     return [k for k in STEPS if k in only_set - skip_set]
+
+
+def _names(value: Any, name: str) -> set[str]:
+    """Step names given as a list (not one string: ``"spec"`` would be four letters)."""
+    try:
+        names = None if isinstance(value, str | bytes) else list(value)
+    except TypeError:
+        names = None
+    if names is None or not all(isinstance(k, str) for k in names):
+        raise ArgumentError(name, shown(value), f"a list of step names from {', '.join(STEPS)}")
+    return set(names)
 
 
 def _can_fork() -> bool:
@@ -229,6 +241,7 @@ def run(spec: CouplingSpec, out: str | os.PathLike, *, only: Iterable[str] | Non
     >>> [p.name for p in res.files]
     ['spec.json', 'run_summary.json']
     """
+    spec = as_spec(spec)
     output_folder(out, "out", create=False)
     keys = _chosen(only, skip)
     if workers is None:

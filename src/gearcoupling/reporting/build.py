@@ -5,17 +5,18 @@ from __future__ import annotations
 import os
 import time
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any
 
 from .. import __version__
+from ..arguments import flag, keywords, shown
 from ..errors import ArgumentError
 from ..hob import check_hob_diameter
 from ..inspection import check_limits, grade_limits
 from ..io import output_folder, require_file, write_text
-from ..spec import CouplingSpec
+from ..spec import CouplingSpec, as_spec
 from . import sections as sec
 from .document import Note, Section, Table, render
 from .pdf import print_pdf
@@ -92,7 +93,12 @@ def report(spec: CouplingSpec, out: str | os.PathLike, *, pdf: bool = False,
     -------
     ReportResult
     """
+    spec = as_spec(spec)
     output_folder(out, "out", create=False)
+    if settings is not None and not isinstance(settings, ReportSettings):
+        raise ArgumentError("settings", shown(settings), "a ReportSettings")
+    keywords(options, [f.name for f in fields(ReportSettings)], "report")
+    flag(pdf, "pdf")
     s = settings if settings is not None else ReportSettings(**options)
     t0 = time.perf_counter()
     mis, torque, model = sec.resolve(spec, s)
