@@ -57,7 +57,8 @@ _TEXT_MAX = 60  # characters of a value quoted in an error
 
 
 def shown(value: Any) -> Any:
-    """``value`` for an error message: long text cut to :data:`_TEXT_MAX` characters."""
+    """``value`` for an error's ``value`` attribute: long text cut to :data:`_TEXT_MAX`
+    characters (the message itself is cut by the error, :func:`~.errors.brief`)."""
     if isinstance(value, str | bytes) and len(value) > _TEXT_MAX:
         return f"{value[:_TEXT_MAX]!s}... ({len(value)} characters)"
     return value

@@ -23,7 +23,7 @@ from typing import Any, ClassVar
 import numpy as np
 
 from .arguments import shown
-from .errors import ArgumentError, GeometryError, SpecError
+from .errors import ArgumentError, GeometryError, SpecError, brief
 from .geometry import (
     MAX_END_TANGENT_DEG,
     HubModel,
@@ -54,6 +54,7 @@ MISALIGNMENT_RANGE_DEG = (0.0, 6.0)
 CROWNING_KINDS = ("none", "circular", "vari_crown", "end_round", "table")
 GENERATIONS = ("enveloped", "revolved")
 TIP_KINDS = ("sphere", "cylinder")
+MAX_NAME_CHARS = 200
 _ROUNDING_DEG = 1e-9  # slack for degree <-> radian round trips (6° -> 6.000000000000001)
 
 
@@ -555,6 +556,8 @@ def _build(root: Table, name: str) -> CouplingSpec:
     _check(units in UNITS, "units", units, f"one of {tuple(UNITS)}")
     root.scale = UNITS[units]
     name = root.string("name", name)
+    _check(len(name) <= MAX_NAME_CHARS, "name", brief(name, 40),
+           f"at most {MAX_NAME_CHARS} characters (it names files and reports)")
     misalignment = math.radians(check_misalignment_deg(root.number("design_misalignment_deg",
                                                                    0.0),
                                                        "design_misalignment_deg"))

@@ -20,7 +20,7 @@ from . import (
     templates,
     view,
 )
-from .common import WRITING
+from .common import CREATED, WRITING
 
 COMMANDS = [
     spec,
@@ -43,4 +43,4 @@ COMMANDS = [
     report,
 ]
 
-__all__ = ["COMMANDS", "WRITING"]
+__all__ = ["COMMANDS", "CREATED", "WRITING"]

@@ -22,7 +22,7 @@ from ..study import (
     summarise_rows,
     write_rows,
 )
-from .common import count, ensure_dir, number_in, progress, writing_into
+from .common import count, number_in, progress, writing_into
 
 
 def register(sub) -> None:
@@ -49,8 +49,8 @@ def run(args) -> int:
     study = load_study(args.file)
     if args.scheduler is not None:
         scheduler_address(args.scheduler, "--scheduler")
-    out = writing_into(ensure_dir(default_output_dir(f"study-{study.name}")
-                                  if args.output is None else args.output))
+    out = writing_into(default_output_dir(f"study-{study.name}") if args.output is None
+                       else args.output)
     if study.optimise is not None:
         return _optimise(study, out, plots=not args.no_plots)
 

@@ -65,7 +65,10 @@ def inv_inverse(y: ArrayLike, *, rtol: float = 1e-15,
 def real_array(values: ArrayLike, field: str) -> NDArray[np.float64]:
     """``values`` (numbers of any shape) as a float array; text, objects or ``bool`` are an
     :class:`ArgumentError` naming ``field``."""
-    raw = np.asarray(values) if not isinstance(values, str | bytes) else np.asarray([values])
+    try:
+        raw = np.asarray(values) if not isinstance(values, str | bytes) else np.asarray([values])
+    except ValueError:  # a ragged nesting
+        raw = np.asarray([None])
     if raw.dtype.kind not in "iuf":
         raise ArgumentError(field, str(values)[:60], "numbers (a float or an array of them)")
     return raw.astype(float)

@@ -23,13 +23,16 @@ from itertools import pairwise
 import numpy as np
 from numpy.typing import NDArray
 
-from ..arguments import MAXIMA, count, is_real, shown
+from ..arguments import MAXIMA, count, is_real, real, shown
 from ..errors import ArgumentError
 from ..geometry import HubModel, hub_model, plane_rack, tip_radius
 from ..spec import CouplingSpec, as_spec
 
 _DENSE = 65  # exact-curve samples per move when its chordal deviation is measured
 MAX_HOB_DIAMETER_MM = 1000.0  # hobs are made up to a few hundred mm (module 40: about 500)
+#: axial feed per workpiece revolution a hobbing machine takes (mm/rev): roughing feeds
+#: reach a few mm, finishing ones tenths; controllers refuse numbers far beyond
+FEED_RANGE_MM_PER_REV = (0.001, 50.0)
 
 
 def check_hob_diameter(spec: CouplingSpec,
@@ -124,8 +127,13 @@ class HobProgram:
                                                                     strict=True)]
 
     def gcode(self, feed_mm_per_rev: float = 1.0, retract_mm: float | None = None) -> str:
-        """The program as ISO G-code (``G18`` ZX plane, ``G95`` feed per workpiece turn)."""
-        retract = self.whole_depth_mm if retract_mm is None else retract_mm
+        """The program as ISO G-code (``G18`` ZX plane, ``G95`` feed per workpiece turn;
+        every number fixed-point, as controllers read them). ``feed_mm_per_rev`` in
+        :data:`FEED_RANGE_MM_PER_REV`; ``retract_mm`` from 0 to the hob diameter (default
+        the whole depth)."""
+        feed = real(feed_mm_per_rev, "feed_mm_per_rev", *FEED_RANGE_MM_PER_REV, unit="mm/rev")
+        retract = self.whole_depth_mm if retract_mm is None else real(
+            retract_mm, "retract_mm", 0.0, self.hob_diameter_mm, unit="mm")
         first = self.moves[0].start
         lines = [
             "%",
@@ -139,7 +147,7 @@ class HobProgram:
             f"{self.crown_drop_end_mm:.5f})",
             "G21 G90 G18 G95",
             f"G0 X{first[1] + retract:.5f} Z{first[0]:.5f}",
-            f"G1 X{first[1]:.5f} F{feed_mm_per_rev:g}",
+            f"G1 X{first[1]:.5f} F{feed:.4f}",
         ]
         for m in self.moves:
             z, x = m.end

@@ -68,7 +68,10 @@ class PartComparison:
 def _points(source, units: str):
     if isinstance(source, str | os.PathLike):
         return load_points(Path(source), units), str(source)
-    pts = np.asarray(source)
+    try:
+        pts = np.asarray(source)
+    except ValueError:  # a ragged nesting
+        pts = np.asarray(None)
     if pts.dtype.kind not in "iuf":
         raise ArgumentError("source", shown(source), "a scan file path or an (n, 3) array of "
                             "point coordinates")
@@ -124,6 +127,8 @@ def compare_part(spec: CouplingSpec, source, other=None, *, units: str = "mm", l
     InspectionReport or PartComparison
     """
     spec = as_spec(spec)
+    if source is None:
+        raise ArgumentError("source", None, "a scan file path or an (n, 3) array of points")
     choice(units, "units", ("mm", "in", "m"))
     choice(coarse, "coarse", ("auto", "none"))
     count(fit_points, "fit_points", 100)

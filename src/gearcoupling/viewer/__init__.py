@@ -7,7 +7,7 @@ viser is imported only when a server is made and is an optional extra
 (``pip install 'gearcoupling[viewer]'``).
 """
 
-from .browser import chromium
+from .browser import browser_backend, chromium
 from .html import write_html
 from .nodes import FRAMES, ViewSettings
 from .scene import (
@@ -29,6 +29,7 @@ __all__ = [
     "LOD_DIVISORS",
     "PoseState",
     "ViewSettings",
+    "browser_backend",
     "build_scene_meshes",
     "check_pose",
     "chromium",
