@@ -53,16 +53,6 @@ ANGLE_TOLERANCE_RANGE_DEG = (1e-9, 0.5)
 
 _NUMBER = re.compile(r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
 _WHOLE = re.compile(r"[+-]?[0-9]+")
-_TEXT_MAX = 60  # characters of a value quoted in an error
-
-
-def shown(value: Any) -> Any:
-    """``value`` for an error's ``value`` attribute: long text cut to :data:`_TEXT_MAX`
-    characters (the message itself is cut by the error, :func:`~.errors.brief`)."""
-    if isinstance(value, str | bytes) and len(value) > _TEXT_MAX:
-        return f"{value[:_TEXT_MAX]!s}... ({len(value)} characters)"
-    return value
-
 
 def parse_number(text: str, field: str, *, nonfinite: bool = False,
                  error: ErrorType = ArgumentError) -> float:
@@ -74,11 +64,11 @@ def parse_number(text: str, field: str, *, nonfinite: bool = False,
         value = float(t)
         if math.isfinite(value):
             return value
-        raise error(field, shown(text), "too large for a number")
+        raise error(field, text, "too large for a number")
     if nonfinite and t.lower() in ("inf", "+inf", "-inf", "infinity", "+infinity",
                                    "-infinity"):
         return float(t)
-    raise error(field, shown(text), "not a number as written by hand (digits, an optional "
+    raise error(field, text, "not a number as written by hand (digits, an optional "
                 "sign, point and exponent, e.g. 0.5 or 2e3" + (", or inf" if nonfinite else "")
                 + ")")
 
@@ -87,7 +77,7 @@ def parse_count(text: str, field: str, *, error: ErrorType = ArgumentError) -> i
     """A whole number written on the command line (ASCII digits, optional sign)."""
     t = text.strip()
     if not _WHOLE.fullmatch(t):
-        raise error(field, shown(text), "not a whole number (digits only, e.g. 12)")
+        raise error(field, text, "not a whole number (digits only, e.g. 12)")
     return int(t)
 
 
@@ -107,7 +97,7 @@ def real(value: Any, field: str, lo: float = -math.inf, hi: float = math.inf, *,
         ok = (lo < v if open_lo else lo <= v) and (v < hi if open_hi else v <= hi)
         if ok:
             return v
-    raise error(field, shown(value), f"must be a {'' if nonfinite else 'finite '}number"
+    raise error(field, value, f"must be a {'' if nonfinite else 'finite '}number"
                 + _range_text(lo, hi, open_lo, open_hi, unit))
 
 
@@ -137,7 +127,7 @@ def count(value: Any, field: str, lo: int = 1, hi: int | None = None, *,
         v = int(value)
         if lo <= v and (top is None or v <= top):
             return v
-    raise error(field, shown(value), f"must be a whole number from {lo}"
+    raise error(field, value, f"must be a whole number from {lo}"
                 + (f" to {top}" if top is not None else " up"))
 
 
@@ -151,15 +141,15 @@ def angle_list(values: Any, field: str = "angles_deg", *, lo: float = -math.inf,
     allowed = (f"a non-empty 1-D list of at most {most} finite numbers"
                + _range_text(lo, hi, False, False, unit))
     if isinstance(values, str | bytes | dict) or values is None:
-        raise error(field, shown(values), allowed)
+        raise error(field, values, allowed)
     if isinstance(values, range | list | tuple) and len(values) > most:
         raise error(field, f"{type(values).__name__} of {len(values)}", allowed)
     try:
         raw = np.asarray(values)
     except (TypeError, ValueError):
-        raise error(field, shown(values), allowed) from None
+        raise error(field, values, allowed) from None
     if raw.dtype.kind not in "iuf" or raw.dtype.kind == "b":
-        raise error(field, shown(values), allowed)
+        raise error(field, values, allowed)
     a = np.atleast_1d(raw.astype(float))
     if a.ndim != 1 or not 1 <= a.size <= most:
         raise error(field, f"{a.size} values of shape {raw.shape}", allowed)
@@ -177,7 +167,7 @@ def torque_Nm(value: Any, field: str = "torque_Nm", *, zero: bool = True,
     if is_real(value) and math.isfinite(value) and (
             lo <= abs(float(value)) <= hi or (zero and value == 0)):
         return float(value)
-    raise error(field, shown(value), f"must be a torque in N·m of magnitude {lo:g} to {hi:g}"
+    raise error(field, value, f"must be a torque in N·m of magnitude {lo:g} to {hi:g}"
                 + (", or 0 (unloaded)" if zero else "") + "; the sign picks the loaded flank")
 
 
@@ -198,7 +188,7 @@ def flag(value: Any, field: str) -> bool:
     """A ``bool`` (or numpy bool) argument."""
     if isinstance(value, bool | np.bool_):
         return bool(value)
-    raise ArgumentError(field, shown(value), "True or False")
+    raise ArgumentError(field, value, "True or False")
 
 
 def choice(value: Any, field: str, options: tuple[str, ...] | list[str],
@@ -206,12 +196,12 @@ def choice(value: Any, field: str, options: tuple[str, ...] | list[str],
     """``value`` when it is one of the strings ``options``."""
     if isinstance(value, str) and value in options:
         return value
-    raise error(field, shown(value), f"one of {', '.join(map(repr, options))}")
+    raise error(field, value, f"one of {', '.join(map(repr, options))}")
 
 
 def keywords(given: dict[str, Any], allowed: tuple[str, ...] | list[str], field: str) -> None:
     """Refuse keyword arguments outside ``allowed`` (of a call taking ``**kwargs``)."""
     unknown = sorted(set(given) - set(allowed))
     if unknown:
-        raise ArgumentError(unknown[0], shown(given[unknown[0]]), f"not a keyword of {field}: "
+        raise ArgumentError(unknown[0], given[unknown[0]], f"not a keyword of {field}: "
                             f"the keywords are {', '.join(allowed) or 'none'}")

@@ -22,7 +22,6 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from .arguments import shown
 from .errors import ArgumentError, GeometryError, SpecError, brief
 from .geometry import (
     MAX_END_TANGENT_DEG,
@@ -482,10 +481,10 @@ def spec_from_dict(data: dict[str, Any], name: str = "custom") -> CouplingSpec:
     fit; if a derived value is refused anyway, the error says so and names the key to set.
     """
     if not isinstance(data, dict):
-        raise ArgumentError("data", shown(data), "a dict of spec tables, as read from a TOML "
+        raise ArgumentError("data", data, "a dict of spec tables, as read from a TOML "
                             "spec file")
     if not isinstance(name, str):
-        raise ArgumentError("name", shown(name), "a str")
+        raise ArgumentError("name", name, "a str")
     check_keys(data)
     defaulted: set[str] = set()
     try:
@@ -719,7 +718,7 @@ def as_spec(spec: Any, field: str = "spec") -> CouplingSpec:
         return spec
     if isinstance(spec, str | os.PathLike):
         return load_spec(as_path(spec, field))
-    raise ArgumentError(field, shown(spec), "a CouplingSpec (gearcoupling.load_spec), a "
+    raise ArgumentError(field, spec, "a CouplingSpec (gearcoupling.load_spec), a "
                         "template name or the path of a TOML spec")
 
 

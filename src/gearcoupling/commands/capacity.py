@@ -5,8 +5,8 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from ..arguments import MAXIMA, shown
-from ..errors import ArgumentError, SpecError
+from ..arguments import MAXIMA
+from ..errors import ArgumentError, SpecError, brief
 from ..io import parse_override
 from ..loading import plot_capacity, write_capacity_csv
 from ..loadspec import LOAD_MODELS
@@ -56,7 +56,7 @@ def degree_list(text: str) -> list[float]:
     parse = number_in(0.0, 6.0, "degrees")
     values = [parse(item) for item in items]
     if len(set(values)) < 2:
-        raise argparse.ArgumentTypeError(f"{shown(text)!r}: {rule}")
+        raise argparse.ArgumentTypeError(f"{brief(repr(text), 60)}: {rule}")
     return values
 
 

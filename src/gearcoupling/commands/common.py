@@ -9,9 +9,9 @@ from collections.abc import Callable
 from contextlib import contextmanager
 from pathlib import Path
 
-from ..arguments import MAXIMA, parse_count, parse_number, shown
+from ..arguments import MAXIMA, parse_count, parse_number
 from ..arguments import torque_Nm as check_torque_Nm
-from ..errors import ArgumentError
+from ..errors import ArgumentError, brief
 from ..io import default_output_dir, output_folder, parse_override
 from ..spec import CouplingSpec, check_misalignment_deg, load_spec
 
@@ -27,7 +27,7 @@ def _number(text: str) -> float:
     try:
         return parse_number(text, "")
     except ArgumentError as err:
-        raise argparse.ArgumentTypeError(f"{shown(text)!r}: {err.allowed}") from None
+        raise argparse.ArgumentTypeError(f"{brief(repr(text), 60)}: {err.allowed}") from None
 
 
 def number_in(lo: float, hi: float = math.inf, unit: str = "", *,
@@ -39,7 +39,7 @@ def number_in(lo: float, hi: float = math.inf, unit: str = "", *,
     def parse(text: str) -> float:
         value = _number(text)
         if not ((lo < value if open_lo else lo <= value) and value <= hi):
-            raise argparse.ArgumentTypeError(f"{shown(text)!r}: must be {what}")
+            raise argparse.ArgumentTypeError(f"{brief(repr(text), 60)}: must be {what}")
         return value
 
     parse.__name__ = "number"
@@ -67,7 +67,7 @@ def torque(*, zero: bool = True) -> Callable[[str], float]:
         try:
             return check_torque_Nm(_number(text), "", zero=zero)
         except ArgumentError as err:
-            raise argparse.ArgumentTypeError(f"{shown(text)!r}: {err.allowed}") from None
+            raise argparse.ArgumentTypeError(f"{brief(repr(text), 60)}: {err.allowed}") from None
 
     parse.__name__ = "torque"
     return parse
@@ -79,7 +79,7 @@ def count(lo: int, hi: int) -> Callable[[str], int]:
         try:
             value = parse_count(text, "")
         except ArgumentError as err:
-            raise argparse.ArgumentTypeError(f"{shown(text)!r}: {err.allowed}") from None
+            raise argparse.ArgumentTypeError(f"{brief(repr(text), 60)}: {err.allowed}") from None
         if not lo <= value <= hi:
             raise argparse.ArgumentTypeError(f"{value}: must be from {lo} to {hi}")
         return value

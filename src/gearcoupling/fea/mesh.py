@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
-from ..arguments import choice, flag, is_real, shown
+from ..arguments import choice, flag, is_real
 from ..errors import ArgumentError, GeometryError, SpecError
 from ..export import part_solid, write_step
 from ..parts import SURFACE_KINDS, build_part, check_tolerance
@@ -51,7 +51,7 @@ def check_size(spec: CouplingSpec, part: str, size_mm, field: str = "size_mm") -
     """
     size = default_size(spec) if size_mm is None else size_mm
     if not is_real(size):
-        raise ArgumentError(field, shown(size_mm), "must be a number (mm)")
+        raise ArgumentError(field, size_mm, "must be a number (mm)")
     size = float(size)
     m = spec.tooth.module
     lo, hi = m / 40.0, min(m / 2.0, 2.0 * fillet_radius(spec, part))
@@ -71,7 +71,7 @@ def sector_teeth(spec: CouplingSpec, count) -> list[int] | None:
     if count is None:
         return None
     if isinstance(count, bool) or not isinstance(count, numbers.Integral):
-        raise ArgumentError("sector", shown(count), f"an integer from 1 to {n}")
+        raise ArgumentError("sector", count, f"an integer from 1 to {n}")
     k = int(count)
     if not 1 <= k <= n:
         raise ArgumentError("sector_teeth", count, f"an integer from 1 to {n} (the spec has {n} "

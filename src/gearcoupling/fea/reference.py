@@ -30,7 +30,7 @@ from dataclasses import asdict, dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
-from ..arguments import is_real, shown
+from ..arguments import is_real
 from ..arguments import torque_Nm as check_torque_Nm
 from ..clearance import min_backlash_rad
 from ..errors import ArgumentError, GeometryError
@@ -113,7 +113,7 @@ def fe_contact(spec: CouplingSpec, *, torque_Nm: float | None = None,
     T = spec.load.torque_Nm if torque_Nm is None else torque_Nm
     field = "torque_Nm" if torque_Nm is not None else "load.torque_Nm"
     if not (is_real(T) and T > 0):  # type: ignore[operator]
-        raise ArgumentError(field, shown(T), "a torque above 0 N·m: FE contact needs a load")
+        raise ArgumentError(field, T, "a torque above 0 N·m: FE contact needs a load")
     T = check_torque_Nm(T, field, zero=False)
     size = min(check_size(spec, "hub", size_mm), check_size(spec, "sleeve", size_mm))
     c = size if contact_size_mm is None else check_size(spec, "hub", contact_size_mm)

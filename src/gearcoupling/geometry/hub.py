@@ -27,7 +27,6 @@ from functools import lru_cache
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..arguments import shown
 from ..errors import ArgumentError, GeometryError
 from .feedpath import FeedPath, feed_path
 from .involute import real_array
@@ -219,7 +218,7 @@ def hub_flank_model(m: HubModel, flank: str, z_mm: ArrayLike, r_mm: ArrayLike, *
                     check: bool = True):
     """:func:`hub_flank` on a :class:`HubModel`; also returns the rack depth ``h``."""
     if flank not in FLANKS:
-        raise ArgumentError("flank", shown(flank), f"one of {', '.join(FLANKS)}")
+        raise ArgumentError("flank", flank, f"one of {', '.join(FLANKS)}")
     z, r = np.broadcast_arrays(np.asarray(z_mm, dtype=float), np.asarray(r_mm, dtype=float))
     if check:
         eps = 1e-9 * (m.R + 1.0)

@@ -14,7 +14,7 @@ from collections.abc import Callable
 import numpy as np
 from numpy.typing import NDArray
 
-from ..arguments import real, shown
+from ..arguments import real
 from ..errors import ArgumentError, GeometryError
 from .hub import HubModel, envelope, flank_depth, flank_u, hub_model, root_radius, round_point
 from .hub import tip_radius as hub_tip_radius
@@ -165,7 +165,7 @@ def transverse_section(spec: SpecLike,
     """
     spec = as_spec_like(spec)
     if part not in PARTS:
-        raise ArgumentError("part", shown(part), f"one of {', '.join(PARTS)}")
+        raise ArgumentError("part", part, f"one of {', '.join(PARTS)}")
     m_ = spec.tooth.module  # the polygon has ~1/sqrt(tolerance) vertices: bounded
     tol = real(tolerance_mm, "tolerance_mm", 1e-6 * m_, m_, unit="mm (1e-6 to 1 module)")
     z = real(z_mm, "z_mm", unit="mm")

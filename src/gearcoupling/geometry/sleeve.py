@@ -15,7 +15,6 @@ from functools import lru_cache
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..arguments import shown
 from ..errors import ArgumentError, GeometryError
 from .hub import FLANKS
 from .involute import inv, real_array, roll_angle
@@ -130,7 +129,7 @@ def sleeve_flank(spec: SpecLike, flank: str, z_mm: ArrayLike, r_mm: ArrayLike):
     """
     spec = as_spec_like(spec)
     if flank not in FLANKS:
-        raise ArgumentError("flank", shown(flank), f"one of {', '.join(FLANKS)}")
+        raise ArgumentError("flank", flank, f"one of {', '.join(FLANKS)}")
     m = sleeve_model(spec)
     z, r = np.broadcast_arrays(real_array(z_mm, "z_mm"), real_array(r_mm, "r_mm"))
     eps = 1e-9 * (m.R + 1.0)

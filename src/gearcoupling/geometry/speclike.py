@@ -8,7 +8,6 @@ import os
 from collections.abc import Callable, Hashable
 from typing import Any, Protocol
 
-from ..arguments import shown
 from ..errors import ArgumentError
 
 
@@ -49,6 +48,6 @@ def as_spec_like(spec: Any, field: str = "spec") -> Any:
     if isinstance(spec, str | os.PathLike) and load_named is not None:
         return load_named(spec, field)
     if not all(hasattr(spec, a) for a in ("tooth", "hub", "sleeve", "design_misalignment")):
-        raise ArgumentError(field, shown(spec), "a CouplingSpec (gearcoupling.load_spec), a "
+        raise ArgumentError(field, spec, "a CouplingSpec (gearcoupling.load_spec), a "
                             "template name or the path of a TOML spec")
     return spec

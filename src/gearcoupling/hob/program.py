@@ -23,7 +23,7 @@ from itertools import pairwise
 import numpy as np
 from numpy.typing import NDArray
 
-from ..arguments import MAXIMA, count, is_real, real, shown
+from ..arguments import MAXIMA, count, is_real, real
 from ..errors import ArgumentError
 from ..geometry import HubModel, hub_model, plane_rack, tip_radius
 from ..spec import CouplingSpec, as_spec
@@ -44,7 +44,7 @@ def check_hob_diameter(spec: CouplingSpec,
     would grow without end)."""
     D = hob_diameter_mm
     if not (is_real(D) and math.isfinite(D)):
-        raise ArgumentError(field, shown(D), "a finite hob outside diameter in mm")
+        raise ArgumentError(field, D, "a finite hob outside diameter in mm")
     depth = hub_model(spec).dedendum + spec.tooth.module
     if D <= 2.0 * depth:
         raise ArgumentError(field, D, f"too small to carry teeth {depth:.4g} mm deep around a "

@@ -11,7 +11,7 @@ from typing import cast
 
 import numpy as np
 
-from ..arguments import choice, count, positive, shown
+from ..arguments import choice, count, positive
 from ..errors import ArgumentError
 from ..hob import measuring_charts
 from ..spec import CouplingSpec, as_spec
@@ -73,7 +73,7 @@ def _points(source, units: str):
     except ValueError:  # a ragged nesting
         pts = np.asarray(None)
     if pts.dtype.kind not in "iuf":
-        raise ArgumentError("source", shown(source), "a scan file path or an (n, 3) array of "
+        raise ArgumentError("source", source, "a scan file path or an (n, 3) array of "
                             "point coordinates")
     pts = pts.astype(float)
     if pts.ndim != 2 or pts.shape[1] != 3 or len(pts) == 0:
@@ -134,12 +134,12 @@ def compare_part(spec: CouplingSpec, source, other=None, *, units: str = "mm", l
     count(fit_points, "fit_points", 100)
     count(min_points, "min_points", 1, 1_000_000)
     if not (isinstance(grid, tuple | list) and len(grid) == 2):
-        raise ArgumentError("grid", shown(grid), "(z, r) counts of the flank table, each 5-1001")
+        raise ArgumentError("grid", grid, "(z, r) counts of the flank table, each 5-1001")
     grid = (count(grid[0], "grid", 5, 1001), count(grid[1], "grid", 5, 1001))
     if outlier_mm is not None:
         positive(outlier_mm, "outlier_mm")
     if limits is not None and not isinstance(limits, dict):
-        raise ArgumentError("limits", shown(limits), "a dict of limit name -> mm")
+        raise ArgumentError("limits", limits, "a dict of limit name -> mm")
     graded = {} if grade is None else grade_limits(spec, grade)
     lim = check_limits({**spec.inspection.as_dict(), **graded, **dict(limits or {})})
     parts = [_points(src, units) for src in (source, other) if src is not None]

@@ -18,7 +18,6 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, cast
 
-from ..arguments import shown
 from ..errors import ArgumentError, BackendError
 from ..interference import check_interference
 from ..io import output_folder, remove_stale_temporaries, write_json
@@ -125,7 +124,7 @@ def _names(value: Any, name: str) -> set[str]:
     except TypeError:
         names = None
     if names is None or not all(isinstance(k, str) for k in names):
-        raise ArgumentError(name, shown(value), f"a list of step names from {', '.join(STEPS)}")
+        raise ArgumentError(name, value, f"a list of step names from {', '.join(STEPS)}")
     return set(names)
 
 

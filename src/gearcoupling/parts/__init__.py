@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from ..arguments import choice, is_real, shown
+from ..arguments import choice, is_real
 from ..errors import ArgumentError, GeometryError
 from ..geometry import PARTS
 from ..spec import CouplingSpec, as_spec
@@ -40,7 +40,7 @@ def check_tolerance(spec: CouplingSpec, tolerance_mm) -> float:
     """The tolerance as a float, or :class:`SpecError` (a ``ValueError``) naming the range."""
     tol = default_tolerance(spec) if tolerance_mm is None else tolerance_mm
     if not is_real(tol):
-        raise ArgumentError("tolerance_mm", shown(tolerance_mm), "must be a number (mm)")
+        raise ArgumentError("tolerance_mm", tolerance_mm, "must be a number (mm)")
     tol = float(tol)
     lo, hi = spec.tooth.module * 1e-5, spec.tooth.module * 0.1
     if not (math.isfinite(tol) and lo <= tol <= hi):

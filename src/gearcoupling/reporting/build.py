@@ -12,7 +12,7 @@ from pathlib import Path
 from typing import Any
 
 from .. import __version__
-from ..arguments import flag, keywords, shown
+from ..arguments import flag, keywords
 from ..errors import ArgumentError
 from ..hob import check_hob_diameter
 from ..inspection import check_limits, grade_limits, load_points
@@ -98,7 +98,7 @@ def report(spec: CouplingSpec, out: str | os.PathLike, *, pdf: bool = False,
     spec = as_spec(spec)
     output_folder(out, "out", create=False)
     if settings is not None and not isinstance(settings, ReportSettings):
-        raise ArgumentError("settings", shown(settings), "a ReportSettings")
+        raise ArgumentError("settings", settings, "a ReportSettings")
     keywords(options, [f.name for f in fields(ReportSettings)], "report")
     flag(pdf, "pdf")
     s = settings if settings is not None else ReportSettings(**options)

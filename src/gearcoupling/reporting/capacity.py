@@ -9,7 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..arguments import MAXIMA, angle_list, choice, shown
+from ..arguments import MAXIMA, angle_list, choice
 from ..arguments import count as check_count
 from ..clearance import critical_misalignment_deg
 from ..errors import ArgumentError
@@ -55,7 +55,7 @@ def compare_capacity(specs: Sequence[CouplingSpec], misalignments_deg: ArrayLike
     is checked before any work: each spec a CouplingSpec, template name or TOML path, each
     with its own name."""
     if isinstance(specs, str | bytes) or not isinstance(specs, Sequence) or not specs:
-        raise ArgumentError("specs", shown(specs), "a non-empty list of specs (CouplingSpec, "
+        raise ArgumentError("specs", specs, "a non-empty list of specs (CouplingSpec, "
                             "template names or TOML paths)")
     specs = [as_spec(s, "specs") for s in specs]
     names = [s.name for s in specs]

@@ -7,7 +7,7 @@ import os
 from dataclasses import asdict, dataclass, field
 from typing import Any
 
-from ..arguments import choice, count, flag, positive, real, shown, torque_Nm
+from ..arguments import choice, count, flag, positive, real, torque_Nm
 from ..errors import ArgumentError
 from ..io import as_path
 from ..loadspec import LOAD_MODELS
@@ -92,7 +92,7 @@ class ReportSettings:
         if self.grade is not None:
             count(self.grade, "grade", 1, 11)
         if not isinstance(self.limits, dict):
-            raise ArgumentError("limits", shown(self.limits), "a dict of limit name -> mm")
+            raise ArgumentError("limits", self.limits, "a dict of limit name -> mm")
         flag(self.viewer, "viewer")
 
     def as_dict(self) -> dict[str, Any]:

@@ -19,7 +19,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..arguments import count, flag, real, shown
+from ..arguments import count, flag, real
 from ..errors import ArgumentError, BackendError
 from ..io import atomic_path, output_folder, write_json
 from ..tables import import_pandas
@@ -125,7 +125,7 @@ def scheduler_address(text: object, field: str = "scheduler") -> str:
     """A dask scheduler address ``tcp://HOST:PORT`` (or ``tls://``, or ``HOST:PORT``)."""
     if not (isinstance(text, str) and _ADDRESS.fullmatch(text)
             and 1 <= int(text.rsplit(":", 1)[1]) <= 65535):
-        raise ArgumentError(field, shown(text), "a dask scheduler address tcp://HOST:PORT, "
+        raise ArgumentError(field, text, "a dask scheduler address tcp://HOST:PORT, "
                             "e.g. tcp://127.0.0.1:8786")
     return text
 
@@ -186,7 +186,7 @@ def run_study(study: Study, out: str | Path, *, scheduler: str | None = None,
     once with them before any new one). ``client`` reuses a dask Client.
     """
     if not isinstance(study, Study):
-        raise ArgumentError("study", shown(study), "a Study (gearcoupling.load_study)")
+        raise ArgumentError("study", study, "a Study (gearcoupling.load_study)")
     output_folder(out, "out", create=False)
     if workers is not None:
         count(workers, "workers", 1, MAX_WORKERS)
