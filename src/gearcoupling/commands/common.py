@@ -8,6 +8,7 @@ import os
 from collections.abc import Callable
 from contextlib import contextmanager
 from pathlib import Path
+from typing import TypeVar
 
 from ..arguments import MAXIMA, parse_count, parse_number
 from ..arguments import torque_Nm as check_torque_Nm
@@ -18,16 +19,28 @@ from ..spec import CouplingSpec, check_misalignment_deg, load_spec
 MAX_ANGLES = MAXIMA["angles"]  # rotation angles per turn (memory grows with it)
 MAX_TEETH = 300  # the documented range of teeth is 6-300
 
+T = TypeVar("T")
+
 # argparse types: each reads the text with the one number parser of
 # gearcoupling.arguments (digits as a person writes them: 0_5, 0x10, nan refused) and
 # says what is allowed; argparse prefixes the option's name
 
 
-def _number(text: str) -> float:
+def _quoted(text: str) -> str:
+    return brief(repr(text), 60)
+
+
+def _typed(check: Callable[[str], T], text: str) -> T:
+    """``check(text)``, its :class:`ArgumentError` as argparse's message (the rule)."""
     try:
-        return parse_number(text, "")
+        return check(text)
     except ArgumentError as err:
-        raise argparse.ArgumentTypeError(f"{brief(repr(text), 60)}: {err.allowed}") from None
+        raise argparse.ArgumentTypeError(f"{_quoted(text)}: {err.allowed}") from None
+
+
+def finite_float(text: str) -> float:
+    """argparse type: a finite number (``nan``, ``inf`` and ``0_5`` refused)."""
+    return _typed(lambda t: parse_number(t, ""), text)
 
 
 def number_in(lo: float, hi: float = math.inf, unit: str = "", *,
@@ -37,9 +50,9 @@ def number_in(lo: float, hi: float = math.inf, unit: str = "", *,
             f"in {'(' if open_lo else '['}{lo:g}, {hi:g}]") + (f" {unit}" if unit else "")
 
     def parse(text: str) -> float:
-        value = _number(text)
+        value = finite_float(text)
         if not ((lo < value if open_lo else lo <= value) and value <= hi):
-            raise argparse.ArgumentTypeError(f"{brief(repr(text), 60)}: must be {what}")
+            raise argparse.ArgumentTypeError(f"{_quoted(text)}: must be {what}")
         return value
 
     parse.__name__ = "number"
@@ -55,19 +68,11 @@ def positive(unit: str, hi: float = math.inf) -> Callable[[str], float]:
 positive_length = positive("mm")
 
 
-def finite_float(text: str) -> float:
-    """argparse type: a finite number (``nan`` and ``inf`` refused)."""
-    return _number(text)
-
-
 def torque(*, zero: bool = True) -> Callable[[str], float]:
     """argparse type: a signed torque in N·m in the one range of every entry point
     (:data:`~gearcoupling.arguments.TORQUE_RANGE_NM`; 0 where ``zero``)."""
     def parse(text: str) -> float:
-        try:
-            return check_torque_Nm(_number(text), "", zero=zero)
-        except ArgumentError as err:
-            raise argparse.ArgumentTypeError(f"{brief(repr(text), 60)}: {err.allowed}") from None
+        return _typed(lambda t: check_torque_Nm(parse_number(t, ""), "", zero=zero), text)
 
     parse.__name__ = "torque"
     return parse
@@ -76,10 +81,7 @@ def torque(*, zero: bool = True) -> Callable[[str], float]:
 def count(lo: int, hi: int) -> Callable[[str], int]:
     """argparse type: a whole number from ``lo`` to ``hi``."""
     def parse(text: str) -> int:
-        try:
-            value = parse_count(text, "")
-        except ArgumentError as err:
-            raise argparse.ArgumentTypeError(f"{brief(repr(text), 60)}: {err.allowed}") from None
+        value = _typed(lambda t: parse_count(t, ""), text)
         if not lo <= value <= hi:
             raise argparse.ArgumentTypeError(f"{value}: must be from {lo} to {hi}")
         return value
@@ -126,13 +128,6 @@ def output_dir(args: argparse.Namespace, spec: CouplingSpec) -> Path:
     return writing_into(default_output_dir(spec.name) if given is None else given)
 
 
-def ensure_dir(out: str | Path, field: str = "-o") -> Path:
-    """Create the folder ``out``; an empty path, a file, device or pipe in the way, or an
-    unwritable place is an :class:`~gearcoupling.errors.ArgumentError` naming ``field``
-    (:func:`~gearcoupling.io.output_folder`)."""
-    return output_folder(out, field)
-
-
 #: the output folders of the command running in this process, for the line an
 #: interruption prints (:func:`gearcoupling.cli.main`), and those of them it made (removed
 #: again, when left empty, if the command fails)
@@ -141,10 +136,13 @@ CREATED: list[Path] = []
 
 
 def writing_into(out: str | Path, field: str = "-o", *, create: bool = True) -> Path:
-    """The output folder ``out``, made (:func:`ensure_dir`) unless ``create`` is False, and
-    remembered as where this command writes (:data:`WRITING`, :data:`CREATED`)."""
+    """The output folder ``out``, made unless ``create`` is False (an empty path, a file,
+    device or pipe in the way, or an unwritable place is an
+    :class:`~gearcoupling.errors.ArgumentError` naming ``field``,
+    :func:`~gearcoupling.io.output_folder`), and remembered as where this command writes
+    (:data:`WRITING`, :data:`CREATED`)."""
     new = not os.path.lexists(out) if isinstance(out, str | Path) and str(out) else False
-    folder = ensure_dir(out, field) if create else Path(out)
+    folder = output_folder(out, field) if create else Path(out)
     WRITING.append(folder)
     if new and create:
         CREATED.append(folder)

@@ -15,12 +15,11 @@ from pathlib import Path
 
 from ..errors import ArgumentError
 from ..fea import ccx_path, check_size, gmsh_module, pitch_point_compliance, tooth_compliance_table
-from ..io import write_json, write_text
+from ..io import output_folder, write_json, write_text
 from .common import (
     MAX_TEETH,
     add_spec_arguments,
     count,
-    ensure_dir,
     output_dir,
     positive_length,
     progress,
@@ -67,7 +66,7 @@ def run(args) -> int:
         raise ArgumentError("--sector", args.sector, f"an odd number of teeth from 1 to "
                         f"{spec.tooth.teeth} (the middle tooth is loaded)")
     if args.cache is not None:  # before the FE runs, which write the cache at the end
-        ensure_dir(Path(args.cache), "--cache")
+        output_folder(args.cache, "--cache")
     gmsh_module()
     ccx_path()
     out = output_dir(args, spec)

@@ -139,7 +139,7 @@ def _chain_worker(keys: list[str], spec: CouplingSpec, out: Path, conn) -> None:
     """A forked worker: run the steps ``keys`` in order, sending each ``_timed`` result (or
     the error that stopped the chain) to the parent. It dies with its parent and leaves
     signals to it: the parent stops the workers and cleans up (:func:`_run_forked`)."""
-    die_with_parent()
+    _die_with_parent()
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C reaches the whole group
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
     state: dict[str, Any] = {}
@@ -155,7 +155,7 @@ def _chain_worker(keys: list[str], spec: CouplingSpec, out: Path, conn) -> None:
         conn.close()
 
 
-def die_with_parent() -> None:
+def _die_with_parent() -> None:
     """Ask Linux to kill this process when its parent ends, however it ends (a no-op
     elsewhere): a worker never outlives the process that started it."""
     try:
