@@ -326,3 +326,12 @@ def test_one_torque_range_everywhere(spec, tmp_path):
             with pytest.raises((A, S), match="1e-09 to 1e\\+09"):
                 call(bad)
     assert math.isfinite(gc.body_windup_rad(spec, hi)["body_rad"])
+
+
+def test_the_load_studies_take_zero_torque(spec, tmp_path):
+    # the three curves (T/2, T, 2T) had one label at 0 N·m and the plots failed
+    from gearcoupling.outputs import load_studies
+
+    paths = load_studies(spec, 0.0, "linear", tmp_path)
+    assert {p.name for p in paths} >= {"load_max_vs_misalignment.png",
+                                        "load_moment_vs_misalignment.png"}

@@ -39,8 +39,8 @@ def files(tmp_path_factory):
                                            "tolerance_mm = 1e-300\n")
     (d / "huge-torque.toml").write_text(study.replace("hub.crowning.radius", "torque_Nm")
                                         + "values = [1e30]\n")
-    (d / "long-name.toml").write_text(f'name = "{"x" * 300}"\n[tooth]\nteeth = 38\n'
-                                      'module = 2.0\n[hub]\nface_width = 16.0\n')
+    template = (gc.io.bundled_dir("templates") / "industrial-m2.toml").read_text()
+    (d / "long-name.toml").write_text(f'name = "{"x" * 300}"\n{template}')
     return d
 
 
@@ -227,6 +227,7 @@ BAD = [
     (["view", M2, "--serve-seconds=-1"], " s "),
     (["capacity", M2, "--misalignments", ""], "2 to 200 different angles"),
     (["report", T, "-o", "/sys/kernel/gearcoupling"], "-o"),
+    (["report", T, "-o", "/sys/kernel"], "cannot write"),
     (["spec", "{d}/long-name.toml"], "at most 200 characters"),
     (["hob", M2, "--hob-diameter", "60", "--feed", "1e300"], "--feed"),
     (["study", "renzo-tolerances", "--scheduler", "not a url"], "--scheduler"),
