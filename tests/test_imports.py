@@ -45,6 +45,7 @@ def test_import_gearcoupling_loads_no_scipy():
 # the data flow of docs/conventions.md (docs/conventions.md): each unit may import only these
 LAYERS = {
     "errors": set(),
+    "arguments": {"errors"},
     "io": {"errors"},
     "browser": {"errors"},
     "tables": {"errors"},
@@ -70,6 +71,9 @@ LAYERS = {
     "rotordynamics": {"io", "errors", "geometry", "spec", "loadspec", "plots", "parts",
                       "clearance", "loading", "tables"},
 }
+# the argument checks (numbers, counts, torques, documented maxima) sit beside the errors
+LAYERS = {k: v | {"arguments"} if k not in ("errors", "arguments") else v
+          for k, v in LAYERS.items()}
 
 
 def _type_checking_nodes(tree) -> set[int]:

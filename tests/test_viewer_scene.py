@@ -201,7 +201,7 @@ def test_cutaways_remove_their_share_of_the_sleeve(meshes, cutaway, fraction):
 def test_bad_input_is_refused_clearly(renzo):
     with pytest.raises(ArgumentError, match="misalignment_deg"):
         vs.pose_state(renzo, 7.0, 0.0)
-    with pytest.raises(ArgumentError, match="rotation_deg"):
+    with pytest.raises(ArgumentError, match="psi_deg"):
         vs.pose_state(renzo, 1.0, float("nan"))
     with pytest.raises(ArgumentError, match="band_mm"):
         vs.pose_state(renzo, 1.0, 0.0, band_mm=-1.0)

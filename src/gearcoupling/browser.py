@@ -24,17 +24,23 @@ CHROMIUM_FLAGS = ("--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first
 """Flags that give WebGL in software (``--use-gl=swiftshader`` alone gives none)."""
 
 
-@contextlib.contextmanager
-def chromium(executable: str = CHROMIUM) -> Iterator[object]:
-    """A headless chromium ``playwright`` Browser; closed on exit."""
+def browser_backend(executable: str = CHROMIUM):
+    """playwright's ``sync_api`` module when it and the chromium ``executable`` are there;
+    else a :class:`BackendError` saying what to install (checked before any work)."""
     if not os.access(executable, os.X_OK):
         raise BackendError(f"{executable} is missing: apt-get install chromium (scripts/test.sh "
                            "installs it)")
     try:
-        sync_api = importlib.import_module("playwright.sync_api")
+        return importlib.import_module("playwright.sync_api")
     except ImportError as err:
         raise BackendError("driving a browser needs playwright: pip install "
                            "'gearcoupling[browser]'") from err
+
+
+@contextlib.contextmanager
+def chromium(executable: str = CHROMIUM) -> Iterator[object]:
+    """A headless chromium ``playwright`` Browser; closed on exit."""
+    sync_api = browser_backend(executable)
     with sync_api.sync_playwright() as p:
         browser = p.chromium.launch(executable_path=executable, args=list(CHROMIUM_FLAGS))
         try:

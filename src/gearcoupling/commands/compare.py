@@ -13,6 +13,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from ..arguments import parse_number
 from ..errors import ArgumentError, SpecError
 from ..inspection import (
     GRADES,
@@ -61,7 +62,7 @@ def parse_limits(items: list[str]) -> dict[str, float]:
         if not sep:
             raise ArgumentError("--limit", item, "NAME=MM, e.g. fpt=0.012")
         try:
-            out.update(check_limits({key.strip(): value.strip()}))
+            out.update(check_limits({key.strip(): parse_number(value, "--limit")}))
         except ArgumentError as err:
             raise ArgumentError("--limit", item, err.allowed) from None
     return out

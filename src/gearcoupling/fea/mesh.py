@@ -11,6 +11,7 @@ teeth get the element size ``size_mm``; the size grows to ``body_size_mm`` away 
 from __future__ import annotations
 
 import math
+import numbers
 import tempfile
 import time
 from dataclasses import asdict, dataclass
@@ -19,10 +20,11 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
+from ..arguments import choice, flag, is_real
 from ..errors import ArgumentError, GeometryError, SpecError
 from ..export import write_step
 from ..parts import SURFACE_KINDS, build_part, check_tolerance, part_solid
-from ..spec import CouplingSpec
+from ..spec import CouplingSpec, as_spec
 from .backends import gmsh_session
 from .volume import VolumeMesh, aspect_ratios, match_faces, tet_volumes
 
@@ -90,20 +92,20 @@ def fillet_notes(spec: CouplingSpec, size_mm: float | None,
     return notes
 
 
-def check_size(spec: CouplingSpec, part: str, size_mm) -> float:
+def check_size(spec: CouplingSpec, part: str, size_mm, field: str = "size_mm") -> float:
     """The element size on the teeth as a float, or :class:`ArgumentError` naming the
     allowed range, module / 40 to module / 2 (:func:`size_range`). The root fillets follow
     at :func:`fillet_size`."""
     size = default_size(spec) if size_mm is None else size_mm
-    try:
-        size = float(size)
-    except (TypeError, ValueError) as err:
-        raise ArgumentError("size_mm", size_mm, "must be a number (mm)") from err
+    if not is_real(size):
+        raise ArgumentError(field, size_mm, "must be a number (mm)")
+    size = float(size)
     lo, hi = size_range(spec)
     if not (math.isfinite(size) and lo <= size <= hi):
-        raise ArgumentError("size_mm", size_mm, f"must be from {lo:.3g} to {hi:.3g} mm for the "
+        hint = "choose a larger size" if size < lo else "choose a smaller size"
+        raise ArgumentError(field, size_mm, f"must be from {lo:.3g} to {hi:.3g} mm for the "
                             f"{part} of this spec (module / 40 to module / 2: two elements "
-                            "across the tooth at least); choose a smaller size")
+                            f"across the tooth at least); {hint}")
     return size
 
 
@@ -113,11 +115,10 @@ def sector_teeth(spec: CouplingSpec, count) -> list[int] | None:
     n = spec.tooth.teeth
     if count is None:
         return None
-    try:
-        k = int(count)
-    except (TypeError, ValueError) as err:
-        raise ArgumentError("sector_teeth", count, f"an integer from 1 to {n}") from err
-    if k != count or not 1 <= k <= n:
+    if isinstance(count, bool) or not isinstance(count, numbers.Integral):
+        raise ArgumentError("sector", count, f"an integer from 1 to {n}")
+    k = int(count)
+    if not 1 <= k <= n:
         raise ArgumentError("sector_teeth", count, f"an integer from 1 to {n} (the spec has {n} "
                         f"teeth; {n} meshes the whole part)")
     return None if k == n else list(range(k))
@@ -164,10 +165,10 @@ def mesh_part(spec: CouplingSpec, part: str, *, sector: int | None = DEFAULT_SEC
     -------
     VolumeMesh
     """
-    if part not in ("hub", "sleeve"):
-        raise ArgumentError("part", part, "hub or sleeve")
-    if algorithm not in ALGORITHMS:
-        raise ArgumentError("algorithm", algorithm, " or ".join(ALGORITHMS))
+    spec = as_spec(spec)
+    choice(part, "part", ("hub", "sleeve"))
+    choice(algorithm, "algorithm", tuple(ALGORITHMS))
+    flag(periodic, "periodic")
     teeth = sector_teeth(spec, sector)
     size = check_size(spec, part, size_mm)
     body = max(3.0 * size, spec.tooth.module) if body_size_mm is None else float(body_size_mm)

@@ -31,6 +31,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from ..arguments import is_real
 from ..errors import ArgumentError
 from ..geometry import hub_flank_model
 from ..hob import MeasuringCharts
@@ -52,14 +53,13 @@ FLANK_NAMES = ("cw", "ccw")
 
 def check_limits(limits) -> dict[str, float]:
     """Validated tolerance limits (mm); keys from :data:`LIMITS`."""
+    if limits is not None and not isinstance(limits, dict):
+        raise ArgumentError("limits", limits, "a dict of limit name -> mm")
     out = {}
-    for key, value in dict(limits or {}).items():
+    for key, value in (limits or {}).items():
         if key not in LIMITS:
             raise ArgumentError(f"limits.{key}", value, f"a known limit: {', '.join(LIMITS)}")
-        try:
-            v = float(value)
-        except (TypeError, ValueError):
-            v = math.nan
+        v = float(value) if is_real(value) else math.nan  # text is read by the caller
         if not (math.isfinite(v) and v > 0):
             raise ArgumentError(f"limits.{key}", value, "a positive length in mm")
         out[key] = v

@@ -7,12 +7,16 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from ..arguments import keywords
 from ..clearance import SweepResult, sweep
 from ..errors import ArgumentError
-from ..spec import CouplingSpec
+from ..spec import CouplingSpec, as_spec
 from .inputs import LoadProblem, load_problem, resolve_model, resolve_torque_Nm
 from .models import ModelOutput, Progress, solve
 from .result import LoadResult
+
+#: the keywords a call passes on to :func:`gearcoupling.sweep`
+SWEEP_ACCURACY = ("tolerance_mm", "grid", "periodic")
 
 
 def load(spec: CouplingSpec, misalignment_deg: float, angles_deg: ArrayLike, *,
@@ -56,6 +60,8 @@ def load(spec: CouplingSpec, misalignment_deg: float, angles_deg: ArrayLike, *,
     >>> 0 < res.q() <= 1
     True
     """
+    spec = as_spec(spec)
+    keywords(accuracy, SWEEP_ACCURACY, "load")
     resolve_torque_Nm(spec, torque_Nm)
     resolve_model(spec, model)
     sw = sweep(spec, misalignment_deg, angles_deg, **accuracy)

@@ -17,9 +17,10 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ..arguments import choice, is_real
 from ..errors import ArgumentError, GeometryError
 from ..geometry import PARTS
-from ..spec import CouplingSpec
+from ..spec import CouplingSpec, as_spec
 from .builder import SURFACE_KINDS, MeshBuilder, Run, tile, tooth_runs
 from .deviation import measure_deviation
 from .hub import build_hub_run, hub_layout
@@ -43,10 +44,9 @@ def default_tolerance(spec: CouplingSpec) -> float:
 def check_tolerance(spec: CouplingSpec, tolerance_mm) -> float:
     """The tolerance as a float, or :class:`SpecError` (a ``ValueError``) naming the range."""
     tol = default_tolerance(spec) if tolerance_mm is None else tolerance_mm
-    try:
-        tol = float(tol)
-    except (TypeError, ValueError) as err:
-        raise ArgumentError("tolerance_mm", tolerance_mm, "must be a number (mm)") from err
+    if not is_real(tol):
+        raise ArgumentError("tolerance_mm", tolerance_mm, "must be a number (mm)")
+    tol = float(tol)
     lo, hi = spec.tooth.module * 1e-5, spec.tooth.module * 0.1
     if not (math.isfinite(tol) and lo <= tol <= hi):
         raise ArgumentError("tolerance_mm", tolerance_mm, f"must be from {lo:.3g} to {hi:.3g} mm "
@@ -80,8 +80,8 @@ def build_part(spec: CouplingSpec, part: str, tolerance_mm: float | None = None,
     """
     import trimesh
 
-    if part not in PARTS:
-        raise ArgumentError(f"part = {part!r}: must be one of {PARTS}")
+    spec = as_spec(spec)
+    choice(part, "part", PARTS)
     tol = check_tolerance(spec, tolerance_mm)
     runs = tooth_runs(spec.tooth.teeth, teeth)
     t0 = time.perf_counter()

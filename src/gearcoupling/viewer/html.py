@@ -18,8 +18,9 @@ import os
 import socket
 from pathlib import Path
 
+from ..errors import ArgumentError
 from ..io import writable_file, write_text
-from ..spec import CouplingSpec
+from ..spec import CouplingSpec, as_spec
 from .nodes import CouplingScene, ViewSettings, import_viser
 from .still import still_png
 
@@ -161,7 +162,10 @@ def write_html(spec: CouplingSpec, path: str | os.PathLike, *, settings: ViewSet
     -------
     Path
     """
+    spec = as_spec(spec)
     writable_file(path, "path")
+    if settings is not None and not isinstance(settings, ViewSettings):
+        raise ArgumentError("settings", str(settings)[:60], "a ViewSettings")
     viser = import_viser()
     if settings is None:
         settings = ViewSettings(misalignment_deg=_design_deg(spec))

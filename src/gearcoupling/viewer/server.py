@@ -21,9 +21,10 @@ import threading
 import time
 from pathlib import Path
 
+from ..arguments import choice, count, keywords
 from ..errors import ArgumentError, GearCouplingError
 from ..io import default_output_dir
-from ..spec import CouplingSpec
+from ..spec import CouplingSpec, as_spec
 from .html import save_html
 from .nodes import CouplingScene, ViewSettings, import_viser
 from .panel import Panel
@@ -244,5 +245,13 @@ class ViewerApp:
 
 
 def serve(spec: CouplingSpec, **kwargs) -> ViewerApp:
-    """Start a :class:`ViewerApp` (returns at once; the server runs in threads)."""
+    """Start a :class:`ViewerApp` (returns at once; the server runs in threads);
+    ``kwargs``: ``host``, ``port`` (1-65535), ``settings``, ``lod``, ``tolerance_mm``,
+    ``html_path``."""
+    spec = as_spec(spec)
+    keywords(kwargs, ("host", "port", "settings", "lod", "tolerance_mm", "html_path"), "serve")
+    if "port" in kwargs:
+        count(kwargs["port"], "port", 1, 65535)
+    if "lod" in kwargs:
+        choice(kwargs["lod"], "lod", tuple(LOD_DIVISORS))
     return ViewerApp(spec, **kwargs)

@@ -14,30 +14,23 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ...arguments import real
 from ...clearance import sweep
 from ...errors import ArgumentError
 from ...geometry import FLANKS, hub_flank_model, hub_model, hub_to_sleeve, rot_z
 from ...loading import LoadResult
-from ...spec import CouplingSpec
+from ...spec import CouplingSpec, as_spec, check_misalignment_deg
 
 VIEW_SWEEP_TOLERANCE_MM = 1e-5
 """Accuracy of the clearance minima the viewer shows (mm), far below what colours show."""
 
 
-def check_pose(misalignment_deg: float, psi_deg: float) -> tuple[float, float]:
-    """Misalignment and rotation as floats, or :class:`SpecError` naming the bad one."""
-    out = []
-    for name, value, lo, hi in (("misalignment_deg", misalignment_deg, 0.0, 6.0),
-                                ("rotation_deg", psi_deg, -1e6, 1e6)):
-        try:
-            v = float(value)
-        except (TypeError, ValueError) as err:
-            raise ArgumentError(name, value, "must be a number (degrees)") from err
-        if not (math.isfinite(v) and lo <= v <= hi):
-            raise ArgumentError(name, value,
-                                f"must be a finite angle from {lo:g} to {hi:g} degrees")
-        out.append(v)
-    return out[0], out[1]
+def check_pose(misalignment_deg: float, psi_deg: float,
+               names: tuple[str, str] = ("misalignment_deg", "psi_deg")) -> tuple[float, float]:
+    """Misalignment (0-6°) and rotation (within a million degrees) as floats, or an
+    :class:`ArgumentError` naming the bad one by its entry in ``names``."""
+    return (check_misalignment_deg(misalignment_deg, names[0], ArgumentError),
+            real(psi_deg, names[1], -1e6, 1e6, unit="degrees"))
 
 
 def hub_rotation(misalignment_deg: float, psi_deg: float) -> NDArray[np.float64]:
@@ -134,9 +127,9 @@ def pose_state(spec: CouplingSpec,
         misalignment_deg, [psi_deg], model="surface")``: their interior contact pressure
         becomes ``pressure_MPa``.
     """
+    spec = as_spec(spec)
     mis, psi = check_pose(misalignment_deg, psi_deg)
-    if not (math.isfinite(band_mm) and band_mm >= 0):
-        raise ArgumentError("band_mm", band_mm, "must be a finite length >= 0 mm")
+    real(band_mm, "band_mm", 0.0, unit="mm")
     res = sweep(spec, mis, [psi], tolerance_mm=tolerance_mm)
     clear = res.clearance_mm[:, :, 0]
     normal = res.normal_clearance_mm[:, :, 0]
