@@ -151,8 +151,11 @@ def test_load_case_is_a_uniform_pressure_on_the_patch(loaded_hub):
 @pytest.mark.parametrize("size", [5.0])
 def test_green_functions_equal_one_static_step_per_load_case(size, tmp_path):
     """Every load case as one Green function of one factorisation (the table's deck) gives
-    the work and the element stresses of one static step per case (two cases on the
-    Timoshenko cantilever's mesh, 433 C3D10: both decks are solved by SPOOLES)."""
+    the work and the element stresses of one static step per case (three cases on the
+    Timoshenko cantilever's mesh, 433 C3D10: both decks are solved by SPOOLES). The third
+    loads the first's nodes again, as overlapping load patches do: an equation led by a
+    degree of freedom another equation holds stops ccx ("zero coefficient on the dependent
+    side")."""
     from gearcoupling.fea.ccx import run_ccx
     from gearcoupling.fea.deck import LoadCase, green_deck, principal_max, static_deck
     from gearcoupling.fea.validation import cantilever_mesh
@@ -162,7 +165,9 @@ def test_green_functions_equal_one_static_step_per_load_case(size, tmp_path):
     top = np.flatnonzero(np.isclose(vm.nodes[:, 2], 10.0) & (vm.nodes[:, 0] > 40.0))
     cases = [LoadCase(tip, np.tile([0.0, 0.3, 1.0], (len(tip), 1)) / len(tip)),
              LoadCase(top, np.tile([0.0, 0.0, -1.0], (len(top), 1)) * np.linspace(
-                 0.5, 1.5, len(top))[:, None] / len(top))]
+                 0.5, 1.5, len(top))[:, None] / len(top)),
+             LoadCase(tip, np.tile([0.0, 1.0, 0.2], (len(tip), 1)) * np.linspace(
+                 0.5, 1.5, len(tip))[:, None] / len(tip))]
     kw = {"youngs_modulus_MPa": 210e3, "poisson_ratio": 0.3, "fixed": ["ROOT"],
           "cases": cases, "stress_sets": ["ROOT"]}
     prints = [(f"P{i}", c.nodes) for i, c in enumerate(cases)]
