@@ -2,6 +2,7 @@
 inputs, plus the output-folder, pipe, temporary-file and viewer
 address cases that need more than one call."""
 
+import contextlib
 import os
 import signal
 import socket
@@ -451,7 +452,7 @@ def _snapshot(folder):
             for p in folder.rglob("*") if p.is_file()}
 
 
-def _interrupt(argv, cwd, sig, ready, *, group=False):
+def _interrupt(argv, cwd, sig, ready, *, group=False, started=None):
     """Start ``gearcoupling ARGV`` in its own session, wait for ``ready()``, send ``sig``
     (to the whole process group with ``group``, as Ctrl-C in a terminal does). Returns
     ``(exit status, stderr, time sent)`` once no process of the session is left (at most
@@ -460,6 +461,8 @@ def _interrupt(argv, cwd, sig, ready, *, group=False):
     proc = subprocess.Popen([sys.executable, "-m", "gearcoupling", *argv], cwd=cwd,
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env,
                             start_new_session=True)
+    if started is not None:  # the caller's ready() may look at the process group
+        started.append(proc.pid)
     try:
         end = time.monotonic() + 180
         while not ready():
@@ -522,6 +525,50 @@ def test_capacity_interrupted_by_ctrl_c_says_so_in_one_line(tmp_path):
     code, err, sent = _interrupt(["capacity", "industrial-m2", "-o", str(out)], tmp_path,
                                  signal.SIGINT, out.exists, group=True)
     _check_interrupted(code, err, signal.SIGINT, out, sent, {})
+
+
+def _solver_running(pgid: int) -> bool:
+    """A ccx process in the process group ``pgid``."""
+    for pid in _session_alive(pgid):
+        with contextlib.suppress(OSError), open(f"/proc/{pid}/comm") as fh:
+            if fh.read().strip() == "ccx":
+                return True
+    return False
+
+
+@pytest.mark.slow
+@pytest.mark.needs_fea
+def test_stiffness_interrupted_kills_its_solvers(tmp_path):
+    """SIGTERM while a ccx run of the FE table waits in a thread (and the main thread meshes
+    the other part in gmsh): the solver is killed at the signal, the command exits 143 with
+    its one line, and no table reaches the cache. Before, gmsh's OpenCASCADE handler ended
+    the process at once (-15) and left the solver running."""
+    out, cache = tmp_path / "out", tmp_path / "cache"
+    box: list[int] = []
+    seen: list[float] = []
+
+    def ready() -> bool:
+        return bool(box) and _solver_running(box[0])
+
+    def watch() -> None:  # when the last solver of the group went
+        while _solver_running(box[0]):
+            time.sleep(0.05)
+        seen.append(time.time())
+
+    import threading
+
+    def start() -> bool:
+        if ready():
+            threading.Thread(target=watch, daemon=True).start()
+            return True
+        return False
+
+    code, err, sent = _interrupt(["stiffness", "industrial-m2", "--cache", str(cache), "-o",
+                                  str(out)], tmp_path, signal.SIGTERM, start, started=box)
+    assert seen and seen[0] - sent < 3.0, "a solver outlived the signal by 3 s"
+    assert code == 128 + signal.SIGTERM and "Traceback" not in err, err
+    assert "interrupted" in err and len(err.strip().splitlines()) == 1, err
+    assert not list(cache.rglob("*.json"))  # no table from after the signal
 
 
 STUDY_28 = """\

@@ -71,10 +71,13 @@ class Interrupted(KeyboardInterrupt):
 def _signals_raise() -> Iterator[None]:
     """SIGINT and SIGTERM raise :class:`Interrupted` while the command runs (in the main
     thread only; elsewhere Python's handlers stay). The first one does: further ones are
-    ignored until the command has cleaned up."""
+    ignored until the command has cleaned up. FE solvers the command waits on are killed
+    at the signal itself (:func:`_kill_solvers_at_signal`), even while the main thread is
+    in a library call that Python's handler has to wait for (gmsh meshing)."""
     def handler(signum: int, _frame: object) -> None:
         for s in SIGNALS:
             signal.signal(s, signal.SIG_IGN)
+        _stop_solvers()
         raise Interrupted(signum)
 
     try:
@@ -83,10 +86,44 @@ def _signals_raise() -> Iterator[None]:
         yield
         return
     try:
-        yield
+        with _kill_solvers_at_signal():
+            yield
     finally:
         for s, h in old.items():
             signal.signal(s, h)
+
+
+def _stop_solvers() -> None:
+    ccx = sys.modules.get("gearcoupling.fea.ccx")  # only if this command ran an FE solver
+    if ccx is not None:
+        ccx.stop_solvers()
+
+
+@contextmanager
+def _kill_solvers_at_signal() -> Iterator[None]:
+    """A thread woken through :func:`signal.set_wakeup_fd` (written by the C-level handler
+    the moment a signal arrives) that kills the FE solvers at once."""
+    import socket
+    import threading
+
+    r, w = socket.socketpair()
+    w.setblocking(False)
+
+    def watch() -> None:
+        with contextlib.suppress(OSError):
+            if r.recv(1):
+                _stop_solvers()
+
+    old_fd = signal.set_wakeup_fd(w.fileno(), warn_on_full_buffer=False)
+    threading.Thread(target=watch, name="gearcoupling-signals", daemon=True).start()
+    try:
+        yield
+    finally:
+        signal.set_wakeup_fd(old_fd)
+        w.close()
+        with contextlib.suppress(OSError):
+            r.shutdown(socket.SHUT_RDWR)
+        r.close()
 
 
 def _tidy() -> None:

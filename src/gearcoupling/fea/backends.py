@@ -42,11 +42,15 @@ def gmsh_initialize(gmsh, **options) -> None:
 
 @contextmanager
 def gmsh_session():
-    """An initialised, silent gmsh with an empty model; finalised on exit."""
+    """An initialised, silent gmsh with an empty model; finalised on exit. The process's
+    SIGINT and SIGTERM handlers survive it (gmsh's OpenCASCADE installs its own, which
+    end the process without the command's clean-up)."""
     gmsh = gmsh_module()
+    saved = {s: signal.getsignal(s) for s in (signal.SIGINT, signal.SIGTERM)}
     if gmsh.isInitialized():
         gmsh.finalize()
     gmsh_initialize(gmsh, readConfigFiles=False, interruptible=False)
+    _restore_signals(saved)
     try:
         gmsh.option.setNumber("General.Terminal", 0)
         gmsh.option.setNumber("General.Verbosity", 1)
@@ -54,6 +58,16 @@ def gmsh_session():
         yield gmsh
     finally:
         gmsh.finalize()
+        _restore_signals(saved)
+
+
+def _restore_signals(saved: dict) -> None:
+    """Install the Python-level ``saved`` handlers again at the OS level (main thread)."""
+    if threading.current_thread() is not threading.main_thread():
+        return
+    for sig, handler in saved.items():
+        if handler is not None:
+            signal.signal(sig, handler)
 
 
 def ccx_path() -> str:

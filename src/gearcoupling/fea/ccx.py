@@ -7,6 +7,7 @@ import re
 import shutil
 import subprocess
 import tempfile
+import threading
 import time
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -54,6 +55,22 @@ def solver_dir(workdir=None) -> Iterator[Path]:
     shutil.rmtree(path, ignore_errors=True)
 
 
+RUNNING: set[subprocess.Popen] = set()
+"""The ccx processes :func:`run_ccx` is waiting on, in any thread."""
+_LOCK = threading.Lock()
+
+
+def stop_solvers() -> int:
+    """Kill every ccx process this process is running (an interruption: the threads that
+    wait on them then fail at once instead of holding the process until they finish);
+    returns how many."""
+    with _LOCK:
+        running = list(RUNNING)
+    for proc in running:
+        proc.kill()
+    return len(running)
+
+
 def run_ccx(deck: str, workdir: str | Path, job: str = "job", *,
             timeout_s: float = 3600.0, threads: int = 2) -> CcxResult:
     """Write ``<workdir>/<job>.inp`` and run ``ccx`` on it.
@@ -69,29 +86,35 @@ def run_ccx(deck: str, workdir: str | Path, job: str = "job", *,
     env = dict(os.environ, OMP_NUM_THREADS=str(threads),
                CCX_NPROC_EQUATION_SOLVER=str(threads))
     t0 = time.perf_counter()
-    try:
-        proc = subprocess.run([exe, "-i", job], cwd=work, capture_output=True, text=True,
-                              timeout=timeout_s, env=env, check=False)
-    except subprocess.TimeoutExpired as err:
-        log.write_text(f"{_text(err.stdout)}\n{_text(err.stderr)}\ntimed out after {timeout_s} s\n")
-        raise BackendError(f"ccx timed out after {timeout_s:.0f} s; its log is {log}") from err
-    log.write_text(proc.stdout + "\n" + proc.stderr)
+    with subprocess.Popen([exe, "-i", job], cwd=work, stdout=subprocess.PIPE,
+                          stderr=subprocess.PIPE, text=True, env=env) as proc:
+        with _LOCK:
+            RUNNING.add(proc)
+        try:
+            stdout, stderr = proc.communicate(timeout=timeout_s)
+        except subprocess.TimeoutExpired as err:
+            proc.kill()
+            stdout, stderr = proc.communicate()
+            log.write_text(f"{stdout}\n{stderr}\ntimed out after {timeout_s} s\n")
+            raise BackendError(f"ccx timed out after {timeout_s:.0f} s; its log is {log}"
+                               ) from err
+        except BaseException:  # an interruption: the solver goes with the caller
+            proc.kill()
+            raise
+        finally:
+            with _LOCK:
+                RUNNING.discard(proc)
+    log.write_text(stdout + "\n" + stderr)
     seconds = time.perf_counter() - t0
     dat = work / f"{job}.dat"
-    failed = proc.returncode != 0 or "*ERROR" in proc.stdout or not dat.exists()
+    failed = proc.returncode != 0 or "*ERROR" in stdout or not dat.exists()
     if failed:
-        first = next((ln.strip() for ln in proc.stdout.splitlines() if "*ERROR" in ln), "")
+        first = next((ln.strip() for ln in stdout.splitlines() if "*ERROR" in ln), "")
         raise BackendError(f"ccx failed (exit {proc.returncode}) {first}; its log is {log} "
                            f"and the deck {work / f'{job}.inp'}")
     return CcxResult(work / job, parse_dat(dat.read_text()), seconds)
 
 
-def _text(output: str | bytes | None) -> str:
-    """Captured output of a timed-out run: ``TimeoutExpired`` keeps bytes even with
-    ``text=True``."""
-    if isinstance(output, bytes):
-        return output.decode(errors="replace")
-    return output or ""
 
 
 _HEADER = re.compile(r"^\s*([a-z][\w ]*?)\s*\(.*\)\s*for (.*?)\s+and time\s+(\S+)", re.I)
