@@ -1,6 +1,7 @@
 """The default tooth springs against the FE tooth-spring tables they reproduce.
 
-Run: ``python benchmarks/bench_springs.py [--random 30] [--seed 2026] [--no-compute]``.
+Run: ``python benchmarks/bench_springs.py [--random 30] [--seed 2026] [--no-compute] [--fit]
+[--holdout K]``.
 
 The data set: the five bundled templates and ``--random`` seeded random specs whose teeth,
 module, pressure angle, face width, tooth proportions, fillets, rim and bore and crown
@@ -11,7 +12,10 @@ points, real gmsh and CalculiX; cached in ``$GEARCOUPLING_CACHE`` or the user's 
 second run only reads) and the default springs (:class:`gearcoupling.loading.PlateCompliance`)
 at the same load points. Printed: per spec, the largest error of the pair far field over
 the grid; the error over every spec and grid point; the springs' time per spec. With
-``--no-compute`` specs without a cached table are left out.
+``--no-compute`` specs without a cached table are left out. ``--fit`` fits the coefficients
+of :mod:`gearcoupling.loading.fitted` to the data set first and writes them to
+``src/gearcoupling/loading/fitted.json`` (the table then shows the new fit);
+``--holdout K`` fits on all but every K-th random spec and prints the error on those left out.
 """
 
 from __future__ import annotations
@@ -35,6 +39,7 @@ from gearcoupling.errors import GearCouplingError
 from gearcoupling.fea.stiffness import ComplianceTable, cache_dir, spec_hash
 from random_specs import proportions_spec
 
+ROOT = Path(__file__).resolve().parents[1]
 TEMPLATES = ("renzo-1967", "renzo-1967-vari-crown", "renzo-1967-end-round", "industrial-m2",
              "mill-spindle")
 
@@ -68,6 +73,66 @@ def fe_table(spec: gc.CouplingSpec, compute: bool) -> ComplianceTable | None:
     return table
 
 
+def part_records(spec: gc.CouplingSpec, table: ComplianceTable, springs) -> dict:
+    """Per part: features ``(P, F)``, base compliance ``(P,)`` and FE far field ``(P,)``
+    (normal, mm/N) at the table's ``P`` load points; the pair's FE far field ``(P,)``."""
+    from gearcoupling.loading.fitted import PARTS
+
+    Z, R = (a.ravel() for a in np.meshgrid(table.z_mm, table.r_mm, indexing="ij"))
+    cos2 = math.cos(spec.tooth.pressure_angle) ** 2
+    out = {"pair": cos2 * table.far_field_mm_per_N.ravel()}
+    whole = {"hub": table.hub_mm_per_N, "sleeve": table.sleeve_mm_per_N}
+    for i, part in enumerate(PARTS):
+        feats = springs.part_features(part, Z, R)
+        base = springs.part_compliance_mm_per_N(part, Z, R) / np.exp(
+            np.clip(feats, *(np.asarray(springs.fit["ranges"][part][k]) for k in ("low", "high")))
+            @ np.asarray(springs.fit["coefficients"][part]))
+        far = cos2 * (whole[part] - table.near_field_mm_per_N[i]).ravel()
+        out[part] = (feats, base, far)
+    return out
+
+
+def fit(data: list[dict], ridge: float = 1e-3) -> dict:
+    """Coefficients per part minimising the log error of the pair far field over ``data``
+    (:func:`part_records` of each spec), a small ridge on all but the constant."""
+    from scipy.optimize import least_squares
+
+    from gearcoupling.loading.fitted import FEATURES, PARTS
+
+    nf = len(FEATURES)
+
+    def resid(x):
+        a = {p: x[i * nf:(i + 1) * nf] for i, p in enumerate(PARTS)}
+        r = [np.log(sum(d[p][1] * np.exp(d[p][0] @ a[p]) for p in PARTS) / d["pair"])
+             for d in data]
+        return np.concatenate([*r, ridge * np.concatenate([a[p][1:] for p in PARTS])])
+
+    x = least_squares(resid, np.zeros(2 * nf), method="lm").x
+    ranges = {}
+    for i, p in enumerate(PARTS):
+        f = np.concatenate([d[p][0] for d in data])
+        ranges[p] = {"low": f.min(axis=0).tolist(), "high": f.max(axis=0).tolist()}
+    return {"features": list(FEATURES),
+            "coefficients": {p: x[i * nf:(i + 1) * nf].tolist() for i, p in enumerate(PARTS)},
+            "ranges": ranges}
+
+
+def spec_ranges(specs) -> dict:
+    """The data set's range of what :attr:`FittedCompliance.outside` checks."""
+    from gearcoupling.loading.fitted import FittedCompliance
+
+    vals: dict[str, list[float]] = {}
+    for spec in specs:
+        c = FittedCompliance(spec)
+        for k, v in (("teeth", c.teeth), ("module_mm", c.module),
+                     ("pressure_angle_deg", math.degrees(c.phi)),
+                     ("face_over_module", 2.0 * c.half_face_hub / c.module),
+                     ("hub_rim_over_module", c.rim["hub"] / c.module),
+                     ("sleeve_ring_over_module", c.rim["sleeve"] / c.module)):
+            vals.setdefault(k, []).append(v)
+    return {k: [min(v), max(v)] for k, v in vals.items()}
+
+
 def describe(spec: gc.CouplingSpec) -> str:
     t = spec.tooth
     return (f"{t.teeth} teeth, m {t.module:.3g}, {math.degrees(t.pressure_angle):.1f}°, "
@@ -79,37 +144,60 @@ def main() -> None:
     ap.add_argument("--random", type=int, default=30)
     ap.add_argument("--seed", type=int, default=2026)
     ap.add_argument("--no-compute", action="store_true")
+    ap.add_argument("--fit", action="store_true")
+    ap.add_argument("--holdout", type=int, default=0)
     a = ap.parse_args()
-    from gearcoupling.loading import PlateCompliance
+    from gearcoupling.loading.fitted import FittedCompliance
 
-    rows, worst = [], []
+    specs, tables = [], []
     for spec in dataset_specs(a.random, a.seed):
         try:
             table = fe_table(spec, not a.no_compute)
         except GearCouplingError as err:
             print(f"  {spec.name}: FE refused: {err}")
             continue
-        if table is None:
-            continue
+        if table is not None:
+            specs.append(spec)
+            tables.append(table)
+    fitted = None
+    if a.fit or a.holdout:
+        data = [part_records(s, t, FittedCompliance(s)) for s, t in zip(specs, tables)]
+        keep = [i for i in range(len(specs))
+                if not (a.holdout and i >= len(TEMPLATES) and i % a.holdout == 0)]
+        fitted = fit([data[i] for i in keep])
+        fitted["spec_ranges"] = spec_ranges([specs[i] for i in keep])
+        fitted["data_set"] = (f"bench_springs.py: {len(keep)} specs (the templates and seeded "
+                              f"random specs, seed {a.seed}), {sum(t.far_field_mm_per_N.size for t in tables)} "
+                              f"load points")
+        if a.fit and not a.holdout:
+            path = ROOT / "src" / "gearcoupling" / "loading" / "fitted.json"
+            path.write_text(json.dumps(fitted, indent=1) + "\n")
+            print(f"wrote {path}")
+    rows, worst, held = [], [], []
+    for i, (spec, table) in enumerate(zip(specs, tables)):
         t0 = time.perf_counter()
-        springs = PlateCompliance(spec)
+        springs = FittedCompliance(spec, fit=fitted)
         Z, R = np.meshgrid(table.z_mm, table.r_mm, indexing="ij")
         model = springs.pair_compliance_mm_per_N(Z, R)
         dt = time.perf_counter() - t0
         err = model / table.far_field_mm_per_N - 1.0
-        rows.append((spec.name, describe(spec), err, dt))
-        worst.append(err.ravel())
+        out = bool(a.holdout and i >= len(TEMPLATES) and i % a.holdout == 0)
+        rows.append((spec.name + (" (held out)" if out else ""), describe(spec), err, dt))
+        (held if out else worst).append(err.ravel())
     print("\n| spec | teeth, module, pressure angle, face / module | largest error | "
           "mean error | springs ms |")
     print("|---|---|---|---|---|")
     for name, what, err, dt in rows:
-        i = np.argmax(np.abs(err))
-        print(f"| {name} | {what} | {100 * err.ravel()[i]:+.1f} % | {100 * err.mean():+.1f} % "
+        j = np.argmax(np.abs(err))
+        print(f"| {name} | {what} | {100 * err.ravel()[j]:+.1f} % | {100 * err.mean():+.1f} % "
               f"| {1e3 * dt:.0f} |")
-    e = np.concatenate(worst)
-    print(f"\n{len(rows)} specs, {e.size} load points: error {100 * e.min():+.1f} … "
-          f"{100 * e.max():+.1f} %, rms {100 * np.sqrt(np.mean(e**2)):.1f} %; within 10 %: "
-          f"{np.mean(np.abs(e) <= 0.1) * 100:.0f} % of the points")
+    for label, errs in (("fitted on", worst), ("held out", held)):
+        if errs:
+            e = np.concatenate(errs)
+            print(f"\n{label}: {len(errs)} specs, {e.size} load points: error "
+                  f"{100 * e.min():+.1f} … {100 * e.max():+.1f} %, rms "
+                  f"{100 * np.sqrt(np.mean(e**2)):.1f} %; within 10 %: "
+                  f"{np.mean(np.abs(e) <= 0.1) * 100:.0f} % of the points")
 
 
 if __name__ == "__main__":

@@ -116,6 +116,11 @@ class CantileverCompliance:
 
     def _unit(self, r_F: float, part: str, mat) -> float:
         """Normal compliance times width (mm²/N) of one tooth loaded at radius ``r_F``."""
+        return float(sum(self.components(r_F, part, mat)))
+
+    def components(self, r_F: float, part: str, mat) -> tuple[float, float, float]:
+        """The terms of :meth:`_unit` (mm²/N): the beam (bending, shear, compression), the
+        foundation's rotation and its translation."""
         root, y_F = self._heights(part, r_F)
         y = np.linspace(0.0, y_F, self.n_quad)
         r = root + y if part == "hub" else root - y
@@ -123,13 +128,11 @@ class CantileverCompliance:
         nu = mat.poisson_ratio
         E_ps = mat.youngs_modulus_MPa / (1 - nu**2)
         beta = float(self.load_angle(part, r_F))
-        c = beam_compliance(y, S, y_F, E=E_ps, G=mat.shear_modulus_MPa, beta=beta)
+        beam = beam_compliance(y, S, y_F, E=E_ps, G=mat.shear_modulus_MPa, beta=beta)
         S_f = 2.0 * float(self.half_thickness(part, root))
-        u = y_F
-        found = (math.cos(beta) ** 2 / mat.youngs_modulus_MPa
-                 * (FOUNDATION_L * (u / S_f) ** 2
-                    + FOUNDATION_P * (1 + FOUNDATION_Q * math.tan(beta) ** 2)))
-        return c + found
+        scale = math.cos(beta) ** 2 / mat.youngs_modulus_MPa
+        return (beam, scale * FOUNDATION_L * (y_F / S_f) ** 2,
+                scale * FOUNDATION_P * (1 + FOUNDATION_Q * math.tan(beta) ** 2))
 
     # ---------------------------------------------------------------- public protocol
     def loaded_width_mm(self, part: str, z_mm: ArrayLike, r_mm: ArrayLike) -> NDArray:

@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from functools import lru_cache
 from typing import Any
 
 import numpy as np
@@ -16,11 +15,10 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..clearance import SweepResult
 from ..errors import ArgumentError, SpecError
-from ..fea import tooth_compliance_table
 from ..geometry import FLANKS
 from ..loadspec import LOAD_MODELS
 from ..spec import CouplingSpec
-from .cantilever import CantileverCompliance
+from .springs import cantilever, tooth_compliance
 
 
 def resolve_torque_Nm(spec: CouplingSpec, torque_Nm: float | None) -> float:
@@ -72,25 +70,12 @@ def contact_points(spec: CouplingSpec, sweep_result: SweepResult,
     return np.where(ok, z, 0.0), np.where(ok, r, spec.tooth.pitch_radius)
 
 
-def tooth_compliance(spec: CouplingSpec):
-    """The tooth-pair compliance of ``[load] stiffness``: the tapered cantilever, or the FE
-    table (:func:`gearcoupling.fea.tooth_compliance_table`, cached per spec)."""
-    if spec.load.stiffness == "fe":
-        return tooth_compliance_table(spec)
-    return _cantilever(spec)
-
-
 def nominal_root_stress_MPa(spec: CouplingSpec, normal_force_N, z_mm, r_mm) -> NDArray:
     """The root bending stress the allowable bending stress is compared with: the tapered
     cantilever's nominal stress, whichever tooth springs ``[load] stiffness`` chooses (the
     FE table's fillet stresses hold the fillet's stress concentration; they are reported in
     ``stiffness.csv``, not judged)."""
-    return _cantilever(spec).root_stress_MPa(normal_force_N, z_mm, r_mm)
-
-
-@lru_cache(maxsize=32)
-def _cantilever(spec: CouplingSpec) -> CantileverCompliance:
-    return CantileverCompliance(spec)
+    return cantilever(spec).root_stress_MPa(normal_force_N, z_mm, r_mm)
 
 
 @dataclass(frozen=True, eq=False)

@@ -9,7 +9,7 @@ from numpy.typing import NDArray
 
 from ..spec import CouplingSpec
 from .contact import contact_estimates
-from .inputs import tooth_compliance
+from .springs import tooth_compliance
 from .linear import solve_windup
 
 
