@@ -6,15 +6,19 @@ from .api import load, load_from_sweep
 from .body import body_windup_rad
 from .cantilever import CantileverCompliance
 from .capacity import (
+    LOAD_GRID,
+    PHASES,
+    ROTATIONS,
     Capacity,
     CapacityCurve,
     capacity,
     capacity_curve,
     capacity_from_sweep,
     default_angles,
+    turn_phases,
     write_capacity_csv,
 )
-from .inputs import resolve_torque_Nm
+from .inputs import resolve_model, resolve_torque_Nm
 from .linear import solve_windup
 from .linear_model import mesh_stiffness_N_per_mm
 from .patchmap import PatchMap, patch_maps
@@ -33,6 +37,9 @@ from .summary import machine_loads, rotation_table
 
 __all__ = [
     "CSV_COLUMNS",
+    "LOAD_GRID",
+    "PHASES",
+    "ROTATIONS",
     "CantileverCompliance",
     "Capacity",
     "CapacityCurve",
@@ -56,9 +63,11 @@ __all__ = [
     "plot_tooth_load",
     "plot_vs_misalignment",
     "renzo_q",
+    "resolve_model",
     "resolve_torque_Nm",
     "rotation_table",
     "sector_check",
     "solve_windup",
+    "turn_phases",
     "write_capacity_csv",
 ]

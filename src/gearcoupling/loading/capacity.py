@@ -161,19 +161,22 @@ class CapacityCurve(list):
 
 
 def _flank_problem(sweep_result: SweepResult, loaded_flank: str,
-                   gap_offset_rad: ArrayLike | None) -> LoadProblem:
+                   gap_offset_rad: ArrayLike | None,
+                   pressure_grid: tuple[int, int] | None = None) -> LoadProblem:
     """The load problem of ``loaded_flank`` (a unit torque of that sign picks the flank)."""
     if loaded_flank not in FLANKS:
         raise ArgumentError(f"loaded_flank = {loaded_flank!r}: must be 'ccw' (positive torque) "
                             "or 'cw' (negative torque)")
-    return load_problem(sweep_result, 1.0 if loaded_flank == "ccw" else -1.0, gap_offset_rad)
+    return load_problem(sweep_result, 1.0 if loaded_flank == "ccw" else -1.0, gap_offset_rad,
+                        pressure_grid)
 
 
 def capacity_from_sweep(sweep_result: SweepResult, *, model: str | None = None,
                         gap_offset_rad: ArrayLike | None = None,
-                        loaded_flank: str = "ccw") -> Capacity:
+                        loaded_flank: str = "ccw",
+                        pressure_grid: tuple[int, int] | None = None) -> Capacity:
     """:func:`capacity` on an existing sweep (its spec gives the limits)."""
-    problem = _flank_problem(sweep_result, loaded_flank, gap_offset_rad)
+    problem = _flank_problem(sweep_result, loaded_flank, gap_offset_rad, pressure_grid)
     spec, g, z, r, comp = (problem.spec, problem.gap_rad, problem.z_mm, problem.r_mm,
                            problem.compliance)
     m = resolve_model(spec, model)
@@ -201,12 +204,17 @@ def _surface_torques(problem: LoadProblem, limits: dict[str, NDArray]
     criterion within :data:`SCREEN_MARGIN` of the smallest so far is then screened on the
     other rotations (:func:`_surface_capacity`); one further above cannot govern and keeps
     its first root (which may stand up to the rotations' spread above its own smallest,
-    a few per cent). Loads, bending and the face end are solved on the load grid, the
-    contact pressure on the pressure grid (:data:`LOAD_GRID`, :data:`PRESSURE_GRID`)."""
+    a few per cent), as does the face end (reported, not a capacity; 0 without a search
+    where the first touch lies on a face end). Loads, bending and the face end are solved
+    on the load grid, the contact pressure on the pressure grid, started from the load
+    grid's root (:data:`LOAD_GRID`, :data:`PRESSURE_GRID`; one grid for all where the
+    problem names one)."""
     spec, g, z, r, comp = (problem.spec, problem.gap_rad, problem.z_mm, problem.r_mm,
                            problem.compliance)
-    load = _SurfaceLimits(problem, LOAD_GRID)
-    pressure = _SurfaceLimits(problem, PRESSURE_GRID, coarser=load)
+    grids = (LOAD_GRID, PRESSURE_GRID) if problem.pressure_grid is None else \
+        (problem.pressure_grid,) * 2
+    load = _SurfaceLimits(problem, grids[0])
+    pressure = _SurfaceLimits(problem, grids[1], coarser=load)
     guesses, first = {}, {}
     for name, W_lim in limits.items():
         guesses[name] = np.array([first_limit_torque_Nmm(spec, g[:, j:j + 1], z[:, j:j + 1],
@@ -449,6 +457,15 @@ def _finite_or_none(v: float) -> float | None:
 
 
 ROTATIONS = {"linear": 25, "compliance": 25, "surface": 8}  # default rotations per pitch
+PHASES = 8  # rotations per tooth pitch of a turn's default load (turn_phases)
+
+
+def turn_phases(spec: CouplingSpec, per_pitch: int = PHASES) -> NDArray:
+    """Rotations of a whole turn, ``per_pitch`` per tooth pitch (degrees): with ideal teeth
+    the turn holds only ``per_pitch`` distinct poses, which the surface model solves once
+    each (a rotation one pitch on is the same pose, its teeth renumbered)."""
+    return np.arange(spec.tooth.teeth * per_pitch) * 360.0 / (spec.tooth.teeth * per_pitch)
+
 
 
 def default_angles(spec: CouplingSpec, gap_offset_rad, n: int = 25) -> NDArray:
@@ -462,7 +479,8 @@ def default_angles(spec: CouplingSpec, gap_offset_rad, n: int = 25) -> NDArray:
 
 def capacity(spec: CouplingSpec, misalignment_deg: float, *, model: str | None = None,
              loaded_flank: str = "ccw", angles_deg: ArrayLike | None = None,
-             gap_offset_rad: ArrayLike | None = None, **accuracy: Any) -> Capacity:
+             gap_offset_rad: ArrayLike | None = None,
+             pressure_grid: tuple[int, int] | None = None, **accuracy: Any) -> Capacity:
     """Torque capacity at a misalignment, per criterion, with the governing one and q.
 
     Parameters
@@ -477,6 +495,10 @@ def capacity(spec: CouplingSpec, misalignment_deg: float, *, model: str | None =
         Rotations searched for the worst pose; default over one tooth pitch (a full turn
         with ``gap_offset_rad``), 25 for the linear and compliance models, 8 for surface.
     gap_offset_rad : (N,) or (2, N) float, optional
+    pressure_grid : (int, int), optional
+        The surface model's cells per loaded tooth; default 24 x 16 for the load and
+        bending criteria and 48 x 32 for the contact pressure (:data:`LOAD_GRID`,
+        :data:`PRESSURE_GRID`).
     **accuracy
         Passed to the sweep (``tolerance_mm``, ``grid``).
 
@@ -488,7 +510,7 @@ def capacity(spec: CouplingSpec, misalignment_deg: float, *, model: str | None =
         angles_deg = default_angles(spec, gap_offset_rad, ROTATIONS[resolve_model(spec, model)])
     sw = sweep(spec, misalignment_deg, angles_deg, **accuracy)
     return capacity_from_sweep(sw, model=model, gap_offset_rad=gap_offset_rad,
-                               loaded_flank=loaded_flank)
+                               loaded_flank=loaded_flank, pressure_grid=pressure_grid)
 
 
 def capacity_curve(spec: CouplingSpec, misalignments_deg: ArrayLike | None = None, *,

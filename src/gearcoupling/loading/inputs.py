@@ -92,6 +92,11 @@ class LoadProblem:
         Gap angles (with offsets) and first-touch points of the loaded flank.
     gap_offset_rad : (N,) or (2, N) float or None
         Per-tooth additions to the gap angles (index errors).
+    compliance : object with ``pair_compliance_mm_per_N(z_mm, r_mm)``
+        The tooth springs of ``[load] stiffness``.
+    pressure_grid : (int, int) or None
+        Cells of the surface model's pressure grid (along the face, across the depth);
+        None: its default.
     """
 
     sweep: SweepResult
@@ -101,6 +106,7 @@ class LoadProblem:
     r_mm: NDArray[np.float64]
     gap_offset_rad: NDArray[np.float64] | None = None
     compliance: Any = field(default=None, repr=False)
+    pressure_grid: tuple[int, int] | None = None
 
     @property
     def spec(self):
@@ -122,7 +128,8 @@ class LoadProblem:
 
 
 def load_problem(sweep_result: SweepResult, torque_Nm: float | None = None,
-              gap_offset_rad: ArrayLike | None = None) -> LoadProblem:
+                 gap_offset_rad: ArrayLike | None = None,
+                 pressure_grid: tuple[int, int] | None = None) -> LoadProblem:
     """The :class:`LoadProblem` of a sweep at a torque (default the spec's ``[load]`` torque)."""
     if not isinstance(sweep_result, SweepResult):
         raise ArgumentError(f"sweep_result is a {type(sweep_result).__name__}: must be the "
@@ -133,4 +140,4 @@ def load_problem(sweep_result: SweepResult, torque_Nm: float | None = None,
     g = loaded_gaps(sweep_result, flank, gap_offset_rad)
     z, r = contact_points(spec, sweep_result, flank)
     off = None if gap_offset_rad is None else np.asarray(gap_offset_rad, dtype=float)
-    return LoadProblem(sweep_result, T, g, z, r, off, tooth_compliance(spec))
+    return LoadProblem(sweep_result, T, g, z, r, off, tooth_compliance(spec), pressure_grid)
