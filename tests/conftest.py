@@ -4,7 +4,7 @@ tests that need an optional back-end skip, with the reason, where it is missing.
 Markers (``pyproject.toml``): ``slow`` (over about 5 s; ``scripts/test.sh --fast`` leaves
 them out), ``needs_fea`` (gmsh, OpenCASCADE and CalculiX ``ccx``), ``needs_fcl``
 (python-fcl), ``needs_dask`` (dask.distributed, pyarrow), ``needs_browser`` (playwright and
-Debian's chromium), ``needs_viewer`` (viser).
+Debian's chromium), ``needs_viewer`` (viser), ``needs_ross`` (ross-rotordynamics).
 """
 
 from __future__ import annotations
@@ -27,6 +27,7 @@ REQUIRES = {
     "needs_browser": (("playwright",), "/usr/bin/chromium", "pip install playwright; "
                       "apt-get install chromium"),
     "needs_viewer": (("viser",), None, "pip install 'gearcoupling[viewer]'"),
+    "needs_ross": (("ross",), None, "pip install 'gearcoupling[rotordynamics]'"),
 }
 
 

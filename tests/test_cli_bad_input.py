@@ -174,6 +174,9 @@ BAD = [
     (["report", T, "--limit", "fpt"], "--limit"),
     (["capacity", T, "--misalignments", "1"], "--misalignments"),
     (["capacity", T, "--misalignments", "0,1", "--max", "2"], "--misalignments"),
+    (["datasheet", T, "--torque", "0"], "torque_Nm = 0.0"),
+    (["datasheet", T, "--rotations", "0"], "--rotations"),
+    (["datasheet", T, "--ross", "coupling.xml"], ".toml or .json"),
 ]
 
 

@@ -18,6 +18,7 @@ HEAVY = ("trimesh", "manifold3d", "viser", "OCP", "meshio", "matplotlib", "dask"
     "gearcoupling.hob",
     "gearcoupling.inspection",
     "gearcoupling.study",
+    "gearcoupling.rotordynamics",
 ])
 def test_kernels_import_no_heavy_backend(module):
     code = (f"import sys, {module}; "
@@ -65,6 +66,8 @@ LAYERS = {
                 "interference", "loading", "viewer"},
     "viewer": {"io", "errors", "geometry", "spec", "parts", "export", "clearance",
                "interference", "loading", "inspection"},
+    "rotordynamics": {"io", "errors", "geometry", "spec", "loadspec", "plots", "parts",
+                      "clearance", "loading", "tables"},
 }
 
 

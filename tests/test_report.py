@@ -33,7 +33,7 @@ from gearcoupling.reporting.verdict import (
 from inspection_synth import synthetic_hub
 
 SECTIONS = ("verdict", "coupling", "clearance", "design-angles", "loads", "capacity",
-            "interference", "manufacturing", "measured", "view", "settings")
+            "datasheet", "interference", "manufacturing", "measured", "view", "settings")
 
 
 @pytest.fixture(scope="module")

@@ -49,6 +49,8 @@ from .reporting import ReportResult as ReportResult
 from .reporting import ReportSettings as ReportSettings
 from .reporting import compare_capacity as compare_capacity
 from .reporting import report as report
+from .rotordynamics import CouplingData as CouplingData
+from .rotordynamics import coupling_data as coupling_data
 from .spec import CouplingSpec as CouplingSpec
 from .spec import load_spec as load_spec
 from .spec import spec_from_dict as spec_from_dict

@@ -2,10 +2,12 @@
 
 SI keys and their inch-pound alternatives (``torque_Nm`` | ``torque_lbf_in`` ...): give at
 most one of each pair; inch-pound values are converted at loading, so the dataclasses hold
-N, N·m, N/mm and MPa only. ``[material]`` keys apply to both parts; ``[material.hub]`` and
-``[material.sleeve]`` override them per part. Defaults: through-hardened alloy steel
-(E = 206 000 MPa, nu = 0.3, allowable contact stress 700 MPa, allowable root bending
-stress 280 MPa: ISO 6336-5 MQ limits of a ~300 HB quenched-and-tempered steel).
+N, N·m, N/mm, MPa and kg/m³ only. ``[material]`` keys apply to both parts;
+``[material.hub]`` and ``[material.sleeve]`` override them per part. Defaults:
+through-hardened alloy steel (E = 206 000 MPa, nu = 0.3, allowable contact stress 700 MPa,
+allowable root bending stress 280 MPa: ISO 6336-5 MQ limits of a ~300 HB
+quenched-and-tempered steel; density 7850 kg/m³, taken only while E is a steel's,
+190 000-220 000 MPa: another material must give its density).
 """
 
 from __future__ import annotations
@@ -21,12 +23,15 @@ N_PER_LBF = 4.4482216152605
 NM_PER_LBF_IN = N_PER_LBF * 0.0254
 N_PER_MM_PER_LBF_PER_IN = N_PER_LBF / 25.4
 MPA_PER_PSI = N_PER_LBF / 25.4**2
+KG_PER_M3_PER_LB_PER_IN3 = 0.45359237 / 0.0254**3
 
 LOAD_MODELS = ("linear", "compliance", "surface")
 # the tooth springs (gearcoupling.loading.springs.SPRINGS holds what each is)
 STIFFNESS_SOURCES = ("fe-fit", "fe", "cantilever")
 STEEL = {"youngs_modulus_MPa": 206_000.0, "poisson_ratio": 0.3,
-         "allowable_contact_stress_MPa": 700.0, "allowable_bending_stress_MPa": 280.0}
+         "allowable_contact_stress_MPa": 700.0, "allowable_bending_stress_MPa": 280.0,
+         "density_kg_per_m3": 7850.0}
+STEEL_MODULUS_RANGE_MPA = (190_000.0, 220_000.0)  # E of the steels the default density fits
 
 
 def _finite_positive(path: str, value: float | None, *, optional: bool = False) -> None:
@@ -95,22 +100,41 @@ class LoadSpec:
 
 @dataclass(frozen=True)
 class Material:
-    """Elastic constants and allowable stresses of one part (MPa)."""
+    """Elastic constants and allowable stresses (MPa) and density (kg/m³) of one part.
+
+    ``density_kg_per_m3`` left out is steel's while ``E`` is a steel's (module docstring)
+    and ``None`` otherwise (:meth:`mass_density_kg_per_m3` then refuses).
+    """
 
     youngs_modulus_MPa: float = STEEL["youngs_modulus_MPa"]
     poisson_ratio: float = STEEL["poisson_ratio"]
     allowable_contact_stress_MPa: float = STEEL["allowable_contact_stress_MPa"]
     allowable_bending_stress_MPa: float = STEEL["allowable_bending_stress_MPa"]
+    density_kg_per_m3: float | None = None
     part: str = field(default="hub", compare=False, repr=False)
 
     def __post_init__(self):
         p = f"material.{self.part}"
         _finite_positive(f"{p}.youngs_modulus_MPa", self.youngs_modulus_MPa)
+        _finite_positive(f"{p}.density_kg_per_m3", self.density_kg_per_m3, optional=True)
+        lo, hi = STEEL_MODULUS_RANGE_MPA
+        if self.density_kg_per_m3 is None and lo <= self.youngs_modulus_MPa <= hi:
+            object.__setattr__(self, "density_kg_per_m3", STEEL["density_kg_per_m3"])
         _finite_positive(f"{p}.allowable_contact_stress_MPa", self.allowable_contact_stress_MPa)
         _finite_positive(f"{p}.allowable_bending_stress_MPa", self.allowable_bending_stress_MPa)
         nu = self.poisson_ratio
         if not (isinstance(nu, int | float) and 0 <= nu < 0.5):
             raise SpecError(f"{p}.poisson_ratio", nu, "must be in [0, 0.5)")
+
+    def mass_density_kg_per_m3(self) -> float:
+        """The density; a :class:`SpecError` naming the key where it is missing."""
+        if self.density_kg_per_m3 is None:
+            lo, hi = STEEL_MODULUS_RANGE_MPA
+            raise SpecError(f"material.{self.part}.density_kg_per_m3", None,
+                            f"is required (kg/m³, or density_lb_per_in3): E = "
+                            f"{self.youngs_modulus_MPa:g} MPa is not a steel's ({lo:g}-{hi:g} "
+                            "MPa), so steel's 7850 kg/m³ is not assumed")
+        return self.density_kg_per_m3
 
     @property
     def shear_modulus_MPa(self) -> float:
@@ -143,6 +167,7 @@ _MATERIAL_KEYS = {
     "youngs_modulus_MPa": ("youngs_modulus_psi", MPA_PER_PSI),
     "allowable_contact_stress_MPa": ("allowable_contact_stress_psi", MPA_PER_PSI),
     "allowable_bending_stress_MPa": ("allowable_bending_stress_psi", MPA_PER_PSI),
+    "density_kg_per_m3": ("density_lb_per_in3", KG_PER_M3_PER_LB_PER_IN3),
 }
 
 

@@ -400,7 +400,7 @@ class CouplingSpec:
         tooth["pressure_angle_deg"] = math.degrees(tooth.pop("pressure_angle"))
         out.update(tooth=tooth, hub=d["hub"], sleeve=d["sleeve"], inspection=d["inspection"])
         out["load"] = {k: v for k, v in d["load"].items() if v is not None}
-        out["material"] = {p: {k: v for k, v in m.items() if k != "part"}
+        out["material"] = {p: {k: v for k, v in m.items() if k != "part" and v is not None}
                            for p, m in d["material"].items()}
         cr = out["hub"]["crowning"]
         for key in ("s", "kappa", "z", "drop"):  # the file's keys of a tabulated path

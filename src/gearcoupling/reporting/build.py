@@ -17,6 +17,7 @@ from ..inspection import check_limits, grade_limits
 from ..io import require_file, write_text
 from ..spec import CouplingSpec
 from . import sections as sec
+from .datasheet import datasheet
 from .document import Note, Section, Table, render
 from .pdf import print_pdf
 from .settings import ReportSettings
@@ -51,7 +52,8 @@ def _steps(settings: ReportSettings) -> list[tuple[str, Callable[[sec.Context], 
     steps: list[tuple[str, Callable[[sec.Context], Section]]] = [
         ("coupling", sec.coupling), ("clearance", sec.clearance),
              ("design angles", sec.design_angles), ("loads", sec.loads),
-             ("capacity", sec.capacity_section), ("interference", sec.interference),
+             ("capacity", sec.capacity_section), ("data sheet", datasheet),
+             ("interference", sec.interference),
              ("manufacturing", sec.manufacturing)]
     if settings.scan is not None:
         steps.append(("measured part", sec.measured))

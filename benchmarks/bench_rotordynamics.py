@@ -1,0 +1,190 @@
+"""Coupling data for rotordynamics: time of the data sheet, convergence of the stiffness
+matrix in its two knobs, and the validation figures of docs/rotordynamics.md.
+
+Run: ``python benchmarks/bench_rotordynamics.py [--quick]`` (``--quick`` leaves out the
+STEP solids and the ROSS rotor).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import os
+import time
+from pathlib import Path
+
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+import numpy as np
+
+import gearcoupling as gc
+from gearcoupling.loading import mesh_stiffness_N_per_mm
+from gearcoupling.rotordynamics import (
+    WINDUP_ERROR_PCT,
+    coupling_data,
+    mass_properties,
+    stiffness_matrix,
+)
+from gearcoupling.rotordynamics.accuracy import springs
+from gearcoupling.rotordynamics.torsion import mesh_windup_from_touch
+
+ROOT = Path(__file__).resolve().parents[1]
+ENTRIES = (("K x-x", 0, 0), ("K y-y", 1, 1), ("K tilt_x", 3, 3), ("K tilt_y", 4, 4),
+           ("K torsion", 5, 5), ("k_xy", 3, 4), ("k_yx", 4, 3), ("K tilt_x-torsion", 3, 5))
+
+
+def timing() -> None:
+    print("## Time of the data sheet (default model and knobs; a fresh process per spec "
+          "builds its flank table first)\n")
+    print("| spec | seconds | model | K torsion N·m/rad | allowable deg (criterion) |")
+    print("|---|---|---|---|---|")
+    for name in gc.template_names():
+        spec = gc.load_spec(name)
+        t0 = time.perf_counter()
+        d = coupling_data(spec)
+        dt = time.perf_counter() - t0
+        print(f"| {name} | {dt:.1f} | {d.model} | {d.stiffness.matrix[5, 5]:.4g} | "
+              f"{d.allowable.misalignment_deg:.3g} ({d.allowable.criterion}) |")
+
+
+def _table(title: str, knob: str, values, build) -> None:
+    print(f"\n## {title}\n")
+    print(f"| {knob} | " + " | ".join(e for e, _, _ in ENTRIES) + " | seconds |")
+    print("|---|" + "---|" * (len(ENTRIES) + 1))
+    rows = []
+    for v in values:
+        t0 = time.perf_counter()
+        K = build(v).matrix
+        rows.append((v, K, time.perf_counter() - t0))
+    ref = rows[-1][1] if knob == "rotations" else rows[0][1]
+    for v, K, dt in rows:
+        cells = [f"{K[i, j]:.5g} ({K[i, j] / ref[i, j] - 1:+.2%})" if ref[i, j] else
+                 f"{K[i, j]:.5g}" for _, i, j in ENTRIES]
+        print(f"| {v:g} | " + " | ".join(cells) + f" | {dt:.1f} |")
+
+
+def convergence() -> None:
+    spec = gc.load_spec("renzo-1967")
+    _table("Step convergence (renzo-1967, 1°, spec torque, 8 rotations; change against the "
+           "smallest step)", "relative_step", (0.005, 0.01, 0.02, 0.05, 0.1),
+           lambda s: stiffness_matrix(spec, 1.0, relative_step=s))
+    _table("Rotations over one pitch (renzo-1967, 1°, step 0.02; change against 32)",
+           "rotations", (1, 2, 4, 8, 16, 32),
+           lambda n: stiffness_matrix(spec, 1.0, rotations=n))
+
+
+def _asymmetry(K) -> float:
+    d = np.abs(np.diag(K))
+    worst = 0.0
+    for i in range(6):
+        for j in range(i):
+            if d[i] > 0 and d[j] > 0:
+                worst = max(worst, abs(K[i, j] - K[j, i]) / math.sqrt(d[i] * d[j]))
+    return worst
+
+
+def validation(quick: bool) -> None:
+    print("\n## Validation (tests/test_rotordynamics.py holds each)\n")
+    print("| check | figure |")
+    print("|---|---|")
+    spec = gc.load_spec("renzo-1967")
+    # linear model, aligned: closed forms
+    K = stiffness_matrix(spec, 0.0, model="linear")
+    C, N = mesh_stiffness_N_per_mm(spec), spec.tooth.teeth
+    phi, R = spec.tooth.pressure_angle, spec.tooth.pitch_radius
+    radial = N * C / (2 * math.cos(phi) ** 2) * 1e3
+    print(f"| linear, 0°: K x-x / (N C / 2 cos² φ) − 1 | {K.mesh_matrix[0, 0] / radial - 1:+.1e} |")
+    print(f"| linear, 0°: K torsion (teeth) / (N C R²) − 1 | "
+          f"{K.mesh_matrix[5, 5] / (N * C * R**2 * 1e-3) - 1:+.1e} |")
+    for model in ("linear", spec.load.model):
+        K0 = stiffness_matrix(spec, 1.0, model=model, friction=0.0)
+        print(f"| {model}, 1°, no friction: largest asymmetry |K_ij − K_ji| / √(K_ii K_jj) | "
+              f"{_asymmetry(K0.mesh_matrix):.2%} |")
+    for name, deg in (("renzo-1967", 1.0), ("industrial-m2", 0.75)):
+        s = gc.load_spec(name)
+        with_f = stiffness_matrix(s, deg).at_constant_torque()
+        without = stiffness_matrix(s, deg, friction=0.0).at_constant_torque()
+        anti = 0.5 * ((with_f[3, 4] - with_f[4, 3]) - (without[3, 4] - without[4, 3]))
+        a, h = math.radians(deg), 0.02 * math.radians(deg)
+        mf = _friction_moment(s, deg)
+        dmf = (_friction_moment(s, math.degrees(a + h))
+               - _friction_moment(s, math.degrees(a - h))) / (2 * h)
+        expected = 0.5 * (mf / a + dmf)
+        print(f"| {name} {deg:g}°: friction's antisymmetric tilt part / (M_f/i + dM_f/di)/2 − 1 "
+              f"({anti:.0f} N·m/rad) | {anti / expected - 1:+.2%} |")
+    refs = json.loads((ROOT / "tests" / "golden" / "fe_contact_reference.json").read_text())
+    for name, by_torque in refs["references"].items():
+        s = gc.load_spec(name)
+        lo, hi = WINDUP_ERROR_PCT[(s.load.model, springs(s, s.load.model))]
+        sw = gc.sweep(s, 0.0, [0.0])
+        for torque, ref in by_torque.items():
+            T = float(torque)
+            w = mesh_windup_from_touch(sw, T, None) + gc.body_windup_rad(s, T)["body_rad"]
+            print(f"| {name} {T:g} N·m aligned: wind-up (secant) vs CalculiX (ladder band "
+                  f"{lo:+g}…{hi:+g} %) | {w / ref['windup_from_first_touch_rad'] - 1:+.1%} |")
+    if not quick:
+        _step_masses()
+        _ross_rotor()
+
+
+def _friction_moment(spec, deg):
+    res = gc.load(spec, deg, np.arange(8) * 360.0 / spec.tooth.teeth / 8)
+    cos = np.abs(np.cos(np.radians(res.theta_deg)))
+    return spec.load.friction * np.mean(np.sum(res.normal_force_N * res.contact_r_mm * cos,
+                                               axis=0)) * 1e-3
+
+
+def _step_masses() -> None:
+    from OCP.BRepGProp import BRepGProp
+    from OCP.GProp import GProp_GProps
+
+    from gearcoupling.export import part_solid
+    from gearcoupling.parts import default_tolerance
+
+    for name in ("renzo-1967", "industrial-m2"):
+        spec = gc.load_spec(name)
+        mass = mass_properties(spec)
+        for part in ("hub", "sleeve"):
+            props = GProp_GProps()
+            BRepGProp.VolumeProperties_s(part_solid(spec, part, default_tolerance(spec)), props)
+            inertia = props.MatrixOfInertia()
+            m = mass[part]
+            ip = m.polar_inertia_kg_m2 / (7850e-15 * inertia.Value(3, 3)) - 1
+            print(f"| {name} {part}: mesh vs STEP solid, volume · polar inertia | "
+                  f"{m.volume_mm3 / props.Mass() - 1:+.3%} · {ip:+.3%} |")
+
+
+def _ross_rotor() -> None:
+    from gearcoupling.rotordynamics import import_ross
+
+    rs = import_ross()
+    data = coupling_data(gc.load_spec("renzo-1967"))
+    steel = rs.materials.steel
+    length, d, J = 0.05, 0.15, 5.0
+    coupling = data.to_ross()
+    shafts = [rs.ShaftElement(length, 0.0, d, material=steel), coupling,
+              rs.ShaftElement(length, 0.0, d, material=steel)]
+    disks = [rs.DiskElement(n=0, m=100.0, Id=2.5, Ip=J), rs.DiskElement(n=3, m=100.0, Id=2.5,
+                                                                        Ip=J)]
+    bearings = [rs.BearingElement(n=n, kxx=1e8, cxx=0) for n in (0, 3)]
+    modal = rs.Rotor(shafts, disks, bearings).run_modal(speed=0, num_modes=40, sparse=False)
+    wn = min(w for w, s in zip(modal.wn, modal.shapes, strict=False)
+             if s.mode_type == "Torsional" and w > 1.0)
+    k = 1.0 / (2.0 / (steel.G_s * math.pi * d**4 / 32 / length) + 1.0 / coupling.kr_z)
+    closed = math.sqrt(2.0 * k / J)
+    print(f"| ROSS rotor (renzo-1967 coupling): first torsional {wn / 2 / math.pi:.2f} Hz vs "
+          f"two-inertia {closed / 2 / math.pi:.2f} Hz | {wn / closed - 1:+.2%} |")
+
+
+def main() -> None:
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("--quick", action="store_true", help="no STEP solids, no ROSS rotor")
+    a = p.parse_args()
+    timing()
+    convergence()
+    validation(a.quick)
+
+
+if __name__ == "__main__":
+    main()

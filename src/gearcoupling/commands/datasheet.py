@@ -1,0 +1,83 @@
+"""``gearcoupling datasheet``: the coupling's data for a rotor model (API 671 data sheet)."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+from ..loadspec import LOAD_MODELS
+from ..rotordynamics import (
+    MAX_TORQUE_NM,
+    ROSS_SUFFIXES,
+    check_inputs,
+    coupling_data,
+    import_ross,
+    write_ross,
+)
+from .common import (
+    add_misalignment_argument,
+    add_spec_arguments,
+    count,
+    misalignment_deg,
+    number_in,
+    output_dir,
+    progress,
+    spec_from_args,
+)
+
+
+def register(sub) -> None:
+    p = sub.add_parser("datasheet", help="coupling data for a rotor model: mass properties, "
+                       "torsional stiffness, the 6x6 stiffness matrix under load and the loads "
+                       "at the allowable misalignment (datasheet.json, datasheet.csv, "
+                       "stiffness_matrix.csv; --ross: a ROSS coupling element)")
+    add_spec_arguments(p)
+    add_misalignment_argument(p)
+    p.add_argument("--torque", type=number_in(-MAX_TORQUE_NM, MAX_TORQUE_NM, "N·m"),
+                   default=None, metavar="NM",
+                   help=f"operating torque in N·m, 0 < |T| <= {MAX_TORQUE_NM:g}; the sign picks "
+                        "the loaded flank (default: the spec's)")
+    p.add_argument("--model", choices=LOAD_MODELS, default=None,
+                   help="load model (default: the spec's [load] model)")
+    p.add_argument("--rotations", type=count(1, 64), default=8, metavar="N",
+                   help="rotations over one tooth pitch the stiffness is averaged over, 1-64 "
+                        "(default 8)")
+    p.add_argument("--step", type=number_in(1e-4, 0.2, "of the tooth deflection"),
+                   default=0.02, metavar="S",
+                   help="difference step as a share of the largest tooth deflection, "
+                        "1e-4 to 0.2 (default 0.02)")
+    p.add_argument("--angles", type=count(4, 3600), default=360, metavar="N",
+                   help="rotations over the turn at the allowable misalignment, 4-3600 "
+                        "(default 360)")
+    p.add_argument("--ross", type=ross_file, default=None, metavar="FILE",
+                   help="also write the ROSS coupling element to FILE (.toml or .json, "
+                        "ROSS's formats; the rotordynamics extra)")
+    p.set_defaults(func=run)
+
+
+def ross_file(text: str) -> Path:
+    """argparse type: a ``.toml`` or ``.json`` path for ROSS's ``save``."""
+    path = Path(text)
+    if path.suffix.lower() not in ROSS_SUFFIXES:
+        raise argparse.ArgumentTypeError(f"{text!r}: must end in .toml or .json (the formats "
+                                         "ROSS saves and loads)")
+    return path
+
+
+def run(args) -> int:
+    spec = spec_from_args(args)
+    mis = misalignment_deg(args, spec)
+    check_inputs(spec, args.torque)
+    if args.ross is not None:
+        import_ross()  # a missing extra is refused before the computation
+    out = output_dir(args, spec)
+    with progress(f"datasheet {spec.name}", 4) as update:
+        data = coupling_data(spec, mis, args.torque, model=args.model,
+                             rotations=args.rotations, relative_step=args.step,
+                             turn_angles=args.angles, progress=update)
+    paths = data.write(out)
+    if args.ross is not None:
+        paths.append(write_ross(data.to_ross(), args.ross))
+    for path in paths:
+        print(path)
+    return 0

@@ -1,0 +1,53 @@
+"""Coupling data for rotordynamics: mass properties, torsional stiffness, the 6 x 6
+stiffness matrix under load, the loads at the allowable misalignment, and a ROSS coupling
+element (docs/rotordynamics.md)."""
+
+from __future__ import annotations
+
+from .accuracy import TOOTH_LOAD_RATIO, WINDUP_ERROR_PCT
+from .allowable import AllowableLoads, allowable_loads
+from .data import (
+    DATASHEET_COLUMNS,
+    FILES,
+    MAX_TORQUE_NM,
+    CouplingData,
+    check_inputs,
+    coupling_data,
+)
+from .mass import MassProperties, mass_properties, mesh_mass_properties
+from .plots import plot_allowable_loads, plot_windup
+from .pose import generalized_forces, tilt_pose, translation_gap_offsets
+from .ross import ROSS_SUFFIXES, coupling_element, import_ross, write_ross
+from .stiffness import DOFS, StiffnessMatrix, stiffness_matrix
+from .torsion import TorsionalStiffness
+from .wrench import hub_wrench
+
+__all__ = [
+    "DATASHEET_COLUMNS",
+    "DOFS",
+    "FILES",
+    "MAX_TORQUE_NM",
+    "ROSS_SUFFIXES",
+    "TOOTH_LOAD_RATIO",
+    "WINDUP_ERROR_PCT",
+    "AllowableLoads",
+    "CouplingData",
+    "MassProperties",
+    "StiffnessMatrix",
+    "TorsionalStiffness",
+    "allowable_loads",
+    "check_inputs",
+    "coupling_data",
+    "coupling_element",
+    "generalized_forces",
+    "hub_wrench",
+    "import_ross",
+    "mass_properties",
+    "mesh_mass_properties",
+    "plot_allowable_loads",
+    "plot_windup",
+    "stiffness_matrix",
+    "tilt_pose",
+    "translation_gap_offsets",
+    "write_ross",
+]

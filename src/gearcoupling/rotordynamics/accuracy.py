@@ -1,0 +1,70 @@
+"""What the accuracy ladder (docs/load.md, "Accuracy ladder") measured for each load model
+and tooth spring, as the data sheet states it beside every entry.
+
+Two measurements: the wind-up against the CalculiX contact reference (aligned, each
+template's torque and half of it, bodies included; ``python
+benchmarks/bench_fea_contact.py``), and the most loaded tooth against a CalculiX sector
+at 1° and 2° at equal wind-up (FE / model; ``python benchmarks/bench_fea_sector.py``).
+A model and spring not on the ladder are named as such, never given a borrowed figure.
+"""
+
+from __future__ import annotations
+
+#: (model, springs) -> (lowest, highest) wind-up error in % against the CalculiX contact
+#: reference (positive: the model is more compliant); springs ``template C`` is the
+#: linear model with the spec's own ``mesh_stiffness``
+WINDUP_ERROR_PCT: dict[tuple[str, str], tuple[float, float]] = {
+    ("linear", "template C"): (-57.0, -54.0),
+    ("linear", "cantilever"): (23.0, 27.0),
+    ("compliance", "cantilever"): (58.0, 66.0),
+    ("surface", "cantilever"): (76.0, 87.0),
+    ("compliance", "fe"): (-0.5, 5.3),
+    ("surface", "fe"): (2.3, 8.6),
+}
+
+#: (model, springs) -> (lowest, highest) CalculiX-sector / model load on the most loaded
+#: teeth at 1° and 2° (below 1: the model carries more than the sector)
+TOOTH_LOAD_RATIO: dict[tuple[str, str], tuple[float, float]] = {
+    ("linear", "template C"): (0.17, 0.28),
+    ("linear", "cantilever"): (1.11, 1.31),
+    ("compliance", "cantilever"): (1.36, 1.63),
+    ("surface", "cantilever"): (1.65, 1.84),
+    ("compliance", "fe"): (0.72, 0.92),
+    ("surface", "fe"): (0.84, 1.00),
+}
+
+
+def springs(spec, model: str) -> str:
+    """The tooth springs a model used: ``template C`` for the linear model with the spec's
+    ``mesh_stiffness``, else the spec's ``[load] stiffness``."""
+    if model == "linear" and spec.load.mesh_stiffness_N_per_mm is not None:
+        return "template C"
+    return str(spec.load.stiffness)
+
+
+def windup_error(model: str, spring: str) -> str:
+    """The ladder's aligned wind-up error of a model and spring, as a sentence."""
+    band = WINDUP_ERROR_PCT.get((model, spring))
+    if band is None:
+        return (f"the {model} model with {spring} springs is not on the accuracy ladder "
+                "(docs/load.md): no measured error")
+    lo, hi = band
+    return (f"{model} model, {spring} springs: wind-up {lo:+.1f} to {hi:+.1f} % against the "
+            "CalculiX contact reference (aligned; positive = too compliant, so stiffnesses "
+            "are low by about as much)")
+
+
+def tooth_load_error(model: str, spring: str) -> str:
+    """The ladder's misaligned tooth-load ratio of a model and spring, as a sentence."""
+    band = TOOTH_LOAD_RATIO.get((model, spring))
+    if band is None:
+        return (f"the {model} model with {spring} springs has no misaligned measurement on "
+                "the accuracy ladder (docs/load.md)")
+    lo, hi = band
+    return (f"{model} model, {spring} springs: the most loaded teeth carry {lo:.2f} to "
+            f"{hi:.2f} times the model's load in a CalculiX sector at 1° and 2° (equal "
+            "wind-up)")
+
+
+__all__ = ["TOOTH_LOAD_RATIO", "WINDUP_ERROR_PCT", "springs", "tooth_load_error",
+           "windup_error"]

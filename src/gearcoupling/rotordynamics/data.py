@@ -1,0 +1,314 @@
+"""``gc.coupling_data``: the API 671 data of a coupling for a rotor model, in one result.
+
+Mass properties of hub, sleeve and coupling; torsional stiffness (secant, tangent and the
+wind-up curve to the capacity); the 6 x 6 stiffness matrix at the operating point; the
+allowable misalignment and the loads the coupling puts on the shafts there; and beside
+every entry the model and springs that made it and their measured error.
+docs/rotordynamics.md.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from ..clearance import sweep
+from ..errors import ArgumentError
+from ..io import write_csv_rows, write_json
+from ..loading import capacity, resolve_torque_Nm
+from ..spec import CouplingSpec, check_misalignment_deg
+from ..tables import dataframe
+from .accuracy import springs, tooth_load_error, windup_error
+from .allowable import DEFAULT_TURN_ANGLES, AllowableLoads, allowable_loads
+from .mass import MassProperties, mass_properties
+from .ross import coupling_element
+from .stiffness import (
+    DEFAULT_RELATIVE_STEP,
+    DEFAULT_ROTATIONS,
+    DISPLACEMENT_UNITS,
+    DOFS,
+    FORCE_UNITS,
+    StiffnessMatrix,
+    pitch_rotations,
+    stiffness_from_sweep,
+)
+from .torsion import DEFAULT_POINTS, TorsionalStiffness, torsional_stiffness
+
+DATASHEET_COLUMNS = ("section", "quantity", "value", "unit", "source")
+FILES = ("datasheet.json", "datasheet.csv", "stiffness_matrix.csv")
+UNITS = {"N": "N", "Nm": "N·m"}
+
+#: what the data describe and what they leave out
+NOT_MODELLED = (
+    "the shafts, keys, bolts, flanges and spacer: the hub and sleeve are as the spec "
+    "describes them (hub body from bore to teeth over its length, sleeve from its teeth to "
+    "its outside diameter over its face width)",
+    "the second half of a double-engagement coupling: these data are one engagement "
+    "(one hub in one sleeve); a double-engagement coupling has two in series",
+    "bending of the hub and sleeve bodies (rigid in tilt and translation; their torsion "
+    "is in the torsion entries)",
+    "the teeth's stick stiffness along the axis below the slip force",
+    "damping (none is computed)",
+)
+
+MASS_ACCURACY = ("closed part meshes within the chordal tolerance of the exact surfaces: "
+                 "volume and inertia within 0.03 % of the STEP solid's OpenCASCADE "
+                 "integration on the templates (docs/rotordynamics.md)")
+
+
+@dataclass(frozen=True, eq=False)
+class CouplingData:
+    """The data sheet of one coupling at one operating point (module docstring).
+
+    Attributes
+    ----------
+    spec : CouplingSpec
+    misalignment_deg, torque_Nm : float
+        The operating point (torque signed: the sign picks the loaded flank).
+    model, springs : str
+        Load model and tooth springs of every loaded entry.
+    mass : dict of str -> MassProperties
+        ``hub``, ``sleeve``, ``coupling``.
+    torsion : TorsionalStiffness
+    stiffness : StiffnessMatrix
+    capacity_Nm : float or None
+        At the operating misalignment (``None``: no criterion limits it).
+    allowable : AllowableLoads
+    seconds : float
+        Wall time of :func:`coupling_data`.
+    """
+
+    spec: CouplingSpec = field(repr=False)
+    misalignment_deg: float
+    torque_Nm: float
+    model: str
+    springs: str
+    mass: dict[str, MassProperties]
+    torsion: TorsionalStiffness
+    stiffness: StiffnessMatrix
+    capacity_Nm: float | None
+    allowable: AllowableLoads
+    seconds: float = 0.0
+
+    def accuracy(self) -> dict[str, str]:
+        """Per section: the model, springs and measured error behind its entries."""
+        wu = windup_error(self.model, self.springs)
+        st = self.stiffness.steps
+        return {
+            "mass": MASS_ACCURACY,
+            "torsion": wu + "; bodies: closed-form annulus torsion",
+            "stiffness": (f"{wu}; central differences, step {st['relative_step']:g} of the "
+                          f"largest tooth deflection (translation {st['translation_mm']:.3g} "
+                          f"mm, tilt {st['tilt_rad']:.3g} rad), mean of {st['rotations']} "
+                          "rotations over one pitch (their spread is listed)"),
+            "allowable": tooth_load_error(self.model, self.springs),
+        }
+
+    @property
+    def not_modelled(self) -> tuple[str, ...]:
+        return NOT_MODELLED
+
+    def as_dict(self) -> dict[str, Any]:
+        """``datasheet.json``: plain data, units in the keys."""
+        return {"spec": self.spec.name, "misalignment_deg": self.misalignment_deg,
+                "torque_Nm": self.torque_Nm, "model": self.model, "springs": self.springs,
+                "friction": self.spec.load.friction,
+                "density_kg_per_m3": {p: getattr(self.spec.material, p).density_kg_per_m3
+                                      for p in ("hub", "sleeve")},
+                "mass": {k: v.as_dict() for k, v in self.mass.items()},
+                "torsion": self.torsion.as_dict(), "stiffness": self.stiffness.as_dict(),
+                "capacity_Nm": self.capacity_Nm, "allowable": self.allowable.as_dict(),
+                "allowable_over_turn": [dict(zip(("psi_deg", *self.allowable.loads()), r,
+                                                 strict=True))
+                                        for r in self.allowable.rows()],
+                "accuracy": self.accuracy(), "not_modelled": list(self.not_modelled),
+                "seconds": self.seconds}
+
+    def rows(self) -> list[tuple[str, str, float | None, str, str]]:
+        """``datasheet.csv``: ``(section, quantity, value, unit, source)`` in the order of an
+        API 671 coupling data sheet; values are numbers (or None), words go to source."""
+        acc = self.accuracy()
+        return [("operating point", "misalignment", self.misalignment_deg, "deg", ""),
+                ("operating point", "torque", self.torque_Nm, "N·m",
+                 f"{self.model} model, {self.springs} springs, friction "
+                 f"{self.spec.load.friction:g}"),
+                *_mass_rows(self.mass, acc["mass"]),
+                *_torsion_rows(self, acc["torsion"]),
+                *_stiffness_rows(self.stiffness, acc["stiffness"]),
+                *_allowable_rows(self.allowable, acc["allowable"])]
+
+    def to_dataframe(self):
+        """:meth:`rows` as a pandas DataFrame with the columns of ``datasheet.csv``
+        (:data:`DATASHEET_COLUMNS`; the ``pandas`` extra)."""
+        return dataframe(DATASHEET_COLUMNS, self.rows())
+
+    def matrix_rows(self):
+        """``stiffness_matrix.csv`` rows: the row's coordinate and force unit, then the
+        matrix row (hub bore against sleeve outside diameter)."""
+        for i, dof in enumerate(DOFS):
+            yield (dof, FORCE_UNITS[i], *(float(v) for v in self.stiffness.matrix[i]))
+
+    def write(self, out: str | Path) -> list[Path]:
+        """``datasheet.json``, ``datasheet.csv`` and ``stiffness_matrix.csv`` into the folder
+        ``out``, each atomically; returns the paths."""
+        folder = Path(out)
+        cols = ("row", "force_unit", *(f"{d}_per_{u}" for d, u in
+                                       zip(DOFS, DISPLACEMENT_UNITS, strict=True)))
+        head = (f"{self.spec.name}: stiffness of hub bore against sleeve outside diameter at "
+                f"i = {self.misalignment_deg:g} deg, T = {self.torque_Nm:.6g} N·m; "
+                "K = -dQ/dq, Q on the hub (docs/rotordynamics.md)")
+        return [write_json(folder / FILES[0], self.as_dict()),
+                write_csv_rows(folder / FILES[1], DATASHEET_COLUMNS, self.rows()),
+                write_csv_rows(folder / FILES[2], cols, self.matrix_rows(), comments=[head])]
+
+    def to_ross(self, **options):
+        """A ``ross.CouplingElement`` of these data (the ``rotordynamics`` extra); options as
+        :func:`gearcoupling.rotordynamics.coupling_element`."""
+        return coupling_element(self, **options)
+
+
+Rows = list[tuple[str, str, float | None, str, str]]
+STIFFNESS_UNITS = ("N/m", "N/m", "N/m", "N·m/rad", "N·m/rad", "N·m/rad")
+
+
+def _mass_rows(mass: dict[str, MassProperties], accuracy: str) -> Rows:
+    out: Rows = []
+    for name, m in mass.items():
+        out += [("mass", f"{name} mass", m.mass_kg, "kg", accuracy),
+                ("mass", f"{name} centre of gravity z", float(m.centre_of_gravity_mm[2]),
+                 "mm", "from the midplane of the hub teeth, along the axis"),
+                ("mass", f"{name} polar inertia", m.polar_inertia_kg_m2, "kg·m²", accuracy),
+                ("mass", f"{name} transverse inertia", m.transverse_inertia_kg_m2, "kg·m²",
+                 "about its centre of gravity")]
+    return out
+
+
+def _torsion_rows(data: CouplingData, accuracy: str) -> Rows:
+    t, k_body = data.torsion, data.stiffness.body_torsional_Nm_per_rad
+    return [("torsion", "secant stiffness at the torque", t.secant_Nm_per_rad, "N·m/rad",
+             accuracy),
+            ("torsion", "tangent stiffness at the torque", t.tangent_Nm_per_rad, "N·m/rad",
+             accuracy),
+            ("torsion", "bodies' torsional stiffness", k_body if math.isfinite(k_body) else
+             None, "N·m/rad", "bore to sleeve outside diameter (none: the hub has no bore)"),
+            ("torsion", "capacity at the misalignment", data.capacity_Nm, "N·m",
+             "the wind-up curve ends here (datasheet.json)")]
+
+
+def _stiffness_rows(s: StiffnessMatrix, accuracy: str) -> Rows:
+    K = s.matrix
+    out: Rows = []
+    for i, dof in enumerate(DOFS):
+        lo_hi = s.rotation_spread.get(dof)
+        spread = (f"; over the pitch {lo_hi[0]:.4g} to {lo_hi[1]:.4g}" if lo_hi else
+                  "; pitch mean (from the mean forces turned with the tilt axis)")
+        out.append(("stiffness", f"K {dof}-{dof}", float(K[i, i]), STIFFNESS_UNITS[i],
+                    accuracy + spread))
+    out += [("stiffness", f"cross-coupled tilt {k.removesuffix('_Nm_per_rad')}", v, "N·m/rad",
+             "moment on the hub about -x per tilt about y (k_xy), about -y per tilt about x "
+             "(k_yx); stiffness_matrix.csv holds the whole matrix")
+            for k, v in s.cross_coupled().items()]
+    out.append(("stiffness", "axial slip force", s.axial_slip_force_N, "N",
+                "friction times the tooth normal loads: the thrust at which the teeth slide"))
+    return out
+
+
+def _allowable_rows(a: AllowableLoads, accuracy: str) -> Rows:
+    out: Rows = [("allowable", "allowable misalignment", a.misalignment_deg, "deg",
+                  f"limited by the {a.criterion}"
+                  + (f" ({a.capacity_criterion})" if a.capacity_criterion else "")),
+                 ("allowable", "critical misalignment", a.critical_misalignment_deg, "deg",
+                  "contact on the pivot teeth reaches a face end")]
+    for key, ext in a.extremes().items():
+        name, unit = key.rsplit("_", 1)
+        out += [("allowable", f"{name.replace('_', ' ')} {stat} over a turn", ext[stat],
+                 UNITS[unit], accuracy) for stat in ("min", "max")]
+    return out
+
+
+MAX_TORQUE_NM = 1e9  # as the load command: far above any coupling
+
+
+def check_inputs(spec: CouplingSpec, torque_Nm: float | None) -> float:
+    """What :func:`coupling_data` refuses before computing anything: the parts' densities
+    (:class:`SpecError` where one is missing) and the torque (the argument, else the
+    spec's; finite and not zero). Returns the torque."""
+    for part in ("hub", "sleeve"):
+        getattr(spec.material, part).mass_density_kg_per_m3()
+    T = resolve_torque_Nm(spec, torque_Nm)
+    if T == 0 or abs(T) > MAX_TORQUE_NM:
+        raise ArgumentError("torque_Nm", T, f"a torque from -{MAX_TORQUE_NM:g} to "
+                            f"{MAX_TORQUE_NM:g} N·m, not 0 (the data are those of loaded "
+                            "teeth; at zero torque the coupling turns freely in its backlash)")
+    return T
+
+
+def coupling_data(spec: CouplingSpec, misalignment_deg: float | None = None,
+                  torque_Nm: float | None = None, *, model: str | None = None,
+                  rotations: int = DEFAULT_ROTATIONS,
+                  relative_step: float = DEFAULT_RELATIVE_STEP,
+                  turn_angles: int = DEFAULT_TURN_ANGLES, curve_points: int = DEFAULT_POINTS,
+                  tolerance_mm: float | None = None,
+                  progress: Callable[[int, int], Any] | None = None) -> CouplingData:
+    """The API 671 data of a coupling at an operating point (module docstring).
+
+    Parameters
+    ----------
+    spec : CouplingSpec
+    misalignment_deg : float, optional
+        0-6 degrees; default the spec's design angle.
+    torque_Nm : float, optional
+        Signed, not zero; default the spec's ``[load]`` torque.
+    model : str, optional
+        Load model; default the spec's.
+    rotations : int
+        Rotations over one tooth pitch the stiffness is averaged over (accuracy knob).
+    relative_step : float
+        Difference step, a share of the largest tooth deflection (accuracy knob).
+    turn_angles : int
+        Rotations of the turn at the allowable misalignment.
+    curve_points : int
+        Torques on the wind-up curve.
+    tolerance_mm : float, optional
+        Chordal tolerance of the part meshes (default module / 200; accuracy knob).
+    progress : callable, optional
+        ``progress(done, 4)`` after the masses, the matrix, the torsion and the
+        allowable misalignment.
+
+    Examples
+    --------
+    >>> import gearcoupling as gc
+    >>> data = gc.coupling_data(gc.load_spec("renzo-1967"))  # doctest: +SKIP
+    >>> data.stiffness.matrix.shape  # doctest: +SKIP
+    (6, 6)
+    """
+    t0 = time.perf_counter()
+    mis = (spec.design_misalignment_deg if misalignment_deg is None else
+           check_misalignment_deg(misalignment_deg, "misalignment_deg", ArgumentError))
+    T = check_inputs(spec, torque_Nm)
+    def step(done: int) -> None:
+        if progress is not None:
+            progress(done, 4)
+
+    mass = mass_properties(spec, tolerance_mm)
+    step(1)
+    sw = sweep(spec, mis, pitch_rotations(spec, rotations))
+    K = stiffness_from_sweep(sw, T, model=model, relative_step=relative_step)
+    step(2)
+    cap = capacity(spec, mis, model=model)
+    torsion = torsional_stiffness(sw, T, float(K.matrix[5, 5]), cap.capacity_Nm, model=model,
+                                  points=curve_points)
+    step(3)
+    allowed = allowable_loads(spec, T, model=model, angles=turn_angles)
+    step(4)
+    used = K.model
+    return CouplingData(spec, float(mis), T, used, springs(spec, used), mass, torsion, K,
+                        cap.capacity_Nm, allowed, time.perf_counter() - t0)
+
+
+__all__ = ["DATASHEET_COLUMNS", "FILES", "MAX_TORQUE_NM", "NOT_MODELLED", "CouplingData",
+           "check_inputs", "coupling_data"]
