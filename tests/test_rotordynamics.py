@@ -13,7 +13,7 @@ import pytest
 import gearcoupling as gc
 from gearcoupling.cli import main
 from gearcoupling.geometry import form_radius, hub_model, inv, tip_radius
-from gearcoupling.loading import machine_loads, mesh_stiffness_N_per_mm
+from gearcoupling.loading import machine_loads, mesh_stiffness_N_per_mm, springs_name
 from gearcoupling.rotordynamics import (
     FILES,
     WINDUP_ERROR_PCT,
@@ -25,7 +25,6 @@ from gearcoupling.rotordynamics import (
     tilt_pose,
     translation_gap_offsets,
 )
-from gearcoupling.rotordynamics.accuracy import springs
 from gearcoupling.rotordynamics.mass import combine
 from gearcoupling.rotordynamics.torsion import mesh_windup_from_touch
 
@@ -374,7 +373,7 @@ def test_torsional_stiffness_against_the_calculix_reference(name):
     the CalculiX contact reference, within the accuracy ladder's band for the model and
     springs used (docs/load.md; 0.5 points of rounding)."""
     spec = gc.load_spec(name)
-    lo, hi = WINDUP_ERROR_PCT[(spec.load.model, springs(spec, spec.load.model))]
+    lo, hi = WINDUP_ERROR_PCT[(spec.load.model, springs_name(spec, spec.load.model))]
     refs = json.loads(GOLDEN.read_text())["references"][name]
     sw = gc.sweep(spec, 0.0, [0.0])
     for torque, ref in refs.items():

@@ -2,6 +2,13 @@
 
 from __future__ import annotations
 
+from .accuracy import (
+    TOOTH_LOAD_RATIO,
+    WINDUP_ERROR_PCT,
+    springs_name,
+    tooth_load_error,
+    windup_error,
+)
 from .api import load, load_from_sweep
 from .body import body_windup_rad
 from .cantilever import CantileverCompliance
@@ -40,6 +47,8 @@ __all__ = [
     "LOAD_GRID",
     "PHASES",
     "ROTATIONS",
+    "TOOTH_LOAD_RATIO",
+    "WINDUP_ERROR_PCT",
     "CantileverCompliance",
     "Capacity",
     "CapacityCurve",
@@ -68,6 +77,9 @@ __all__ = [
     "rotation_table",
     "sector_check",
     "solve_windup",
+    "springs_name",
+    "tooth_load_error",
     "turn_phases",
+    "windup_error",
     "write_capacity_csv",
 ]

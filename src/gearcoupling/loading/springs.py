@@ -31,16 +31,14 @@ class Springs:
         its fit): the compliance model's line contact then takes the half-space strip law,
         the surface model's half-space adds the local part once.
     what : str
-        One line for settings tables.
-    accuracy : str
-        What the accuracy ladder measured for them (report settings, summaries).
+        One line for settings tables (what the accuracy ladder measured for them:
+        :mod:`.accuracy`).
     """
 
     name: str
     make: Callable[[CouplingSpec], Any]
     far_field: bool
     what: str
-    accuracy: str
 
 
 @lru_cache(maxsize=32)
@@ -55,20 +53,11 @@ def _fitted(spec: CouplingSpec) -> FittedCompliance:
 
 SPRINGS: dict[str, Springs] = {s.name: s for s in (
     Springs("fe-fit", _fitted, True,
-            "the FE tooth table's far field by the shipped fit (no solver at run time)",
-            "the fit within 10 % of the FE far field at every load point of 35 specs; with "
-            "the surface model the aligned wind-up within 10 % of the CalculiX contact "
-            "reference"),
+            "the FE tooth table's far field by the shipped fit (no solver at run time)"),
     Springs("fe", tooth_compliance_table, True,
-            "the FE tooth table's far field (gmsh and CalculiX, once per spec, cached)",
-            "wind-up within 9 % of the CalculiX contact reference; at 1–2° the most loaded "
-            "teeth carry 0–20 % (surface) and 8–40 % (compliance) more than a CalculiX "
-            "sector at equal wind-up"),
+            "the FE tooth table's far field (gmsh and CalculiX, once per spec, cached)"),
     Springs("cantilever", _cantilever, False,
-            "tapered Timoshenko cantilevers with Weber's foundation (Wei)",
-            "wind-up 58–87 % more compliant than the CalculiX contact reference; at 1–2° "
-            "the most loaded teeth carry 1.4–1.8 times less than a CalculiX sector at "
-            "equal wind-up"),
+            "tapered Timoshenko cantilevers with Weber's foundation (Wei)"),
 )}
 
 

@@ -4,7 +4,7 @@ element (docs/rotordynamics.md)."""
 
 from __future__ import annotations
 
-from .accuracy import TOOTH_LOAD_RATIO, WINDUP_ERROR_PCT
+from ..loading import TOOTH_LOAD_RATIO, WINDUP_ERROR_PCT
 from .allowable import AllowableLoads, allowable_loads
 from .data import (
     DATASHEET_COLUMNS,

@@ -19,10 +19,9 @@ from typing import Any
 from ..clearance import sweep
 from ..errors import ArgumentError
 from ..io import write_csv_rows, write_json
-from ..loading import capacity, resolve_torque_Nm
+from ..loading import capacity, resolve_torque_Nm, springs_name, tooth_load_error, windup_error
 from ..spec import CouplingSpec, check_misalignment_deg
 from ..tables import dataframe
-from .accuracy import springs, tooth_load_error, windup_error
 from .allowable import DEFAULT_TURN_ANGLES, AllowableLoads, allowable_loads
 from .mass import MassProperties, mass_properties
 from .ross import coupling_element
@@ -306,7 +305,7 @@ def coupling_data(spec: CouplingSpec, misalignment_deg: float | None = None,
     allowed = allowable_loads(spec, T, model=model, angles=turn_angles)
     step(4)
     used = K.model
-    return CouplingData(spec, float(mis), T, used, springs(spec, used), mass, torsion, K,
+    return CouplingData(spec, float(mis), T, used, springs_name(spec, used), mass, torsion, K,
                         cap.capacity_Nm, allowed, time.perf_counter() - t0)
 
 

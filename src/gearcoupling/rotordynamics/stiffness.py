@@ -26,9 +26,8 @@ from numpy.typing import NDArray
 
 from ..clearance import SweepResult, sweep
 from ..errors import ArgumentError
-from ..loading import body_windup_rad, load_from_sweep, resolve_torque_Nm
+from ..loading import body_windup_rad, load_from_sweep, resolve_torque_Nm, springs_name
 from ..spec import MISALIGNMENT_RANGE_DEG
-from .accuracy import springs
 from .pose import generalized_forces, translation_gap_offsets
 from .wrench import hub_wrench
 
@@ -225,8 +224,8 @@ def stiffness_from_sweep(sw: SweepResult, torque_Nm: float, *, model: str | None
     steps = {"translation_mm": h_t, "tilt_rad": h_a, "torque_Nm": h_T,
              "relative_step": float(relative_step), "rotations": n}
     return StiffnessMatrix(float(sw.misalignment_deg), case.torque_Nm, res0.model,
-                           springs(spec, res0.model), _round_off(K), k_body, slip, Qbar, spread,
-                           steps, mu, tuple(notes))
+                           springs_name(spec, res0.model), _round_off(K), k_body, slip, Qbar,
+                           spread, steps, mu, tuple(notes))
 
 
 def _translations(case: _Case, sw: SweepResult, flank: str, h: float, dQdu: NDArray,
