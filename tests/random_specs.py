@@ -56,7 +56,7 @@ def random_proportions_data(rng: np.random.Generator) -> dict:
     modules (at most R/2), hub dedendum 1.1-1.35 m, hub and sleeve root fillets 0.15-0.38 m
     (at least the FE mesh's module / 8), hub rim under the root and sleeve ring over it
     2-8 m, a circular, Vari-Crown, End Round or no crown; the rest the defaults."""
-    teeth = int(round(math.exp(rng.uniform(math.log(6), math.log(300)))))
+    teeth = round(math.exp(rng.uniform(math.log(6), math.log(300))))
     module = float(np.exp(rng.uniform(math.log(0.2), math.log(60.0))))
     R = 0.5 * module * teeth
     face = min(float(rng.uniform(4.0, 20.0)) * module, 0.5 * R)

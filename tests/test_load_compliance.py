@@ -105,7 +105,8 @@ def test_regimes_reported_per_tooth(renzo):
     light = load_from_sweep(sw, torque_Nm=5.0, model="compliance")
     heavy = load_from_sweep(sw, torque_Nm=5000.0, model="compliance")
     assert np.any(light.contact_regime == 1)  # elliptic Hertz at light load
-    assert np.all(heavy.contact_regime[heavy.in_contact] == 2)  # ellipse outgrows the flank
+    loaded = heavy.normal_force_N >= 0.1 * np.max(heavy.normal_force_N)
+    assert np.all(heavy.contact_regime[loaded] == 2)  # the ellipse outgrows the flank
     assert np.all(heavy.contact_regime[~heavy.in_contact] == 0)
 
 

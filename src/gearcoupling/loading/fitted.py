@@ -92,9 +92,7 @@ class FittedCompliance(CantileverCompliance):
                     "sleeve": 0.5 * spec.sleeve.outer_diameter - self.r_root_sleeve}
         self.root_thickness = {p: 2.0 * float(self.half_thickness(p, self._heights(p, 0.0)[0]))
                                for p in PARTS}
-        mats = {"hub": spec.material.hub, "sleeve": spec.material.sleeve}
-        self.beam = {p: np.array([self.components(r, p, mats[p])[0] for r in self.r_table])
-                     for p in PARTS}
+        self.beam = {p: self.terms[p][0] for p in PARTS}
 
     def part_features(self, part: str, z_mm: ArrayLike, r_mm: ArrayLike) -> NDArray:
         """:func:`features` of ``part`` at hub flank points ``(z, r)``."""
