@@ -93,13 +93,24 @@ def part_records(spec: gc.CouplingSpec, table: ComplianceTable, springs) -> dict
 
 
 def fit(data: list[dict], ridge: float = 1e-3) -> dict:
-    """Coefficients per part minimising the log error of the pair far field over ``data``
-    (:func:`part_records` of each spec), a small ridge on all but the constant."""
+    """Coefficients per part: weighted least squares of the log far field of each part
+    (weight: the part's share of the pair, so a part's small, noisy values near its root
+    count little), then a polish on the log error of the pair, a small ridge on all but
+    the constant."""
     from scipy.optimize import least_squares
 
     from gearcoupling.loading.fitted import FEATURES, PARTS
 
     nf = len(FEATURES)
+    start = []
+    for p in PARTS:
+        F = np.concatenate([d[p][0] for d in data])
+        y = np.concatenate([np.log(np.maximum(d[p][2], 1e-6 * d["pair"]) / d[p][1])
+                            for d in data])
+        w = np.concatenate([np.clip(d[p][2] / d["pair"], 0.02, 1.0) for d in data])
+        A = np.vstack([F * w[:, None], ridge * np.eye(nf)[1:]])
+        start.append(np.linalg.lstsq(A, np.concatenate([y * w, np.zeros(nf - 1)]),
+                                     rcond=None)[0])
 
     def resid(x):
         a = {p: x[i * nf:(i + 1) * nf] for i, p in enumerate(PARTS)}
@@ -107,9 +118,9 @@ def fit(data: list[dict], ridge: float = 1e-3) -> dict:
              for d in data]
         return np.concatenate([*r, ridge * np.concatenate([a[p][1:] for p in PARTS])])
 
-    x = least_squares(resid, np.zeros(2 * nf), method="lm").x
+    x = least_squares(resid, np.concatenate(start), method="lm").x
     ranges = {}
-    for i, p in enumerate(PARTS):
+    for p in PARTS:
         f = np.concatenate([d[p][0] for d in data])
         ranges[p] = {"low": f.min(axis=0).tolist(), "high": f.max(axis=0).tolist()}
     return {"features": list(FEATURES),

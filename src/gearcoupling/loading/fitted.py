@@ -41,33 +41,48 @@ from ..spec import CouplingSpec
 from .cantilever import CantileverCompliance
 
 PARTS = ("hub", "sleeve")
-FEATURES = ("one", "height", "edge_height", "edge_module", "rim", "teeth")
+FEATURES = ("one", "height", "height_squared", "root_thickness", "tooth_height",
+            "edge_height", "edge_module", "rim", "teeth", "pressure_angle")
 
 
-def features(y_F: ArrayLike, root_thickness: float, to_face_end: ArrayLike, module: float,
-             rim: float, teeth: int) -> NDArray[np.float64]:
-    """Features ``(..., len(FEATURES))`` of load points of one part.
+def features(y_F: ArrayLike, to_face_end: ArrayLike, *, module: float, root_thickness: float,
+             tooth_height: float, rim: float, teeth: int,
+             pressure_angle: float) -> NDArray[np.float64]:
+    """Features ``(..., len(FEATURES))`` of load points of one part (:data:`FEATURES`):
+    ``1``, ``ln(y_F / m)`` and its square, ``ln(S_f / m)``, ``ln(H / m)``,
+    ``exp(-d / y_F)``, ``exp(-d / m)``, ``ln(t / m)``, ``1 / N``, ``phi - 20°`` (rad).
 
     Parameters
     ----------
     y_F : (...) float
         Load height above the part's root circle (mm).
-    root_thickness : float
-        The tooth's thickness at its root circle (mm).
     to_face_end : (...) float
-        Distance from the load point to the part's nearer face end (mm, >= 0).
+        Distance ``d`` from the load point to the part's nearer face end (mm, >= 0).
     module : float
+    root_thickness : float
+        The tooth's thickness ``S_f`` at its root circle (mm).
+    tooth_height : float
+        ``H``: from the root circle to the end of the active flank (mm).
     rim : float
-        Radial thickness of the body under the teeth: hub root to bore (the root radius for
-        a solid hub), sleeve root to outside (mm).
+        ``t``: radial thickness of the body under the teeth, hub root to bore (the root
+        radius for a solid hub), sleeve root to outside (mm).
     teeth : int
+    pressure_angle : float
+        Radians.
     """
-    y = np.maximum(np.asarray(y_F, dtype=float), 1e-6 * module)
+    m = module
+    y = np.maximum(np.asarray(y_F, dtype=float), 1e-3 * m)
     d = np.maximum(np.asarray(to_face_end, dtype=float), 0.0)
     y, d = np.broadcast_arrays(y, d)
-    return np.stack([np.ones(y.shape), np.log(y / root_thickness), np.exp(-d / y),
-                     np.exp(-d / module), np.full(y.shape, math.log(rim / module)),
-                     np.full(y.shape, 1.0 / teeth)], axis=-1)
+    h = np.log(y / m)
+
+    def const(v: float) -> NDArray[np.float64]:
+        return np.full(y.shape, v)
+
+    return np.stack([const(1.0), h, h * h, const(math.log(root_thickness / m)),
+                     const(math.log(tooth_height / m)), np.exp(-d / y), np.exp(-d / m),
+                     const(math.log(rim / m)), const(1.0 / teeth),
+                     const(pressure_angle - math.radians(20.0))], axis=-1)
 
 
 def load_fit() -> dict[str, Any]:
@@ -92,6 +107,8 @@ class FittedCompliance(CantileverCompliance):
                     "sleeve": 0.5 * spec.sleeve.outer_diameter - self.r_root_sleeve}
         self.root_thickness = {p: 2.0 * float(self.half_thickness(p, self._heights(p, 0.0)[0]))
                                for p in PARTS}
+        top = {"hub": self.r_table[-1], "sleeve": self.r_table[0]}  # active flank ends
+        self.tooth_height = {p: float(self._heights(p, top[p])[1]) for p in PARTS}
         self.beam = {p: self.terms[p][0] for p in PARTS}
 
     def part_features(self, part: str, z_mm: ArrayLike, r_mm: ArrayLike) -> NDArray:
@@ -99,9 +116,10 @@ class FittedCompliance(CantileverCompliance):
         r = np.clip(np.asarray(r_mm, dtype=float), self.r_table[0], self.r_table[-1])
         root, _ = self._heights(part, 0.0)
         half = self.half_face_hub if part == "hub" else self.half_face_sleeve
-        return features(np.abs(r - root), self.root_thickness[part],
-                        half - np.abs(np.asarray(z_mm, dtype=float)), self.module,
-                        self.rim[part], self.teeth)
+        return features(np.abs(r - root), half - np.abs(np.asarray(z_mm, dtype=float)),
+                        module=self.module, root_thickness=self.root_thickness[part],
+                        tooth_height=self.tooth_height[part], rim=self.rim[part],
+                        teeth=self.teeth, pressure_angle=self.phi)
 
     def part_compliance_mm_per_N(self, part: str, z_mm: ArrayLike, r_mm: ArrayLike) -> NDArray:
         """Normal far-field compliance of one part at hub flank points ``(z, r)`` (mm/N)."""
