@@ -216,22 +216,24 @@ def _surface_torques(problem: LoadProblem, limits: dict[str, NDArray]
     load = _SurfaceLimits(problem, grids[0])
     pressure = _SurfaceLimits(problem, grids[1], coarser=load)
     guesses, first = {}, {}
-    for name, W_lim in limits.items():
+    for name, W_lim in sorted(limits.items(), key=lambda kv: kv[0] != "bending_stress"):
         guesses[name] = np.array([first_limit_torque_Nmm(spec, g[:, j:j + 1], z[:, j:j + 1],
                                                          r[:, j:j + 1], W_lim[:, j:j + 1], comp)
                                   for j in range(g.shape[1])])
         if name == "face_end" and np.any(guesses[name] == 0.0):
             first[name] = (0, 0.0)  # the first touch lies on a face end: at any torque
             continue
-        j, T = _first_root(load, name, guesses[name])
-        if name == "contact_stress":  # the load grid's root starts the pressure grid's
-            T = _rotation_root(pressure, name, j, T)
-        first[name] = (j, T)
+        # roughly (INFO_RTOL) on the load grid first: the order of the criteria
+        first[name] = _first_root(load, name, guesses[name], INFO_RTOL)
     torques: dict[str, float] = {}
     best = math.inf
     for name in sorted(first, key=lambda k: first[k][1]):
         j, T = first[name]
         search = pressure if name == "contact_stress" else load
+        if name in CRITERIA and (T <= (1.0 + SCREEN_MARGIN) * best or search is pressure):
+            # to SURFACE_RTOL on its own grid, from the rough root
+            T = _rotation_root(search, name, j, T, SURFACE_RTOL if T <= (
+                1.0 + SCREEN_MARGIN) * best else INFO_RTOL)
         if name in CRITERIA and T <= (1.0 + SCREEN_MARGIN) * best:
             T = _surface_capacity(search, name, guesses[name], j, T)
         if name in CRITERIA:
@@ -241,7 +243,8 @@ def _surface_torques(problem: LoadProblem, limits: dict[str, NDArray]
 
 
 SURFACE_RTOL = 1e-3  # relative accuracy of a surface-model capacity torque
-FACE_END_RTOL = 1e-2  # the face-end torque (reported, not a capacity) by bisection
+INFO_RTOL = 1e-2  # ... of a criterion more than SCREEN_MARGIN above the governing one
+FACE_END_RTOL = 3e-2  # the face-end torque (reported, not a capacity) by bisection
 LOAD_GRID = (24, 16)  # surface-model cells of the load and bending criteria (bench_surface.py)
 PRESSURE_GRID = DEFAULT_GRID  # ... of the contact-pressure criterion
 SCREEN_MARGIN = 0.15  # criteria within this of the smallest are screened over the rotations
@@ -295,6 +298,23 @@ class _SurfaceLimits:
             self.solved[key] = (out, pose)
         return self.solved[key][0]
 
+    def peak_load_N(self, T_Nmm: float, within: float = 0.1) -> float:
+        """The largest tangential tooth load at torque ``T`` over the rotations: from each
+        rotation's pose solved nearest ``T`` (within ``within``, relative), scaled to ``T``
+        (the load grows about linearly with the torque there); the rotations without one
+        are those the compliance model puts well below the worst, unless none has one:
+        then the rotation of the pose solved nearest ``T`` is solved at ``T``."""
+        near: dict[int, float] = {}
+        for j, T in self.solved:
+            if abs(math.log(T / T_Nmm)) <= math.log1p(within) and (
+                    j not in near or abs(math.log(T / T_Nmm)) < abs(math.log(near[j] / T_Nmm))):
+                near[j] = T
+        if not near:
+            j, _ = min(self.solved, key=lambda k: abs(math.log(k[1] / T_Nmm)))
+            near[j] = T_Nmm
+        return max(float(np.max(self.out(j, T)["tangential_force_N"])) * T_Nmm / T
+                   for j, T in near.items())
+
     def ratio(self, name: str, j: int, T_Nmm: float) -> float:
         """``max over the teeth of criterion / limit`` at rotation ``j`` and torque ``T``
         (face end: 2 with a patch on a face end, else 0.5)."""
@@ -310,13 +330,22 @@ class _SurfaceLimits:
         return float(np.max(value)) / self.limit[name]
 
 
-def _first_root(limits: _SurfaceLimits, name: str, guess_Nmm: NDArray) -> tuple[int, float]:
+def _first_root(limits: _SurfaceLimits, name: str, guess_Nmm: NDArray,
+                rtol: float = SURFACE_RTOL) -> tuple[int, float]:
     """The rotation where the compliance model reaches criterion ``name`` first (from its
-    roots ``guess_Nmm (M,)``) and the surface model's root there (N·mm)."""
+    roots ``guess_Nmm (M,)``) and the surface model's root there (N·mm, to ``rtol``),
+    started from the pose already solved nearest to it, where there is one (its ratio and
+    the criterion's slope give the start), else from the compliance model's root."""
     fallback = 1e3 * limits.spec.tooth.pitch_radius
     start = np.where(np.isfinite(guess_Nmm) & (guess_Nmm > 0), guess_Nmm, fallback)
     j = int(np.argmin(start))
-    return j, _rotation_root(limits, name, j, float(start[j]))
+    T0 = float(start[j])
+    if limits.solved and name in SLOPES:
+        k, T = min(limits.solved, key=lambda key: (abs(key[0] - j), abs(math.log(key[1] / T0))))
+        ratio = limits.ratio(name, k, T)
+        if ratio > 0:
+            T0 = T * ratio ** (-1.0 / SLOPES[name])
+    return j, _rotation_root(limits, name, j, T0, rtol)
 
 
 def _surface_capacity(limits: _SurfaceLimits, name: str, guess_Nmm: NDArray, first: int,
@@ -350,13 +379,14 @@ def _surface_capacity(limits: _SurfaceLimits, name: str, guess_Nmm: NDArray, fir
     return best
 
 
-def _rotation_root(limits: _SurfaceLimits, name: str, j: int, T0: float) -> float:
+def _rotation_root(limits: _SurfaceLimits, name: str, j: int, T0: float,
+                   rtol: float = SURFACE_RTOL) -> float:
     def ratio(T):
         return limits.ratio(name, j, T)
 
     if name == "face_end":
         return _bisect_root(ratio, T0, FACE_END_RTOL)
-    return _secant_root(ratio, T0, SLOPES[name])
+    return _secant_root(ratio, T0, SLOPES[name], rtol)
 
 
 LOG_T_MAX = math.log(1e18)  # N·mm: a torque never reached
@@ -431,8 +461,7 @@ def _summarise(problem: LoadProblem, model: str, torques: dict[str, float],
     solves = 0
     if math.isfinite(T_gov) and T_gov > 0:  # q at the governing torque (T = q N P_max R)
         if searches:
-            P_max = max(float(np.max(searches[0].out(j, 1e3 * T_gov)["tangential_force_N"]))
-                        for j in range(sw.angles_deg.size))
+            P_max = searches[0].peak_load_N(1e3 * T_gov)
             q = 1e3 * T_gov / (R * N * P_max)
         else:
             sign = 1.0 if problem.torque_Nm >= 0 else -1.0
