@@ -172,7 +172,7 @@ def main() -> None:
             tables.append(table)
     fitted = None
     if a.fit or a.holdout:
-        data = [part_records(s, t, FittedCompliance(s)) for s, t in zip(specs, tables)]
+        data = [part_records(s, t, FittedCompliance(s)) for s, t in zip(specs, tables, strict=True)]
         keep = [i for i in range(len(specs))
                 if not (a.holdout and i >= len(TEMPLATES) and i % a.holdout == 0)]
         fitted = fit([data[i] for i in keep])
@@ -185,7 +185,7 @@ def main() -> None:
             path.write_text(json.dumps(fitted, indent=1) + "\n")
             print(f"wrote {path}")
     rows, worst, held = [], [], []
-    for i, (spec, table) in enumerate(zip(specs, tables)):
+    for i, (spec, table) in enumerate(zip(specs, tables, strict=True)):
         t0 = time.perf_counter()
         springs = FittedCompliance(spec, fit=fitted)
         Z, R = np.meshgrid(table.z_mm, table.r_mm, indexing="ij")
@@ -193,15 +193,17 @@ def main() -> None:
         dt = time.perf_counter() - t0
         err = model / table.far_field_mm_per_N - 1.0
         out = bool(a.holdout and i >= len(TEMPLATES) and i % a.holdout == 0)
-        rows.append((spec.name + (" (held out)" if out else ""), describe(spec), err, dt))
+        c_ratio = springs.mesh_stiffness_N_per_mm / table.mesh_stiffness_N_per_mm
+        rows.append((spec.name + (" (held out)" if out else ""), describe(spec), err, dt,
+                     c_ratio))
         (held if out else worst).append(err.ravel())
     print("\n| spec | teeth, module, pressure angle, face / module | largest error | "
-          "mean error | springs ms |")
-    print("|---|---|---|---|---|")
-    for name, what, err, dt in rows:
+          "mean error | C fit / FE | springs ms |")
+    print("|---|---|---|---|---|---|")
+    for name, what, err, dt, c_ratio in rows:
         j = np.argmax(np.abs(err))
         print(f"| {name} | {what} | {100 * err.ravel()[j]:+.1f} % | {100 * err.mean():+.1f} % "
-              f"| {1e3 * dt:.0f} |")
+              f"| {c_ratio:.3f} | {1e3 * dt:.0f} |")
     for label, errs in (("fitted on", worst), ("held out", held)):
         if errs:
             e = np.concatenate(errs)

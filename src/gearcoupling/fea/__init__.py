@@ -10,6 +10,7 @@ from .mesh import DEFAULT_SECTOR_TEETH, check_size, default_size, mesh_part, sec
 from .reference import FEContactResult, fe_contact
 from .sector import FESectorResult, fe_contact_sector
 from .stiffness import (
+    SQUARE_MEAN_INVERSE_DISTANCE,
     ComplianceTable,
     compute_compliance_table,
     pitch_point_compliance,
@@ -21,6 +22,7 @@ from .write import FORMATS, region_ids, write_inp, write_mesh
 __all__ = [
     "DEFAULT_SECTOR_TEETH",
     "FORMATS",
+    "SQUARE_MEAN_INVERSE_DISTANCE",
     "ComplianceTable",
     "FEContactResult",
     "FESectorResult",

@@ -37,6 +37,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ..fea import SQUARE_MEAN_INVERSE_DISTANCE
 from ..spec import CouplingSpec
 from .cantilever import CantileverCompliance
 
@@ -135,6 +136,19 @@ class FittedCompliance(CantileverCompliance):
     def normal_compliance_mm_per_N(self, z_mm: ArrayLike, r_mm: ArrayLike):
         """Hub and sleeve normal far-field compliances at the load (mm/N), broadcast."""
         return tuple(self.part_compliance_mm_per_N(p, z_mm, r_mm) for p in PARTS)
+
+    @property
+    def mesh_stiffness_N_per_mm(self) -> float:
+        """Renzo's C of one tooth pair, as the FE table defines it (the linear model's
+        default): 1 / (the far field at mid-face and the pitch radius + the local
+        deformation under the table's load patch, a uniform square of side module / 2 on
+        an elastic half-space, each part)."""
+        side = 0.5 * self.module
+        near = sum((1.0 - m.poisson_ratio**2) / (math.pi * m.youngs_modulus_MPa)
+                   * SQUARE_MEAN_INVERSE_DISTANCE / side
+                   for m in (self.materials.hub, self.materials.sleeve))
+        far = float(self.pair_compliance_mm_per_N(0.0, self.R))
+        return 1.0 / (far + near / math.cos(self.phi) ** 2)
 
     @cached_property
     def outside(self) -> list[str]:
