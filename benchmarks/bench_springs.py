@@ -177,9 +177,9 @@ def main() -> None:
                 if not (a.holdout and i >= len(TEMPLATES) and i % a.holdout == 0)]
         fitted = fit([data[i] for i in keep])
         fitted["spec_ranges"] = spec_ranges([specs[i] for i in keep])
+        points = sum(tables[i].far_field_mm_per_N.size for i in keep)
         fitted["data_set"] = (f"bench_springs.py: {len(keep)} specs (the templates and seeded "
-                              f"random specs, seed {a.seed}), {sum(t.far_field_mm_per_N.size for t in tables)} "
-                              f"load points")
+                              f"random specs, seed {a.seed}), {points} load points")
         if a.fit and not a.holdout:
             path = ROOT / "src" / "gearcoupling" / "loading" / "fitted.json"
             path.write_text(json.dumps(fitted, indent=1) + "\n")
