@@ -26,8 +26,9 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-import gearcoupling as gc
 from bench_springs import dataset_specs, fe_table
+
+import gearcoupling as gc
 from gearcoupling.errors import GearCouplingError
 
 
