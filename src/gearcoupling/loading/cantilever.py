@@ -32,9 +32,10 @@ FOUNDATION_L, FOUNDATION_P, FOUNDATION_Q = 5.306, 1.534, 0.4167
 SHEAR_FACTOR = 1.2  # 1 / kappa for a rectangular section
 
 
-def beam_compliance(y: NDArray[np.float64], S: NDArray[np.float64], y_F: ArrayLike, *,
-                    E: float, G: float, beta: ArrayLike = 0.0) -> NDArray[np.float64]:
-    """Normal deflection per unit load and unit width of a cantilever of thickness ``S(y)``.
+def beam_terms(y: NDArray[np.float64], S: NDArray[np.float64], y_F: ArrayLike, *,
+               E: float, G: float, beta: ArrayLike = 0.0) -> NDArray[np.float64]:
+    """Normal deflection per unit load and unit width of a cantilever of thickness ``S(y)``,
+    in its terms: bending, shear and compression.
 
     Parameters
     ----------
@@ -51,16 +52,24 @@ def beam_compliance(y: NDArray[np.float64], S: NDArray[np.float64], y_F: ArrayLi
 
     Returns
     -------
-    (...) float
-        Deflection along the load per unit load per unit width (mm²/N), Simpson's rule.
+    (3, ...) float
+        Deflection along the load per unit load per unit width (mm²/N) of bending, shear
+        and compression, Simpson's rule.
     """
     from scipy.integrate import simpson
 
     yF = np.asarray(y_F, dtype=float)[..., None]
     b = np.asarray(beta, dtype=float)[..., None]
     cb2, sb2 = np.cos(b) ** 2, np.sin(b) ** 2
-    f = cb2 * (12.0 * (yF - y) ** 2 / (E * S**3) + SHEAR_FACTOR / (G * S)) + sb2 / (E * S)
-    return simpson(f, x=y, axis=-1)
+    f = np.stack(np.broadcast_arrays(cb2 * 12.0 * (yF - y) ** 2 / (E * S**3),
+                                     cb2 * SHEAR_FACTOR / (G * S), sb2 / (E * S)))
+    return simpson(f, x=np.broadcast_to(y, f.shape), axis=-1)
+
+
+def beam_compliance(y: NDArray[np.float64], S: NDArray[np.float64], y_F: ArrayLike, *,
+                    E: float, G: float, beta: ArrayLike = 0.0) -> NDArray[np.float64]:
+    """The sum of :func:`beam_terms` (same arguments; ``(...)`` float, mm²/N)."""
+    return beam_terms(y, S, y_F, E=E, G=G, beta=beta).sum(axis=0)
 
 
 class CantileverCompliance:
@@ -91,8 +100,8 @@ class CantileverCompliance:
         self.r_table = np.linspace(r_lo, r_hi, n_radii)
         self.n_quad = n_quad
         mats = {"hub": spec.material.hub, "sleeve": spec.material.sleeve}
-        #: per part, the terms of the unit compliance at ``r_table``: beam, foundation
-        #: rotation and translation (``(3, n_radii)``, mm²/N)
+        #: per part, the terms of the unit compliance at ``r_table`` (``(5, n_radii)``,
+        #: mm²/N: :meth:`components`)
         self.terms = {p: np.stack(self.components(self.r_table, p, m))
                       for p, m in mats.items()}
         self.hub_unit = self.terms["hub"].sum(axis=0)
@@ -122,8 +131,8 @@ class CantileverCompliance:
 
     def components(self, r_F: ArrayLike, part: str, mat):
         """Normal compliance times width (mm²/N) of one tooth loaded at radii ``r_F``
-        ``(...)``, in its terms: the beam (bending, shear, compression), the foundation's
-        rotation and its translation (each ``(...)``)."""
+        ``(...)``, in its terms: the beam's bending, shear and compression, the
+        foundation's rotation and its translation (each ``(...)``)."""
         r_F = np.asarray(r_F, dtype=float)
         root, y_F = self._heights(part, r_F)
         y = y_F[..., None] * np.linspace(0.0, 1.0, self.n_quad)
@@ -132,10 +141,10 @@ class CantileverCompliance:
         nu = mat.poisson_ratio
         E_ps = mat.youngs_modulus_MPa / (1 - nu**2)
         beta = self.load_angle(part, r_F)
-        beam = beam_compliance(y, S, y_F, E=E_ps, G=mat.shear_modulus_MPa, beta=beta)
+        bend, shear, comp = beam_terms(y, S, y_F, E=E_ps, G=mat.shear_modulus_MPa, beta=beta)
         S_f = 2.0 * float(self.half_thickness(part, root))
         scale = np.cos(beta) ** 2 / mat.youngs_modulus_MPa
-        return (beam, scale * FOUNDATION_L * (y_F / S_f) ** 2,
+        return (bend, shear, comp, scale * FOUNDATION_L * (y_F / S_f) ** 2,
                 scale * FOUNDATION_P * (1 + FOUNDATION_Q * np.tan(beta) ** 2))
 
     # ---------------------------------------------------------------- public protocol

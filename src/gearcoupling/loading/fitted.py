@@ -6,14 +6,17 @@ reference, but it needs gmsh, CalculiX and minutes per spec. This is its fit, wi
 solver at run time (``stiffness = "fe-fit"``, the default): for each part (hub, sleeve) the
 far field at a load point ``(z, r)`` of the hub flank is
 
-    c_part(z, r) = c_beam(r) / (2 y_F) · exp(sum_i a_i f_i(z, r))
+    c_part(z, r) = c_bend(r) / y_F · exp(sum_i a_i f_i(z, r))
 
-with ``c_beam`` the tapered Timoshenko beam of the real tooth thickness per unit width
-(bending, shear and compression, :meth:`.cantilever.CantileverCompliance.components`),
-``y_F`` the load's height above the part's root circle and ``f_i`` dimensionless features
-of the load point and the part (:func:`features`): how high the load sits on the tooth
-against its root thickness, how near it is to a face end (where a plate's free edge makes
-it softer), the rim or ring under the teeth and the tooth count. The coefficients ``a_i``
+with ``c_bend`` the bending of the tapered tooth of the real thickness per unit width (the
+bending term of :meth:`.cantilever.CantileverCompliance.components`; its shear,
+compression and foundation terms are local deformation that the far field leaves to the
+contact's half-space), spread over a width of the order of the load height ``y_F`` above
+the part's root circle, and ``f_i`` dimensionless features of the load point and the part
+(:func:`features`): how high the load sits on the tooth against its root thickness, how
+near it is to a face end and to the tooth's free edge along the depth (where a plate's free
+edge makes it softer), the rim or ring under the teeth, the tooth count and the pressure
+angle. The coefficients ``a_i``
 per part are fitted to FE tables of the bundled templates and of seeded random specs over
 the supported range and shipped as ``fitted.json`` (``benchmarks/bench_springs.py --fit``
 regenerates the data set, fits and prints the error at every load point of every table;
@@ -42,28 +45,30 @@ from ..spec import CouplingSpec
 from .cantilever import CantileverCompliance
 
 PARTS = ("hub", "sleeve")
-FEATURES = ("one", "height", "height_squared", "root_thickness", "tooth_height",
-            "edge_height", "edge_module", "rim", "teeth", "pressure_angle")
+FEATURES = ("one", "height", "height_squared", "face_end", "face_end_height", "other_end",
+            "tip_edge", "rim", "teeth", "pressure_angle")
 
 
-def features(y_F: ArrayLike, to_face_end: ArrayLike, *, module: float, root_thickness: float,
-             tooth_height: float, rim: float, teeth: int,
+def features(y_F: ArrayLike, to_face_ends: tuple[ArrayLike, ArrayLike], to_tip: ArrayLike, *,
+             module: float, root_thickness: float, rim: float, teeth: int,
              pressure_angle: float) -> NDArray[np.float64]:
     """Features ``(..., len(FEATURES))`` of load points of one part (:data:`FEATURES`):
-    ``1``, ``ln(y_F / m)`` and its square, ``ln(S_f / m)``, ``ln(H / m)``,
-    ``exp(-d / y_F)``, ``exp(-d / m)``, ``ln(t / m)``, ``1 / N``, ``phi - 20°`` (rad).
+    ``1``, ``ln(y_F / S_f)`` and its square, ``exp(-d1 / m)``, ``exp(-d1 / y_F)``,
+    ``exp(-d2 / m)``, ``exp(-d_t / m)``, ``ln(t / m)``, ``1 / N``, ``phi - 20°`` (rad).
 
     Parameters
     ----------
     y_F : (...) float
         Load height above the part's root circle (mm).
-    to_face_end : (...) float
-        Distance ``d`` from the load point to the part's nearer face end (mm, >= 0).
+    to_face_ends : ((...) float, (...) float)
+        Distances ``d1 <= d2`` from the load point to the part's nearer and farther face
+        end (mm).
+    to_tip : (...) float
+        Distance ``d_t`` from the load point to the tooth's free edge along the depth (the
+        hub tip, the sleeve minor circle), mm.
     module : float
     root_thickness : float
         The tooth's thickness ``S_f`` at its root circle (mm).
-    tooth_height : float
-        ``H``: from the root circle to the end of the active flank (mm).
     rim : float
         ``t``: radial thickness of the body under the teeth, hub root to bore (the root
         radius for a solid hub), sleeve root to outside (mm).
@@ -73,16 +78,15 @@ def features(y_F: ArrayLike, to_face_end: ArrayLike, *, module: float, root_thic
     """
     m = module
     y = np.maximum(np.asarray(y_F, dtype=float), 1e-3 * m)
-    d = np.maximum(np.asarray(to_face_end, dtype=float), 0.0)
-    y, d = np.broadcast_arrays(y, d)
-    h = np.log(y / m)
+    d1, d2, dt = (np.maximum(np.asarray(v, dtype=float), 0.0) for v in (*to_face_ends, to_tip))
+    y, d1, d2, dt = np.broadcast_arrays(y, d1, d2, dt)
+    h = np.log(y / root_thickness)
 
     def const(v: float) -> NDArray[np.float64]:
         return np.full(y.shape, v)
 
-    return np.stack([const(1.0), h, h * h, const(math.log(root_thickness / m)),
-                     const(math.log(tooth_height / m)), np.exp(-d / y), np.exp(-d / m),
-                     const(math.log(rim / m)), const(1.0 / teeth),
+    return np.stack([const(1.0), h, h * h, np.exp(-d1 / m), np.exp(-d1 / y), np.exp(-d2 / m),
+                     np.exp(-dt / m), const(math.log(rim / m)), const(1.0 / teeth),
                      const(pressure_angle - math.radians(20.0))], axis=-1)
 
 
@@ -108,29 +112,31 @@ class FittedCompliance(CantileverCompliance):
                     "sleeve": 0.5 * spec.sleeve.outer_diameter - self.r_root_sleeve}
         self.root_thickness = {p: 2.0 * float(self.half_thickness(p, self._heights(p, 0.0)[0]))
                                for p in PARTS}
-        top = {"hub": self.r_table[-1], "sleeve": self.r_table[0]}  # active flank ends
-        self.tooth_height = {p: float(self._heights(p, top[p])[1]) for p in PARTS}
-        self.beam = {p: self.terms[p][0] for p in PARTS}
+        #: the tooth's free edge along the depth: hub tip and sleeve minor radius
+        self.tip_radius = {"hub": 0.5 * spec.hub.tip.diameter,
+                           "sleeve": 0.5 * spec.sleeve.minor_diameter}
+        self.bend = {p: self.terms[p][0] for p in PARTS}
 
     def part_features(self, part: str, z_mm: ArrayLike, r_mm: ArrayLike) -> NDArray:
         """:func:`features` of ``part`` at hub flank points ``(z, r)``."""
         r = np.clip(np.asarray(r_mm, dtype=float), self.r_table[0], self.r_table[-1])
         root, _ = self._heights(part, 0.0)
         half = self.half_face_hub if part == "hub" else self.half_face_sleeve
-        return features(np.abs(r - root), half - np.abs(np.asarray(z_mm, dtype=float)),
-                        module=self.module, root_thickness=self.root_thickness[part],
-                        tooth_height=self.tooth_height[part], rim=self.rim[part],
+        z = np.abs(np.asarray(z_mm, dtype=float))
+        return features(np.abs(r - root), (half - z, half + z),
+                        np.abs(self.tip_radius[part] - r), module=self.module,
+                        root_thickness=self.root_thickness[part], rim=self.rim[part],
                         teeth=self.teeth, pressure_angle=self.phi)
 
     def part_compliance_mm_per_N(self, part: str, z_mm: ArrayLike, r_mm: ArrayLike) -> NDArray:
         """Normal far-field compliance of one part at hub flank points ``(z, r)`` (mm/N)."""
         r = np.clip(np.asarray(r_mm, dtype=float), self.r_table[0], self.r_table[-1])
         root, _ = self._heights(part, 0.0)
-        y_F = np.maximum(np.abs(r - root), 1e-6 * self.module)
+        y_F = np.maximum(np.abs(r - root), 1e-3 * self.module)
         f = self.part_features(part, z_mm, r)
         lo, hi = (np.asarray(self.fit["ranges"][part][k], dtype=float) for k in ("low", "high"))
         a = np.asarray(self.fit["coefficients"][part], dtype=float)
-        return np.interp(r, self.r_table, self.beam[part]) / (2.0 * y_F) * np.exp(
+        return np.interp(r, self.r_table, self.bend[part]) / y_F * np.exp(
             np.clip(f, lo, hi) @ a)
 
     def normal_compliance_mm_per_N(self, z_mm: ArrayLike, r_mm: ArrayLike):
