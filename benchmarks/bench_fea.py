@@ -1,37 +1,43 @@
 """FE meshes and CalculiX tooth stiffness: the tables docs/fea.md publishes.
 
-Run: ``python benchmarks/bench_fea.py [cantilever] [convergence] [compare]`` (default all;
-the contact references are ``bench_fea_contact.py``, aligned, and ``bench_fea_sector.py``,
-misaligned).
+Run: ``python benchmarks/bench_fea.py [cantilever] [table] [convergence] [compare]
+[--specs A B] [--against OLD_CHECKOUT]`` (default all; the contact references are
+``bench_fea_contact.py``, aligned, and ``bench_fea_sector.py``, misaligned).
 
 - ``cantilever``: gmsh C3D10 + ccx tip deflection of a clamped 100 x 10 x 10 mm steel
   cantilever against Timoshenko at several element sizes.
-- ``convergence``: industrial-m2 hub, 3-tooth sector: mesh time, elements, solve time and
-  hub tooth compliance at the pitch point (mid-face, one load case) for three element sizes
-  (ratio sqrt 2); Richardson extrapolation gives the converged value and each size's error.
+- ``table``: the FE tooth-spring table of each spec at the default settings, each in a
+  fresh Python: wall and CPU seconds; with ``--against`` also with another checkout's code
+  (``git worktree add /tmp/old 18dde9b``) in the same run, and the change of the far field
+  and the whole FE compliance at every grid point. Runs are kept in
+  ``outputs/bench_fea_table.json`` (the other checkout's are reused).
+- ``convergence``: the table's far field on a ladder of finer meshes (default, finer
+  loaded flank, size / 1.4, size / 2) against the finest, every grid point; kept in
+  ``outputs/bench_fea_convergence.json``.
 - ``compare``: renzo-1967 and industrial-m2 at the default size: FE pair compliance and C
-  at the pitch point against the tapered cantilever (``gearcoupling.loading.cantilever``, when
-  available) and ISO 6336's c' (single-pair stiffness 14 N/(mm µm) of face width).
-- ``contact``: renzo-1967 at 1° and psi = 20°: the ``surface`` load model (branch
-  load-surface) at the spec torque gives the wind-up; CalculiX surface-to-surface contact
-  of 3 hub teeth in 3 sleeve spaces turned by that wind-up gives the tooth loads and peak
-  pressures to compare.
+  at the pitch point against the tapered cantilever (``gearcoupling.loading.cantilever``) and
+  ISO 6336's c' (single-pair stiffness 14 N/(mm µm) of face width).
 
 Markdown tables on stdout. The machine is shared: times are single runs, noisy.
 """
 
 from __future__ import annotations
 
+import argparse
+import json
+import os
+import subprocess
 import sys
 import tempfile
 import time
-
-import numpy as np
+from pathlib import Path
 
 from gearcoupling import load_spec
-from gearcoupling.fea import mesh_part
-from gearcoupling.fea.stiffness import part_compliance, tooth_compliance_table
+from gearcoupling.fea.stiffness import ComplianceTable, tooth_compliance_table
 from gearcoupling.fea.validation import cantilever_tip_deflection
+
+ROOT = Path(__file__).resolve().parent.parent
+TEMPLATES = ("renzo-1967", "industrial-m2", "mill-spindle")
 
 ISO_C_PRIME = 14.0  # N/(mm µm), ISO 6336-1 single-pair stiffness of a standard spur pair
 
@@ -46,49 +52,109 @@ def cantilever() -> None:
               f"{r['ratio']:.4f} | {r['solve_seconds']:.1f} |")
 
 
-def richardson(h, c):
-    """Order p and extrapolated value from three (size, value) pairs, c = c0 + A h^p."""
-    from scipy.optimize import brentq
+def _table_in_subprocess(name: str, src: Path, **settings) -> dict:
+    """Compute a spec's FE table with the code under ``src`` in a fresh Python (imports,
+    CAD, meshes and solves all counted): wall and CPU seconds (its own and ccx's) and the
+    table."""
+    code = (
+        "import json, resource, sys, time\n"
+        "t0 = time.perf_counter()\n"
+        "import gearcoupling as gc\n"
+        "import gearcoupling.fea.stiffness as S\n"
+        "kw = json.loads(sys.argv[2])\n"
+        "for k in [k for k in kw if k.isupper()]: setattr(S, k, kw.pop(k))\n"
+        "t = S.compute_compliance_table(gc.load_spec(sys.argv[1]), **kw)\n"
+        "me = resource.getrusage(resource.RUSAGE_SELF)\n"
+        "ccx = resource.getrusage(resource.RUSAGE_CHILDREN)\n"
+        "print(json.dumps({'wall_s': time.perf_counter() - t0,\n"
+        "                  'cpu_s': me.ru_utime + me.ru_stime,\n"
+        "                  'ccx_cpu_s': ccx.ru_utime + ccx.ru_stime, 'table': t.to_dict()}))\n")
+    env = dict(os.environ, PYTHONPATH=str(src))
+    out = subprocess.run([sys.executable, "-c", code, name, json.dumps(settings)], env=env,
+                         capture_output=True, text=True, check=True, cwd=src.parent)
+    return json.loads(out.stdout.splitlines()[-1])
 
-    h, c = np.asarray(h, float), np.asarray(c, float)
-    ratio = (c[0] - c[1]) / (c[1] - c[2])
 
-    def f(p):
-        return (h[0] ** p - h[1] ** p) / (h[1] ** p - h[2] ** p) - ratio
-
-    try:
-        p = brentq(f, 0.2, 6.0)
-    except ValueError:
-        p = 2.0  # not monotone: assume the nominal order of quadratic elements
-    a = (c[0] - c[1]) / (h[0] ** p - h[1] ** p)
-    return p, c[0] - a * h[0] ** p
+def _far_change(new: dict, old: dict) -> str:
+    a, b = ComplianceTable.from_dict(new["table"]), ComplianceTable.from_dict(old["table"])
+    d = 100 * (a.far_field_mm_per_N / b.far_field_mm_per_N - 1)
+    return f"{d.min():+.1f} .. {d.max():+.1f} %"
 
 
-def convergence(sizes=(1.0, 0.7, 0.5)) -> None:
-    spec = load_spec("industrial-m2")
-    R = spec.tooth.pitch_radius
-    print("\n### Mesh convergence: industrial-m2 hub, 3-tooth sector, load at mid-face, "
-          "pitch radius\n")
-    rows = []
-    for size in sizes:
-        t0 = time.perf_counter()
-        vm = mesh_part(spec, "hub", sector=3, size_mm=size)
-        t_mesh = time.perf_counter() - t0
-        with tempfile.TemporaryDirectory() as tmp:
-            c, s, info = part_compliance(vm, spec, np.array([0.0]), np.array([R]),
-                                         patch_mm=0.5, workdir=tmp, job="hub")
-        rows.append((size, vm.quality["elements"], vm.quality["nodes"], t_mesh,
-                     info["solve_seconds"], float(c[0, 0]), float(s[0, 0]),
-                     vm.quality["min_scaled_jacobian"]))
-    p, c0 = richardson([r[0] for r in rows], [r[5] for r in rows])
-    print("| size mm | C3D10 | nodes | mesh s | solve s | hub compliance µm/N | error vs "
-          "extrapolated | root stress MPa/N | min scaled Jacobian |")
-    print("|---|---|---|---|---|---|---|---|---|")
-    for size, ne, nn, tm, ts, c, s, sj in rows:
-        print(f"| {size} | {ne} | {nn} | {tm:.1f} | {ts:.1f} | {1e3 * c:.5f} | "
-              f"{100 * (c - c0) / c0:+.2f} % | {s:.4f} | {sj:.3f} |")
-    print(f"\nRichardson: observed order p = {p:.2f}, extrapolated compliance "
-          f"{1e3 * c0:.5f} µm/N (patch 0.5 mm fixed).")
+def table(names=TEMPLATES, against: Path | None = None, store: Path | None = None) -> None:
+    """The FE tooth-spring table per spec (default settings) with this checkout and, with
+    ``against``, with another one (``git worktree add /tmp/old 18dde9b``) in the same run:
+    seconds, and the change of the far field and of the whole FE compliance at every grid
+    point."""
+    store = store or ROOT / "outputs" / "bench_fea_table.json"
+    runs = json.loads(store.read_text()) if store.exists() else {}
+    checkouts = {"after": ROOT / "src"} | ({"before": against / "src"} if against else {})
+    for name in names:
+        for tag, src in checkouts.items():
+            if tag == "before" and tag in runs.get(name, {}):
+                continue  # the old code does not change: its run is kept
+            runs.setdefault(name, {})[tag] = _table_in_subprocess(name, src)
+            store.parent.mkdir(parents=True, exist_ok=True)
+            store.write_text(json.dumps(runs))
+    print("\n### FE tooth-spring table, default settings (wall s / CPU s: Python + ccx)\n")
+    print("| spec | before s | after s | after CPU s (Python + ccx) | nodes hub + sleeve | "
+          "far field change | whole FE change | C before → after N/mm |")
+    print("|---|---|---|---|---|---|---|---|")
+    for name in names:
+        new, old = runs[name]["after"], runs[name].get("before")
+        t = ComplianceTable.from_dict(new["table"])
+        nodes = " + ".join(str(t.info["mesh"][p]["nodes"]) for p in ("hub", "sleeve"))
+        cpu = f"{new['cpu_s'] + new['ccx_cpu_s']:.0f} ({new['cpu_s']:.0f} + {new['ccx_cpu_s']:.0f})"
+        if old is None:
+            print(f"| {name} | — | {new['wall_s']:.0f} | {cpu} | {nodes} | — | — | "
+                  f"{t.mesh_stiffness_N_per_mm:.4g} |")
+            continue
+        o = ComplianceTable.from_dict(old["table"])
+        fe = 100 * ((t.hub_mm_per_N + t.sleeve_mm_per_N)
+                    / (o.hub_mm_per_N + o.sleeve_mm_per_N) - 1)
+        print(f"| {name} | {old['wall_s']:.0f} | {new['wall_s']:.0f} | {cpu} | {nodes} | "
+              f"{_far_change(new, old)} | {fe.min():+.1f} .. {fe.max():+.1f} % | "
+              f"{o.mesh_stiffness_N_per_mm:.4g} → {t.mesh_stiffness_N_per_mm:.4g} |")
+
+
+LADDER = (("default", {}), ("flank 0.25", {"FLANK_SIZE": 0.25}),
+          ("size / 1.4, flank 0.35", {"size": 1 / 1.4}), ("size / 2", {"size": 0.5}))
+"""The far field's convergence ladder: settings against the default (``size`` in units of
+the default size module / 4; upper-case names are :mod:`gearcoupling.fea.stiffness`
+constants)."""
+
+
+def convergence(names=("renzo-1967",), store: Path | None = None) -> None:
+    """The table's far field on a ladder of finer meshes (:data:`LADDER`): every grid point
+    against the finest, and the old set-up's (``outputs/bench_fea_table.json``, ``table
+    --against``) where it was run."""
+    store = store or ROOT / "outputs" / "bench_fea_convergence.json"
+    runs = json.loads(store.read_text()) if store.exists() else {}
+    for name in names:
+        m = load_spec(name).tooth.module
+        for label, settings in LADDER:
+            if label not in runs.get(name, {}):
+                kw = {k: (v * m / 4 if k == "size" else v) for k, v in settings.items()}
+                kw = {("size_mm" if k == "size" else k): v for k, v in kw.items()}
+                runs.setdefault(name, {})[label] = _table_in_subprocess(name, ROOT / "src", **kw)
+                store.parent.mkdir(parents=True, exist_ok=True)
+                store.write_text(json.dumps(runs))
+        finest = runs[name][LADDER[-1][0]]
+        print(f"\n### {name}: far field against the finest mesh ({LADDER[-1][0]}), every grid "
+              "point (|z| rows x r columns, row-major)\n")
+        print("| mesh | nodes hub + sleeve | CPU s | far field µm/N | against the finest |")
+        print("|---|---|---|---|---|")
+        old = json.loads((ROOT / "outputs" / "bench_fea_table.json").read_text()).get(
+            name, {}).get("before") if (ROOT / "outputs" / "bench_fea_table.json").exists() \
+            else None
+        rows = [(label, runs[name][label]) for label, _ in LADDER]
+        rows += [("before (18dde9b set-up)", old)] if old else []
+        for label, run in rows:
+            t = ComplianceTable.from_dict(run["table"])
+            nodes = " + ".join(str(t.info["mesh"][p]["nodes"]) for p in ("hub", "sleeve"))
+            far = " ".join(f"{1e3 * v:.5f}" for v in t.far_field_mm_per_N.ravel())
+            print(f"| {label} | {nodes} | {run['cpu_s'] + run['ccx_cpu_s']:.0f} | {far} | "
+                  f"{_far_change(run, finest)} |")
 
 
 def _cantilever_pair(spec):
@@ -126,11 +192,21 @@ def compare(names=("renzo-1967", "industrial-m2")) -> None:
               f"{iso:.4g} | {iso * pair:.2f} | {secs:.0f} |")
 
 
-def main(argv) -> None:
-    steps = argv or ["cantilever", "convergence", "compare"]
-    for step in steps:
-        {"cantilever": cantilever, "convergence": convergence, "compare": compare}[step]()
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("steps", nargs="*", default=["cantilever", "table", "convergence", "compare"])
+    ap.add_argument("--specs", nargs="*", default=None)
+    ap.add_argument("--against", type=Path, default=None,
+                    help="another checkout (its src/ is imported) for the table's before")
+    a = ap.parse_args()
+    for step in a.steps:
+        if step == "table":
+            table(a.specs or TEMPLATES, a.against)
+        elif step == "convergence":
+            convergence(a.specs or ("renzo-1967",))
+        else:
+            {"cantilever": cantilever, "compare": compare}[step]()
 
 
 if __name__ == "__main__":
-    main(sys.argv[1:])
+    main()

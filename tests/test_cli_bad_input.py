@@ -286,3 +286,208 @@ def test_serving_beyond_this_machine_warns():
 
     assert exposure_warning("127.0.0.1") is None and exposure_warning("localhost") is None
     assert "Save static HTML" in exposure_warning("0.0.0.0")
+
+
+# --- issue 28, items 1-3: a target that is not a regular file; interruptions -------------
+
+def _special_targets(d):
+    """``{kind: path}`` of existing targets that are not regular files: a link to
+    /dev/null (replacing the link would be the bug, /dev/null itself is never at risk),
+    a named pipe, a socket and a folder."""
+    d.mkdir(exist_ok=True)
+    paths = {"device": d / "devnull-link", "fifo": d / "fifo", "socket": d / "sock",
+             "folder": d / "folder"}
+    paths["device"].symlink_to(os.devnull)
+    os.mkfifo(paths["fifo"])
+    sock = socket.socket(socket.AF_UNIX)
+    sock.bind(str(paths["socket"]))
+    sock.close()  # the socket file stays
+    paths["folder"].mkdir()
+    return paths
+
+
+def _unchanged(paths) -> bool:
+    import stat as st
+
+    return (os.readlink(paths["device"]) == os.devnull
+            and st.S_ISFIFO(os.lstat(paths["fifo"]).st_mode)
+            and st.S_ISSOCK(os.lstat(paths["socket"]).st_mode)
+            and paths["folder"].is_dir() and not any(paths["folder"].iterdir()))
+
+
+WORDS = {"device": "character device", "fifo": "named pipe", "socket": "socket",
+         "folder": "folder"}
+
+
+@pytest.mark.parametrize("kind", list(WORDS))
+def test_view_html_refuses_a_target_that_is_not_a_regular_file(kind, tmp_path, capsys):
+    targets = _special_targets(tmp_path / "t")
+    code = main(["view", "industrial-m2", "--html", str(targets[kind])])
+    err = capsys.readouterr().err
+    assert code == 2 and "--html" in err and WORDS[kind] in err, err
+    assert len(err.strip().splitlines()) == 1, err
+    assert _unchanged(targets)
+
+
+@pytest.mark.parametrize("kind", list(WORDS))
+def test_every_file_writer_refuses_a_special_target_before_any_work(kind, tmp_path):
+    from gearcoupling.io import write_text
+    from gearcoupling.plots import save_figure
+
+    targets = _special_targets(tmp_path / "t")
+    spec = gc.load_spec("industrial-m2")
+    path = targets[kind]
+    # a bad tolerance that the work would refuse: the target is refused first
+    calls = [lambda: gc.write_html(spec, path, tolerance_mm=-1.0),
+             lambda: gc.export_part(spec, "hub", path, tolerance_mm=-1.0),
+             lambda: write_text(path, "x"),
+             lambda: save_figure(None, path)]
+    for call in calls:
+        with pytest.raises(gc.ArgumentError, match=WORDS[kind]):
+            call()
+    assert _unchanged(targets)
+
+
+@pytest.mark.parametrize("kind", ["device", "fifo", "socket"])
+def test_folder_writers_refuse_a_special_file_in_the_folder_before_any_work(kind, tmp_path,
+                                                                            capsys):
+    targets = _special_targets(tmp_path / "t")
+    out = tmp_path / "out"
+    out.mkdir()
+    os.rename(targets[kind], out / "spec.json")  # where `run` writes the resolved spec
+    code = main(["run", "industrial-m2", "--only", "sections,spec", "-o", str(out)])
+    err = capsys.readouterr().err
+    assert code == 2 and "spec.json" in err and WORDS[kind] in err, err
+    assert sorted(p.name for p in out.iterdir()) == ["spec.json"]  # no sections.png either
+    spec = gc.load_spec("industrial-m2")
+    for call in (lambda: gc.run(spec, out, only=["sections", "spec"]),
+                 lambda: gc.report(spec, out, angles=-1)):
+        with pytest.raises(gc.ArgumentError, match=WORDS[kind]):
+            call()
+    for kind2 in ("device", "fifo", "socket"):  # the folder itself is not a folder
+        if kind2 != kind:
+            with pytest.raises(gc.ArgumentError, match=WORDS[kind2]):
+                gc.run(spec, targets[kind2], only=["spec"])
+
+
+def _session_alive(pgid: int) -> list[int]:
+    """Processes (not zombies) of the process group ``pgid``, from /proc."""
+    alive = []
+    for entry in os.listdir("/proc"):
+        if not entry.isdigit():
+            continue
+        try:
+            with open(f"/proc/{entry}/stat") as fh:
+                fields = fh.read().rsplit(")", 1)[1].split()
+        except OSError:
+            continue
+        if int(fields[2]) == pgid and fields[0] != "Z":
+            alive.append(int(entry))
+    return alive
+
+
+def _snapshot(folder):
+    return {p.relative_to(folder): (p.stat().st_mtime, p.stat().st_size)
+            for p in folder.rglob("*") if p.is_file()}
+
+
+def _interrupt(argv, cwd, sig, ready, *, group=False):
+    """Start ``gearcoupling ARGV`` in its own session, wait for ``ready()``, send ``sig``
+    (to the whole process group with ``group``, as Ctrl-C in a terminal does). Returns
+    ``(exit status, stderr, time sent)`` once no process of the session is left (at most
+    30 s after the command's exit)."""
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(sys.path)}
+    proc = subprocess.Popen([sys.executable, "-m", "gearcoupling", *argv], cwd=cwd,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env,
+                            start_new_session=True)
+    try:
+        end = time.monotonic() + 180
+        while not ready():
+            assert proc.poll() is None, proc.communicate()[1].decode()
+            assert time.monotonic() < end, "the command never got ready"
+            time.sleep(0.02)
+        sent = time.time()
+        (os.killpg if group else os.kill)(proc.pid, sig)
+        try:
+            _, err = proc.communicate(timeout=60)
+        except subprocess.TimeoutExpired:
+            pytest.fail("still running 60 s after the signal, or a worker holds its output open")
+        end = time.monotonic() + 30
+        while _session_alive(proc.pid):
+            assert time.monotonic() < end, f"workers outlived the signal: " \
+                                           f"{_session_alive(proc.pid)}"
+            time.sleep(0.1)
+    finally:
+        if proc.poll() is None:
+            os.killpg(proc.pid, signal.SIGKILL)
+            proc.wait()
+        for pid in _session_alive(proc.pid):  # leave nothing behind on a failure
+            os.kill(pid, signal.SIGKILL)
+    return proc.returncode, err.decode(), sent
+
+
+def _check_interrupted(code, err, sig, out, sent, files_before):
+    import re
+
+    assert "Traceback" not in err, err
+    assert code == 128 + sig, (code, err)
+    lines = err.strip().splitlines()
+    assert len(lines) == 1, err
+    match = re.fullmatch(r"gearcoupling: interrupted; (\d+) files? complete in (.+)", lines[0])
+    assert match, err
+    assert os.path.samefile(match[2], out)
+    now = _snapshot(out)
+    assert not any(p.name.startswith(".") for p in now), now  # no temporaries
+    assert int(match[1]) == len(set(now) - set(files_before))
+    time.sleep(3.0)  # a surviving writer would add or change files now
+    assert _snapshot(out) == now
+    late = {p: t for p, (t, _) in now.items() if t > sent + 0.5}
+    assert not late, f"written after the signal: {late}"
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("sig, group", [(signal.SIGTERM, False), (signal.SIGINT, True)],
+                         ids=["SIGTERM", "Ctrl-C"])
+def test_run_interrupted_stops_its_workers_and_writes_nothing_after(sig, group, tmp_path):
+    out = tmp_path / "out"
+    code, err, sent = _interrupt(["run", "industrial-m2", "--workers", "2", "-o", str(out)],
+                                 tmp_path, sig, lambda: (out / "hub.stl").exists(),
+                                 group=group)
+    _check_interrupted(code, err, sig, out, sent, {})
+
+
+@pytest.mark.slow
+def test_capacity_interrupted_by_ctrl_c_says_so_in_one_line(tmp_path):
+    out = tmp_path / "out"
+    code, err, sent = _interrupt(["capacity", "industrial-m2", "-o", str(out)], tmp_path,
+                                 signal.SIGINT, out.exists, group=True)
+    _check_interrupted(code, err, signal.SIGINT, out, sent, {})
+
+
+STUDY_28 = """\
+[study]
+base = "industrial-m2"
+chunk = 1
+outputs = ["critical_misalignment_deg"]
+[accuracy]
+angle_tolerance_deg = 1e-2
+steps = 4
+[[vary]]
+key = "hub.crowning.radius"
+range = [40.0, 200.0]
+steps = 40
+"""
+
+
+@pytest.mark.slow
+@pytest.mark.needs_dask
+@pytest.mark.parametrize("sig, group", [(signal.SIGTERM, False), (signal.SIGINT, True)],
+                         ids=["SIGTERM", "Ctrl-C"])
+def test_study_interrupted_stops_its_scheduler_and_workers(sig, group, tmp_path):
+    (tmp_path / "s.toml").write_text(STUDY_28)
+    out = tmp_path / "out"
+    parts = out / "parts"
+    code, err, sent = _interrupt(["study", "s.toml", "--workers", "2", "-o", str(out)],
+                                 tmp_path, sig, lambda: parts.is_dir() and any(
+                                     parts.glob("chunk-*.parquet")), group=group)
+    _check_interrupted(code, err, sig, out, sent, {})

@@ -135,10 +135,15 @@ def test_bad_sector_and_size_are_refused_with_the_allowed_range(spec):
             sector_teeth(spec, bad)
     with pytest.raises(ArgumentError, match="module / 2"):
         check_size(spec, "hub", 1.3)
+    # a fillet too small for the size is followed at twice its radius, not refused
+    from gearcoupling.fea.mesh import fillet_notes, fillet_size
+
     sharp = load_spec("industrial-m2", **{"hub.root.fillet_radius": 0.3})
-    assert check_size(sharp, "hub", 0.6) == 0.6
-    with pytest.raises(ArgumentError, match="root fillet"):
-        check_size(sharp, "hub", 0.7)
+    assert check_size(sharp, "hub", 0.7) == 0.7
+    assert fillet_size(sharp, "hub", 0.7) == pytest.approx(0.6)
+    assert fillet_size(sharp, "hub", 0.5) == 0.5
+    assert fillet_notes(sharp, 0.7) == ["the hub root fillets (radius 0.3 mm) are meshed at "
+                                        "0.6 mm, the teeth at 0.7 mm"]
 
 
 def test_cli_refuses_bad_input_before_meshing(tmp_path, capsys):
@@ -186,3 +191,38 @@ def test_gmsh_session_keeps_python_ignoring_sigpipe():
     with pytest.raises(BrokenPipeError):  # not the end of the process
         a.sendall(b"x" * 100_000)
     a.close()
+
+
+def random_default_spec(seed: int, path):
+    """A spec of seeded random teeth, module, pressure angle and face width, every other
+    proportion by default (the crown radius the pitch radius), written to ``path``."""
+    rng = np.random.default_rng(seed)
+    teeth, module = int(rng.integers(30, 61)), float(rng.choice([2.0, 2.5, 3.0, 4.0]))
+    text = (f'name = "random-{seed}"\n[tooth]\nteeth = {teeth}\nmodule = {module}\n'
+            f"pressure_angle_deg = {float(rng.choice([20.0, 25.0]))}\n[hub]\n"
+            f"face_width = {float(rng.uniform(4, 8)) * module:.3f}\n[hub.crowning]\n"
+            f"radius = {0.5 * teeth * module}\n")
+    path.write_text(text)
+    return load_spec(str(path))
+
+
+def test_a_spec_with_default_proportions_meshes_without_a_size(tmp_path, capsys):
+    """Issue 24, item 5: with default proportions the sleeve root fillet is about module /
+    20, below half the default size (module / 4): `fea` (like `stiffness` and `fea-contact`)
+    refused the size the user never set. Now the fillets are meshed at twice their radius
+    and the command says so. One-tooth sleeve sector: the smallest mesh that holds a
+    fillet."""
+    import json
+
+    spec = random_default_spec(5, tmp_path / "random.toml")
+    m, rho = spec.tooth.module, spec.sleeve.root_fillet_radius
+    assert 2 * rho < m / 4  # the case the default size was refused for
+    out = tmp_path / "out"
+    assert main(["fea", str(tmp_path / "random.toml"), "--parts", "sleeve", "--sector", "1",
+                 "--format", "inp", "-o", str(out)]) == 0
+    assert f"sleeve root fillets (radius {rho:.3g} mm) are meshed at" in capsys.readouterr().err
+    from gearcoupling.fea.mesh import fillet_size
+
+    report = json.loads(next(out.rglob("fea_mesh.json")).read_text())["parts"]["sleeve"]
+    assert report["inverted"] == 0 and report["size_mm"] == pytest.approx(m / 4)
+    assert report["fillet_size_mm"] == pytest.approx(fillet_size(spec, "sleeve", m / 4))

@@ -88,28 +88,96 @@ def test_a_one_tooth_sector_is_refused_for_the_near_field_split(tmp_path):
         compute_compliance_table(load_spec("industrial-m2"), size_mm=1.0, sector=1, nz=2, nr=2)
 
 
-@pytest.mark.parametrize("n", [10, 20])
-def test_halfspace_work_of_a_uniform_square_matches_the_closed_form(n):
-    """Uniform pressure on a square of side a (total force 1 N): the mean deflection is
-    (1 - nu²) / (pi E a) times the mean inverse distance of the unit square, 2.9732
-    (Johnson, Contact Mechanics, ch. 3); nodal forces on an n x n grid converge to it from
-    below at first order, within 2.5 % at n = 10 and 1.5 % at n = 20."""
+@pytest.mark.parametrize("a, b", [(1.0, 1.0), (2.0, 0.7), (0.3, 5.0)])
+def test_rectangle_halfspace_work_matches_the_integral_of_the_boussinesq_kernel(a, b):
+    """Uniform pressure on an a x b rectangle (total force P): the work is
+    (1 - nu²) / (pi E) (P / ab)² times the integral of 1 / |x - y| over pairs of points of
+    the rectangle. Here that integral is computed independently: the inner integral in
+    closed form (four corner rectangles, p asinh(q / p) + q asinh(p / q) each), the outer
+    one by Gauss-Legendre; 2.9732 for the unit square (Johnson, Contact Mechanics, ch. 3)."""
     import math
 
-    from gearcoupling.fea.stiffness import halfspace_work_mm_per_N
+    from gearcoupling.fea.stiffness import rectangle_halfspace_work_mm_per_N
 
-    a, E, nu = 2.0, 206_000.0, 0.3
-    x = (np.arange(n) + 0.5) / n * a
-    X, Y = np.meshgrid(x, x)
-    pts = np.stack([X.ravel(), Y.ravel(), np.zeros(n * n)], axis=1)
-    forces = np.tile([0.0, 0.0, 1.0 / n**2], (n * n, 1))
-    exact = (1 - nu**2) / (math.pi * E * a) * 2.973209598247378
-    work = halfspace_work_mm_per_N(pts, forces, a * a, E, nu)
-    assert work == pytest.approx(exact, rel=0.025 if n == 10 else 0.015)
-    # invariant under a rigid rotation of the plane and its forces
-    rot = np.array([[1, 0, 0], [0, 0.6, -0.8], [0, 0.8, 0.6]])
-    assert halfspace_work_mm_per_N(pts @ rot.T, forces @ rot.T, a * a, E, nu) == \
-        pytest.approx(work, rel=1e-12)
+    def corner(p, q):
+        return p * np.arcsinh(q / p) + q * np.arcsinh(p / q)
+
+    g, w = np.polynomial.legendre.leggauss(200)
+    x, wx = 0.5 * a * (g + 1), 0.5 * a * w
+    y, wy = 0.5 * b * (g + 1), 0.5 * b * w
+    X, Y = np.meshgrid(x, y, indexing="ij")
+    inner = corner(X, Y) + corner(a - X, Y) + corner(X, b - Y) + corner(a - X, b - Y)
+    integral = float(wx @ inner @ wy)
+    E, nu, P = 206_000.0, 0.3, 2.5
+    work = rectangle_halfspace_work_mm_per_N(P, a, b, E, nu)
+    assert work == pytest.approx((1 - nu**2) / (math.pi * E) * (P / (a * b))**2 * integral,
+                                 rel=1e-6)
+    assert rectangle_halfspace_work_mm_per_N(1.0, b, a, E, nu) == pytest.approx(
+        rectangle_halfspace_work_mm_per_N(1.0, a, b, E, nu), rel=1e-12)
+    if a == b:
+        assert integral == pytest.approx(2.973209598247378, rel=1e-6)
+
+
+@pytest.fixture(scope="module")
+def loaded_hub(tmp_path_factory):
+    """industrial-m2's hub sector as the table meshes it, at size 1 mm (module / 2)."""
+    from gearcoupling.fea.stiffness import _loaded_sector
+
+    spec = load_spec("industrial-m2")
+    return spec, _loaded_sector(spec, "hub", 3, 1.0, (-1.0, 7.4))
+
+
+def test_load_case_is_a_uniform_pressure_on_the_patch(loaded_hub):
+    """The consistent nodal forces of a uniform pressure on the (z, r) patch of the loaded
+    hub flank: their moment about the axis is 1 N x R (a unit tangential load at the pitch
+    radius R; exact, since the quadratic shape functions reproduce the linear moment arm);
+    they push into the tooth along one normal; their patch area is the involute's: 2a times
+    the developed arc length between r - a and r + a (the crowned flank at mid-face)."""
+    from gearcoupling.fea.stiffness import load_case
+    from gearcoupling.geometry import developed_arc
+
+    spec, vm = loaded_hub
+    R, rb, a = spec.tooth.pitch_radius, spec.tooth.base_radius, 0.5
+    case, area, length = load_case(vm, 0.0, R, R, a)
+    x, f = vm.nodes[case.nodes], case.forces
+    assert float(np.sum(x[:, 0] * f[:, 1] - x[:, 1] * f[:, 0])) == pytest.approx(-R, rel=1e-9)
+    n = f.sum(axis=0) / np.linalg.norm(f.sum(axis=0))
+    np.testing.assert_allclose(np.cross(f, n), 0.0, atol=1e-12)
+    assert length == pytest.approx(2 * a, rel=1e-12)
+    exact = 2 * a * float(developed_arc(R + a, rb) - developed_arc(R - a, rb))
+    assert area == pytest.approx(exact, rel=0.01)
+
+
+@pytest.mark.parametrize("size", [5.0])
+def test_green_functions_equal_one_static_step_per_load_case(size, tmp_path):
+    """Every load case as one Green function of one factorisation (the table's deck) gives
+    the work and the element stresses of one static step per case (two cases on the
+    Timoshenko cantilever's mesh, 433 C3D10: both decks are solved by SPOOLES)."""
+    from gearcoupling.fea.ccx import run_ccx
+    from gearcoupling.fea.deck import LoadCase, green_deck, principal_max, static_deck
+    from gearcoupling.fea.validation import cantilever_mesh
+
+    vm = cantilever_mesh(100.0, 10.0, 10.0, size)
+    tip = vm.node_set("TIP")
+    top = np.flatnonzero(np.isclose(vm.nodes[:, 2], 10.0) & (vm.nodes[:, 0] > 40.0))
+    cases = [LoadCase(tip, np.tile([0.0, 0.3, 1.0], (len(tip), 1)) / len(tip)),
+             LoadCase(top, np.tile([0.0, 0.0, -1.0], (len(top), 1)) * np.linspace(
+                 0.5, 1.5, len(top))[:, None] / len(top))]
+    kw = {"youngs_modulus_MPa": 210e3, "poisson_ratio": 0.3, "fixed": ["ROOT"],
+          "cases": cases, "stress_sets": ["ROOT"]}
+    prints = [(f"P{i}", c.nodes) for i, c in enumerate(cases)]
+    static = run_ccx(static_deck(vm, node_print=prints, **kw), tmp_path, "static")
+    green = run_ccx(green_deck(vm, **kw), tmp_path, "green")
+    work = green.get("displacements", "LOADS")
+    for i, case in enumerate(cases):
+        u = static.get("displacements", f"P{i}")[i]
+        f = case.forces[np.argsort(case.nodes)]
+        expected = float(np.sum(f * u[np.argsort(u[:, 0]), 1:4]))
+        assert work[i][i, 1] == pytest.approx(expected, rel=1e-6)
+        s_static = principal_max(static.get("stresses", "ROOT")[i][:, 2:8])
+        s_green = principal_max(green.get("stresses", "ROOT")[i][:, 2:8])
+        np.testing.assert_allclose(s_green, s_static, rtol=1e-5, atol=1e-9 * np.abs(
+            s_static).max())
 
 
 def test_root_stress_is_positive_and_finite(table):

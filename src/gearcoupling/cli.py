@@ -5,20 +5,28 @@ runs in-process so tests call it directly. Exit status: 0 success, 1 a finding t
 command reports (e.g. interference), 2 bad input: a bad argument, a project error
 (:class:`~gearcoupling.errors.GearCouplingError`) or a file that cannot be read or
 written, each reported on one line ``gearcoupling: error: ...`` without a traceback.
+Interrupted by SIGINT (Ctrl-C) or SIGTERM, a command stops the worker processes it
+started, writes nothing more, says ``gearcoupling: interrupted; N files complete in DIR``
+and exits with 130 or 143 (128 + the signal's number).
 """
 
 from __future__ import annotations
 
 import argparse
 import os
+import signal
 import sys
-from collections.abc import Sequence
+import time
+from collections.abc import Iterator, Sequence
+from contextlib import contextmanager
 from typing import NoReturn
 
-from .commands import COMMANDS
+from .commands import COMMANDS, WRITING
 from .errors import GearCouplingError
+from .io import remove_stale_temporaries
 
 EXIT_BAD_INPUT = 2
+SIGNALS = (signal.SIGINT, signal.SIGTERM)
 
 
 class _Parser(argparse.ArgumentParser):
@@ -48,6 +56,55 @@ def _error(text: str) -> int:
     return EXIT_BAD_INPUT
 
 
+class Interrupted(KeyboardInterrupt):
+    """SIGTERM (or SIGINT) as an exception in the main thread: like Ctrl-C's
+    ``KeyboardInterrupt``, it unwinds the command, whose ``finally`` blocks stop its
+    workers and remove its temporaries."""
+
+    def __init__(self, signum: int):
+        super().__init__(signal.Signals(signum).name)
+        self.signum = signum
+
+
+@contextmanager
+def _signals_raise() -> Iterator[None]:
+    """SIGINT and SIGTERM raise :class:`Interrupted` while the command runs (in the main
+    thread only; elsewhere Python's handlers stay). The first one does: further ones are
+    ignored until the command has cleaned up."""
+    def handler(signum: int, _frame: object) -> None:
+        for s in SIGNALS:
+            signal.signal(s, signal.SIG_IGN)
+        raise Interrupted(signum)
+
+    try:
+        old = {s: signal.signal(s, handler) for s in SIGNALS}
+    except ValueError:  # not the main thread
+        yield
+        return
+    try:
+        yield
+    finally:
+        for s, h in old.items():
+            signal.signal(s, h)
+
+
+def _interrupted(stop: KeyboardInterrupt, started: float) -> int:
+    """After an interruption has unwound the command: remove the temporaries of its
+    stopped workers, say what is complete in one line, return 128 + the signal."""
+    signum = getattr(stop, "signum", signal.SIGINT)
+    folders = list(dict.fromkeys(WRITING))
+    complete = []
+    for folder in folders:
+        for sub in (folder, *(p for p in folder.rglob("*") if p.is_dir())):
+            remove_stale_temporaries(sub)
+        complete += [p for p in folder.rglob("*") if p.is_file()
+                     and not p.name.startswith(".") and p.stat().st_mtime >= started]
+    where = f" in {', '.join(map(str, folders))}" if folders else ""
+    print(f"gearcoupling: interrupted; {len(complete)} file{'' if len(complete) == 1 else 's'}"
+          f" complete{where}", file=sys.stderr)
+    return 128 + int(signum)
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; returns the exit status."""
     parser = build_parser()
@@ -55,8 +112,14 @@ def main(argv: Sequence[str] | None = None) -> int:
         args = parser.parse_args(argv)
     except SystemExit as stop:  # --help, or an argument error already printed on one line
         return stop.code if isinstance(stop.code, int) else EXIT_BAD_INPUT
+    WRITING.clear()
+    started = time.time() - 0.05  # file times come from a coarser clock
     try:
-        return int(args.func(args) or 0)
+        with _signals_raise():
+            try:
+                return int(args.func(args) or 0)
+            except KeyboardInterrupt as stop:
+                return _interrupted(stop, started)
     except GearCouplingError as err:
         return _error(str(err).splitlines()[0] if str(err) else type(err).__name__)
     except BrokenPipeError:  # e.g. ``gearcoupling spec --json | head``: the reader left

@@ -16,6 +16,9 @@ class SpecError(GearCouplingError, ValueError):
         self.allowed = allowed
         super().__init__(f"{field} = {value!r}: {allowed}")
 
+    def __reduce__(self):  # pickled to and from worker processes with its fields
+        return type(self), (self.field, self.value, self.allowed)
+
 
 class GeometryError(GearCouplingError, ValueError):
     """A geometric query outside the domain where the surface exists (e.g. off the flank)."""
@@ -37,3 +40,8 @@ class ArgumentError(GearCouplingError, ValueError):
             super().__init__(f"{args[0]} = {args[1]!r}: {args[2]}")
         else:
             super().__init__(*args)
+
+    def __reduce__(self):
+        if hasattr(self, "allowed"):
+            return type(self), (self.field, self.value, self.allowed)
+        return type(self), self.args

@@ -21,6 +21,7 @@ from . import (
     templates,
     view,
 )
+from .common import WRITING
 
 COMMANDS = [
     spec,
@@ -44,4 +45,4 @@ COMMANDS = [
     report,
 ]
 
-__all__ = ["COMMANDS"]
+__all__ = ["COMMANDS", "WRITING"]

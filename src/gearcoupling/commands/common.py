@@ -9,7 +9,7 @@ from contextlib import contextmanager
 from pathlib import Path
 
 from ..errors import ArgumentError
-from ..io import default_output_dir, parse_override
+from ..io import default_output_dir, output_folder, parse_override
 from ..spec import CouplingSpec, check_misalignment_deg, load_spec
 
 MAX_ANGLES = 100_000  # rotation angles per turn a command accepts (memory grows with it)
@@ -103,22 +103,25 @@ def output_dir(args: argparse.Namespace, spec: CouplingSpec) -> Path:
     """``-o DIR`` if given, else ``outputs/<sanitised spec name>``: a spec's ``name`` never
     chooses where files go (see :func:`~gearcoupling.io.default_output_dir`)."""
     given = getattr(args, "output", None)
-    return ensure_dir(Path(given) if given else default_output_dir(spec.name))
+    return writing_into(ensure_dir(default_output_dir(spec.name) if given is None else given))
 
 
-def ensure_dir(out: Path, field: str = "-o") -> Path:
-    """Create the folder ``out``; a file in the way or an unwritable place is a
-    :class:`~gearcoupling.errors.SpecError` naming ``field``."""
-    try:
-        out.mkdir(parents=True, exist_ok=True)
-    except FileExistsError:
-        raise ArgumentError(field, str(out), "names an existing file: give a folder") from None
-    except OSError as err:
-        raise ArgumentError(field, str(out), f"cannot create the output folder: {err.strerror}") \
-            from None
-    if not out.is_dir():
-        raise ArgumentError(field, str(out), "names an existing file: give a folder")
-    return out
+def ensure_dir(out: str | Path, field: str = "-o") -> Path:
+    """Create the folder ``out``; an empty path, a file, device or pipe in the way, or an
+    unwritable place is an :class:`~gearcoupling.errors.ArgumentError` naming ``field``
+    (:func:`~gearcoupling.io.output_folder`)."""
+    return output_folder(out, field)
+
+
+#: the output folders of the command running in this process, for the line an
+#: interruption prints (:func:`gearcoupling.cli.main`)
+WRITING: list[Path] = []
+
+
+def writing_into(folder: Path) -> Path:
+    """Remember ``folder`` as where this command writes (:data:`WRITING`); returns it."""
+    WRITING.append(folder)
+    return folder
 
 
 @contextmanager
@@ -143,4 +146,8 @@ def progress(description: str, total: int):
         def update(done: int, total: int) -> None:
             bar.update(task, completed=done, total=total, refresh=True)
 
-        yield update
+        try:
+            yield update
+        except BaseException:  # an error or an interruption: its one line says it all
+            bar.live.transient = True
+            raise

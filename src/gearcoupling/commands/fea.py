@@ -11,7 +11,7 @@ import sys
 from collections.abc import Callable
 from pathlib import Path
 
-from ..fea import FORMATS, check_size, mesh_part, region_ids, sector_teeth, write_mesh
+from ..fea import FORMATS, check_size, fillet_notes, mesh_part, region_ids, sector_teeth, write_mesh
 from ..io import write_json
 from ..spec import CouplingSpec
 from .common import (
@@ -72,6 +72,8 @@ def run(args) -> int:
     sector_teeth(spec, sector)
     for part in parts:
         check_size(spec, part, args.size)
+    for note in fillet_notes(spec, args.size, parts):
+        print(f"{spec.name}: {note}", file=sys.stderr)
     out = output_dir(args, spec)
     with progress(f"{spec.name} volume meshes", len(parts)) as update:
         written, report = fea_meshes(spec, out, parts, fmts, sector=sector,

@@ -13,7 +13,7 @@ from __future__ import annotations
 import sys
 
 from ..errors import ArgumentError
-from ..fea import ccx_path, check_size, fe_contact, gmsh_module
+from ..fea import ccx_path, check_size, fe_contact, fillet_notes, gmsh_module
 from ..io import write_json
 from ..loading import sector_check
 from ..loadspec import LOAD_MODELS
@@ -58,6 +58,8 @@ def run(args) -> int:
     for part in ("hub", "sleeve"):
         check_size(spec, part, args.size)
         check_size(spec, part, args.contact_size)
+    for note in fillet_notes(spec, args.size):
+        print(f"{spec.name}: {note}", file=sys.stderr)
     gmsh_module()
     ccx_path()
     out = output_dir(args, spec)

@@ -14,7 +14,14 @@ import sys
 from pathlib import Path
 
 from ..errors import ArgumentError
-from ..fea import ccx_path, check_size, gmsh_module, pitch_point_compliance, tooth_compliance_table
+from ..fea import (
+    ccx_path,
+    check_size,
+    fillet_notes,
+    gmsh_module,
+    pitch_point_compliance,
+    tooth_compliance_table,
+)
 from ..io import write_json, write_text
 from .common import (
     MAX_TEETH,
@@ -63,6 +70,8 @@ def run(args) -> int:
     spec = spec_from_args(args)
     for part in ("hub", "sleeve"):
         check_size(spec, part, args.size)
+    for note in fillet_notes(spec, args.size):
+        print(f"{spec.name}: {note}", file=sys.stderr)
     if args.sector < 1 or args.sector % 2 == 0 or args.sector > spec.tooth.teeth:
         raise ArgumentError("--sector", args.sector, f"an odd number of teeth from 1 to "
                         f"{spec.tooth.teeth} (the middle tooth is loaded)")

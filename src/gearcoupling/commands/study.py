@@ -20,7 +20,7 @@ from ..study import (
     summarise_rows,
     write_rows,
 )
-from .common import count, ensure_dir, number_in, progress
+from .common import count, ensure_dir, number_in, progress, writing_into
 
 MAX_WORKERS = 256
 
@@ -47,8 +47,8 @@ def register(sub) -> None:
 
 def run(args) -> int:
     study = load_study(args.file)
-    out = ensure_dir(Path(args.output) if args.output
-                     else default_output_dir(f"study-{study.name}"))
+    out = writing_into(ensure_dir(default_output_dir(f"study-{study.name}")
+                                  if args.output is None else args.output))
     if study.optimise is not None:
         return _optimise(study, out, plots=not args.no_plots)
 

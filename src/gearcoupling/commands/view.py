@@ -4,9 +4,8 @@ from __future__ import annotations
 
 import sys
 import time
-from pathlib import Path
 
-from ..errors import ArgumentError
+from ..io import writable_file
 from ..viewer import (
     COLOR_MODES,
     CUTAWAYS,
@@ -28,6 +27,7 @@ from .common import (
     output_dir,
     positive_length,
     spec_from_args,
+    writing_into,
 )
 
 
@@ -66,12 +66,12 @@ def run(args) -> int:
     spec = spec_from_args(args)
     mis = misalignment_deg(args, spec)
     mis, psi = check_pose(mis, args.angle)
-    if args.html and Path(args.html).is_dir():
-        raise ArgumentError("--html", args.html, "names a folder: give a file, e.g. viewer.html")
+    if args.html is not None:
+        writing_into(writable_file(args.html, "--html").parent)
     settings = ViewSettings(misalignment_deg=mis, psi_deg=psi, cutaway=args.cutaway,
                             color_mode=args.color_by, frame=args.frame)
     tol = lod_tolerance(spec, args.lod) if args.tolerance is None else args.tolerance
-    if args.html:
+    if args.html is not None:
         t0 = time.perf_counter()
         path = write_html(spec, args.html, settings=settings, tolerance_mm=tol)
         print(f"{path} ({path.stat().st_size / 1e6:.2f} MB, "

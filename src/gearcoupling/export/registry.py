@@ -11,7 +11,7 @@ from collections.abc import Callable
 from pathlib import Path
 
 from ..errors import ArgumentError
-from ..io import atomic_path
+from ..io import atomic_path, writable_file
 from ..spec import CouplingSpec
 from . import meshes, step
 from .job import PartJob
@@ -64,6 +64,7 @@ def export_part(spec: CouplingSpec,
     mesh : trimesh.Trimesh, optional
         A mesh already built with these settings (saves rebuilding it per format).
     """
+    writable_file(path, "path")
     ext = extension(path)
     job = PartJob(spec, part, tolerance_mm, teeth, mesh)
     with atomic_path(path) as tmp:

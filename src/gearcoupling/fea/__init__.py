@@ -6,7 +6,14 @@ when called; a missing one raises :class:`gearcoupling.errors.BackendError` nami
 """
 
 from .backends import ccx_path, gmsh_module
-from .mesh import DEFAULT_SECTOR_TEETH, check_size, default_size, mesh_part, sector_teeth
+from .mesh import (
+    DEFAULT_SECTOR_TEETH,
+    check_size,
+    default_size,
+    fillet_notes,
+    mesh_part,
+    sector_teeth,
+)
 from .reference import FEContactResult, fe_contact
 from .sector import FESectorResult, fe_contact_sector
 from .stiffness import (
@@ -33,6 +40,7 @@ __all__ = [
     "default_size",
     "fe_contact",
     "fe_contact_sector",
+    "fillet_notes",
     "gmsh_module",
     "mesh_part",
     "pitch_point_compliance",

@@ -13,6 +13,7 @@ from __future__ import annotations
 import math
 import tempfile
 import time
+from dataclasses import asdict, dataclass
 from pathlib import Path
 
 import numpy as np
@@ -28,6 +29,26 @@ from .volume import VolumeMesh, aspect_ratios, match_faces, tet_volumes
 TOOTH_KINDS = ("flank_cw", "flank_ccw", "fillet_cw", "fillet_ccw", "root", "tip",
                "chamfer_cw", "chamfer_ccw")
 DEFAULT_SECTOR_TEETH = 3
+ALGORITHMS = {"delaunay": (1, 2), "hxt": (10, 1)}
+"""gmsh ``Mesh.Algorithm3D`` and ``Mesh.HighOrderOptimize`` (untangling of the curved
+quadratic elements: 2 elastic + optimisation, 1 optimisation of invalid ones) per name."""
+
+
+@dataclass(frozen=True)
+class LoadedTooth:
+    """Element sizes for load cases on the middle tooth of a sector (:func:`loaded_faces`).
+
+    Within ``zone_mm`` of that tooth's flanks and fillets the size is :func:`mesh_part`'s
+    ``size_mm``; it grows to ``far_size_mm`` on the other teeth over as much again. The
+    loaded flank (the first of :func:`loaded_faces`) gets ``flank_size_mm`` between
+    ``z_mm[0]`` and ``z_mm[1]``, growing to ``size_mm`` over twice the difference, so a
+    pressure patch of a few ``size_mm`` is resolved without a fine tooth.
+    """
+
+    far_size_mm: float
+    flank_size_mm: float
+    z_mm: tuple[float, float]
+    zone_mm: float
 
 
 def default_size(spec: CouplingSpec) -> float:
@@ -40,24 +61,49 @@ def fillet_radius(spec: CouplingSpec, part: str) -> float:
     return spec.hub.root.fillet_radius if part == "hub" else spec.sleeve.root_fillet_radius
 
 
-def check_size(spec: CouplingSpec, part: str, size_mm) -> float:
-    """The element size as a float, or :class:`ArgumentError` naming the allowed range.
+def size_range(spec: CouplingSpec) -> tuple[float, float]:
+    """Smallest and largest element size on the teeth (mm): module / 40 and module / 2
+    (two elements across the tooth at least)."""
+    m = spec.tooth.module
+    return m / 40.0, m / 2.0
 
-    Allowed: from module / 40 to the smaller of module / 2 and twice the part's root
-    fillet radius (a coarser size cannot follow the fillet, where the root stress is).
-    """
+
+def fillet_size(spec: CouplingSpec, part: str, size: float) -> float:
+    """Element size on a part's root fillets: ``size``, or twice the fillet radius where
+    that is smaller (a coarser mesh cannot follow the fillet, where the root stress is), but
+    not below module / 40."""
+    rho = fillet_radius(spec, part)
+    return size if rho <= 0 else min(size, max(size_range(spec)[0], 2.0 * rho))
+
+
+def fillet_notes(spec: CouplingSpec, size_mm: float | None,
+                 parts=("hub", "sleeve")) -> list[str]:
+    """One line per part whose root fillets are meshed finer than the teeth (for the
+    commands to say so)."""
+    size = check_size(spec, "hub", size_mm)
+    notes = []
+    for part in parts:
+        fs = fillet_size(spec, part, size)
+        if fs < size:
+            notes.append(f"the {part} root fillets (radius {fillet_radius(spec, part):.3g} mm) "
+                         f"are meshed at {fs:.3g} mm, the teeth at {size:.3g} mm")
+    return notes
+
+
+def check_size(spec: CouplingSpec, part: str, size_mm) -> float:
+    """The element size on the teeth as a float, or :class:`ArgumentError` naming the
+    allowed range, module / 40 to module / 2 (:func:`size_range`). The root fillets follow
+    at :func:`fillet_size`."""
     size = default_size(spec) if size_mm is None else size_mm
     try:
         size = float(size)
     except (TypeError, ValueError) as err:
         raise ArgumentError("size_mm", size_mm, "must be a number (mm)") from err
-    m = spec.tooth.module
-    lo, hi = m / 40.0, min(m / 2.0, 2.0 * fillet_radius(spec, part))
+    lo, hi = size_range(spec)
     if not (math.isfinite(size) and lo <= size <= hi):
-        why = ("twice the root fillet radius: a coarser mesh cannot follow the fillet"
-               if hi < m / 2.0 else "module / 2: two elements across the tooth at least")
         raise ArgumentError("size_mm", size_mm, f"must be from {lo:.3g} to {hi:.3g} mm for the "
-                        f"{part} of this spec (module / 40 to {why}); choose a smaller size")
+                            f"{part} of this spec (module / 40 to module / 2: two elements "
+                            "across the tooth at least); choose a smaller size")
     return size
 
 
@@ -80,7 +126,8 @@ def sector_teeth(spec: CouplingSpec, count) -> list[int] | None:
 def mesh_part(spec: CouplingSpec, part: str, *, sector: int | None = DEFAULT_SECTOR_TEETH,
               size_mm: float | None = None, body_size_mm: float | None = None,
               tolerance_mm: float | None = None, order: int = 2,
-              periodic: bool = False, contact: tuple[float, float] | None = None
+              periodic: bool = False, contact: tuple[float, float] | None = None,
+              loaded: LoadedTooth | None = None, algorithm: str = "delaunay"
               ) -> VolumeMesh:
     """Quadratic tetrahedral mesh of a sector of ``sector`` teeth (``None``: the whole part).
 
@@ -105,6 +152,13 @@ def mesh_part(spec: CouplingSpec, part: str, *, sector: int | None = DEFAULT_SEC
     contact : (size_mm, half_length_mm), optional
         A finer size on the ccw flanks within ``half_length_mm`` of mid-face, where an
         aligned coupling's contact patch lies (growing at half the distance beyond).
+    loaded : LoadedTooth, optional
+        Sizes for load cases on the middle tooth: fine at its loaded flank, coarser on the
+        other teeth (default: ``size_mm`` on every tooth).
+    algorithm : {"delaunay", "hxt"}
+        gmsh's 3-D mesher: ``"delaunay"`` with elastic and optimising curving of the
+        quadratic elements, or ``"hxt"`` with optimising curving of invalid elements only
+        (3-5 times less CPU on the 3-tooth sectors of the templates, similar quality).
 
     Returns
     -------
@@ -112,11 +166,17 @@ def mesh_part(spec: CouplingSpec, part: str, *, sector: int | None = DEFAULT_SEC
     """
     if part not in ("hub", "sleeve"):
         raise ArgumentError("part", part, "hub or sleeve")
+    if algorithm not in ALGORITHMS:
+        raise ArgumentError("algorithm", algorithm, " or ".join(ALGORITHMS))
     teeth = sector_teeth(spec, sector)
     size = check_size(spec, part, size_mm)
     body = max(3.0 * size, spec.tooth.module) if body_size_mm is None else float(body_size_mm)
     if not (math.isfinite(body) and body >= size):
         raise SpecError("body_size_mm", body_size_mm, f"a size (mm) of at least {size:.3g}")
+    if loaded is not None and not (0 < loaded.flank_size_mm <= size <= loaded.far_size_mm
+                                   <= body):
+        raise ArgumentError("loaded", loaded, f"flank size <= {size:.3g} mm <= far size <= "
+                            f"body size {body:.3g} mm")
     tol = check_tolerance(spec, tolerance_mm)
     t0 = time.perf_counter()
     labelled = build_part(spec, part, tol, teeth)
@@ -125,15 +185,21 @@ def mesh_part(spec: CouplingSpec, part: str, *, sector: int | None = DEFAULT_SEC
         step = write_step(shape, Path(tmp) / f"{part}.step", name=f"{spec.name}-{part}")
         t_cad = time.perf_counter() - t0
         with gmsh_session() as gmsh:
+            gmsh.option.setNumber("Mesh.Algorithm3D", ALGORITHMS[algorithm][0])
+            gmsh.option.setNumber("Mesh.HighOrderOptimize", ALGORITHMS[algorithm][1])
             vm = _mesh_in_gmsh(gmsh, spec, part, step, labelled, teeth, size, body, order,
-                               periodic, contact)
+                               periodic, contact, loaded)
     vm.quality["cad_seconds"] = t_cad
+    vm.quality["algorithm"] = algorithm
+    vm.quality["fillet_size_mm"] = fillet_size(spec, part, size)
+    if loaded is not None:
+        vm.quality["loaded_tooth"] = asdict(loaded)
     return vm
 
 
 def _mesh_in_gmsh(gmsh, spec: CouplingSpec,
                   part, step, labelled, teeth, size, body, order, periodic,
-                  contact) -> VolumeMesh:
+                  contact, loaded=None) -> VolumeMesh:
     occ = gmsh.model.occ
     vols = occ.importShapes(str(step))
     occ.synchronize()
@@ -148,21 +214,57 @@ def _mesh_in_gmsh(gmsh, spec: CouplingSpec,
     gmsh.model.mesh.clear()
     teeth_faces = [s for s in surfaces if names[s][0].startswith("T")]
     flanks = [s for s in surfaces if names[s][0].endswith("_FLANK_CCW")]
-    _size_field(gmsh, teeth_faces, size, body, spec.tooth.module, flanks, contact)
+    coarsest = size if loaded is None else loaded.far_size_mm  # on any tooth
+    fs = fillet_size(spec, part, coarsest)
+    fillets = ([s for s in surfaces if "_FILLET_" in names[s][0]] if fs < coarsest else [],
+               fs)
+    top = _size_field(gmsh, teeth_faces, size, body, spec.tooth.module, flanks, contact,
+                      fillets)
+    if loaded is not None:
+        regions = loaded_faces(part, teeth)
+        _loaded_size_field(gmsh, top, [s for s in surfaces if names[s][0] in regions],
+                           [s for s in surfaces if names[s][0] == regions[0]], size, body,
+                           loaded)
     if periodic and teeth is not None:
         _periodic_cuts(gmsh, names, 2 * math.pi * len(teeth) / spec.tooth.teeth)
     gmsh.option.setNumber("Mesh.ElementOrder", order)
     gmsh.option.setNumber("Mesh.SecondOrderLinear", 0)
     gmsh.option.setNumber("Mesh.Optimize", 1)
-    gmsh.option.setNumber("Mesh.HighOrderOptimize", 2)  # untangle curved quadratic edges
-    gmsh.model.mesh.generate(3)
+    _generate_volume(gmsh)
     t_mesh = time.perf_counter() - t0
     return extract_mesh(gmsh, part, names, teeth, size, order, t_mesh)
 
 
-def _size_field(gmsh, faces, size, body, module, flanks=(), contact=None) -> None:
+HO_GAVE_UP = ("Failed to reach critical value", "Failed to reach target",
+              "Optimization failed", "Optimization partially failed")
+"""gmsh's high-order optimiser's errors when it cannot untangle a curved element: it then
+keeps the elements it has, which :func:`extract_mesh` checks."""
+
+
+def _generate_volume(gmsh) -> None:
+    """``generate(3)`` with gmsh's errors reported, not thrown: the high-order optimiser
+    throws from a parallel region, where the throw ends the process (std::terminate). Its
+    own error is left to the element check; any other error is raised."""
+    gmsh.option.setNumber("General.AbortOnError", 1)
+    gmsh.logger.start()
+    try:
+        gmsh.model.mesh.generate(3)
+        errors = [m for m in gmsh.logger.get()
+                  if m.startswith("Error") and not any(h in m for h in HO_GAVE_UP)]
+    finally:
+        gmsh.logger.stop()
+        gmsh.option.setNumber("General.AbortOnError", 2)
+    if errors:
+        raise GeometryError(f"gmsh could not mesh the volume: {errors[0]}")
+
+
+def _size_field(gmsh, faces, size, body, module, flanks=(), contact=None,
+                fillets=((), 0.0)) -> int:
     f = gmsh.model.mesh.field
     fields = [_threshold(f, faces, size, body, 0.25 * module, 2.0 * (body - size))]
+    if fillets[0]:  # follow a fillet too small for the teeth's size
+        fields.append(_threshold(f, fillets[0], fillets[1], body, 0.0,
+                                 2.0 * (body - fillets[1])))
     if contact is not None:
         c, half = contact
         near = _threshold(f, flanks, c, body, c, 4.0 * (body - c), sampling=200)
@@ -174,6 +276,42 @@ def _size_field(gmsh, faces, size, body, module, flanks=(), contact=None) -> Non
     f.setAsBackgroundMesh(top)
     for key in ("MeshSizeExtendFromBoundary", "MeshSizeFromPoints", "MeshSizeFromCurvature"):
         gmsh.option.setNumber(f"Mesh.{key}", 0)
+    return top
+
+
+def _loaded_size_field(gmsh, top: int, faces, flank_faces, size, body,
+                       loaded: LoadedTooth) -> None:
+    """Replace the background field ``F`` by ``min(max(F, away), flank)``: ``away`` is
+    ``size`` near the loaded tooth's ``faces`` and ``far_size_mm`` beyond, ``flank`` is
+    ``flank_size_mm`` on the ``flank_faces`` within the axial window."""
+    f = gmsh.model.mesh.field
+    zone = loaded.zone_mm
+    coarse = f.add("Max")
+    f.setNumbers(coarse, "FieldsList",
+                 [top, _threshold(f, faces, size, loaded.far_size_mm, zone, zone)])
+    fs = loaded.flank_size_mm
+    fine = _threshold(f, flank_faces, fs, body, 0.0, 2.0 * (body - fs), sampling=100)
+    window = f.add("Box")  # fs in the axial window, growing to size over 2 (size - fs)
+    for key, value in (("VIn", fs), ("VOut", size), ("XMin", -1e9), ("XMax", 1e9),
+                       ("YMin", -1e9), ("YMax", 1e9), ("ZMin", loaded.z_mm[0]),
+                       ("ZMax", loaded.z_mm[1]), ("Thickness", 2.0 * (size - fs))):
+        f.setNumber(window, key, value)
+    flank = f.add("Max")
+    f.setNumbers(flank, "FieldsList", [fine, window])
+    both = f.add("Min")
+    f.setNumbers(both, "FieldsList", [coarse, flank])
+    f.setAsBackgroundMesh(both)
+
+
+def loaded_faces(part: str, teeth: list[int] | None) -> list[str]:
+    """Regions of the tooth a compliance load case loads, the middle one of the sector,
+    loaded flank first: hub tooth k's ccw flank, its cw flank and fillets; the sleeve
+    tooth between spaces k and k + 1 (its flank on space k meets hub tooth k's ccw
+    flank)."""
+    k = 0 if teeth is None else teeth[len(teeth) // 2]
+    if part == "hub":
+        return [f"T{k}_FLANK_CCW", f"T{k}_FLANK_CW", f"T{k}_FILLET_CW", f"T{k}_FILLET_CCW"]
+    return [f"T{k}_FLANK_CCW", f"T{k}_FILLET_CCW", f"T{k + 1}_FLANK_CW", f"T{k + 1}_FILLET_CW"]
 
 
 def _threshold(f, faces, size, body, dist_min, ramp, sampling=20) -> int:

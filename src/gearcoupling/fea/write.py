@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import SpecError
-from ..io import atomic_path, inp_element_lines, inp_id_lines, inp_node_lines
+from ..io import atomic_path, inp_element_lines, inp_id_lines, inp_node_lines, writable_file
 from .volume import VolumeMesh
 
 FORMATS = ("inp", "msh", "vtu")
@@ -64,7 +64,7 @@ def to_meshio(vm: VolumeMesh, *, gmsh_tags: bool = False):
 
 def write_mesh(vm: VolumeMesh, path, fmt: str | None = None) -> Path:
     """Write ``inp``, ``msh`` (gmsh 2.2 with physical groups) or ``vtu`` (``region`` ids)."""
-    path = Path(path)
+    path = writable_file(path, "path")
     fmt = fmt or path.suffix.lstrip(".").lower()
     if fmt not in FORMATS:
         raise SpecError("format", fmt, f"one of {', '.join(FORMATS)}")

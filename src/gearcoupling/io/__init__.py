@@ -10,7 +10,7 @@ from .atomic import (
     write_text,
 )
 from .csv import write_csv_records, write_csv_rows
-from .files import not_a_file, require_file
+from .files import as_path, not_a_file, output_folder, require_file, writable_file
 from .inp import inp_element_lines, inp_id_lines, inp_node_lines, inp_number
 from .json import NonFiniteError, plain, write_json
 from .resources import bundled_dir, bundled_names, resolve_bundled
@@ -19,6 +19,7 @@ from .toml import Table, line_of, parse_override, read_toml, set_dotted, unknown
 __all__ = [
     "NonFiniteError",
     "Table",
+    "as_path",
     "atomic_path",
     "bundled_dir",
     "bundled_names",
@@ -29,6 +30,7 @@ __all__ = [
     "inp_number",
     "line_of",
     "not_a_file",
+    "output_folder",
     "parse_override",
     "plain",
     "read_toml",
@@ -38,6 +40,7 @@ __all__ = [
     "safe_name",
     "set_dotted",
     "unknown_key",
+    "writable_file",
     "write_csv_records",
     "write_csv_rows",
     "write_json",

@@ -14,15 +14,21 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
 
+from .files import writable_file
+
 
 @contextmanager
-def atomic_path(path: str | os.PathLike) -> Iterator[Path]:
+def atomic_path(path: str | os.PathLike, field: str = "path") -> Iterator[Path]:
     """Yield a temporary path beside ``path``; on success rename it onto ``path``.
 
     If the body raises, the temporary file is removed and ``path`` is left untouched, so
-    a reader never sees a half-written file.
+    a reader never sees a half-written file. A ``path`` that exists and is not a regular
+    file (a folder, a device such as ``/dev/null``, a named pipe, a socket) is refused
+    before the body runs and again before the rename
+    (:func:`~gearcoupling.io.writable_file`, an error naming ``field``): a rename would
+    replace it.
     """
-    target = Path(path)
+    target = writable_file(path, field)
     target.parent.mkdir(parents=True, exist_ok=True)
     remove_stale_temporaries(target.parent)
     fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.{os.getpid()}.",
@@ -32,6 +38,7 @@ def atomic_path(path: str | os.PathLike) -> Iterator[Path]:
     try:
         yield tmp_path
         os.chmod(tmp_path, 0o666 & ~_umask())  # mkstemp made it private; use the usual mode
+        writable_file(target, field)  # nothing special put there while the body ran
         os.replace(tmp_path, target)
     finally:
         if tmp_path.exists():

@@ -1,4 +1,5 @@
-"""Input files said plainly: what a path is when it is not a readable regular file."""
+"""Paths said plainly: what a path is when it is not a readable regular file (input), and
+whether a file or folder may be written there (output)."""
 
 from __future__ import annotations
 
@@ -6,13 +7,22 @@ import os
 import stat
 from pathlib import Path
 
-from ..errors import GearCouplingError, SpecError
+from ..errors import ArgumentError, GearCouplingError, SpecError
 
-KINDS = ((stat.S_ISDIR, "a folder, not a file"),
-         (stat.S_ISCHR, "a character device (like /dev/null), not a file"),
-         (stat.S_ISBLK, "a block device, not a file"),
-         (stat.S_ISFIFO, "a named pipe (FIFO), not a file (a pipe can be read only once)"),
-         (stat.S_ISSOCK, "a socket, not a file"))
+#: what a path is that is not a regular file, by the test of its mode
+NOUNS = ((stat.S_ISDIR, "a folder"),
+         (stat.S_ISCHR, "a character device (like /dev/null)"),
+         (stat.S_ISBLK, "a block device"),
+         (stat.S_ISFIFO, "a named pipe (FIFO)"),
+         (stat.S_ISSOCK, "a socket"))
+KINDS = tuple((test, f"{noun}, not a file" + (" (a pipe can be read only once)"
+                                              if test is stat.S_ISFIFO else ""))
+              for test, noun in NOUNS)
+
+
+def _noun(mode: int) -> str | None:
+    """What a path of ``mode`` is when it is not a regular file (``None`` when it is)."""
+    return next((noun for test, noun in NOUNS if test(mode)), None)
 
 
 def not_a_file(path: str | os.PathLike) -> str | None:
@@ -45,3 +55,101 @@ def require_file(path: str | os.PathLike, field: str, expected: str,
     if reason is not None:
         raise error(field, str(path), f"{reason}: give {expected}")
     return Path(path)
+
+
+def as_path(path: object, field: str) -> Path:
+    """``path`` (a ``str`` or ``os.PathLike``, not empty) as a :class:`Path`; anything
+    else is an :class:`ArgumentError` naming ``field``."""
+    if isinstance(path, bytes) or not isinstance(path, str | os.PathLike):
+        raise ArgumentError(field, path, "give a path (str or os.PathLike)")
+    text = os.fspath(path)
+    if not isinstance(text, str) or not text.strip():
+        raise ArgumentError(field, path, "an empty path: give a file or folder name")
+    if "\x00" in text:
+        raise ArgumentError(field, path, "a path with a NUL character")
+    return Path(text)
+
+
+def _existing_kind(p: Path) -> str | None:
+    """What an existing ``p`` is when it is not a regular file; ``None`` when it is one
+    or does not exist."""
+    try:
+        return _noun(p.stat().st_mode)
+    except FileNotFoundError:  # also a dangling link: the write replaces the link
+        return None
+    except NotADirectoryError:
+        return "under a file (a part of the path is a file, not a folder)"
+    except OSError as err:
+        return f"a path that cannot be checked ({err.strerror})"
+
+
+def writable_file(path: object, field: str = "path") -> Path:
+    """``path`` as a :class:`Path` when a file may be written there: nothing there yet, or
+    a regular file (it will be replaced). A folder, a device such as ``/dev/null``, a named
+    pipe or a socket is never replaced: :class:`ArgumentError` naming ``field``. Every
+    writer calls this before any work (and :func:`~gearcoupling.io.atomic_path` once more
+    before the rename)."""
+    p = as_path(path, field)
+    kind = _existing_kind(p)
+    if kind is not None:
+        raise ArgumentError(field, os.fspath(path),  # type: ignore[call-overload]
+                            f"{_not(kind, 'a file')}: give the path of a regular file "
+                            "(it is replaced) or of a new one")
+    return p
+
+
+def output_folder(path: object, field: str = "out", *, create: bool = True) -> Path:
+    """Create the folder ``path`` (with its parents) and return it; refuse, naming
+    ``field``, an empty path, a path that is a file, a device or a pipe, a place that
+    cannot be written, and a folder that holds (itself or one level down) a device, a
+    named pipe or a socket where a writer would put a file. ``create=False`` checks what
+    is there without creating anything (call it again once the other arguments are
+    checked)."""
+    p = as_path(path, field)
+    shown = os.fspath(path)  # type: ignore[call-overload]
+    kind = _existing_kind(p)
+    if kind is not None and kind != "a folder":
+        raise ArgumentError(field, shown, f"{_not(kind, 'a folder')}: give a folder")
+    if kind is not None:
+        _check_entries(p, field, shown)
+    if not create:
+        return p
+    try:
+        p.mkdir(parents=True, exist_ok=True)
+    except FileExistsError:
+        raise ArgumentError(field, shown, "names an existing file: give a folder") from None
+    except OSError as err:
+        raise ArgumentError(field, shown, f"cannot create the output folder: "
+                            f"{err.strerror}") from None
+    if not p.is_dir():
+        raise ArgumentError(field, shown, "names an existing file: give a folder")
+    if not os.access(p, os.W_OK | os.X_OK):
+        raise ArgumentError(field, shown, "a folder without write permission")
+    return p
+
+
+def _check_entries(p: Path, field: str, shown: str) -> None:
+    for entry in _entries(p):
+        kind = _existing_kind(entry)
+        if kind not in (None, "a folder"):
+            raise ArgumentError(field, shown, f"holds {entry.relative_to(p)}, {kind}, where "
+                                "a file may be written: remove it or give another folder")
+
+
+def _not(kind: str, wanted: str) -> str:
+    """``"a socket, not a file"``; a reason that is not a noun as it is."""
+    return f"{kind}, not {wanted}" if kind in {n for _, n in NOUNS} else kind
+
+
+def _entries(folder: Path, depth: int = 2) -> list[Path]:
+    """Entries of ``folder`` and of its subfolders, ``depth`` levels in all."""
+    found: list[Path] = []
+    try:
+        children = list(folder.iterdir())
+    except OSError:
+        return found
+    for child in children:
+        found.append(child)
+        if depth > 1 and child.is_dir() and not child.is_symlink():
+            found += _entries(child, depth - 1)
+    return found

@@ -1,25 +1,26 @@
 """``gc.run``: every file the project can make for a spec, into one folder.
 
-The steps fall in two chains that share nothing but the folder; with two workers the second
-chain runs in a forked process beside the first, so a two-core machine does both at once.
+The steps fall in two chains that share nothing but the folder; with two workers each chain
+runs in a forked process, so a two-core machine does both at once.
 The sweep step's result feeds the load step in the same process (one sweep, not two).
 """
 
 from __future__ import annotations
 
 import multiprocessing
+import multiprocessing.connection
 import os
+import signal
 import threading
 import time
 from collections.abc import Callable, Iterable
-from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, cast
 
 from ..errors import ArgumentError, BackendError
 from ..interference import check_interference
-from ..io import write_json
+from ..io import output_folder, remove_stale_temporaries, write_json
 from ..plots import plot_sections
 from ..spec import CouplingSpec
 from ..viewer import write_html
@@ -123,6 +124,78 @@ def _can_fork() -> bool:
             and threading.active_count() == 1)
 
 
+def _chain_worker(keys: list[str], spec: CouplingSpec, out: Path, conn) -> None:
+    """A forked worker: run the steps ``keys`` in order, sending each ``_timed`` result (or
+    the error that stopped the chain) to the parent. It dies with its parent and leaves
+    signals to it: the parent stops the workers and cleans up (:func:`_run_forked`)."""
+    die_with_parent()
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C reaches the whole group
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    state: dict[str, Any] = {}
+    try:
+        for k in keys:
+            conn.send(("done", _timed(k, spec, out, state)))
+    except Exception as err:  # re-raised by the parent
+        try:
+            conn.send(("error", err))
+        except Exception:  # an error that does not pickle: its text
+            conn.send(("error", BackendError(f"{type(err).__name__}: {err}")))
+    finally:
+        conn.close()
+
+
+def die_with_parent() -> None:
+    """Ask Linux to kill this process when its parent ends, however it ends (a no-op
+    elsewhere): a worker never outlives the process that started it."""
+    try:
+        import ctypes
+
+        libc = ctypes.CDLL(None, use_errno=True)
+        libc.prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
+    except (OSError, AttributeError):  # pragma: no cover - not Linux
+        pass
+
+
+def _run_forked(chains: list[list[str]], spec: CouplingSpec, out: Path,
+                finished: Callable[[tuple[str, list[Path], float, str | None]], None]) -> None:
+    """Run each chain in its own forked process, this one only waiting (so it answers a
+    signal at once). On any exception here (an error of a step, ``KeyboardInterrupt``,
+    the CLI's signal) the workers are killed and reaped and their temporaries removed
+    before it propagates: no file is written after it."""
+    ctx = multiprocessing.get_context("fork")
+    workers = []
+    try:
+        for chain in chains:
+            recv, send = ctx.Pipe(duplex=False)
+            proc = ctx.Process(target=_chain_worker, args=(chain, spec, out, send), daemon=True)
+            proc.start()
+            send.close()
+            workers.append((proc, recv))
+        waiting = {recv: proc for proc, recv in workers}
+        while waiting:
+            for ready in multiprocessing.connection.wait(list(waiting)):
+                conn = cast(multiprocessing.connection.Connection, ready)
+                try:
+                    kind, item = conn.recv()
+                except EOFError:  # the chain is finished, or its process died
+                    proc = waiting.pop(conn)
+                    proc.join()
+                    if proc.exitcode:
+                        raise BackendError(f"a run worker process ended with exit code "
+                                           f"{proc.exitcode}") from None
+                    continue
+                if kind == "error":
+                    raise item
+                finished(item)
+    finally:
+        for proc, recv in workers:
+            if proc.is_alive():
+                proc.kill()
+            proc.join()
+            recv.close()
+        remove_stale_temporaries(out)
+
+
 def run(spec: CouplingSpec, out: str | os.PathLike, *, only: Iterable[str] | None = None,
         skip: Iterable[str] = (), workers: int | None = None,
         progress: Callable[[int, int], None] | None = None) -> RunResult:
@@ -132,13 +205,15 @@ def run(spec: CouplingSpec, out: str | os.PathLike, *, only: Iterable[str] | Non
     ----------
     spec : CouplingSpec
     out : path-like
-        Output folder (created).
+        Output folder (created; refused if it holds a device, pipe or socket, see
+        :func:`~gearcoupling.io.output_folder`).
     only, skip : iterable of str
         Steps of :data:`STEPS` to run, or to leave out (default: all).
     workers : int, optional
         1 runs every step in this process; 2 (the default where the machine has two cores
-        and this process runs no other thread) runs the second of :data:`CHAINS` in a
-        forked process beside the first.
+        and this process runs no other thread) runs each of :data:`CHAINS` in a forked
+        process while this one waits. Interrupted (``KeyboardInterrupt`` or any other
+        exception), the workers are killed first: no file is written after it.
     progress : callable, optional
         ``progress(done, total)`` after each step.
 
@@ -154,36 +229,27 @@ def run(spec: CouplingSpec, out: str | os.PathLike, *, only: Iterable[str] | Non
     >>> [p.name for p in res.files]
     ['spec.json', 'run_summary.json']
     """
+    output_folder(out, "out", create=False)
     keys = _chosen(only, skip)
     if workers is None:
         workers = 2 if (os.cpu_count() or 1) >= 2 else 1
-    if workers not in (1, 2):
-        raise ArgumentError(f"workers = {workers!r}: must be 1 or 2")
-    folder = Path(out)
-    folder.mkdir(parents=True, exist_ok=True)
+    if workers not in (1, 2) or isinstance(workers, bool):
+        raise ArgumentError("workers", workers, "1 or 2")
+    folder = output_folder(out, "out")
     chains = [[k for k in chain if k in keys] for chain in CHAINS]
     parallel = workers == 2 and all(chains) and _can_fork()
     done: dict[str, tuple[str, list[Path], float, str | None]] = {}
-    lock = threading.Lock()
 
     def finished(item: tuple[str, list[Path], float, str | None]) -> None:
-        with lock:  # the second chain reports from the executor's thread
-            done[item[0]] = item
-            if progress is not None:
-                progress(len(done), len(keys))
+        done[item[0]] = item
+        if progress is not None:
+            progress(len(done), len(keys))
 
     t0 = time.perf_counter()
-    state: dict[str, Any] = {}
     if parallel:
-        with ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("fork")) as pool:
-            futures = [pool.submit(_timed, k, spec, folder) for k in chains[1]]
-            for fut in futures:
-                fut.add_done_callback(lambda f: None if f.exception() else finished(f.result()))
-            for k in chains[0]:
-                finished(_timed(k, spec, folder, state))
-            for fut in futures:
-                fut.result()  # a step's error is raised here
+        _run_forked(chains, spec, folder, finished)
     else:
+        state: dict[str, Any] = {}
         for k in keys:
             finished(_timed(k, spec, folder, state))
     files = [p for k in keys for p in done[k][1]]

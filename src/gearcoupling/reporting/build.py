@@ -14,7 +14,7 @@ from .. import __version__
 from ..errors import ArgumentError
 from ..hob import check_hob_diameter
 from ..inspection import check_limits, grade_limits
-from ..io import require_file, write_text
+from ..io import output_folder, require_file, write_text
 from ..spec import CouplingSpec
 from . import sections as sec
 from .datasheet import datasheet
@@ -94,12 +94,12 @@ def report(spec: CouplingSpec, out: str | os.PathLike, *, pdf: bool = False,
     -------
     ReportResult
     """
+    output_folder(out, "out", create=False)
     s = settings if settings is not None else ReportSettings(**options)
     t0 = time.perf_counter()
     mis, torque, model = sec.resolve(spec, s)
     _check_inputs(spec, s)
-    folder = Path(out)
-    folder.mkdir(parents=True, exist_ok=True)
+    folder = output_folder(out, "out")
     ctx = sec.Context(spec, s, folder, mis, torque, model)
     steps = _steps(s)
     total = len(steps) + 1 + (1 if pdf else 0)

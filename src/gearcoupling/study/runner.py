@@ -9,14 +9,17 @@ A lost worker's tasks are retried (``retries``) by the scheduler; finished parts
 from __future__ import annotations
 
 import json
+import logging
 import os
-from collections.abc import Callable
+import signal
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 from ..errors import ArgumentError, BackendError
-from ..io import atomic_path, write_json
+from ..io import atomic_path, output_folder, write_json
 from ..tables import import_pandas
 from .evaluate import evaluate_chunk
 from .file import OUTPUTS, TOLERANCE_OUTPUTS, Study, sample_count, samples
@@ -118,10 +121,31 @@ def connect(scheduler: str | None, workers: int | None, timeout_s: float = CONNE
     n = workers or os.cpu_count() or 1
     if n < 1:
         raise ArgumentError("--workers", workers, "must be at least 1")
-    # ":0": the scheduler's HTTP server on a free port (8787 may belong to another cluster)
-    cluster = distributed.LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                                       dashboard_address=":0")
+    # ":0": the scheduler's HTTP server on a free port (8787 may belong to another cluster);
+    # critical logs only: a failed sample is a row's "error" and a lost worker an exception
+    # here, while the cluster's teardown after an interruption logs warnings and errors
+    # (tasks cancelled, heartbeats to a closed scheduler) that are not the user's business
+    with _ctrl_c_not_inherited():
+        cluster = distributed.LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
+                                           dashboard_address=":0",
+                                           silence_logs=logging.CRITICAL)
     return distributed.Client(cluster)
+
+
+@contextmanager
+def _ctrl_c_not_inherited() -> Iterator[None]:
+    """SIGINT ignored while the local workers start, so that they ignore it too (an ignored
+    signal stays ignored in a child): Ctrl-C in a terminal reaches the whole process group,
+    and this process, not each worker, stops the study and its cluster."""
+    try:
+        old = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    except ValueError:  # not the main thread: signals are not this call's business
+        yield
+        return
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, old)
 
 
 def _close(client, own_cluster: bool) -> None:
@@ -140,8 +164,7 @@ def run_study(study: Study, out: str | Path, *, scheduler: str | None = None,
     ``progress(done, total)`` counts chunks, those finished by an earlier run first (called
     once with them before any new one). ``client`` reuses a dask Client.
     """
-    out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
+    out = output_folder(out, "out")
     _manifest(study, out, fresh)
     names = columns(study)
     groups = chunks(study)

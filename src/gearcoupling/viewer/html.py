@@ -13,7 +13,7 @@ import os
 import socket
 from pathlib import Path
 
-from ..io import write_text
+from ..io import writable_file, write_text
 from ..spec import CouplingSpec
 from .nodes import CouplingScene, ViewSettings, import_viser
 
@@ -57,6 +57,7 @@ def write_html(spec: CouplingSpec, path: str | os.PathLike, *, settings: ViewSet
     -------
     Path
     """
+    writable_file(path, "path")
     viser = import_viser()
     if settings is None:
         settings = ViewSettings(misalignment_deg=_design_deg(spec))
