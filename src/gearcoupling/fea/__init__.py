@@ -17,10 +17,10 @@ from .mesh import (
 from .reference import FEContactResult, fe_contact
 from .sector import FESectorResult, fe_contact_sector
 from .stiffness import (
-    SQUARE_MEAN_INVERSE_DISTANCE,
     ComplianceTable,
     compute_compliance_table,
     pitch_point_compliance,
+    rectangle_halfspace_work_mm_per_N,
     tooth_compliance_table,
 )
 from .volume import VolumeMesh
@@ -29,7 +29,6 @@ from .write import FORMATS, region_ids, write_inp, write_mesh
 __all__ = [
     "DEFAULT_SECTOR_TEETH",
     "FORMATS",
-    "SQUARE_MEAN_INVERSE_DISTANCE",
     "ComplianceTable",
     "FEContactResult",
     "FESectorResult",
@@ -44,6 +43,7 @@ __all__ = [
     "gmsh_module",
     "mesh_part",
     "pitch_point_compliance",
+    "rectangle_halfspace_work_mm_per_N",
     "region_ids",
     "sector_teeth",
     "tooth_compliance_table",

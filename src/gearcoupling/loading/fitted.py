@@ -40,7 +40,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..fea import SQUARE_MEAN_INVERSE_DISTANCE
+from ..fea import rectangle_halfspace_work_mm_per_N
 from ..spec import CouplingSpec
 from .cantilever import CantileverCompliance
 
@@ -147,14 +147,14 @@ class FittedCompliance(CantileverCompliance):
     def mesh_stiffness_N_per_mm(self) -> float:
         """Renzo's C of one tooth pair, as the FE table defines it (the linear model's
         default): 1 / (the far field at mid-face and the pitch radius + the local
-        deformation under the table's load patch, a uniform square of side module / 2 on
-        an elastic half-space, each part)."""
-        side = 0.5 * self.module
-        near = sum((1.0 - m.poisson_ratio**2) / (math.pi * m.youngs_modulus_MPa)
-                   * SQUARE_MEAN_INVERSE_DISTANCE / side
+        deformation under the table's load patch, a uniform pressure on a square of side
+        module / 2 of an elastic half-space, each part, under the normal force of a unit
+        tangential load)."""
+        side, force = 0.5 * self.module, 1.0 / math.cos(self.phi)
+        near = sum(rectangle_halfspace_work_mm_per_N(force, side, side, m.youngs_modulus_MPa,
+                                                     m.poisson_ratio)
                    for m in (self.materials.hub, self.materials.sleeve))
-        far = float(self.pair_compliance_mm_per_N(0.0, self.R))
-        return 1.0 / (far + near / math.cos(self.phi) ** 2)
+        return 1.0 / (float(self.pair_compliance_mm_per_N(0.0, self.R)) + near)
 
     @cached_property
     def outside(self) -> list[str]:
