@@ -74,8 +74,9 @@ def fe_table(spec: gc.CouplingSpec, compute: bool) -> ComplianceTable | None:
 
 
 def part_records(spec: gc.CouplingSpec, table: ComplianceTable, springs) -> dict:
-    """Per part: features ``(P, F)``, base compliance ``(P,)`` and FE far field ``(P,)``
-    (normal, mm/N) at the table's ``P`` load points; the pair's FE far field ``(P,)``."""
+    """Per part at the table's ``P`` load points: features ``(P, F)``, the bending base
+    ``(P,)`` (mm/N), the confinement shape ``(P,)`` per trial length (mm/N) and the FE far
+    field ``(P,)`` (normal, mm/N); the pair's FE far field ``(P,)``."""
     from gearcoupling.loading.fitted import PARTS
 
     Z, R = (a.ravel() for a in np.meshgrid(table.z_mm, table.r_mm, indexing="ij"))
@@ -83,49 +84,57 @@ def part_records(spec: gc.CouplingSpec, table: ComplianceTable, springs) -> dict
     out = {"pair": cos2 * table.far_field_mm_per_N.ravel()}
     whole = {"hub": table.hub_mm_per_N, "sleeve": table.sleeve_mm_per_N}
     for i, part in enumerate(PARTS):
-        feats = springs.part_features(part, Z, R)
-        base = springs.part_compliance_mm_per_N(part, Z, R) / np.exp(
-            np.clip(feats, *(np.asarray(springs.fit["ranges"][part][k]) for k in ("low", "high")))
-            @ np.asarray(springs.fit["coefficients"][part]))
-        far = cos2 * (whole[part] - table.near_field_mm_per_N[i]).ravel()
-        out[part] = (feats, base, far)
+        out[part] = {"features": springs.part_features(part, Z, R),
+                     "bending": springs.bending(part, Z, R),
+                     "confinement": {L: springs.confinement(part, R, L) for L in LENGTHS},
+                     "far": cos2 * (whole[part] - table.near_field_mm_per_N[i]).ravel()}
     return out
 
 
+LENGTHS = (0.2, 0.3, 0.45, 0.7, 1.0)  # trial confinement lengths (modules)
+
+
 def fit(data: list[dict], ridge: float = 1e-3) -> dict:
-    """Coefficients per part: weighted least squares of the log far field of each part
-    (weight: the part's share of the pair, so a part's small, noisy values near its root
-    count little), then a polish on the log error of the pair, a small ridge on all but
-    the constant."""
+    """Coefficients per part minimising the log error of the pair far field over ``data``
+    (:func:`part_records` of each spec), a small ridge on all but the constant; the
+    confinement length per part the best of :data:`LENGTHS`."""
     from scipy.optimize import least_squares
 
     from gearcoupling.loading.fitted import FEATURES, PARTS
 
     nf = len(FEATURES)
-    start = []
-    for p in PARTS:
-        F = np.concatenate([d[p][0] for d in data])
-        y = np.concatenate([np.log(np.maximum(d[p][2], 1e-6 * d["pair"]) / d[p][1])
-                            for d in data])
-        w = np.concatenate([np.clip(d[p][2] / d["pair"], 0.02, 1.0) for d in data])
-        A = np.vstack([F * w[:, None], ridge * np.eye(nf)[1:]])
-        start.append(np.linalg.lstsq(A, np.concatenate([y * w, np.zeros(nf - 1)]),
-                                     rcond=None)[0])
 
-    def resid(x):
-        a = {p: x[i * nf:(i + 1) * nf] for i, p in enumerate(PARTS)}
-        r = [np.log(sum(d[p][1] * np.exp(d[p][0] @ a[p]) for p in PARTS) / d["pair"])
+    def model(x, d, lengths):
+        total = 0.0
+        for i, p in enumerate(PARTS):
+            a, b = x[i * (nf + 1):i * (nf + 1) + nf], x[i * (nf + 1) + nf]
+            q = d[p]
+            total = total + q["bending"] * np.exp(q["features"] @ a) \
+                - b * q["confinement"][lengths[p]]
+        return total
+
+    def resid(x, lengths):
+        r = [np.log(np.maximum(model(x, d, lengths), 1e-3 * d["pair"]) / d["pair"])
              for d in data]
-        return np.concatenate([*r, ridge * np.concatenate([a[p][1:] for p in PARTS])])
+        reg = [x[i * (nf + 1) + 1:i * (nf + 1) + nf] for i in range(len(PARTS))]
+        return np.concatenate([*r, ridge * np.concatenate(reg)])
 
-    x = least_squares(resid, np.concatenate(start), method="lm").x
-    ranges = {}
-    for p in PARTS:
-        f = np.concatenate([d[p][0] for d in data])
-        ranges[p] = {"low": f.min(axis=0).tolist(), "high": f.max(axis=0).tolist()}
-    return {"features": list(FEATURES),
-            "coefficients": {p: x[i * nf:(i + 1) * nf].tolist() for i, p in enumerate(PARTS)},
-            "ranges": ranges}
+    best = None
+    for lh in LENGTHS:
+        for ls in LENGTHS:
+            lengths = {"hub": lh, "sleeve": ls}
+            sol = least_squares(resid, np.zeros(2 * (nf + 1)), args=(lengths,), method="lm")
+            if best is None or sol.cost < best[0].cost:
+                best = (sol, lengths)
+    sol, lengths = best
+    parts = {}
+    for i, p in enumerate(PARTS):
+        f = np.concatenate([d[p]["features"] for d in data])
+        x = sol.x[i * (nf + 1):(i + 1) * (nf + 1)]
+        parts[p] = {"coefficients": x[:nf].tolist(), "confinement": float(x[nf]),
+                    "confinement_length": lengths[p],
+                    "low": f.min(axis=0).tolist(), "high": f.max(axis=0).tolist()}
+    return {"features": list(FEATURES), "parts": parts}
 
 
 def spec_ranges(specs) -> dict:

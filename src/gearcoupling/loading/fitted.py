@@ -6,7 +6,7 @@ reference, but it needs gmsh, CalculiX and minutes per spec. This is its fit, wi
 solver at run time (``stiffness = "fe-fit"``, the default): for each part (hub, sleeve) the
 far field at a load point ``(z, r)`` of the hub flank is
 
-    c_part(z, r) = c_bend(r) / y_F · exp(sum_i a_i f_i(z, r))
+    c_part(z, r) = c_bend(r) / y_F · exp(sum_i a_i f_i(z, r)) - b c_patch exp(-y_F / (l m))
 
 with ``c_bend`` the bending of the tapered tooth of the real thickness per unit width (the
 bending term of :meth:`.cantilever.CantileverCompliance.components`; its shear,
@@ -16,7 +16,11 @@ the part's root circle, and ``f_i`` dimensionless features of the load point and
 (:func:`features`): how high the load sits on the tooth against its root thickness, how
 near it is to a face end and to the tooth's free edge along the depth (where a plate's free
 edge makes it softer), the rim or ring under the teeth, the tooth count and the pressure
-angle. The coefficients ``a_i``
+angle. The last term is the root's confinement: near its root circle a tooth is stiffer
+under a patch than the half-space the far field was split from (an internal tooth's
+concave root most), so the far field there is below zero; ``c_patch`` is the half-space
+work of the table's load patch (a square of side module / 2), ``b`` and ``l`` fitted per
+part. The coefficients ``a_i``
 per part are fitted to FE tables of the bundled templates and of seeded random specs over
 the supported range and shipped as ``fitted.json`` (``benchmarks/bench_springs.py --fit``
 regenerates the data set, fits and prints the error at every load point of every table;
@@ -46,15 +50,16 @@ from .cantilever import CantileverCompliance
 
 PARTS = ("hub", "sleeve")
 FEATURES = ("one", "height", "height_squared", "face_end", "face_end_height", "other_end",
-            "tip_edge", "rim", "teeth", "pressure_angle")
+            "tip_edge", "rim", "teeth", "pressure_angle", "fillet")
 
 
 def features(y_F: ArrayLike, to_face_ends: tuple[ArrayLike, ArrayLike], to_tip: ArrayLike, *,
              module: float, root_thickness: float, rim: float, teeth: int,
-             pressure_angle: float) -> NDArray[np.float64]:
+             pressure_angle: float, fillet: float) -> NDArray[np.float64]:
     """Features ``(..., len(FEATURES))`` of load points of one part (:data:`FEATURES`):
     ``1``, ``ln(y_F / S_f)`` and its square, ``exp(-d1 / m)``, ``exp(-d1 / y_F)``,
-    ``exp(-d2 / m)``, ``exp(-d_t / m)``, ``ln(t / m)``, ``1 / N``, ``phi - 20°`` (rad).
+    ``exp(-d2 / m)``, ``exp(-d_t / m)``, ``ln(t / m)``, ``1 / N``, ``phi - 20°`` (rad),
+    ``ln(rho / m)`` (``rho`` floored at m / 50).
 
     Parameters
     ----------
@@ -75,6 +80,8 @@ def features(y_F: ArrayLike, to_face_ends: tuple[ArrayLike, ArrayLike], to_tip: 
     teeth : int
     pressure_angle : float
         Radians.
+    fillet : float
+        The root fillet radius ``rho`` (mm).
     """
     m = module
     y = np.maximum(np.asarray(y_F, dtype=float), 1e-3 * m)
@@ -87,7 +94,8 @@ def features(y_F: ArrayLike, to_face_ends: tuple[ArrayLike, ArrayLike], to_tip: 
 
     return np.stack([const(1.0), h, h * h, np.exp(-d1 / m), np.exp(-d1 / y), np.exp(-d2 / m),
                      np.exp(-dt / m), const(math.log(rim / m)), const(1.0 / teeth),
-                     const(pressure_angle - math.radians(20.0))], axis=-1)
+                     const(pressure_angle - math.radians(20.0)),
+                     const(math.log(max(fillet / m, 0.02)))], axis=-1)
 
 
 def load_fit() -> dict[str, Any]:
@@ -112,6 +120,8 @@ class FittedCompliance(CantileverCompliance):
                     "sleeve": 0.5 * spec.sleeve.outer_diameter - self.r_root_sleeve}
         self.root_thickness = {p: 2.0 * float(self.half_thickness(p, self._heights(p, 0.0)[0]))
                                for p in PARTS}
+        self.fillet = {"hub": spec.hub.root.fillet_radius,
+                       "sleeve": spec.sleeve.root_fillet_radius}
         #: the tooth's free edge along the depth: hub tip and sleeve minor radius
         self.tip_radius = {"hub": 0.5 * spec.hub.tip.diameter,
                            "sleeve": 0.5 * spec.sleeve.minor_diameter}
@@ -126,18 +136,37 @@ class FittedCompliance(CantileverCompliance):
         return features(np.abs(r - root), (half - z, half + z),
                         np.abs(self.tip_radius[part] - r), module=self.module,
                         root_thickness=self.root_thickness[part], rim=self.rim[part],
-                        teeth=self.teeth, pressure_angle=self.phi)
+                        teeth=self.teeth, pressure_angle=self.phi, fillet=self.fillet[part])
+
+    def bending(self, part: str, z_mm: ArrayLike, r_mm: ArrayLike) -> NDArray:
+        """``c_bend / y_F`` of ``part`` at hub flank points ``(z, r)`` (mm/N; module
+        docstring)."""
+        r, y_F = self._height(part, r_mm)
+        return np.broadcast_to(np.interp(r, self.r_table, self.bend[part]) / y_F,
+                               np.broadcast_shapes(np.shape(z_mm), np.shape(r)))
+
+    def confinement(self, part: str, r_mm: ArrayLike, length: float) -> NDArray:
+        """``c_patch exp(-y_F / (length m))`` of ``part`` (mm/N; module docstring)."""
+        _, y_F = self._height(part, r_mm)
+        mat = getattr(self.materials, part)
+        side = 0.5 * self.module
+        patch = rectangle_halfspace_work_mm_per_N(1.0, side, side, mat.youngs_modulus_MPa,
+                                                  mat.poisson_ratio)
+        return patch * np.exp(-y_F / (length * self.module))
+
+    def _height(self, part: str, r_mm: ArrayLike):
+        r = np.clip(np.asarray(r_mm, dtype=float), self.r_table[0], self.r_table[-1])
+        root, _ = self._heights(part, 0.0)
+        return r, np.maximum(np.abs(r - root), 1e-3 * self.module)
 
     def part_compliance_mm_per_N(self, part: str, z_mm: ArrayLike, r_mm: ArrayLike) -> NDArray:
         """Normal far-field compliance of one part at hub flank points ``(z, r)`` (mm/N)."""
-        r = np.clip(np.asarray(r_mm, dtype=float), self.r_table[0], self.r_table[-1])
-        root, _ = self._heights(part, 0.0)
-        y_F = np.maximum(np.abs(r - root), 1e-3 * self.module)
-        f = self.part_features(part, z_mm, r)
-        lo, hi = (np.asarray(self.fit["ranges"][part][k], dtype=float) for k in ("low", "high"))
-        a = np.asarray(self.fit["coefficients"][part], dtype=float)
-        return np.interp(r, self.r_table, self.bend[part]) / y_F * np.exp(
-            np.clip(f, lo, hi) @ a)
+        f = self.part_features(part, z_mm, r_mm)
+        c = self.fit["parts"][part]
+        lo, hi = (np.asarray(c[k], dtype=float) for k in ("low", "high"))
+        return (self.bending(part, z_mm, r_mm) * np.exp(np.clip(f, lo, hi) @ np.asarray(
+            c["coefficients"], dtype=float))
+                - c["confinement"] * self.confinement(part, r_mm, c["confinement_length"]))
 
     def normal_compliance_mm_per_N(self, z_mm: ArrayLike, r_mm: ArrayLike):
         """Hub and sleeve normal far-field compliances at the load (mm/N), broadcast."""
