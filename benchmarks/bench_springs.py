@@ -94,7 +94,7 @@ def part_records(spec: gc.CouplingSpec, table: ComplianceTable, springs) -> dict
 LENGTHS = (0.2, 0.3, 0.45, 0.7, 1.0)  # trial confinement lengths (modules)
 
 
-def fit(data: list[dict], ridge: float = 1e-3) -> dict:
+def fit(data: list[dict], ridge: float = 0.1) -> dict:
     """Coefficients per part minimising the log error of the pair far field over ``data``
     (:func:`part_records` of each spec), a small ridge on all but the constant; the
     confinement length per part the best of :data:`LENGTHS`."""
@@ -148,7 +148,9 @@ def spec_ranges(specs) -> dict:
                      ("pressure_angle_deg", math.degrees(c.phi)),
                      ("face_over_module", 2.0 * c.half_face_hub / c.module),
                      ("hub_rim_over_module", c.rim["hub"] / c.module),
-                     ("sleeve_ring_over_module", c.rim["sleeve"] / c.module)):
+                     ("sleeve_ring_over_module", c.rim["sleeve"] / c.module),
+                     ("hub_fillet_over_module", c.fillet["hub"] / c.module),
+                     ("sleeve_fillet_over_module", c.fillet["sleeve"] / c.module)):
             vals.setdefault(k, []).append(v)
     return {k: [min(v), max(v)] for k, v in vals.items()}
 
