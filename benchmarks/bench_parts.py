@@ -72,8 +72,7 @@ def print_mesh_table(name, rows) -> None:
 
 
 def step_rows(spec, reference: dict[str, float]) -> list[str]:
-    from gearcoupling.export import export_part
-    from gearcoupling.export.step import read_step_volume
+    from gearcoupling.export import export_part, read_step_volume
 
     tol = default_tolerance(spec)
     out = []

@@ -3,7 +3,7 @@
 Run: ``python benchmarks/bench_report.py [TEMPLATE]`` (default renzo-1967). Prints
 
 - the default report's wall time per section, and the time ``--pdf`` adds (headless
-  chromium: waiting for the 3D view to draw in software WebGL, then printing);
+  chromium opening and printing the page, the 3D view as its still picture);
 - for ``angles`` (rotations over a turn of the sweep and the loads): the smallest backlash,
   the largest tooth load, q and the largest root stress the report states, and the time;
 - for ``capacity_count``: the capacity curve's largest gap to a curve of 49 points

@@ -138,8 +138,7 @@ def _step_masses() -> None:
     from OCP.BRepGProp import BRepGProp
     from OCP.GProp import GProp_GProps
 
-    from gearcoupling.export import part_solid
-    from gearcoupling.parts import default_tolerance
+    from gearcoupling.parts import default_tolerance, part_solid
 
     for name in ("renzo-1967", "industrial-m2"):
         spec = gc.load_spec(name)

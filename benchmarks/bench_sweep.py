@@ -7,9 +7,9 @@ brute-force evaluation of the exact flank (``hub_flank_model``) on a dense grid.
 
 Run: ``python benchmarks/bench_sweep.py [--quick] [--against OLD_TREE]``. Times are the
 best of several runs of CPU time of this process (the machine is shared; wall time is
-printed beside it). ``--against DIR`` times the same full maps with the kernel of another
-checkout (``DIR/src``, in a subprocess) in the same run, for old-vs-new figures; with
-numba installed (extra ``fast``) the numpy path of this checkout is timed beside it.
+printed beside it). The numpy path of this checkout (``GEARCOUPLING_NUMBA=0``) is timed
+beside the compiled kernel, and ``--against DIR`` times the same maps with another
+checkout (``DIR/src``), each in a subprocess (``bench_speed.py``'s map rows).
 """
 
 from __future__ import annotations
@@ -17,13 +17,13 @@ from __future__ import annotations
 import argparse
 import math
 import os
-import subprocess
-import sys
 import time
+from pathlib import Path
 
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import numpy as np
+from bench_speed import MAP, python_row
 
 from gearcoupling.clearance import sweep
 from gearcoupling.clearance.flank_table import flank_table
@@ -31,6 +31,8 @@ from gearcoupling.clearance.kernel import minimise
 from gearcoupling.clearance.reference import brute_force
 from gearcoupling.geometry.sleeve import sleeve_model
 from gearcoupling.spec import load_spec
+
+HERE = Path(__file__).resolve().parent.parent
 
 
 def timed(fn, repeats):
@@ -43,29 +45,12 @@ def timed(fn, repeats):
     return min(cpu), min(wall)
 
 
-_OTHER = """
-import time, numpy as np
-from gearcoupling.spec import load_spec
-from gearcoupling.clearance import sweep
-def best(fn, k):
-    out = []
-    for _ in range(k):
-        c = time.process_time(); fn(); out.append(time.process_time() - c)
-    return min(out)
-s = load_spec("renzo-1967"); a = np.arange(360.0)
-sweep(s, 1.0, a, tolerance_mm=1e-6)
-print(best(lambda: sweep(s, 1.0, a, tolerance_mm=1e-6), {k}),
-      best(lambda: sweep(s, 1.0, a, tolerance_mm=1e-6, periodic=False), 1))
-"""
-
-
-def other_checkout(path: str, repeats: int, **env_extra: str):
-    """(periodic, per-tooth) full-map CPU seconds of renzo-1967 with another checkout."""
-    env = dict(os.environ, PYTHONPATH=os.path.join(path, "src"), OPENBLAS_NUM_THREADS="1",
-               **env_extra)
-    out = subprocess.run([sys.executable, "-c", _OTHER.replace("{k}", str(repeats))],
-                         env=env, capture_output=True, text=True, check=True)
-    return [float(v) for v in out.stdout.split()]
+def checkout_maps(checkout: Path, repeats: int, **env: str) -> tuple[float, float]:
+    """Best CPU seconds of the periodic and the per-tooth map of renzo-1967 at 1° with
+    ``checkout``'s kernel, in subprocesses."""
+    maps = [python_row(MAP.format(spec="renzo-1967", periodic=p, repeats=k), **env)(checkout)
+            for p, k in ((True, repeats), (False, 1))]
+    return min(maps[0]), min(maps[1])
 
 
 def main(argv=None):
@@ -92,15 +77,11 @@ def main(argv=None):
                       max(1, repeats // 3))
     print(f"  per tooth (periodic=False, {n} evaluations): {cpu * 1e3:.1f} ms CPU "
           f"({wall * 1e3:.1f} ms wall)")
-    from gearcoupling.clearance.fast import kernels
-
-    if kernels() is not None:  # the same source without numba (extra 'fast')
-        here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-        np_p, np_pt = other_checkout(here, repeats, GEARCOUPLING_NUMBA="0")
-        print(f"  numpy path (GEARCOUPLING_NUMBA=0): periodic {np_p * 1e3:.1f} ms CPU, per "
-              f"tooth {np_pt * 1e3:.1f} ms CPU (same run, subprocess)")
+    np_p, np_pt = checkout_maps(HERE, repeats, GEARCOUPLING_NUMBA="0")
+    print(f"  numpy path (GEARCOUPLING_NUMBA=0): periodic {np_p * 1e3:.1f} ms CPU, per "
+          f"tooth {np_pt * 1e3:.1f} ms CPU (same run, subprocess)")
     if args.against:
-        old, old_pt = other_checkout(args.against, repeats)
+        old, old_pt = checkout_maps(Path(args.against), repeats)
         print(f"  {args.against}: periodic {old * 1e3:.1f} ms CPU, per tooth "
               f"{old_pt * 1e3:.1f} ms CPU (same run, subprocess)")
     other = load_spec("industrial-m2")

@@ -18,4 +18,5 @@ print(gc.design_quantities(spec, 1.0)["critical_misalignment_deg"])
 two = gc.double_engagement(spec, offset_mm=5.0, angle_deg=0.5, span_mm=600.0,
                            angles_deg=[0.0, 90.0])
 angles, hub_mesh, sleeve_mesh = two  # the two gear meshes of a double-engagement coupling
+assert isinstance(angles, gc.MeshAngles) and isinstance(hub_mesh, gc.SweepResult)
 print(angles)

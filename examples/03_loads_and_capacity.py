@@ -12,9 +12,10 @@ print("q", round(res.q(), 3), "max tooth load", res.tangential_force_N.max(), "N
 sw = gc.sweep(spec, 1.0, [0.0])  # one sweep, several loads: the sweep carries its spec
 for model in ("linear", "compliance", "surface"):
     print(model, gc.load_from_sweep(sw, torque_Nm=2000.0, model=model).tangential_force_N.max())
-cap = gc.capacity(spec, 1.0)  # Capacity: per criterion, the governing one, q
+cap: gc.Capacity = gc.capacity(spec, 1.0)  # per criterion, the governing one, q
 print(cap.capacity_Nm, cap.governing, cap.criteria_Nm)
-curve = gc.capacity_curve(spec, [0.5, 1.0, 1.5])
+curve: gc.CapacityCurve = gc.capacity_curve(spec, [0.5, 1.0, 1.5])
 print([round(c.capacity_Nm) for c in curve])
-comparison = gc.compare_capacity([spec, gc.load_spec("renzo-1967-vari-crown")], [0.5, 1.0])
+comparison: gc.CapacityComparison = gc.compare_capacity(
+    [spec, gc.load_spec("renzo-1967-vari-crown")], [0.5, 1.0])
 print(type(comparison).__name__)

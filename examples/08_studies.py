@@ -7,8 +7,8 @@ import gearcoupling as gc
 
 
 def main() -> None:
-    study = gc.load_study("wei-fig14")
-    run = gc.run_study(study, "outputs/examples/study", workers=2, fresh=True)
+    study: gc.Study = gc.load_study("wei-fig14")
+    run: gc.StudyRun = gc.run_study(study, "outputs/examples/study", workers=2, fresh=True)
     print(run.rows, "rows in", run.table)
 
 

@@ -71,3 +71,19 @@ def flank_grid(model, nz: int = 9, nr: int = 7, margin: float = 0.02):
     f = np.linspace(margin, 1 - margin, nr)
     r = lo[:, None] + (hi - lo)[:, None] * f[None, :]
     return np.broadcast_to(z[:, None], r.shape).copy(), r
+
+
+@pytest.fixture(scope="session")
+def fe_table_industrial(tmp_path_factory):
+    """industrial-m2's FE tooth-spring table at the default settings, in a fresh cache
+    (``(cache base, table)``; the table is ``<base>/fea/industrial-m2-<hash>.json``).
+
+    One per session for every FE test that needs a table: the end-to-end check against
+    the CalculiX contact reference needs the default mesh (its accuracy is what it
+    asserts), and the table's physics, cache and protocol tests hold on it as well as on
+    a coarser one, so they share it instead of paying for a second table (half a minute
+    of CPU each)."""
+    from gearcoupling.fea import tooth_compliance_table
+
+    base = tmp_path_factory.mktemp("fe-cache")
+    return base, tooth_compliance_table(gc.load_spec("industrial-m2"), cache=base / "fea")

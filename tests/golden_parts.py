@@ -19,8 +19,7 @@ import tempfile
 from pathlib import Path
 
 import gearcoupling as gc
-from gearcoupling.export import export_part
-from gearcoupling.export.step import read_step_volume
+from gearcoupling.export import export_part, read_step_volume
 from gearcoupling.parts import build_part, check_tolerance
 
 GOLDEN = Path(__file__).parent / "golden" / "parts.json"

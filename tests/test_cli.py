@@ -68,6 +68,15 @@ def test_templates_lists_every_template(capsys):
     assert main(["templates"]) == 0
     out = capsys.readouterr().out
     assert all(name in out for name in gc.template_names())
+    # each description is the header's whole first sentence, not cut at the line's end
+    from gearcoupling.commands.templates import description
+    from gearcoupling.io import bundled_dir
+
+    joined = " ".join(out.split())
+    for name in gc.template_names():
+        text = description((bundled_dir("templates") / f"{name}.toml").read_text())
+        assert text.endswith(".") and len(text) > 60, text
+        assert f"{name} {text}" in joined
 
 
 def test_atomic_writes_leave_the_old_file_on_failure_and_use_the_usual_mode(tmp_path):
@@ -117,6 +126,7 @@ def test_plots_return_figures_draw_on_given_axes_and_never_switch_the_backend(tm
     axes = fig.subplots(1, 3)
     assert sections_figure(gc_spec(), 0.01, ax=axes) is fig
     assert all(a.has_data() for a in axes)
+    assert all(a.get_xlabel() and a.get_ylabel() for a in axes)  # the sections' axis too
     with pytest.raises(ValueError, match="3 axes"):
         sections_figure(gc_spec(), 0.01, ax=axes[:2])
 

@@ -15,6 +15,7 @@ import gearcoupling as gc
 from gearcoupling.cli import main
 
 T = "renzo-1967"
+M2 = "industrial-m2"
 
 
 @pytest.fixture(scope="module")
@@ -32,6 +33,14 @@ def files(tmp_path_factory):
     (d / "html_folder").mkdir()
     os.mkfifo(d / "pipe")  # never opened: a reader would block
     (d / "dangling").symlink_to(d / "gone.toml")
+    study = '[study]\nbase = "industrial-m2"\n[[vary]]\nkey = "hub.crowning.radius"\n'
+    (d / "billion.toml").write_text(study + "range = [40.0, 200.0]\nsteps = 1000000000\n")
+    (d / "tiny-tolerance.toml").write_text(study + "values = [40.0]\n[accuracy]\n"
+                                           "tolerance_mm = 1e-300\n")
+    (d / "huge-torque.toml").write_text(study.replace("hub.crowning.radius", "torque_Nm")
+                                        + "values = [1e30]\n")
+    template = (gc.io.bundled_dir("templates") / "industrial-m2.toml").read_text()
+    (d / "long-name.toml").write_text(f'name = "{"x" * 300}"\n{template}')
     return d
 
 
@@ -117,7 +126,7 @@ BAD = [
     (["fea", T, "--format", "stl"], "--format"),
     (["fea-contact", T, "--torque", "0"], "--torque"),
     (["fea-contact", T, "--size", "-1"], "--size"),
-    (["fea-contact", T, "--contact-size", "50"], "size_mm"),
+    (["fea-contact", T, "--contact-size", "50"], "--contact-size"),
     (["fea-contact", T, "--misalignment", "7"], "--misalignment"),
     (["fea-contact", T, "--misalignment", "1", "--sector", "3"], "--sector"),
     (["fea-contact", T, "--misalignment", "1", "--rotation", "400"], "--rotation"),
@@ -177,6 +186,57 @@ BAD = [
     (["datasheet", T, "--torque", "0"], "torque_Nm = 0.0"),
     (["datasheet", T, "--rotations", "0"], "--rotations"),
     (["datasheet", T, "--ross", "coupling.xml"], ".toml or .json"),
+    # issue 28: numbers a person would not write (Python's float() reads 0_5 as 5)
+    (["sweep", M2, "--misalignment", "0_5"], "--misalignment"),
+    (["sweep", M2, "--tolerance", "1_0e-7"], "--tolerance"),
+    (["sweep", M2, "--angles", "3_6"], "--angles"),
+    (["sweep", M2, "--misalignment", "0x1"], "--misalignment"),
+    (["sweep", M2, "--misalignment", "\u0661"], "--misalignment"),
+    (["sweep", M2, "--misalignment", "1,5"], "--misalignment"),
+    (["load", M2, "--torque", "1_000"], "--torque"),
+    (["capacity", M2, "--misalignments", "0_5,1"], "--misalignments"),
+    (["hob", M2, "--hob-diameter", "6_0"], "--hob-diameter"),
+    (["run", M2, "--workers", "0_2"], "--workers"),
+    (["spec", M2, "--set", "tooth.teeth=3_8"], "tooth.teeth"),
+    (["spec", M2, "--set", "hub.face_width=0x10"], "hub.face_width"),
+    (["spec", M2, "--set", "hub.backlash=nan"], "hub.backlash"),
+    (["compare", T, "{d}/a_file", "--limit", "fpt=0_5"], "--limit"),
+    (["generate", T, "--teeth", "1_0"], "--teeth"),
+    # sizes with documented maxima, empty paths, duplicates: refused before any work
+    (["capacity", M2, "--misalignments", ",".join(["1"] * 5000)], "--misalignments"),
+    (["report", T, "-o", ""], "-o"),
+    (["run", M2, "-o", ""], "-o"),
+    (["view", M2, "--html", ""], "--html"),
+    (["capacity", M2, "--compare", M2, M2], "--compare"),
+    (["capacity", M2, "--compare", M2], "--compare"),
+    (["study", "{d}/billion.toml"], "steps"),
+    (["study", "{d}/tiny-tolerance.toml"], "accuracy.tolerance_mm"),
+    # one torque range everywhere, with its ends
+    (["report", T, "--torque=1e30"], "--torque"),
+    (["report", T, "--set", "load.torque_Nm=1e300"], "load.torque_Nm"),
+    (["load", M2, "--torque=1.7e308"], "--torque"),
+    (["load", M2, "--torque=1e-300"], "--torque"),
+    (["load", M2, "--torque=5e-324"], "--torque"),
+    (["load", M2, "--torque=-1e-300"], "'-1e-300'"),
+    (["load", M2, "--set", "load.torque_Nm=2e9"], "load.torque_Nm"),
+    (["fea-contact", T, "--torque=2e9"], "--torque"),
+    (["study", "{d}/huge-torque.toml"], "torque_Nm"),
+    # messages that name what the user gave
+    (["spec", T, "--set", "tooth.module=3"], "tooth.module = 3"),
+    (["fea-contact", M2, "--set", "load.torque_Nm=0"], "load.torque_Nm = 0"),
+    (["fea-contact", T, "--size=1e-9"], "choose a larger size"),
+    (["fea-contact", T, "--size=1e-9"], "--size"),
+    (["fea-contact", T, "--contact-size", "1e6"], "--contact-size"),
+    (["view", M2, "--serve-seconds=-1"], " s "),
+    (["capacity", M2, "--misalignments", ""], "2 to 200 different angles"),
+    (["report", T, "-o", "/sys/kernel/gearcoupling"], "-o"),
+    (["report", T, "-o", "/sys/kernel"], "cannot write"),
+    (["spec", "{d}/long-name.toml"], "at most 200 characters"),
+    (["hob", M2, "--hob-diameter", "60", "--feed", "1e300"], "--feed"),
+    (["study", "renzo-tolerances", "--scheduler", "not a url"], "--scheduler"),
+    (["study", "renzo-tolerances", "--scheduler", "tcp://127.0.0.1"], "--scheduler"),
+    (["study", "renzo-tolerances", "--scheduler", "http://x.invalid:80"], "--scheduler"),
+    (["view", M2, "--angle", "2e6"], "--angle"),
 ]
 
 
@@ -491,3 +551,56 @@ def test_study_interrupted_stops_its_scheduler_and_workers(sig, group, tmp_path)
                                  tmp_path, sig, lambda: parts.is_dir() and any(
                                      parts.glob("chunk-*.parquet")), group=group)
     _check_interrupted(code, err, sig, out, sent, {})
+
+
+# --- issue 28, items 6, 8, 12, 14: inputs read before any work, nothing left on failure --
+
+SCANS = {"empty.stl": b"", "binary.stl": bytes(range(256)) * 40,
+         "malformed.stl": b"solid x\nfacet normal 0 0 1\nouter loop\nvertex 1 2\nendsolid\n",
+         "malformed.ply": b"ply\nformat ascii 1.0\nelement vertex 3\nend_header\n1 2\n",
+         "nan.csv": b"x,y,z\n1,2,3\nnan,1,2\n"}
+
+
+@pytest.mark.parametrize("name", list(SCANS))
+def test_report_reads_the_scan_before_any_work_and_leaves_no_folder(name, tmp_path, capsys):
+    scan = tmp_path / name
+    scan.write_bytes(SCANS[name])
+    out = tmp_path / "report"
+    code = main(["report", T, "--scan", str(scan), "-o", str(out)])
+    err = capsys.readouterr().err
+    assert code == 2 and "--scan" in err and len(err.strip().splitlines()) == 1, err
+    assert not out.exists()  # no report-data/ with the CSVs of seven sections
+
+
+def test_report_pdf_without_playwright_is_refused_before_any_work(tmp_path, capsys,
+                                                                 monkeypatch):
+    monkeypatch.setitem(sys.modules, "playwright.sync_api", None)  # the extra not installed
+    out = tmp_path / "report"
+    assert main(["report", T, "--pdf", "-o", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert "playwright" in err and len(err.strip().splitlines()) == 1, err
+    assert not out.exists()
+
+
+def test_a_huge_spec_gives_a_short_message(tmp_path, capsys):
+    # an unknown table of 100 000 keys: the message quotes a bounded part of it
+    spec = tmp_path / "huge.toml"
+    spec.write_text("[tooth]\nteeth = 38\nmodule = 2.0\n[hub]\nface_width = 16.0\n[junk]\n"
+                    + "".join(f"k{i} = {i}\n" for i in range(100_000)))
+    assert main(["spec", str(spec)]) == 2
+    err = capsys.readouterr().err
+    assert "junk" in err and len(err) < 2500, len(err)
+
+
+@pytest.mark.needs_dask
+def test_an_unreachable_scheduler_leaves_no_manifest(tmp_path, capsys):
+    (tmp_path / "s.toml").write_text(STUDY_28)
+    out = tmp_path / "out"
+    with socket.socket() as free:  # a port nobody listens on
+        free.bind(("127.0.0.1", 0))
+        port = free.getsockname()[1]
+    code = main(["study", str(tmp_path / "s.toml"), "--scheduler", f"tcp://127.0.0.1:{port}",
+                 "--connect-timeout", "1", "-o", str(out)])
+    err = capsys.readouterr().err
+    assert code == 2 and "scheduler" in err and len(err.strip().splitlines()) == 1, err
+    assert not out.exists() or not any(out.rglob("*"))

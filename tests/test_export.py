@@ -140,7 +140,8 @@ def _face_types(shape):
 @pytest.mark.slow
 def test_step_solid_is_exact_geometry_and_round_trips(tmp_path, name, part):
     clients.ocp()
-    from gearcoupling.export.step import part_solid, read_step_volume, shape_volume
+    from gearcoupling.export import read_step_volume
+    from gearcoupling.parts import part_solid, shape_volume
     from gearcoupling.parts.deviation import hub_samples, sleeve_samples
 
     spec = gc.load_spec(name)
@@ -167,7 +168,7 @@ def test_step_solid_is_exact_geometry_and_round_trips(tmp_path, name, part):
 @pytest.mark.slow
 def test_step_sector_matches_the_mesh_sector(tmp_path):
     clients.ocp()
-    from gearcoupling.export.step import read_step_volume
+    from gearcoupling.export import read_step_volume
 
     spec = gc.load_spec("renzo-1967")
     teeth = [49, 0, 1]
@@ -238,7 +239,7 @@ def test_run_has_parts_and_step_steps(tmp_path):
 ], ids=["6-teeth-m60", "straight-solid", "table-revolved"])
 def test_step_of_unusual_specs_matches_the_mesh(data):
     clients.ocp()
-    from gearcoupling.export.step import part_solid, shape_volume
+    from gearcoupling.parts import part_solid, shape_volume
 
     spec = gc.spec_from_dict(data)
     tol = spec.tooth.module / 50
@@ -248,8 +249,8 @@ def test_step_of_unusual_specs_matches_the_mesh(data):
 
 
 def test_curvature_breaks_only_where_the_feed_path_jumps():
-    from gearcoupling.export.step import curvature_breaks
     from gearcoupling.geometry.hub import hub_model
+    from gearcoupling.parts.loft import curvature_breaks
 
     spec = gc.load_spec("renzo-1967-end-round")
     assert curvature_breaks(hub_model(spec)) == pytest.approx([0.15 * 25.4], rel=1e-9)
@@ -287,7 +288,7 @@ def test_profile_fit_uses_the_fewest_poles_within_the_tolerance():
     the knots; more tolerance never needs more poles."""
     from scipy.interpolate import BSpline
 
-    from gearcoupling.export.fit import (
+    from gearcoupling.parts.fit import (
         _knot_vector,
         _lsq,
         fit_sections,

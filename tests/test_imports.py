@@ -45,7 +45,9 @@ def test_import_gearcoupling_loads_no_scipy():
 # the data flow of docs/conventions.md (docs/conventions.md): each unit may import only these
 LAYERS = {
     "errors": set(),
+    "arguments": {"errors"},
     "io": {"errors"},
+    "browser": {"errors"},
     "tables": {"errors"},
     "loadspec": {"errors", "io"},
     "geometry": {"errors"},
@@ -64,11 +66,14 @@ LAYERS = {
     "inspection": {"io", "errors", "geometry", "spec", "plots", "parts", "hob", "tables"},
     "outputs": {"io", "errors", "geometry", "spec", "plots", "parts", "export", "clearance",
                 "interference", "loading", "viewer"},
-    "viewer": {"io", "errors", "geometry", "spec", "parts", "export", "clearance",
-               "interference", "loading", "inspection"},
+    "viewer": {"io", "errors", "browser", "geometry", "spec", "plots", "parts", "export",
+               "clearance", "interference", "loading", "inspection"},
     "rotordynamics": {"io", "errors", "geometry", "spec", "loadspec", "plots", "parts",
                       "clearance", "loading", "tables"},
 }
+# the argument checks (numbers, counts, torques, documented maxima) sit beside the errors
+LAYERS = {k: v | {"arguments"} if k not in ("errors", "arguments") else v
+          for k, v in LAYERS.items()}
 
 
 def _type_checking_nodes(tree) -> set[int]:

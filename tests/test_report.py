@@ -210,8 +210,8 @@ def test_patch_figure_has_a_map_per_tooth_and_the_overview(renzo):
 @pytest.mark.needs_browser
 @pytest.mark.slow
 def test_report_renders_in_chromium_and_prints_a_page_per_section(made, tmp_path):
-    from gearcoupling.reporting.pdf import drawn_fraction, print_pdf, viewer_picture
-    from gearcoupling.viewer import chromium
+    from gearcoupling.browser import chromium, drawn_fraction, png_pixels
+    from gearcoupling.reporting.pdf import print_pdf, still_picture
 
     res, text = made
     n_figures = len(figures(text))
@@ -226,14 +226,20 @@ def test_report_renders_in_chromium_and_prints_a_page_per_section(made, tmp_path
                                    ".map(i => [i.complete, i.naturalWidth])")
             assert len(images) == n_figures
             assert all(done and width > 100 for done, width in images), images
-            shot = viewer_picture(page)
-            assert shot is not None, "the 3D view did not draw"
-            assert drawn_fraction(shot) > 0.05
+            assert still_picture(page).startswith("data:image/png;base64,")
+            # in view, the view's still picture goes once WebGL has drawn the scene
+            page.locator(".viewer iframe").first.scroll_into_view_if_needed()
+            page.frame_locator(".viewer iframe").locator("#gc-still").wait_for(
+                state="detached", timeout=180_000)
+            shot = page.locator(".viewer iframe").first.screenshot()
+            assert drawn_fraction(png_pixels(shot)) > 0.05, "the 3D view did not draw"
             assert problems == [], problems
         finally:
             page.close()
     pdf = print_pdf(res.html, tmp_path / "report.pdf").read_bytes()
     assert pdf.startswith(b"%PDF-")
+    # every figure and, for the 3D view, its still picture
+    assert len(re.findall(rb"/Subtype\s*/Image", pdf)) >= n_figures + 1
     pages = len(re.findall(rb"/Type\s*/Page\b", pdf))
     titles = [t.decode() for t in re.findall(rb"/Title\s*\((\d+\. [^)]*)\)", pdf)]
     headings = [html.unescape(h) for h in re.findall(r"<h2[^>]*>([^<]+)</h2>", text)]

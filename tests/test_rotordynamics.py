@@ -117,8 +117,7 @@ def test_mesh_mass_properties_against_the_step_solid(part):
     """The part mesh against OpenCASCADE's integration over the STEP solid (B-spline
     faces, not triangles): volume, centre of gravity and inertias within 0.5 %."""
     pytest.importorskip("OCP", reason="pip install 'gearcoupling[step]'")
-    from gearcoupling.export import part_solid
-    from gearcoupling.parts import default_tolerance
+    from gearcoupling.parts import default_tolerance, part_solid
 
     spec = gc.load_spec("industrial-m2")
     volume, cg, inertia = _step_mass_properties(

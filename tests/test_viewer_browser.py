@@ -14,8 +14,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from gearcoupling.browser import chromium, drawn_fraction, png_pixels
 from gearcoupling.errors import BackendError
-from gearcoupling.viewer import browser as br
+from gearcoupling.viewer import pixels as br
 
 pytestmark = [pytest.mark.needs_browser, pytest.mark.slow]
 
@@ -27,7 +28,7 @@ VIEWPORT = {"width": 800, "height": 560}  # larger views cost seconds per frame
 def browser():
     SHOTS.mkdir(parents=True, exist_ok=True)
     try:
-        with br.chromium() as b:
+        with chromium() as b:
             yield b
     except BackendError as err:  # CI installs both: a missing browser is a failure
         pytest.fail(f"{err} (run `bash scripts/test.sh`)")
@@ -60,7 +61,7 @@ def test_live_viewer_renders_and_the_rotation_slider_moves_the_hub(browser, renz
         before, _ = br.wait_rendered(page)
         print(f"\nlive viewer: first render {time.perf_counter() - t_start:.1f} s after start")
         page.screenshot(path=str(SHOTS / "live-initial.png"))
-        assert br.drawn_fraction(before) > 0.05
+        assert drawn_fraction(before) > 0.05
         assert br.reddish_pixels(before) > 200  # interfering flanks at 3° are drawn red
 
         # the scene tree (viser's settings panel) lists hub and sleeve
@@ -109,11 +110,17 @@ def test_static_html_opens_from_disk_and_renders(browser, renzo):
     requests: list[str] = []
     page.on("request", lambda r: requests.append(r.url))
     try:
+        t0 = time.perf_counter()
         page.goto(path.as_uri())
+        assert "renzo-1967" in page.title() and "i = 3°" in page.title()
+        assert "ψ = 20°" in page.locator("#gc-caption").inner_text()
+        # the still picture goes once WebGL has drawn; what is seen then is the WebGL view
+        page.locator("#gc-still").wait_for(state="detached", timeout=180_000)
+        print(f"\nstill picture replaced after {time.perf_counter() - t0:.1f} s")
         view, seconds = br.wait_rendered(page)
-        print(f"\nstatic HTML ({path.stat().st_size / 1e6:.2f} MB): rendered in {seconds:.1f} s")
+        print(f"static HTML ({path.stat().st_size / 1e6:.2f} MB): rendered in {seconds:.1f} s")
         page.screenshot(path=str(SHOTS / "static-html.png"))
-        assert br.drawn_fraction(view) > 0.05
+        assert drawn_fraction(view) > 0.05
         assert br.reddish_pixels(view) > 200
         # its scene tree lists hub, sleeve and the colour legend (labels are drawn in 3D)
         page.locator('[aria-label="Show scene tree"]').first.click()
@@ -122,5 +129,31 @@ def test_static_html_opens_from_disk_and_renders(browser, renzo):
             node.first.wait_for(state="visible", timeout=10_000)
         # self-contained: nothing but the file itself (and inline data) is fetched
         assert all(u.startswith(("file:", "data:", "blob:")) for u in requests), requests
+    finally:
+        page.close()
+
+
+def test_static_html_shows_its_still_picture_until_webgl_draws(browser, renzo):
+    """Without WebGL (here: none at all) the still picture of the pose stays, named by the
+    page's title and caption."""
+    from gearcoupling.viewer.html import write_html
+    from gearcoupling.viewer.nodes import ViewSettings
+
+    path = write_html(renzo, SHOTS / "renzo-1967-still.html",
+                      settings=ViewSettings(misalignment_deg=3.0, psi_deg=20.0))
+    page = browser.new_page(viewport=VIEWPORT)
+    page.add_init_script("HTMLCanvasElement.prototype.getContext = function () { return null; };")
+    try:
+        page.goto(path.as_uri())
+        assert "i = 3°, rotation ψ = 20°" in page.title()
+        still = page.locator("#gc-still")
+        still.wait_for(state="visible", timeout=10_000)
+        time.sleep(2.0)  # past the first checks of the page's script: the still stays
+        view = png_pixels(still.screenshot(path=str(SHOTS / "static-still.png")))
+        assert drawn_fraction(view) > 0.05
+        assert br.reddish_pixels(view) > 200  # the interfering flanks at 3°, as drawn later
+        assert "ψ = 20°" in page.locator("#gc-caption").inner_text()
+        still.click()  # a click gives the (here empty) interactive view
+        still.wait_for(state="detached", timeout=5_000)
     finally:
         page.close()

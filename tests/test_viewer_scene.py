@@ -201,7 +201,7 @@ def test_cutaways_remove_their_share_of_the_sleeve(meshes, cutaway, fraction):
 def test_bad_input_is_refused_clearly(renzo):
     with pytest.raises(ArgumentError, match="misalignment_deg"):
         vs.pose_state(renzo, 7.0, 0.0)
-    with pytest.raises(ArgumentError, match="rotation_deg"):
+    with pytest.raises(ArgumentError, match="psi_deg"):
         vs.pose_state(renzo, 1.0, float("nan"))
     with pytest.raises(ArgumentError, match="band_mm"):
         vs.pose_state(renzo, 1.0, 0.0, band_mm=-1.0)
@@ -269,6 +269,9 @@ def test_write_html_is_self_contained(renzo, tmp_path, viser):
     path = write_html(renzo, tmp_path / "sub" / "v.html", tolerance_mm=TOL)
     text = path.read_text()
     assert text.startswith("<!doctype html>") and "__VISER_EMBED_DATA__" in text
+    # named: spec, misalignment (the design angle, 1°) and rotation; a still picture inside
+    assert "<title>renzo-1967: misalignment i = 1°, rotation ψ = 0°" in text
+    assert text.count('id="gc-still" src="data:image/png;base64,iVBORw0KGgo') == 1
     assert "http://" not in text.split("__VISER_EMBED_DATA__")[1][:200]
     assert [p.name for p in path.parent.iterdir()] == ["v.html"]  # no temporary left
 

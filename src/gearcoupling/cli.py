@@ -13,6 +13,7 @@ and exits with 130 or 143 (128 + the signal's number).
 from __future__ import annotations
 
 import argparse
+import contextlib
 import os
 import signal
 import sys
@@ -21,8 +22,8 @@ from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from typing import NoReturn
 
-from .commands import COMMANDS, WRITING
-from .errors import GearCouplingError
+from .commands import COMMANDS, CREATED, WRITING
+from .errors import GearCouplingError, brief
 from .io import remove_stale_temporaries
 
 EXIT_BAD_INPUT = 2
@@ -52,7 +53,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _error(text: str) -> int:
-    print(f"gearcoupling: error: {text}", file=sys.stderr)
+    print(f"gearcoupling: error: {brief(text, 2000)}", file=sys.stderr)
     return EXIT_BAD_INPUT
 
 
@@ -88,6 +89,13 @@ def _signals_raise() -> Iterator[None]:
             signal.signal(s, h)
 
 
+def _tidy() -> None:
+    """Remove the output folders this failed command made, where it left them empty."""
+    for folder in reversed(CREATED):
+        with contextlib.suppress(OSError):
+            folder.rmdir()
+
+
 def _interrupted(stop: KeyboardInterrupt, started: float) -> int:
     """After an interruption has unwound the command: remove the temporaries of its
     stopped workers, say what is complete in one line, return 128 + the signal."""
@@ -113,6 +121,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     except SystemExit as stop:  # --help, or an argument error already printed on one line
         return stop.code if isinstance(stop.code, int) else EXIT_BAD_INPUT
     WRITING.clear()
+    CREATED.clear()
     started = time.time() - 0.05  # file times come from a coarser clock
     try:
         with _signals_raise():
@@ -120,6 +129,9 @@ def main(argv: Sequence[str] | None = None) -> int:
                 return int(args.func(args) or 0)
             except KeyboardInterrupt as stop:
                 return _interrupted(stop, started)
+            except BaseException:
+                _tidy()
+                raise
     except GearCouplingError as err:
         return _error(str(err).splitlines()[0] if str(err) else type(err).__name__)
     except BrokenPipeError:  # e.g. ``gearcoupling spec --json | head``: the reader left

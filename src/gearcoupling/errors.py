@@ -2,6 +2,20 @@
 
 from __future__ import annotations
 
+#: characters of a field name and of a value's repr quoted in a message, and of the
+#: allowed text (a 10 MB spec value makes a message of about a line, not of 10 MB)
+FIELD_CHARS, VALUE_CHARS, ALLOWED_CHARS = 200, 200, 1000
+
+
+def brief(text: str, most: int) -> str:
+    """``text`` cut to ``most`` characters, saying how long it was."""
+    return text if len(text) <= most else f"{text[:most]}... ({len(text)} characters)"
+
+
+def _message(field: object, value: object, allowed: object) -> str:
+    return (f"{brief(str(field), FIELD_CHARS)} = {brief(repr(value), VALUE_CHARS)}: "
+            f"{brief(str(allowed), ALLOWED_CHARS)}")
+
 
 class GearCouplingError(Exception):
     """Base class of every error gearcoupling raises on purpose."""
@@ -14,7 +28,7 @@ class SpecError(GearCouplingError, ValueError):
         self.field = field
         self.value = value
         self.allowed = allowed
-        super().__init__(f"{field} = {value!r}: {allowed}")
+        super().__init__(_message(field, value, allowed))
 
     def __reduce__(self):  # pickled to and from worker processes with its fields
         return type(self), (self.field, self.value, self.allowed)
@@ -37,7 +51,7 @@ class ArgumentError(GearCouplingError, ValueError):
     def __init__(self, *args: object):
         if len(args) == 3:
             self.field, self.value, self.allowed = args
-            super().__init__(f"{args[0]} = {args[1]!r}: {args[2]}")
+            super().__init__(_message(*args))
         else:
             super().__init__(*args)
 

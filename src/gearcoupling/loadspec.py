@@ -16,6 +16,7 @@ import math
 from dataclasses import dataclass, field
 from typing import Any
 
+from .arguments import torque_Nm as check_torque_Nm
 from .errors import SpecError
 from .io import Table
 
@@ -78,10 +79,8 @@ class LoadSpec:
     stiffness: str = "fe-fit"
 
     def __post_init__(self):
-        t = self.torque_Nm
-        if t is not None and not (isinstance(t, int | float) and math.isfinite(t)):
-            raise SpecError("load.torque_Nm", t, "must be a finite torque in N·m (sign picks "
-                            "the flank) or omitted")
+        if self.torque_Nm is not None:  # the range of every entry point
+            check_torque_Nm(self.torque_Nm, "load.torque_Nm", error=SpecError)
         if self.model not in LOAD_MODELS:
             raise SpecError("load.model", self.model, f"one of {LOAD_MODELS}")
         if self.stiffness not in STIFFNESS_SOURCES:

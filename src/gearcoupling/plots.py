@@ -151,7 +151,8 @@ def sections_figure(spec: CouplingSpec, tolerance_mm: float | None = None, *,
         ax0.plot(*clip(hub), color=c, lw=1.0, label=f"hub z = {z:.3g} mm")
     ax0.set_aspect("equal")
     ax0.set_title(f"{spec.name}: transverse sections (tooth 0 up)")
-    ax0.set_xlabel("mm")
+    ax0.set_xlabel("across the teeth, from tooth 0's centre line (mm)")
+    ax0.set_ylabel("from the axis, along tooth 0's centre line (mm)")
     ax0.legend(fontsize=7, loc="lower left")
 
     z = np.linspace(-0.5 * spec.hub.face_width, 0.5 * spec.hub.face_width, 81)

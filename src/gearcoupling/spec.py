@@ -13,6 +13,7 @@ from __future__ import annotations
 import copy
 import math
 import numbers
+import os
 from dataclasses import asdict, dataclass, field
 from functools import cached_property
 from itertools import pairwise
@@ -21,7 +22,7 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from .errors import ArgumentError, GeometryError, SpecError
+from .errors import ArgumentError, GeometryError, SpecError, brief
 from .geometry import (
     MAX_END_TANGENT_DEG,
     HubModel,
@@ -30,8 +31,17 @@ from .geometry import (
     feed_path,
     inv_inverse,
     radius_squared,
+    use_spec_loader,
 )
-from .io import Table, bundled_names, read_toml, resolve_bundled, set_dotted, unknown_key
+from .io import (
+    Table,
+    as_path,
+    bundled_names,
+    read_toml,
+    resolve_bundled,
+    set_dotted,
+    unknown_key,
+)
 from .loadspec import UNIT_SIBLINGS, LoadSpec, Materials, parse_load, parse_material
 
 MM_PER_INCH = 25.4
@@ -43,6 +53,7 @@ MISALIGNMENT_RANGE_DEG = (0.0, 6.0)
 CROWNING_KINDS = ("none", "circular", "vari_crown", "end_round", "table")
 GENERATIONS = ("enveloped", "revolved")
 TIP_KINDS = ("sphere", "cylinder")
+MAX_NAME_CHARS = 200
 _ROUNDING_DEG = 1e-9  # slack for degree <-> radian round trips (6° -> 6.000000000000001)
 
 
@@ -469,6 +480,11 @@ def spec_from_dict(data: dict[str, Any], name: str = "custom") -> CouplingSpec:
     Keys left out get the defaults of :data:`DEFAULT_RULES`, chosen so that they always
     fit; if a derived value is refused anyway, the error says so and names the key to set.
     """
+    if not isinstance(data, dict):
+        raise ArgumentError("data", data, "a dict of spec tables, as read from a TOML "
+                            "spec file")
+    if not isinstance(name, str):
+        raise ArgumentError("name", name, "a str")
     check_keys(data)
     defaulted: set[str] = set()
     try:
@@ -539,6 +555,8 @@ def _build(root: Table, name: str) -> CouplingSpec:
     _check(units in UNITS, "units", units, f"one of {tuple(UNITS)}")
     root.scale = UNITS[units]
     name = root.string("name", name)
+    _check(len(name) <= MAX_NAME_CHARS, "name", brief(name, 40),
+           f"at most {MAX_NAME_CHARS} characters (it names files and reports)")
     misalignment = math.radians(check_misalignment_deg(root.number("design_misalignment_deg",
                                                                    0.0),
                                                        "design_misalignment_deg"))
@@ -546,8 +564,9 @@ def _build(root: Table, name: str) -> CouplingSpec:
     t = root.table("tooth")
     teeth = t.integer("teeth")
     if t.has("diametral_pitch"):
-        _check(not t.has("module"), "tooth.module", None,
-               "give module or diametral_pitch, not both")
+        _check(not t.has("module"), "tooth.module", t.data.get("module"),
+               f"give module or diametral_pitch, not both (diametral_pitch = "
+               f"{t.data.get('diametral_pitch')!r} is set too)")
         pd = t.number("diametral_pitch")
         _check(pd > 0 and math.isfinite(pd), "tooth.diametral_pitch", pd,
                "must be a positive number of teeth per inch of pitch diameter")
@@ -683,12 +702,27 @@ def load_spec(name_or_path: str | Path, **overrides: Any) -> CouplingSpec:
 
     >>> spec = load_spec("renzo-1967", **{"hub.crowning.radius": 2.0})  # doctest: +SKIP
     """
+    as_path(name_or_path, "name_or_path")
     path = resolve_spec_path(name_or_path)
     data, _ = read_toml(path)
     for key, value in overrides.items():
         set_dotted(data, key, value, UNIT_SIBLINGS)
     return spec_from_dict(data, name=path.stem)
 
+
+def as_spec(spec: Any, field: str = "spec") -> CouplingSpec:
+    """``spec`` when it is a :class:`CouplingSpec`; a template name or the path of a TOML
+    spec is loaded (:func:`load_spec`); anything else is an :class:`ArgumentError` naming
+    ``field``. Every public function that takes a spec starts with this."""
+    if isinstance(spec, CouplingSpec):
+        return spec
+    if isinstance(spec, str | os.PathLike):
+        return load_spec(as_path(spec, field))
+    raise ArgumentError(field, spec, "a CouplingSpec (gearcoupling.load_spec), a "
+                        "template name or the path of a TOML spec")
+
+
+use_spec_loader(as_spec)  # the geometry's public functions take names too
 
 __all__ = [
     "CouplingSpec",
@@ -699,6 +733,7 @@ __all__ = [
     "HubTip",
     "Sleeve",
     "ToothSystem",
+    "as_spec",
     "load_spec",
     "spec_from_dict",
     "template_names",

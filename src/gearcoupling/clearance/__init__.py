@@ -2,6 +2,7 @@
 design angles (critical and binding misalignment); docs/conventions.md."""
 
 from .design import (
+    MeshAngles,
     binding_angle_deg,
     contact_travel,
     critical_misalignment_deg,
@@ -27,6 +28,7 @@ from .tooth_map import check_angles, check_misalignment, flank_minima, sweep
 __all__ = [
     "CSV_COLUMNS",
     "KINDS",
+    "MeshAngles",
     "SweepResult",
     "backlash_curve",
     "binding_angle_deg",

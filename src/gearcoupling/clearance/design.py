@@ -12,10 +12,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..arguments import angle_tolerance_deg, count, keywords, real, sweep_tolerance_mm
 from ..errors import ArgumentError
 from ..geometry import sleeve_model
-from ..spec import MISALIGNMENT_RANGE_DEG, CouplingSpec
+from ..spec import MISALIGNMENT_RANGE_DEG, CouplingSpec, as_spec
 from .kernel import DEFAULT_TOLERANCE_MM, FACE_END, minimise
+from .result import SweepResult
 from .tooth_map import check_misalignment, flank_minima, sweep
 
 ANGLE_TOLERANCE_DEG = 1e-4
@@ -38,7 +40,9 @@ def contact_travel(spec: CouplingSpec,
     (Renzo's measure), ``flank_z_mm`` the point of first touch over the whole flank;
     ``renzo_mm`` the small-angle estimate ``R_c cot(phi) i``.
     """
+    spec = as_spec(spec)
     i = check_misalignment(misalignment_deg)
+    tolerance_mm = sweep_tolerance_mm(tolerance_mm)
     mins, table = flank_minima(spec, i, np.array([0.0, np.pi]), tolerance_mm=tolerance_mm)
     pitch = minimise(table, sleeve_model(spec), i, np.array([0.0, np.pi]),
                      pitch_radius=spec.tooth.pitch_radius,
@@ -55,8 +59,10 @@ def contact_travel(spec: CouplingSpec,
 def min_backlash_rad(spec: CouplingSpec, misalignment_deg: float, *, steps: int = DEFAULT_STEPS,
                      tolerance_mm: float = DEFAULT_TOLERANCE_MM) -> float:
     """Smallest backlash (rad) over a full turn at ``misalignment_deg`` (0-6°); negative
-    where the teeth bind. ``steps`` rotations per tooth pitch are searched."""
-    return _min_backlash(spec, check_misalignment(misalignment_deg), steps, tolerance_mm)
+    where the teeth bind. ``steps`` rotations per tooth pitch are searched (1-1000)."""
+    spec = as_spec(spec)
+    i = check_misalignment(misalignment_deg)
+    return _min_backlash(spec, i, count(steps, "steps"), sweep_tolerance_mm(tolerance_mm))
 
 
 def _min_backlash(spec: CouplingSpec, misalignment_rad: float, steps: int = DEFAULT_STEPS,
@@ -89,7 +95,10 @@ def critical_misalignment_deg(spec: CouplingSpec, *, tolerance_deg: float = ANGL
     ends (tip, form circle, sleeve tip edge) do not count: the hub profile is conjugate to
     the sleeve's, so the gap is nearly constant along the profile and its minimum sits at a
     profile end after any twist. Returns ``None`` when no face end is reached up to 6°.
+    ``tolerance_deg``: 1e-9 to 0.5 degrees.
     """
+    spec = as_spec(spec)
+    tolerance_deg = angle_tolerance_deg(tolerance_deg)
     top = math.radians(MISALIGNMENT_RANGE_DEG[1])
     if not pivot_on_face_end(spec, top):
         return None
@@ -107,9 +116,13 @@ def critical_misalignment_deg(spec: CouplingSpec, *, tolerance_deg: float = ANGL
 def binding_angle_deg(spec: CouplingSpec, *, tolerance_deg: float = ANGLE_TOLERANCE_DEG,
                       steps: int = DEFAULT_STEPS) -> float | None:
     """Misalignment (degrees) at which the smallest backlash over a turn reaches zero
-    (Brent's method to ``tolerance_deg``); ``None`` if the coupling does not bind by 6°."""
+    (Brent's method to ``tolerance_deg``, 1e-9 to 0.5 degrees, searching ``steps``
+    rotations per tooth pitch, 1-1000); ``None`` if the coupling does not bind by 6°."""
     from scipy.optimize import brentq  # at the call: importing the sweep stays light
 
+    spec = as_spec(spec)
+    tolerance_deg = angle_tolerance_deg(tolerance_deg)
+    steps = count(steps, "steps")
     hi = math.radians(MISALIGNMENT_RANGE_DEG[1])
     known: dict[float, float] = {}
 
@@ -161,10 +174,11 @@ def mesh_angles(offset_mm: float, angle_deg: float, span_mm: float, *,
     both meshes, so its axis runs through ``O_A`` and ``O_B``; each mesh angle is the
     angle between its shaft and the sleeve axis.
     """
-    for name, value in (("offset_mm", offset_mm), ("angle_deg", angle_deg),
-                        ("span_mm", span_mm)):
-        if not math.isfinite(value):
-            raise ArgumentError(name, value, "must be finite")
+    offset_mm, angle_deg, span_mm, offset_azimuth_deg, angle_azimuth_deg = (
+        real(v, name) for v, name in ((offset_mm, "offset_mm"), (angle_deg, "angle_deg"),
+                                      (span_mm, "span_mm"),
+                                      (offset_azimuth_deg, "offset_azimuth_deg"),
+                                      (angle_azimuth_deg, "angle_azimuth_deg")))
     if span_mm <= 0:
         raise ArgumentError("span_mm", span_mm, "distance between the hub midplanes must be > 0 mm")
     if offset_mm < 0 or not 0 <= angle_deg < 90:
@@ -184,11 +198,16 @@ def mesh_angles(offset_mm: float, angle_deg: float, span_mm: float, *,
 
 
 def double_engagement(spec: CouplingSpec, offset_mm: float, angle_deg: float, span_mm: float,
-                      angles_deg, **kwargs):
+                      angles_deg, **kwargs) -> tuple[MeshAngles, SweepResult, SweepResult]:
     """Sweeps of both gear meshes: ``(MeshAngles, result_a, result_b)``.
 
-    Raises :class:`SpecError` if a mesh angle exceeds the 6° the sweeps cover.
+    Raises :class:`ArgumentError` if a mesh angle exceeds the 6° the sweeps cover.
+    ``kwargs``: ``offset_azimuth_deg``, ``angle_azimuth_deg`` (:func:`mesh_angles`) and
+    those of :func:`~.tooth_map.sweep`.
     """
+    spec = as_spec(spec)
+    keywords(kwargs, ("offset_azimuth_deg", "angle_azimuth_deg", "tolerance_mm", "grid",
+                      "periodic"), "double_engagement")
     mesh = mesh_angles(offset_mm, angle_deg, span_mm,
                        offset_azimuth_deg=kwargs.pop("offset_azimuth_deg", 0.0),
                        angle_azimuth_deg=kwargs.pop("angle_azimuth_deg", 0.0))
@@ -204,6 +223,8 @@ def double_engagement(spec: CouplingSpec, offset_mm: float, angle_deg: float, sp
 def design_quantities(spec: CouplingSpec, misalignment_deg: float, *,
                       tolerance_deg: float = ANGLE_TOLERANCE_DEG) -> dict:
     """Root-found design angles and the pivot-tooth contact travel, as plain data."""
+    spec = as_spec(spec)
+    tolerance_deg = angle_tolerance_deg(tolerance_deg)
     travel = contact_travel(spec, misalignment_deg)
     crit = critical_misalignment_deg(spec, tolerance_deg=tolerance_deg)
     bind = binding_angle_deg(spec, tolerance_deg=tolerance_deg)

@@ -1,13 +1,13 @@
-"""Optional compiled point work of the clearance kernel (extra ``fast``: numba).
+"""The compiled clearance kernel (numba), imported at the first sweep.
 
-:func:`kernels` returns the numba kernels (:mod:`._compiled`) that fuse what the numpy
-path does in ~30 array passes per point - flank ``y`` by Horner's rule, the pose, the
-involute and root-fillet gaps - into one loop, and run the searches over the profile
-height (:meth:`~.clearance._Planes.cross`, the slope roots of
-:meth:`~.clearance._Planes._interior`) in compiled loops; or None when numba is not
-installed (then numpy is used). Both perform the same floating-point operations in the
-same order: the minima are equal (``tests/test_sweep_frozen.py`` runs both; see
-``docs/sweep-speed.md``). ``GEARCOUPLING_NUMBA=0`` forces numpy.
+:func:`kernels` returns :mod:`._compiled` (its :func:`~._compiled.minimise_rows` does all of
+:func:`.kernel.minimise` for a chunk of turning angles), or None where numba cannot be
+imported or ``GEARCOUPLING_NUMBA=0``: then the numpy path of :mod:`.kernel` runs (about 3x
+slower on a map, 10x on one turning angle). ``import gearcoupling`` does not import numba;
+the first sweep in a process loads it and the compiled code from numba's cache (about
+0.5 s; after an install, the first sweep compiles for about 10 s and writes the cache:
+docs/sweep-speed.md). The two paths agree to rounding (``tests/test_sweep_frozen.py``,
+``tests/test_sweep_kernel.py``).
 """
 
 from __future__ import annotations
@@ -19,7 +19,7 @@ from types import ModuleType
 
 @lru_cache(maxsize=1)
 def kernels() -> ModuleType | None:
-    """The compiled kernels' module, or None without numba (or with ``GEARCOUPLING_NUMBA=0``)."""
+    """The compiled kernel's module, or None without numba (or with ``GEARCOUPLING_NUMBA=0``)."""
     if os.environ.get("GEARCOUPLING_NUMBA", "1") == "0":
         return None
     try:

@@ -174,6 +174,11 @@ class FlankTable:
         b += coef[0]
         return b
 
+    @cached_property
+    def symmetric(self) -> bool:
+        """:meth:`even_in_z` at its default tolerance (once per table)."""
+        return self.even_in_z()
+
     def even_in_z(self, rel: float = 1e-12) -> bool:
         """Whether the flank is symmetric about the midplane: pieces mirror each other and
         ``y``, ``r_form`` at mirrored sample points agree within ``rel`` of ``|y|``."""
@@ -337,14 +342,14 @@ def adaptive_flank_table(m: HubModel, tolerance_mm: float = DEFAULT_TABLE_TOLERA
     """
     if not (tolerance_mm > 0):
         raise ArgumentError(f"table tolerance must be > 0 mm, got {tolerance_mm!r}")
-    table = None
-    for nodes in NODE_LADDER:
-        trial = build_flank_table(m, nodes)
-        if table is not None and trial.max_error_mm > 0.5 * table.max_error_mm:
-            break  # stalled (a jump the pieces do not isolate): more nodes buy nothing
-        table = trial
+    table = build_flank_table(m, NODE_LADDER[0])
+    for nodes in NODE_LADDER[1:]:
         if table.max_error_mm <= tolerance_mm:
             break
+        trial = build_flank_table(m, nodes)
+        if trial.max_error_mm > 0.5 * table.max_error_mm:
+            break  # stalled (a jump the pieces do not isolate): more nodes buy nothing
+        table = trial
     return table
 
 

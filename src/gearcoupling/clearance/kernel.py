@@ -77,11 +77,6 @@ class _Sleeve:
         self.cn = math.hypot(cx, cy)
         self.gc = math.atan2(cy, cx)
 
-    def consts(self, ci: float, si: float) -> tuple[float, ...]:
-        """The sleeve constants of the compiled kernels (:mod:`._compiled`)."""
-        return (ci, si, self.r_b, self.c0, self.r_fillet, float(self.rho), self.cn, self.gc,
-                self.cx, self.cy)
-
     def delta(self, rq, aq):
         """Angular gap ``aq + sigma(rq)/2`` to the involute (its extension off the flank)."""
         # inv(arccos(r_b / rq)) = tan - angle, with tan = sqrt(rq^2 - r_b^2) / r_b
@@ -102,17 +97,36 @@ class _Sleeve:
     def gaps(self, rq, aq):
         """``(circumferential, normal)`` gaps (mm) at sleeve radius ``rq``, polar angle
         ``aq``; above ``r_fillet`` against the root fillet."""
+        circ, normal = self.involute_gaps(rq, aq)
+        fil = rq > self.r_fillet
+        if self.rho > 0 and np.any(fil):
+            circ[fil], normal[fil] = self.fillet_gaps(rq[fil], aq[fil])
+        return circ, normal
+
+    def involute_gaps(self, rq, aq):
+        """``(circumferential, normal)`` gaps to the involute (its extension off the flank)."""
         d = self.delta(rq, aq)
         circ = rq * d
         d *= self.r_b
-        normal = d
-        fil = rq > self.r_fillet
-        if self.rho > 0 and np.any(fil):
-            r, a = rq[fil], aq[fil]
-            cosb = np.clip((r * r + self.cn**2 - self.rho**2) / (2 * r * self.cn), -1.0, 1.0)
-            beta = self.gc - np.arccos(cosb)
-            circ[fil] = r * (a - beta)
-            normal[fil] = self.rho - np.hypot(r * np.cos(a) - self.cx, r * np.sin(a) - self.cy)
+        return circ, d
+
+    def fillet_gaps(self, r, a):
+        """``(circumferential, normal)`` gaps to the root fillet."""
+        cosb = np.clip((r * r + self.cn**2 - self.rho**2) / (2 * r * self.cn), -1.0, 1.0)
+        beta = self.gc - np.arccos(cosb)
+        return r * (a - beta), self.rho - np.hypot(r * np.cos(a) - self.cx,
+                                                   r * np.sin(a) - self.cy)
+
+    def at_fillet_start(self, rq, aq):
+        """Gaps at the start of the root fillet (``rq`` at ``r_fillet`` to 1e-11): the
+        lower of those to the involute and to the fillet. Off the sleeve surface the two
+        differ (deep interference), and which one a point on the edge got depended on the
+        side its crossing converged from; the lower is the limit of the fillet part's
+        minimum, so it belongs to the minimum over the active interval."""
+        circ, normal = self.involute_gaps(rq, aq)
+        if self.rho > 0:
+            fc, fn = self.fillet_gaps(rq, aq)
+            circ, normal = np.minimum(circ, fc), np.minimum(normal, fn)
         return circ, normal
 
 
@@ -177,38 +191,15 @@ class _Planes:
         return _map_cs(r, y, z, self.ci, self.si, ct, st)
 
     def f(self, t, idx=None):
-        """``(circumferential, normal)`` gaps at heights ``t`` (compiled where numba is
-        installed and the table is in power form, :mod:`.fast`)."""
-        kernel = self._kernels()
-        if kernel is None:
-            rq, aq, _ = self.at(t, idx)
-            return self.sl.gaps(rq, aq)
-        rows = np.arange(self.z.size) if idx is None else np.asarray(idx, dtype=np.intp)
-        t2 = np.ascontiguousarray(np.broadcast_to(t, np.shape(t)[:-1] + rows.shape)
-                                  .reshape(-1, rows.size), dtype=float)
-        circ, normal = kernel.gaps(t2, rows, *self._point_args())
-        shape = np.shape(t)[:-1] + rows.shape
-        return circ.reshape(shape), normal.reshape(shape)
-
-    def _kernels(self):
-        """:func:`.fast.kernels` where they apply (the table in power form), else None."""
-        k = kernels()
-        return None if k is None or self.table._power is None else k
-
-    def _point_args(self):
-        """The per-row arrays and constants the compiled kernels evaluate points from."""
-        return (self.kz, self.lo, self.span, self.z, self.ct, self.st,
-                self.sl.consts(self.ci, self.si))
+        """``(circumferential, normal)`` gaps at heights ``t``."""
+        rq, aq, _ = self.at(t, idx)
+        return self.sl.gaps(rq, aq)
 
     def cross(self, which: str, target: float, a, b, fa, fb, idx, rel: float = 1e-11):
         """``t`` in ``[a, b]`` where ``rq`` (or ``zq``) equals ``target``; ``fa``, ``fb``
         are the values minus target at the ends (opposite signs). Secant steps on the two
         latest points, kept inside the shrinking bracket (regula falsi when they leave it);
         ``rq`` is nearly linear in ``t``, so 3-4 steps reach 1e-11 relative."""
-        kernel = self._kernels()
-        if kernel is not None:
-            return kernel.cross(which == "z", float(target), a, b, fa, fb, idx, rel,
-                                *self._point_args())
         x0, f0 = a, fa
         x1, f1 = b, fb
         tol = rel * (abs(target) + 1.0)
@@ -301,16 +292,21 @@ class _Planes:
         fh = self._f_or(t_hi, 1.0, self.g1)
         want = np.broadcast_to(np.asarray(interior, dtype=bool), (2, n))
         fb = fh.copy()  # the upper end of [t_lo, t_a] (only the interior search uses it)
+        fb_min = fh.copy()  # the minimum there: at the fillet start, :meth:`at_fillet_start`
         sub = np.flatnonzero(np.any(want, axis=0) & (t_a != t_hi))
         if sub.size:
-            fb[:, sub] = np.stack(self.f(t_a[sub], sub))
+            rq, aq, _ = self.at(t_a[sub], sub)
+            fb[:, sub] = fb_min[:, sub] = np.stack(self.sl.gaps(rq, aq))
+            edge = t_a[sub] > t_lo[sub]  # a crossing of r_fillet, not [t_lo, t_hi] above it
+            fb[:, sub[edge]] = np.stack(self.sl.involute_gaps(rq[edge], aq[edge]))
+            fb_min[:, sub[edge]] = np.stack(self.sl.at_fillet_start(rq[edge], aq[edge]))
         # rows not searched keep t = 0, f = inf: only their ends count
         TI, FI = self._interior(t_lo, t_a, fa, fb, feasible & want, iters=12)
         interior = np.full(n, INTERIOR, np.int8)
         cols = np.arange(n)
         V, T, K = [], [], []
         for mi in range(2):
-            F = np.stack([fa[mi], fb[mi], fh[mi], FI[mi]])
+            F = np.stack([fa[mi], fb_min[mi], fh[mi], FI[mi]])
             j = np.argmin(F, axis=0)
             V.append(np.where(feasible, F[j, cols], np.inf))
             T.append(np.stack([t_lo, t_a, t_hi, TI[mi]])[j, cols])
@@ -354,12 +350,7 @@ class _Planes:
             return T, F
         idx, a, b = idx0[pos], a0[pos], b0[pos]
         x0, g0, x1, g1 = a, GA[mis, pos], b, GB[mis, pos]
-        kernel = self._kernels()
-        if kernel is None:
-            res = self._slope_roots(idx, mis, a, b, x0, g0, x1, g1, iters, d)
-        else:
-            res = kernel.slope_roots(idx, mis, a, b, x0, g0, x1, g1, iters, d,
-                                     *self._point_args())
+        res = self._slope_roots(idx, mis, a, b, x0, g0, x1, g1, iters, d)
         T[mis, idx] = res
         F[mis, idx] = np.stack(self.f(res, idx))[mis, np.arange(idx.size)]
         return T, F
@@ -777,7 +768,9 @@ def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
 
     Steps: :func:`coarse_grid` (minima over ``t`` in ``grid`` planes), :func:`second_minima`
     (a second coarse minimum becomes an extra row), :class:`ZSearch` (refinement over
-    ``z``), then each measure folds its branches (:data:`_FOLD`).
+    ``z``), then each measure folds its branches (:data:`_FOLD`). The compiled kernel
+    (:mod:`.fast`, numba) takes the same steps one turning angle at a time; without
+    numba, or with ``GEARCOUPLING_NUMBA=0``, they run here in numpy (docs/sweep-speed.md).
 
     Parameters
     ----------
@@ -816,6 +809,30 @@ def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
     # the virtual measures (rows of _plane_minima) the requested measures fold from
     wanted = sorted({vm for m in measures for vm in _FOLD[MEASURES.index(m)]})
     sl = _Sleeve(sm)
+    compiled = kernels()
+    if compiled is not None and table.y.shape[1] <= compiled.MAX_NZ:
+        tab, ws = _compiled_arrays(compiled, table, sl, misalignment, pitch_radius,
+                                   tolerance_mm, grid)
+        out = np.empty((6, len(measures), n))
+        compiled.minimise_rows(tab, ws, np.linspace(-table.half_face, table.half_face, grid),
+                               theta, np.array(wanted, np.int64),
+                               np.array([MEASURES.index(m) for m in measures], np.int64),
+                               max_levels, out)
+        v, z, r, t, k, rate = out
+        return {m: Minimum(v[j], z[j], r[j], t[j], k[j].astype(np.int8), rate[j])
+                for j, m in enumerate(measures)}
+    best_v, best_z, best_t, best_k = _numpy_minima(table, sl, misalignment, theta, pitch_radius,
+                                                   tolerance_mm, grid, max_levels, wanted)
+    th_of = np.tile(np.arange(n), len(wanted))
+    return _fold(table, misalignment, theta, th_of, wanted, measures, best_v, best_z, best_t,
+                 best_k)
+
+
+def _numpy_minima(table, sl, misalignment, theta, pitch_radius, tolerance_mm, grid,
+                  max_levels, wanted):
+    """Steps 1-3 in numpy, all rows of a step at once: ``best_v, best_z, best_t, best_k``
+    each ``(len(wanted) * n,)``, measure-major."""
+    n = theta.size
     zg, v, t, k = coarse_grid(table, sl, misalignment, theta, pitch_radius, grid, wanted)
     j, j2, second = second_minima(v)
     R = v.shape[0]  # rows: (virtual measure, theta) pairs, then the extra rows
@@ -827,16 +844,28 @@ def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
                 np.concatenate([j, j2[second]]), tolerance_mm, table.half_face).run(max_levels)
     best_v, best_z, best_t, best_k = s.best_v, s.best_z, s.best_t, s.best_k
     # each row keeps the better of its own and its extra row's minimum
-    if origin.size > R:
-        ex_rows = np.arange(R, origin.size)
-        won = best_v[ex_rows] < best_v[origin[ex_rows]]
-        dst, src = origin[ex_rows][won], ex_rows[won]
-        best_v[dst], best_z[dst], best_t[dst], best_k[dst] = (best_v[src], best_z[src],
-                                                              best_t[src], best_k[src])
-        best_v, best_z, best_t, best_k = best_v[:R], best_z[:R], best_t[:R], best_k[:R]
-        th_of = th_of[:R]
-    return _fold(table, misalignment, theta, th_of, wanted, measures, best_v, best_z, best_t,
-                 best_k)
+    ex_rows = np.arange(R, origin.size)
+    won = best_v[ex_rows] < best_v[origin[ex_rows]]
+    dst, src = origin[ex_rows][won], ex_rows[won]
+    best_v[dst], best_z[dst], best_t[dst], best_k[dst] = (best_v[src], best_z[src],
+                                                          best_t[src], best_k[src])
+    return best_v[:R], best_z[:R], best_t[:R], best_k[:R]
+
+
+def _compiled_arrays(compiled, table: FlankTable, sl: _Sleeve, misalignment: float,
+                     pitch_radius: float, tolerance_mm: float, grid: int):
+    """``tab`` and ``ws`` of the compiled kernel (:mod:`._compiled`): the constants in the
+    order of its indices (``CI, SI, RB, ...``), the table's edges and plane matrices; the
+    work space."""
+    mats = table._plane_matrices  # (pieces, nt + 1, nz)
+    pieces, rows, nz = mats.shape
+    consts = [math.cos(misalignment), math.sin(misalignment), sl.r_b, sl.c0, sl.r_fillet,
+              float(sl.rho), sl.cn, sl.gc, sl.cx, sl.cy, sl.r_form, sl.half_face,
+              table.half_face, pitch_radius, tolerance_mm, table.tip_radius,
+              float(table.tip_kind != "cylinder"), float(table._power is not None),
+              rows - 1, nz, pieces]
+    tab = np.concatenate([consts, table.edges, mats.ravel()])
+    return tab, np.empty(compiled.workspace_size(grid, rows - 1))
 
 
 def _fold(table, misalignment, theta, th_of, wanted, measures, best_v, best_z, best_t,

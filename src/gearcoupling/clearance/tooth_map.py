@@ -8,9 +8,10 @@ from dataclasses import fields
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ..arguments import angle_list, count, flag, sweep_tolerance_mm
 from ..errors import ArgumentError
 from ..geometry import sleeve_model, turning_angles
-from ..spec import CouplingSpec, check_misalignment_deg
+from ..spec import CouplingSpec, as_spec, check_misalignment_deg
 from .flank_table import DEFAULT_TABLE_TOLERANCE_MM, flank_table
 from .kernel import DEFAULT_GRID, DEFAULT_TOLERANCE_MM, MEASURES, Minimum, minimise
 from .result import SweepResult
@@ -22,17 +23,14 @@ _KEYS = {"clearance": "circumferential", "normal": "normal", "pitch": "pitch_cir
 
 
 def check_misalignment(misalignment_deg: float) -> float:
-    """The misalignment in radians, or :class:`SpecError` outside 0-6°."""
+    """The misalignment in radians, or :class:`ArgumentError` outside 0-6°."""
     return math.radians(check_misalignment_deg(misalignment_deg, error=ArgumentError))
 
 
 def check_angles(angles_deg: ArrayLike) -> np.ndarray:
-    """Rotation angles as a finite 1-D float array (degrees)."""
-    a = np.atleast_1d(np.asarray(angles_deg, dtype=float))
-    if a.ndim != 1 or a.size == 0 or not np.all(np.isfinite(a)):
-        raise ArgumentError("angles_deg", angles_deg, "must be a non-empty 1-D list of finite "
-                        "angles in degrees")
-    return a
+    """Rotation angles as a finite 1-D float array (degrees), at most
+    ``MAXIMA["angles"]`` of them (:func:`~gearcoupling.arguments.angle_list`)."""
+    return angle_list(angles_deg, "angles_deg")
 
 
 def flank_minima(spec: CouplingSpec, misalignment_rad: float, theta, *, tolerance_mm: float,
@@ -41,7 +39,7 @@ def flank_minima(spec: CouplingSpec, misalignment_rad: float, theta, *, toleranc
     """Minima of tooth 0's cw flank at turning angles ``theta`` (any shape), all measures.
 
     With ``periodic`` (ideal geometry) equal turning angles are evaluated once, and when the
-    hub flank is symmetric about the midplane (:meth:`FlankTable.even_in_z`) so are
+    hub flank is symmetric about the midplane (:attr:`FlankTable.symmetric`) so are
     ``theta`` and ``theta + pi``: mirroring ``z -> -z`` maps ``P(theta)`` to
     ``P(theta - pi)`` (``Mz Rx(i) Mz = Rz(pi) Rx(i) Rz(-pi)``) and the sleeve onto itself,
     so the gaps, ``r``, kind and rate are equal and the contact ``z`` changes sign. Aligned
@@ -64,7 +62,7 @@ def flank_minima(spec: CouplingSpec, misalignment_rad: float, theta, *, toleranc
     if misalignment_rad == 0.0:  # P(theta) is the identity: every turning angle alike
         th, inverse = flat[:1] * 0.0, np.zeros(flat.size, dtype=np.intp)
     elif periodic:
-        if table.even_in_z():
+        if table.symmetric:
             mirror = flat >= np.pi
             flat = np.where(mirror, flat - np.pi, flat)
         _, first, inverse = np.unique(np.round(flat * _KEY_SCALE).astype(np.int64),
@@ -100,10 +98,10 @@ def sweep(spec: CouplingSpec, misalignment_deg: float, angles_deg: ArrayLike, *,
     angles_deg : (n_angle,) float
         Rotations ``psi`` of the coupling in degrees (docs/conventions.md, Frames).
     tolerance_mm : float
-        Accuracy of every minimum (mm); also bounds the flank table error. The default
-        1e-7 mm costs about twice 1e-4 mm (see ``benchmarks/bench_sweep.py``).
+        Accuracy of every minimum (mm), 1e-12 to 0.1; also bounds the flank table error.
+        The default 1e-7 mm costs about twice 1e-4 mm (see ``benchmarks/bench_sweep.py``).
     grid : int
-        Coarse planes over the face width before refinement.
+        Coarse planes over the face width before refinement, 2-1000.
     periodic : bool
         Use the tooth periodicity of the ideal geometry (tooth ``k`` at rotation ``psi`` is
         tooth 0 at ``theta_k = psi + 2 pi k / N``) and evaluate each distinct turning angle
@@ -115,8 +113,12 @@ def sweep(spec: CouplingSpec, misalignment_deg: float, angles_deg: ArrayLike, *,
     SweepResult
         Arrays shaped ``(flank, tooth, angle)`` with flanks ``(cw, ccw)``.
     """
+    spec = as_spec(spec)
     i = check_misalignment(misalignment_deg)
     psi = np.radians(check_angles(angles_deg))
+    tolerance_mm = sweep_tolerance_mm(tolerance_mm)
+    grid = count(grid, "grid", 2)
+    periodic = flag(periodic, "periodic")
     N = spec.tooth.teeth
     theta = turning_angles(N, psi)  # (N, M)
     # the ccw flank at theta is the cw flank at pi - theta (mirror y -> -y)

@@ -21,7 +21,7 @@ from . import (
     templates,
     view,
 )
-from .common import WRITING
+from .common import CREATED, WRITING
 
 COMMANDS = [
     spec,
@@ -45,4 +45,4 @@ COMMANDS = [
     report,
 ]
 
-__all__ = ["COMMANDS", "WRITING"]
+__all__ = ["COMMANDS", "CREATED", "WRITING"]

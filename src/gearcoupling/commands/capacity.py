@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+import argparse
 from pathlib import Path
 
-from ..errors import ArgumentError, SpecError
+from ..arguments import MAXIMA
+from ..errors import ArgumentError, SpecError, brief
 from ..io import parse_override
 from ..loading import plot_capacity, write_capacity_csv
 from ..loadspec import LOAD_MODELS
@@ -20,7 +22,7 @@ from .common import (
     spec_from_args,
 )
 
-MAX_COUNT = 200  # misalignments of a curve (each one is a sweep over a tooth pitch)
+MAX_COUNT = MAXIMA["misalignments"]  # of a curve (each one is a sweep over a tooth pitch)
 
 
 def register(sub) -> None:
@@ -45,12 +47,16 @@ def register(sub) -> None:
 
 
 def degree_list(text: str) -> list[float]:
-    """argparse type: comma-separated misalignments, each a number in [0, 6] degrees."""
+    """argparse type: comma-separated misalignments, 2 to ``MAX_COUNT`` different
+    numbers in [0, 6] degrees."""
+    rule = f"2 to {MAX_COUNT} different angles from 0 to 6 degrees, e.g. 0,0.5,1,2"
+    items = [item.strip() for item in text.split(",") if item.strip()]
+    if not 2 <= len(items) <= MAX_COUNT:  # before reading them: 5000 values are refused
+        raise argparse.ArgumentTypeError(f"{len(items)} values: {rule}")
     parse = number_in(0.0, 6.0, "degrees")
-    values = [parse(item.strip()) for item in text.split(",") if item.strip()]
+    values = [parse(item) for item in items]
     if len(set(values)) < 2:
-        raise ArgumentError("--misalignments", text, "at least two different angles, e.g. "
-                            "0,0.5,1,2")
+        raise argparse.ArgumentTypeError(f"{brief(repr(text), 60)}: {rule}")
     return values
 
 
@@ -80,6 +86,11 @@ def run(args) -> int:
     spec = spec_from_args(args)
     overrides = dict(parse_override(t) for t in args.overrides)
     specs = [spec, *(_compared_spec(s, overrides) for s in args.compare)]
+    names = [s.name for s in specs]
+    if len(set(names)) < len(names):  # before any work: the same curve twice
+        raise ArgumentError("--compare", " ".join(args.compare), f"specs of other names than "
+                            f"{', '.join(sorted({n for n in names if names.count(n) > 1}))}: "
+                            "each compared spec needs its own name")
     mis = args.misalignments
     if mis is None:
         mis, _ = comparison_range(specs, args.count or 25, args.max)

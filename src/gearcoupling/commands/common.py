@@ -4,62 +4,84 @@ from __future__ import annotations
 
 import argparse
 import math
+import os
 from collections.abc import Callable
 from contextlib import contextmanager
 from pathlib import Path
+from typing import TypeVar
 
-from ..errors import ArgumentError
+from ..arguments import MAXIMA, parse_count, parse_number
+from ..arguments import torque_Nm as check_torque_Nm
+from ..errors import ArgumentError, brief
 from ..io import default_output_dir, output_folder, parse_override
 from ..spec import CouplingSpec, check_misalignment_deg, load_spec
 
-MAX_ANGLES = 100_000  # rotation angles per turn a command accepts (memory grows with it)
+MAX_ANGLES = MAXIMA["angles"]  # rotation angles per turn (memory grows with it)
 MAX_TEETH = 300  # the documented range of teeth is 6-300
 
+T = TypeVar("T")
 
-def positive_length(text: str) -> float:
-    """argparse type: a finite length > 0 in mm (``0``, negatives, ``nan`` and ``inf`` refused)."""
+# argparse types: each reads the text with the one number parser of
+# gearcoupling.arguments (digits as a person writes them: 0_5, 0x10, nan refused) and
+# says what is allowed; argparse prefixes the option's name
+
+
+def _quoted(text: str) -> str:
+    return brief(repr(text), 60)
+
+
+def _typed(check: Callable[[str], T], text: str) -> T:
+    """``check(text)``, its :class:`ArgumentError` as argparse's message (the rule)."""
     try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a number (mm)") from None
-    if not (math.isfinite(value) and value > 0):
-        raise argparse.ArgumentTypeError(f"{text!r}: must be a finite length > 0 (mm)")
-    return value
+        return check(text)
+    except ArgumentError as err:
+        raise argparse.ArgumentTypeError(f"{_quoted(text)}: {err.allowed}") from None
 
 
 def finite_float(text: str) -> float:
-    """argparse type: a finite number (``nan`` and ``inf`` refused)."""
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
-    if not math.isfinite(value):
-        raise argparse.ArgumentTypeError(f"{text!r}: must be finite")
-    return value
+    """argparse type: a finite number (``nan``, ``inf`` and ``0_5`` refused)."""
+    return _typed(lambda t: parse_number(t, ""), text)
 
 
-def number_in(lo: float, hi: float, unit: str = "", *,
+def number_in(lo: float, hi: float = math.inf, unit: str = "", *,
               open_lo: bool = False) -> Callable[[str], float]:
     """argparse type: a finite number from ``lo`` to ``hi`` (``lo`` excluded if ``open_lo``)."""
-    what = f"{'(' if open_lo else '['}{lo:g}, {hi:g}]" + (f" {unit}" if unit else "")
+    what = (f"{'>' if open_lo else '>='} {lo:g}" if math.isinf(hi) else
+            f"in {'(' if open_lo else '['}{lo:g}, {hi:g}]") + (f" {unit}" if unit else "")
 
     def parse(text: str) -> float:
         value = finite_float(text)
         if not ((lo < value if open_lo else lo <= value) and value <= hi):
-            raise argparse.ArgumentTypeError(f"{text!r}: must be in {what}")
+            raise argparse.ArgumentTypeError(f"{_quoted(text)}: must be {what}")
         return value
 
     parse.__name__ = "number"
     return parse
 
 
+def positive(unit: str, hi: float = math.inf) -> Callable[[str], float]:
+    """argparse type: a finite number > 0 (at most ``hi``) in ``unit``."""
+    return number_in(0.0, hi, unit, open_lo=True)
+
+
+#: argparse type: a length in mm > 0
+positive_length = positive("mm")
+
+
+def torque(*, zero: bool = True) -> Callable[[str], float]:
+    """argparse type: a signed torque in N·m in the one range of every entry point
+    (:data:`~gearcoupling.arguments.TORQUE_RANGE_NM`; 0 where ``zero``)."""
+    def parse(text: str) -> float:
+        return _typed(lambda t: check_torque_Nm(parse_number(t, ""), "", zero=zero), text)
+
+    parse.__name__ = "torque"
+    return parse
+
+
 def count(lo: int, hi: int) -> Callable[[str], int]:
     """argparse type: a whole number from ``lo`` to ``hi``."""
     def parse(text: str) -> int:
-        try:
-            value = int(text)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f"{text!r} is not a whole number") from None
+        value = _typed(lambda t: parse_count(t, ""), text)
         if not lo <= value <= hi:
             raise argparse.ArgumentTypeError(f"{value}: must be from {lo} to {hi}")
         return value
@@ -103,24 +125,27 @@ def output_dir(args: argparse.Namespace, spec: CouplingSpec) -> Path:
     """``-o DIR`` if given, else ``outputs/<sanitised spec name>``: a spec's ``name`` never
     chooses where files go (see :func:`~gearcoupling.io.default_output_dir`)."""
     given = getattr(args, "output", None)
-    return writing_into(ensure_dir(default_output_dir(spec.name) if given is None else given))
-
-
-def ensure_dir(out: str | Path, field: str = "-o") -> Path:
-    """Create the folder ``out``; an empty path, a file, device or pipe in the way, or an
-    unwritable place is an :class:`~gearcoupling.errors.ArgumentError` naming ``field``
-    (:func:`~gearcoupling.io.output_folder`)."""
-    return output_folder(out, field)
+    return writing_into(default_output_dir(spec.name) if given is None else given)
 
 
 #: the output folders of the command running in this process, for the line an
-#: interruption prints (:func:`gearcoupling.cli.main`)
+#: interruption prints (:func:`gearcoupling.cli.main`), and those of them it made (removed
+#: again, when left empty, if the command fails)
 WRITING: list[Path] = []
+CREATED: list[Path] = []
 
 
-def writing_into(folder: Path) -> Path:
-    """Remember ``folder`` as where this command writes (:data:`WRITING`); returns it."""
+def writing_into(out: str | Path, field: str = "-o", *, create: bool = True) -> Path:
+    """The output folder ``out``, made unless ``create`` is False (an empty path, a file,
+    device or pipe in the way, or an unwritable place is an
+    :class:`~gearcoupling.errors.ArgumentError` naming ``field``,
+    :func:`~gearcoupling.io.output_folder`), and remembered as where this command writes
+    (:data:`WRITING`, :data:`CREATED`)."""
+    new = not os.path.lexists(out) if isinstance(out, str | Path) and str(out) else False
+    folder = output_folder(out, field) if create else Path(out)
     WRITING.append(folder)
+    if new and create:
+        CREATED.append(folder)
     return folder
 
 

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from ..arguments import parse_number
 from ..errors import ArgumentError, SpecError
 from ..inspection import (
     GRADES,
@@ -61,7 +62,7 @@ def parse_limits(items: list[str]) -> dict[str, float]:
         if not sep:
             raise ArgumentError("--limit", item, "NAME=MM, e.g. fpt=0.012")
         try:
-            out.update(check_limits({key.strip(): value.strip()}))
+            out.update(check_limits({key.strip(): parse_number(value, "--limit")}))
         except ArgumentError as err:
             raise ArgumentError("--limit", item, err.allowed) from None
     return out
@@ -77,9 +78,7 @@ def run(args) -> int:
         require_file(f, "file", "a scan or mesh file (STL/PLY/OBJ, CSV/XYZ)", ArgumentError)
     out = output_dir(args, spec)
     with progress("compare", 2 + STAGES * len(args.files)) as update:
-        result = compare_part(spec, args.files[0],
-                              args.files[1] if len(args.files) == 2 else None,
-                              units=args.units, limits=limits,
+        result = compare_part(spec, *args.files, units=args.units, limits=limits,
                               coarse=args.coarse, fit_points=args.fit_points, progress=update)
     units = ["lengths in mm, + = material excess / toward increasing polar angle"]
     if len(args.files) == 2:

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import sys
 
+from ..arguments import TORQUE_RANGE_NM
 from ..errors import ArgumentError
 from ..fea import ccx_path, check_size, fe_contact, fillet_notes, gmsh_module
 from ..io import write_json
@@ -25,15 +26,15 @@ from .common import (
     positive_length,
     spec_from_args,
 )
-from .load import MAX_TORQUE_NM
 
 
 def register(sub) -> None:
     p = sub.add_parser("fea-contact", help="CalculiX contact reference: one pitch in cyclic "
                                            "symmetry (aligned) or a sector (misaligned)")
     add_spec_arguments(p)
-    p.add_argument("--torque", type=number_in(0.0, MAX_TORQUE_NM, "N·m", open_lo=True),
-                   default=None, metavar="NM", help="torque in N·m, > 0 (default: the spec's)")
+    p.add_argument("--torque", type=number_in(*TORQUE_RANGE_NM, "N·m"), default=None,
+                   metavar="NM", help=f"torque in N·m, {TORQUE_RANGE_NM[0]:g} to "
+                   f"{TORQUE_RANGE_NM[1]:g} (default: the spec's)")
     p.add_argument("--misalignment", type=number_in(0.0, 6.0, "°"), default=0.0,
                    metavar="DEG", help="misalignment in degrees, 0 to 6 (default 0)")
     p.add_argument("--rotation", type=number_in(-360.0, 360.0, "°"), default=0.0,
@@ -56,8 +57,11 @@ def run(args) -> int:
         raise ArgumentError("--contact-size", args.contact_size, "aligned poses only: a "
                             "misaligned sector takes one --size")
     for part in ("hub", "sleeve"):
-        check_size(spec, part, args.size)
-        check_size(spec, part, args.contact_size)
+        check_size(spec, part, args.size, "--size")
+        check_size(spec, part, args.contact_size, "--contact-size")
+    if args.torque is None and not (spec.load.torque_Nm or 0.0) > 0:
+        raise ArgumentError("load.torque_Nm", spec.load.torque_Nm, "a torque above 0 N·m: FE "
+                            "contact needs a load (set it, or give --torque)")
     for note in fillet_notes(spec, args.size):
         print(f"{spec.name}: {note}", file=sys.stderr)
     gmsh_module()

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import sys
 
+from ..arguments import parse_count
 from ..errors import ArgumentError
 from ..export import formats as registered
 from ..outputs import PART_NAMES, write_parts
@@ -47,7 +48,7 @@ def parse_teeth(text: str | None, teeth: int) -> list[int] | None:
     try:
         for item in text.split(","):
             lo, _, hi = item.strip().partition("-")
-            first, last = int(lo), int(hi or lo)
+            first, last = parse_count(lo, "--teeth"), parse_count(hi or lo, "--teeth")
             if not 0 <= first <= last < teeth:  # before building a range (no MemoryError)
                 raise ArgumentError("--teeth", text, f"tooth indices or ascending ranges from 0 "
                                 f"to {teeth - 1}")

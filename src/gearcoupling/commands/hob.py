@@ -7,9 +7,9 @@ chordal deviation, start/end positions, crown drop at the tooth ends).
 
 from __future__ import annotations
 
-from ..hob import check_hob_diameter, hob_program
+from ..hob import FEED_RANGE_MM_PER_REV, check_hob_diameter, hob_program
 from ..io import write_csv_records, write_json, write_text
-from .common import add_spec_arguments, output_dir, positive_length, spec_from_args
+from .common import add_spec_arguments, number_in, output_dir, positive_length, spec_from_args
 
 
 def register(sub) -> None:
@@ -21,8 +21,9 @@ def register(sub) -> None:
     p.add_argument("--tolerance", type=positive_length, default=None, metavar="MM",
                    help="largest chordal deviation of the program in mm, > 0 "
                         "(default: module / 1000)")
-    p.add_argument("--feed", type=positive_length, default=1.0, metavar="MM_PER_REV",
-                   help="axial feed per workpiece revolution written as F, > 0 (default 1)")
+    p.add_argument("--feed", type=number_in(*FEED_RANGE_MM_PER_REV, "mm/rev"), default=1.0,
+                   metavar="MM_PER_REV", help="axial feed per workpiece revolution written as "
+                   f"F, {FEED_RANGE_MM_PER_REV[0]:g} to {FEED_RANGE_MM_PER_REV[1]:g} (default 1)")
     p.set_defaults(func=run)
 
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from ..arguments import TORQUE_RANGE_NM
 from ..loading import PHASES
 from ..loadspec import LOAD_MODELS
 from ..outputs import write_load
@@ -11,14 +12,12 @@ from .common import (
     add_spec_arguments,
     count,
     misalignment_deg,
-    number_in,
     output_dir,
     positive_length,
     progress,
     spec_from_args,
+    torque,
 )
-
-MAX_TORQUE_NM = 1e9  # far above any coupling; beyond ~1e150 the contact law overflows
 
 
 def register(sub) -> None:
@@ -28,10 +27,10 @@ def register(sub) -> None:
     add_misalignment_argument(p)
     p.add_argument("--model", choices=LOAD_MODELS, default=None,
                    help="load model (default: the spec's [load] model)")
-    p.add_argument("--torque", type=number_in(-MAX_TORQUE_NM, MAX_TORQUE_NM, "N·m"),
-                   default=None, metavar="NM",
-                   help=f"torque in N·m, |T| <= {MAX_TORQUE_NM:g}; the sign picks the loaded "
-                        "flank; write a negative one as --torque=-5e3 (default: the spec's)")
+    p.add_argument("--torque", type=torque(), default=None, metavar="NM",
+                   help=f"torque in N·m, |T| from {TORQUE_RANGE_NM[0]:g} to "
+                        f"{TORQUE_RANGE_NM[1]:g} or 0; the sign picks the loaded flank; write a "
+                        "negative one as --torque=-5e3 (default: the spec's)")
     p.add_argument("--angles", type=count(1, MAX_ANGLES), default=None, metavar="N",
                    help=f"rotations evenly over one turn, 1-{MAX_ANGLES} (default "
                         f"{PHASES} per tooth pitch: a turn of {PHASES} distinct poses)")

@@ -17,12 +17,12 @@ from .common import (
     add_misalignment_argument,
     add_spec_arguments,
     count,
-    finite_float,
     misalignment_deg,
     output_dir,
     positive_length,
     progress,
     spec_from_args,
+    torque,
 )
 from .compare import parse_limits
 
@@ -32,8 +32,9 @@ def register(sub) -> None:
                        "--pdf) with the verdict against the spec's limits")
     add_spec_arguments(p)
     add_misalignment_argument(p)
-    p.add_argument("--torque", type=finite_float, default=None, metavar="NM",
-                   help="signed torque in N·m (default: the spec's [load] torque)")
+    p.add_argument("--torque", type=torque(), default=None, metavar="NM",
+                   help="signed torque in N·m, |T| from 1e-9 to 1e9 or 0 (default: the "
+                        "spec's [load] torque)")
     p.add_argument("--model", choices=LOAD_MODELS, default=None,
                    help="load model (default: the spec's [load] model)")
     p.add_argument("--scan", default=None, metavar="FILE",
@@ -81,7 +82,12 @@ def run(args) -> int:
                               **knobs)
     out = output_dir(args, spec)
     with progress(f"report {spec.name}", 1) as update:
-        result = report(spec, out, pdf=args.pdf, settings=settings, progress=update)
+        try:
+            result = report(spec, out, pdf=args.pdf, settings=settings, progress=update)
+        except ArgumentError as err:  # the scan read before any work: name the option
+            if getattr(err, "field", None) != "scan":
+                raise
+            raise ArgumentError("--scan", args.scan, err.allowed) from None
     print(f"{spec.name}: {result.verdict_text} ({result.wall_seconds:.1f} s)")
     for path in (result.html, result.pdf):
         if path is not None:

@@ -8,7 +8,7 @@ import sys
 from ..errors import ArgumentError
 from ..outputs import STEPS
 from ..outputs import run as run_all
-from .common import add_spec_arguments, output_dir, progress, spec_from_args
+from .common import add_spec_arguments, count, output_dir, progress, spec_from_args
 
 
 def register(sub) -> None:
@@ -17,7 +17,7 @@ def register(sub) -> None:
     p.add_argument("--only", metavar="KEYS", default=None,
                    help=f"comma-separated steps to run, from {','.join(STEPS)}")
     p.add_argument("--skip", metavar="KEYS", default="", help="comma-separated steps to skip")
-    p.add_argument("--workers", type=int, choices=(1, 2), default=None,
+    p.add_argument("--workers", type=count(1, 2), default=None,
                    help="1: one process; 2: two (default where there are two cores)")
     p.set_defaults(func=run)
 

@@ -22,12 +22,11 @@ from ..fea import (
     pitch_point_compliance,
     tooth_compliance_table,
 )
-from ..io import write_json, write_text
+from ..io import output_folder, write_json, write_text
 from .common import (
     MAX_TEETH,
     add_spec_arguments,
     count,
-    ensure_dir,
     output_dir,
     positive_length,
     progress,
@@ -69,14 +68,14 @@ def write_table(table, out: Path) -> list[Path]:
 def run(args) -> int:
     spec = spec_from_args(args)
     for part in ("hub", "sleeve"):
-        check_size(spec, part, args.size)
+        check_size(spec, part, args.size, "--size")
     for note in fillet_notes(spec, args.size):
         print(f"{spec.name}: {note}", file=sys.stderr)
     if args.sector < 1 or args.sector % 2 == 0 or args.sector > spec.tooth.teeth:
         raise ArgumentError("--sector", args.sector, f"an odd number of teeth from 1 to "
                         f"{spec.tooth.teeth} (the middle tooth is loaded)")
     if args.cache is not None:  # before the FE runs, which write the cache at the end
-        ensure_dir(Path(args.cache), "--cache")
+        output_folder(args.cache, "--cache")
     gmsh_module()
     ccx_path()
     out = output_dir(args, spec)

@@ -7,6 +7,7 @@ from pathlib import Path
 from ..io import default_output_dir, write_json
 from ..plots import save_figure
 from ..study import (
+    MAX_WORKERS,
     chunks,
     compare_curves,
     load_study,
@@ -16,13 +17,12 @@ from ..study import (
     plot_k_histogram,
     read_table,
     run_study,
+    scheduler_address,
     study_plots,
     summarise_rows,
     write_rows,
 )
-from .common import count, ensure_dir, number_in, progress, writing_into
-
-MAX_WORKERS = 256
+from .common import count, number_in, progress, writing_into
 
 
 def register(sub) -> None:
@@ -47,8 +47,10 @@ def register(sub) -> None:
 
 def run(args) -> int:
     study = load_study(args.file)
-    out = writing_into(ensure_dir(default_output_dir(f"study-{study.name}")
-                                  if args.output is None else args.output))
+    if args.scheduler is not None:
+        scheduler_address(args.scheduler, "--scheduler")
+    out = writing_into(default_output_dir(f"study-{study.name}") if args.output is None
+                       else args.output)
     if study.optimise is not None:
         return _optimise(study, out, plots=not args.no_plots)
 

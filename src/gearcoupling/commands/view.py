@@ -25,10 +25,13 @@ from .common import (
     finite_float,
     misalignment_deg,
     output_dir,
+    positive,
     positive_length,
     spec_from_args,
     writing_into,
 )
+
+MAX_SERVE_S = 365 * 24 * 3600.0  # a year (time.sleep overflows far beyond)
 
 
 def register(sub) -> None:
@@ -57,17 +60,18 @@ def register(sub) -> None:
                    help="chordal tolerance of the meshes in mm (overrides --lod)")
     p.add_argument("--html", metavar="FILE", default=None,
                    help="write a self-contained HTML of the scene to FILE and exit")
-    p.add_argument("--serve-seconds", type=positive_length, default=None, metavar="S",
-                   help="stop the server after S seconds (default: until Ctrl-C)")
+    p.add_argument("--serve-seconds", type=positive("s", MAX_SERVE_S), default=None,
+                   metavar="S", help=f"stop the server after S seconds, at most {MAX_SERVE_S:g} "
+                   "(default: until Ctrl-C)")
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
     spec = spec_from_args(args)
     mis = misalignment_deg(args, spec)
-    mis, psi = check_pose(mis, args.angle)
+    mis, psi = check_pose(mis, args.angle, ("--misalignment", "--angle"))
     if args.html is not None:
-        writing_into(writable_file(args.html, "--html").parent)
+        writing_into(writable_file(args.html, "--html").parent, create=False)
     settings = ViewSettings(misalignment_deg=mis, psi_deg=psi, cutaway=args.cutaway,
                             color_mode=args.color_by, frame=args.frame)
     tol = lod_tolerance(spec, args.lod) if args.tolerance is None else args.tolerance

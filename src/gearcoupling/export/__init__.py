@@ -1,18 +1,21 @@
 """Part export by file extension: meshes through trimesh, meshio and the project's own
-writers, STEP through OCP (see ``docs/export.md``).
+writers, STEP files of the parts' OpenCASCADE solids (see ``docs/export.md``).
 
->>> export_part(spec, "hub", "outputs/hub.step", tolerance_mm=0.01)  # doctest: +SKIP
+>>> import gearcoupling as gc
+>>> spec = gc.load_spec("renzo-1967")
+>>> gc.export_part(spec, "hub", "hub.stl", tolerance_mm=0.05).name
+'hub.stl'
 """
 
 from .job import PartJob
 from .registry import EXPORTERS, export_part, formats
-from .step import part_solid, write_step
+from .step import read_step_volume, write_step
 
 __all__ = [
     "EXPORTERS",
     "PartJob",
     "export_part",
     "formats",
-    "part_solid",
+    "read_step_volume",
     "write_step",
 ]

@@ -10,9 +10,11 @@ from __future__ import annotations
 from collections.abc import Callable
 from pathlib import Path
 
+from ..arguments import choice
 from ..errors import ArgumentError
+from ..geometry import PARTS
 from ..io import atomic_path, writable_file
-from ..spec import CouplingSpec
+from ..spec import CouplingSpec, as_spec
 from . import meshes, step
 from .job import PartJob
 
@@ -64,8 +66,10 @@ def export_part(spec: CouplingSpec,
     mesh : trimesh.Trimesh, optional
         A mesh already built with these settings (saves rebuilding it per format).
     """
+    spec = as_spec(spec)
     writable_file(path, "path")
     ext = extension(path)
+    choice(part, "part", PARTS)
     job = PartJob(spec, part, tolerance_mm, teeth, mesh)
     with atomic_path(path) as tmp:
         EXPORTERS[ext](job, tmp)

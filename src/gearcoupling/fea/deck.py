@@ -79,8 +79,9 @@ def green_deck(vm: VolumeMesh, *, youngs_modulus_MPa: float, poisson_ratio: floa
     lines += ["*SPRING, ELSET=LOAD_SPRINGS", "1,", "1.E-9,", "*EQUATION"]
     # a fixed degree of freedom cannot be eliminated by an equation
     dependent = {(int(n) + 1, d) for name in fixed for n in vm.node_set(name) for d in (1, 2, 3)}
+    shared = _shared_dofs(cases)
     for case, load in zip(cases, loads, strict=True):
-        terms = _work_terms(case, dependent)
+        terms = _work_terms(case, dependent, shared)
         terms.append((int(load), 1, -1.0))
         lines.append(str(len(terms)))
         for i in range(0, len(terms), 4):
@@ -98,13 +99,31 @@ def green_deck(vm: VolumeMesh, *, youngs_modulus_MPa: float, poisson_ratio: floa
     return "\n".join(lines) + "\n"
 
 
-def _work_terms(case: LoadCase, dependent: set[tuple[int, int]]) -> list[tuple[int, int, float]]:
-    """``(node, dof, f)`` terms (1-based) of ``sum f_i . u_i``, led by the largest term whose
-    degree of freedom no earlier equation made dependent (ccx eliminates the first term)."""
-    terms = [(int(n) + 1, d + 1, float(f[d])) for n, f in zip(case.nodes, case.forces,
-                                                              strict=True)
-             for d in range(3) if f[d] != 0]
-    order = sorted(range(len(terms)), key=lambda i: -abs(terms[i][2]))
+def _case_terms(case: LoadCase) -> list[tuple[int, int, float]]:
+    """``(node, dof, f)`` terms (1-based) of a case's work ``sum f_i . u_i``."""
+    return [(int(n) + 1, d + 1, float(f[d])) for n, f in zip(case.nodes, case.forces,
+                                                             strict=True)
+            for d in range(3) if f[d] != 0]
+
+
+def _shared_dofs(cases: Sequence[LoadCase]) -> set[tuple[int, int]]:
+    """Degrees of freedom loaded by more than one case (overlapping patches)."""
+    seen: set[tuple[int, int]] = set()
+    shared: set[tuple[int, int]] = set()
+    for case in cases:
+        for n, d, _ in _case_terms(case):
+            (shared if (n, d) in seen else seen).add((n, d))
+    return shared
+
+
+def _work_terms(case: LoadCase, dependent: set[tuple[int, int]],
+                shared: set[tuple[int, int]] = frozenset()) -> list[tuple[int, int, float]]:
+    """``(node, dof, f)`` terms of ``sum f_i . u_i``, led by the largest term whose degree of
+    freedom no earlier equation made dependent (ccx eliminates the first term), preferring
+    one no other case loads: ccx's cascade fails ("zero coefficient on the dependent side")
+    when a dependent degree of freedom is another equation's term."""
+    terms = _case_terms(case)
+    order = sorted(range(len(terms)), key=lambda i: (terms[i][:2] in shared, -abs(terms[i][2])))
     lead = next((i for i in order if terms[i][:2] not in dependent), None)
     if lead is None:
         raise GeometryError("every loaded degree of freedom of a load case is fixed or "

@@ -1,6 +1,6 @@
 """Quadratic tetrahedral meshes of hub and sleeve sectors, by gmsh from the STEP solids.
 
-The exact OpenCASCADE solid of a sector (:func:`gearcoupling.export.step.part_solid`) is
+The exact OpenCASCADE solid of a sector (:func:`gearcoupling.parts.part_solid`) is
 written to a temporary STEP file and imported into gmsh. Every B-rep face is then named by
 geometry: the nodes of a coarse surface mesh of the face vote for the surface kind and
 tooth of the nearest point of the labelled triangle mesh of the same sector
@@ -11,6 +11,7 @@ teeth get the element size ``size_mm``; the size grows to ``body_size_mm`` away 
 from __future__ import annotations
 
 import math
+import numbers
 import tempfile
 import time
 from dataclasses import asdict, dataclass
@@ -19,10 +20,11 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
+from ..arguments import choice, flag, is_real
 from ..errors import ArgumentError, GeometryError, SpecError
-from ..export import part_solid, write_step
-from ..parts import SURFACE_KINDS, build_part, check_tolerance
-from ..spec import CouplingSpec
+from ..export import write_step
+from ..parts import SURFACE_KINDS, build_part, check_tolerance, part_solid
+from ..spec import CouplingSpec, as_spec
 from .backends import gmsh_session
 from .volume import VolumeMesh, aspect_ratios, match_faces, tet_volumes
 
@@ -90,20 +92,20 @@ def fillet_notes(spec: CouplingSpec, size_mm: float | None,
     return notes
 
 
-def check_size(spec: CouplingSpec, part: str, size_mm) -> float:
+def check_size(spec: CouplingSpec, part: str, size_mm, field: str = "size_mm") -> float:
     """The element size on the teeth as a float, or :class:`ArgumentError` naming the
     allowed range, module / 40 to module / 2 (:func:`size_range`). The root fillets follow
     at :func:`fillet_size`."""
     size = default_size(spec) if size_mm is None else size_mm
-    try:
-        size = float(size)
-    except (TypeError, ValueError) as err:
-        raise ArgumentError("size_mm", size_mm, "must be a number (mm)") from err
+    if not is_real(size):
+        raise ArgumentError(field, size_mm, "must be a number (mm)")
+    size = float(size)
     lo, hi = size_range(spec)
     if not (math.isfinite(size) and lo <= size <= hi):
-        raise ArgumentError("size_mm", size_mm, f"must be from {lo:.3g} to {hi:.3g} mm for the "
+        hint = "choose a larger size" if size < lo else "choose a smaller size"
+        raise ArgumentError(field, size_mm, f"must be from {lo:.3g} to {hi:.3g} mm for the "
                             f"{part} of this spec (module / 40 to module / 2: two elements "
-                            "across the tooth at least); choose a smaller size")
+                            f"across the tooth at least); {hint}")
     return size
 
 
@@ -113,11 +115,10 @@ def sector_teeth(spec: CouplingSpec, count) -> list[int] | None:
     n = spec.tooth.teeth
     if count is None:
         return None
-    try:
-        k = int(count)
-    except (TypeError, ValueError) as err:
-        raise ArgumentError("sector_teeth", count, f"an integer from 1 to {n}") from err
-    if k != count or not 1 <= k <= n:
+    if isinstance(count, bool) or not isinstance(count, numbers.Integral):
+        raise ArgumentError("sector", count, f"an integer from 1 to {n}")
+    k = int(count)
+    if not 1 <= k <= n:
         raise ArgumentError("sector_teeth", count, f"an integer from 1 to {n} (the spec has {n} "
                         f"teeth; {n} meshes the whole part)")
     return None if k == n else list(range(k))
@@ -127,8 +128,8 @@ def mesh_part(spec: CouplingSpec, part: str, *, sector: int | None = DEFAULT_SEC
               size_mm: float | None = None, body_size_mm: float | None = None,
               tolerance_mm: float | None = None, order: int = 2,
               periodic: bool = False, contact: tuple[float, float] | None = None,
-              loaded: LoadedTooth | None = None, algorithm: str = "delaunay"
-              ) -> VolumeMesh:
+              loaded: LoadedTooth | None = None, algorithm: str = "delaunay",
+              axial: tuple[float, float] | None = None) -> VolumeMesh:
     """Quadratic tetrahedral mesh of a sector of ``sector`` teeth (``None``: the whole part).
 
     Parameters
@@ -155,6 +156,9 @@ def mesh_part(spec: CouplingSpec, part: str, *, sector: int | None = DEFAULT_SEC
     loaded : LoadedTooth, optional
         Sizes for load cases on the middle tooth: fine at its loaded flank, coarser on the
         other teeth (default: ``size_mm`` on every tooth).
+    axial : (half_length_mm, far_size_mm), optional
+        ``size_mm`` only within ``half_length_mm`` of mid-face; beyond, the teeth grow to
+        ``far_size_mm`` over the difference of the sizes (a contact patch near mid-face).
     algorithm : {"delaunay", "hxt"}
         gmsh's 3-D mesher: ``"delaunay"`` with elastic and optimising curving of the
         quadratic elements, or ``"hxt"`` with optimising curving of invalid elements only
@@ -164,10 +168,10 @@ def mesh_part(spec: CouplingSpec, part: str, *, sector: int | None = DEFAULT_SEC
     -------
     VolumeMesh
     """
-    if part not in ("hub", "sleeve"):
-        raise ArgumentError("part", part, "hub or sleeve")
-    if algorithm not in ALGORITHMS:
-        raise ArgumentError("algorithm", algorithm, " or ".join(ALGORITHMS))
+    spec = as_spec(spec)
+    choice(part, "part", ("hub", "sleeve"))
+    choice(algorithm, "algorithm", tuple(ALGORITHMS))
+    flag(periodic, "periodic")
     teeth = sector_teeth(spec, sector)
     size = check_size(spec, part, size_mm)
     body = max(3.0 * size, spec.tooth.module) if body_size_mm is None else float(body_size_mm)
@@ -188,7 +192,7 @@ def mesh_part(spec: CouplingSpec, part: str, *, sector: int | None = DEFAULT_SEC
             gmsh.option.setNumber("Mesh.Algorithm3D", ALGORITHMS[algorithm][0])
             gmsh.option.setNumber("Mesh.HighOrderOptimize", ALGORITHMS[algorithm][1])
             vm = _mesh_in_gmsh(gmsh, spec, part, step, labelled, teeth, size, body, order,
-                               periodic, contact, loaded)
+                               periodic, contact, loaded, axial)
     vm.quality["cad_seconds"] = t_cad
     vm.quality["algorithm"] = algorithm
     vm.quality["fillet_size_mm"] = fillet_size(spec, part, size)
@@ -199,7 +203,7 @@ def mesh_part(spec: CouplingSpec, part: str, *, sector: int | None = DEFAULT_SEC
 
 def _mesh_in_gmsh(gmsh, spec: CouplingSpec,
                   part, step, labelled, teeth, size, body, order, periodic,
-                  contact, loaded=None) -> VolumeMesh:
+                  contact, loaded=None, axial=None) -> VolumeMesh:
     occ = gmsh.model.occ
     vols = occ.importShapes(str(step))
     occ.synchronize()
@@ -211,20 +215,27 @@ def _mesh_in_gmsh(gmsh, spec: CouplingSpec,
     t0 = time.perf_counter()
     gmsh.model.mesh.generate(2)  # coarse surface mesh, only to sample every face
     names = classify_surfaces(gmsh, spec, part, labelled, surfaces)
+    fillet_r = _radius_range(gmsh, [s for s in surfaces if "_FILLET_" in names[s][0]])
     gmsh.model.mesh.clear()
     teeth_faces = [s for s in surfaces if names[s][0].startswith("T")]
     flanks = [s for s in surfaces if names[s][0].endswith("_FLANK_CCW")]
-    coarsest = size if loaded is None else loaded.far_size_mm  # on any tooth
-    fs = fillet_size(spec, part, coarsest)
-    fillets = ([s for s in surfaces if "_FILLET_" in names[s][0]] if fs < coarsest else [],
-               fs)
-    top = _size_field(gmsh, teeth_faces, size, body, spec.tooth.module, flanks, contact,
-                      fillets)
+    f = gmsh.model.mesh.field
+    top = _size_field(f, teeth_faces, size, body, spec.tooth.module, flanks, contact)
     if loaded is not None:
         regions = loaded_faces(part, teeth)
-        _loaded_size_field(gmsh, top, [s for s in surfaces if names[s][0] in regions],
-                           [s for s in surfaces if names[s][0] == regions[0]], size, body,
-                           loaded)
+        top = _loaded_size_field(f, top, [s for s in surfaces if names[s][0] in regions],
+                                 [s for s in surfaces if names[s][0] == regions[0]], size,
+                                 body, loaded)
+    if axial is not None:
+        top = _axial_size_field(f, top, size, *axial)
+    coarsest = max(size, 0.0 if loaded is None else loaded.far_size_mm,
+                   0.0 if axial is None else axial[1])  # on any tooth
+    fs = fillet_size(spec, part, coarsest)
+    if fs < coarsest and fillet_r is not None:  # follow a small fillet, last
+        top = _min_field(f, [top, _radial_band(f, fs, *fillet_r)])
+    f.setAsBackgroundMesh(top)
+    for key in ("MeshSizeExtendFromBoundary", "MeshSizeFromPoints", "MeshSizeFromCurvature"):
+        gmsh.option.setNumber(f"Mesh.{key}", 0)
     if periodic and teeth is not None:
         _periodic_cuts(gmsh, names, 2 * math.pi * len(teeth) / spec.tooth.teeth)
     gmsh.option.setNumber("Mesh.ElementOrder", order)
@@ -258,49 +269,72 @@ def _generate_volume(gmsh) -> None:
         raise GeometryError(f"gmsh could not mesh the volume: {errors[0]}")
 
 
-def _size_field(gmsh, faces, size, body, module, flanks=(), contact=None,
-                fillets=((), 0.0)) -> int:
-    f = gmsh.model.mesh.field
+def _size_field(f, faces, size, body, module, flanks=(), contact=None) -> int:
+    """The teeth's size field: ``size`` within a quarter module of the tooth ``faces``,
+    growing to ``body``; with ``contact = (size, half_length)`` finer on the ``flanks``
+    near mid-face."""
     fields = [_threshold(f, faces, size, body, 0.25 * module, 2.0 * (body - size))]
-    if fillets[0]:  # follow a fillet too small for the teeth's size
-        fields.append(_threshold(f, fillets[0], fillets[1], body, 0.0,
-                                 2.0 * (body - fillets[1])))
     if contact is not None:
         c, half = contact
         near = _threshold(f, flanks, c, body, c, 4.0 * (body - c), sampling=200)
         box = f.add("MathEval")  # + half the distance beyond |z| = half
         f.setString(box, "F", f"F{near} + 0.25 * (abs(z) - {half} + abs(abs(z) - {half}))")
         fields.append(box)
-    top = f.add("Min")
+    return _min_field(f, fields)
+
+
+def _radius_range(gmsh, surfaces) -> tuple[float, float] | None:
+    """Smallest and largest radius of the nodes of meshed ``surfaces`` (None if none)."""
+    r = [np.hypot(*np.asarray(gmsh.model.mesh.getNodes(2, s, includeBoundary=True)[1])
+                  .reshape(-1, 3)[:, :2].T) for s in surfaces]
+    return (float(min(x.min() for x in r)), float(max(x.max() for x in r))) if r else None
+
+
+def _radial_band(f, size: float, r_lo: float, r_hi: float) -> int:
+    """``size`` between the radii ``r_lo`` and ``r_hi``, growing at half the distance
+    beyond: the root fillets' band, the same at every polar angle, so periodic cuts stay
+    periodic (a distance to the fillet faces differs between a sector's two cuts)."""
+    c, h = 0.5 * (r_lo + r_hi), 0.5 * (r_hi - r_lo)
+    band = f.add("MathEval")
+    d = f"Fabs(Sqrt(x * x + y * y) - {c!r})"
+    f.setString(band, "F", f"{size!r} + 0.25 * ({d} - {h!r} + Fabs({d} - {h!r}))")
+    return band
+
+
+def _min_field(f, fields, kind: str = "Min") -> int:
+    top = f.add(kind)
     f.setNumbers(top, "FieldsList", fields)
-    f.setAsBackgroundMesh(top)
-    for key in ("MeshSizeExtendFromBoundary", "MeshSizeFromPoints", "MeshSizeFromCurvature"):
-        gmsh.option.setNumber(f"Mesh.{key}", 0)
     return top
 
 
-def _loaded_size_field(gmsh, top: int, faces, flank_faces, size, body,
-                       loaded: LoadedTooth) -> None:
-    """Replace the background field ``F`` by ``min(max(F, away), flank)``: ``away`` is
-    ``size`` near the loaded tooth's ``faces`` and ``far_size_mm`` beyond, ``flank`` is
-    ``flank_size_mm`` on the ``flank_faces`` within the axial window."""
-    f = gmsh.model.mesh.field
-    zone = loaded.zone_mm
-    coarse = f.add("Max")
-    f.setNumbers(coarse, "FieldsList",
-                 [top, _threshold(f, faces, size, loaded.far_size_mm, zone, zone)])
-    fs = loaded.flank_size_mm
+def _box(f, inside: float, outside: float, z: tuple[float, float], ramp: float) -> int:
+    """``inside`` between ``z[0]`` and ``z[1]``, ``outside`` beyond, linear over ``ramp``."""
+    box = f.add("Box")
+    for key, value in (("VIn", inside), ("VOut", outside), ("XMin", -1e9), ("XMax", 1e9),
+                       ("YMin", -1e9), ("YMax", 1e9), ("ZMin", z[0]), ("ZMax", z[1]),
+                       ("Thickness", max(ramp, 1e-9))):
+        f.setNumber(box, key, value)
+    return box
+
+
+def _loaded_size_field(f, top: int, faces, flank_faces, size, body,
+                       loaded: LoadedTooth) -> int:
+    """``min(max(top, away), flank)``: ``away`` is ``size`` near the loaded tooth's
+    ``faces`` and ``far_size_mm`` beyond, ``flank`` is ``flank_size_mm`` on the
+    ``flank_faces`` within the axial window, growing to ``size`` over twice the difference
+    (at its ends too)."""
+    zone, fs = loaded.zone_mm, loaded.flank_size_mm
+    away = _threshold(f, faces, size, loaded.far_size_mm, zone, zone)
     fine = _threshold(f, flank_faces, fs, body, 0.0, 2.0 * (body - fs), sampling=100)
-    window = f.add("Box")  # fs in the axial window, growing to size over 2 (size - fs)
-    for key, value in (("VIn", fs), ("VOut", size), ("XMin", -1e9), ("XMax", 1e9),
-                       ("YMin", -1e9), ("YMax", 1e9), ("ZMin", loaded.z_mm[0]),
-                       ("ZMax", loaded.z_mm[1]), ("Thickness", 2.0 * (size - fs))):
-        f.setNumber(window, key, value)
-    flank = f.add("Max")
-    f.setNumbers(flank, "FieldsList", [fine, window])
-    both = f.add("Min")
-    f.setNumbers(both, "FieldsList", [coarse, flank])
-    f.setAsBackgroundMesh(both)
+    window = _box(f, fs, size, loaded.z_mm, 2.0 * (size - fs))
+    return _min_field(f, [_min_field(f, [top, away], "Max"),
+                          _min_field(f, [fine, window], "Max")])
+
+
+def _axial_size_field(f, top: int, size, half, far) -> int:
+    """``max(top, window)``: ``window`` is 0 within ``half`` of mid-face and grows to
+    ``far`` over ``far - size`` beyond."""
+    return _min_field(f, [top, _box(f, 0.0, far, (-half, half), far - size)], "Max")
 
 
 def loaded_faces(part: str, teeth: list[int] | None) -> list[str]:

@@ -30,11 +30,13 @@ from dataclasses import asdict, dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
+from ..arguments import is_real
+from ..arguments import torque_Nm as check_torque_Nm
 from ..clearance import min_backlash_rad
 from ..errors import ArgumentError, GeometryError
 from ..geometry import developed_arc, rot_z
 from ..io import inp_id_lines, inp_number
-from ..spec import CouplingSpec
+from ..spec import CouplingSpec, as_spec
 from .ccx import run_ccx, solver_dir
 from .contact import merge
 from .mesh import check_size, mesh_part
@@ -103,13 +105,16 @@ def fe_contact(spec: CouplingSpec, *, torque_Nm: float | None = None,
     workdir : path, optional
         Keep the deck, log and printout here (default: a temporary folder, kept on failure).
     """
-    if misalignment_deg != 0.0:
+    spec = as_spec(spec)
+    if not (is_real(misalignment_deg) and misalignment_deg == 0.0):
         raise ArgumentError("misalignment_deg", misalignment_deg,
                             "0 only: the one-pitch cyclic reference holds for aligned shafts; "
                             "a misaligned pose is a sector (fe_contact_sector, sector_check)")
     T = spec.load.torque_Nm if torque_Nm is None else torque_Nm
-    if not (isinstance(T, int | float) and math.isfinite(T) and T > 0):
-        raise ArgumentError("torque_Nm", torque_Nm, "a positive finite torque (N m)")
+    field = "torque_Nm" if torque_Nm is not None else "load.torque_Nm"
+    if not (is_real(T) and T > 0):  # type: ignore[operator]
+        raise ArgumentError(field, T, "a torque above 0 N·m: FE contact needs a load")
+    T = check_torque_Nm(T, field, zero=False)
     size = min(check_size(spec, "hub", size_mm), check_size(spec, "sleeve", size_mm))
     c = size if contact_size_mm is None else check_size(spec, "hub", contact_size_mm)
     tol = TOLERANCE_MODULES * spec.tooth.module if tolerance_mm is None else tolerance_mm

@@ -33,7 +33,7 @@ from ..clearance import sweep
 from ..errors import ArgumentError
 from ..geometry import hub_to_sleeve, rot_z
 from ..io import inp_id_lines, inp_number
-from ..spec import CouplingSpec
+from ..spec import CouplingSpec, as_spec
 from .ccx import run_ccx, solver_dir
 from .contact import merge
 from .mesh import check_size, mesh_part
@@ -102,6 +102,7 @@ def fe_contact_sector(spec: CouplingSpec, *, misalignment_deg: float, rotation_d
     workdir : path, optional
         Keep the deck, log and printout here (default: a temporary folder, kept on failure).
     """
+    spec = as_spec(spec)
     i, rot, teeth, gaps = _pose(spec, misalignment_deg, rotation_deg, first_tooth, sector)
     touch = float(np.min(gaps))
     if not (isinstance(windup_rad, int | float) and math.isfinite(windup_rad)
@@ -147,9 +148,10 @@ def _pose(spec: CouplingSpec, misalignment_deg, rotation_deg, first_tooth, secto
     N = spec.tooth.teeth
     i = _angle(misalignment_deg, "misalignment_deg", 0.0, MAX_MISALIGNMENT_DEG)
     rot = _angle(rotation_deg, "rotation_deg", -360.0, 360.0)
-    if not (isinstance(sector, int) and 1 <= sector < N):
+    if isinstance(sector, bool) or not (isinstance(sector, int) and 1 <= sector < N):
         raise ArgumentError("sector", sector, f"a whole number of teeth from 1 to {N - 1}")
-    if not (isinstance(first_tooth, int) and 0 <= first_tooth < N):
+    if isinstance(first_tooth, bool) or not (isinstance(first_tooth, int)
+                                             and 0 <= first_tooth < N):
         raise ArgumentError("first_tooth", first_tooth, f"a tooth number from 0 to {N - 1}")
     teeth = [(first_tooth + k) % N for k in range(sector)]
     return i, rot, teeth, sweep(spec, i, [rot]).gap_angle_rad[1][teeth, 0]

@@ -48,9 +48,10 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ..arguments import count, flag
 from ..errors import ArgumentError, GeometryError
-from ..io import safe_name, write_json
-from ..spec import CouplingSpec
+from ..io import as_path, safe_name, write_json
+from ..spec import CouplingSpec, as_spec
 from .ccx import run_ccx, solver_dir
 from .deck import LoadCase, green_deck, principal_max
 from .mesh import DEFAULT_SECTOR_TEETH, LoadedTooth, check_size, mesh_part, size_range
@@ -434,8 +435,15 @@ def tooth_compliance_table(spec: CouplingSpec, *, size_mm: float | None = None,
     folder ``~/.cache/gearcoupling/fea``); ``refresh`` recomputes it. Implements the tooth
     compliance protocol ``pair_compliance_mm_per_N(z_mm, r_mm)`` of the load models.
     """
+    spec = as_spec(spec)
     check_size(spec, "hub", size_mm)
     check_size(spec, "sleeve", size_mm)
+    count(nz, "nz", 2, 9)
+    count(nr, "nr", 2, 9)
+    count(sector, "sector", 1, spec.tooth.teeth)
+    flag(refresh, "refresh")
+    if cache is not None:
+        as_path(cache, "cache")
     key = spec_hash(spec, size_mm=size_mm, sector=sector, nz=nz, nr=nr)
     path = Path(cache) if cache is not None else cache_dir()
     path = path / f"{safe_name(spec.name)}-{key}.json"  # a spec name cannot escape

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import SpecError
+from ..errors import ArgumentError, SpecError
 from ..io import atomic_path, inp_element_lines, inp_id_lines, inp_node_lines, writable_file
 from .volume import VolumeMesh
 
@@ -64,6 +64,8 @@ def to_meshio(vm: VolumeMesh, *, gmsh_tags: bool = False):
 
 def write_mesh(vm: VolumeMesh, path, fmt: str | None = None) -> Path:
     """Write ``inp``, ``msh`` (gmsh 2.2 with physical groups) or ``vtu`` (``region`` ids)."""
+    if not isinstance(vm, VolumeMesh):
+        raise ArgumentError("vm", str(vm)[:60], "a VolumeMesh (gearcoupling.mesh_part)")
     path = writable_file(path, "path")
     fmt = fmt or path.suffix.lstrip(".").lower()
     if fmt not in FORMATS:

@@ -26,6 +26,7 @@ from .pose import hub_to_sleeve, map_polar, rot_z, turning_angles
 from .renzo import renzo_z0_mm
 from .section import PARTS, sleeve_space_outline, transverse_section
 from .sleeve import SleeveModel, flank_point, sleeve_flank, sleeve_model
+from .speclike import use_spec_loader
 
 __all__ = [
     "FLANKS",
@@ -62,4 +63,5 @@ __all__ = [
     "tip_radius",
     "transverse_section",
     "turning_angles",
+    "use_spec_loader",
 ]

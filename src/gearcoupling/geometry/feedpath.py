@@ -20,6 +20,7 @@ from itertools import pairwise
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ..arguments import real
 from ..errors import ArgumentError, GeometryError
 
 SmoothFn = Callable[[NDArray[np.float64]], tuple[NDArray[np.float64], NDArray[np.float64]]]
@@ -198,7 +199,11 @@ def drop_table_to_curvature(z_knots, drop_knots, n: int = 400):
 
 def feed_path(crowning, pitch_radius: float, face_width: float) -> FeedPath:
     """Build the feed path of a :class:`~gearcoupling.spec.Crowning` spec."""
-    R = pitch_radius
+    if getattr(crowning, "kind", None) is None:
+        raise ArgumentError("crowning", crowning, "a Crowning of a spec "
+                            "(spec.hub.crowning)")
+    R = real(pitch_radius, "pitch_radius", 0.0, open_lo=True, unit="mm")
+    real(face_width, "face_width", 0.0, open_lo=True, unit="mm")
     kind = crowning.kind
     if kind == "none":
         return FeedPath(R, [(np.inf, 0.0)], kind=kind)

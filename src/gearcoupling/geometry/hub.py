@@ -29,7 +29,8 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..errors import ArgumentError, GeometryError
 from .feedpath import FeedPath, feed_path
-from .speclike import SpecLike
+from .involute import real_array
+from .speclike import SpecLike, as_spec_like
 
 FLANKS = ("cw", "ccw")
 
@@ -217,7 +218,7 @@ def hub_flank_model(m: HubModel, flank: str, z_mm: ArrayLike, r_mm: ArrayLike, *
                     check: bool = True):
     """:func:`hub_flank` on a :class:`HubModel`; also returns the rack depth ``h``."""
     if flank not in FLANKS:
-        raise ArgumentError(f"flank must be one of {FLANKS}, got {flank!r}")
+        raise ArgumentError("flank", flank, f"one of {', '.join(FLANKS)}")
     z, r = np.broadcast_arrays(np.asarray(z_mm, dtype=float), np.asarray(r_mm, dtype=float))
     if check:
         eps = 1e-9 * (m.R + 1.0)
@@ -239,7 +240,8 @@ def hub_flank_model(m: HubModel, flank: str, z_mm: ArrayLike, r_mm: ArrayLike, *
     return pts, nrm, h
 
 
-def hub_flank(spec: SpecLike, flank: str, z_mm: ArrayLike, r_mm: ArrayLike):
+def hub_flank(spec: SpecLike, flank: str, z_mm: ArrayLike, r_mm: ArrayLike
+              ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Exact points and unit normals of tooth 0's flank at axial positions and radii.
 
     Parameters
@@ -263,5 +265,7 @@ def hub_flank(spec: SpecLike, flank: str, z_mm: ArrayLike, r_mm: ArrayLike):
         If a ``(z, r)`` lies off the flank (beyond the face ends, above the tip surface or
         below the form radius where the root fillet begins).
     """
-    pts, nrm, _ = hub_flank_model(hub_model(spec), flank, z_mm, r_mm)
+    spec = as_spec_like(spec)
+    pts, nrm, _ = hub_flank_model(hub_model(spec), flank, real_array(z_mm, "z_mm"),
+                                  real_array(r_mm, "r_mm"))
     return pts, nrm

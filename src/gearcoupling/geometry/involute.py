@@ -8,7 +8,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..errors import GeometryError
+from ..errors import ArgumentError
 
 _SERIES_LIMIT = 1e-2  # below this |a| the series avoids the cancellation in tan(a) - a
 
@@ -24,7 +24,10 @@ def inv(a: ArrayLike) -> NDArray[np.float64]:
     a : (...) float
         Angle in radians, ``|a| < pi/2``.
     """
-    a = np.asarray(a, dtype=float)
+    a = real_array(a, "a")
+    if not np.all(np.abs(a) < 0.5 * np.pi):
+        raise ArgumentError("a", float(a[~(np.abs(a) < 0.5 * np.pi)].flat[0]),
+                            "angles in radians with |a| < pi/2")
     a2 = a * a
     series = a * a2 * (1 / 3 + a2 * (2 / 15 + a2 * (17 / 315 + a2 * (62 / 2835))))
     return np.where(np.abs(a) < _SERIES_LIMIT, series, np.tan(a) - a)
@@ -43,9 +46,9 @@ def inv_inverse(y: ArrayLike, *, rtol: float = 1e-15,
     y : (...) float
         Involute values, any finite real (odd extension for ``y < 0``).
     """
-    y = np.asarray(y, dtype=float)
+    y = real_array(y, "y")
     if not np.all(np.isfinite(y)):
-        raise GeometryError("inv_inverse: y must be finite")
+        raise ArgumentError("y", float(y[~np.isfinite(y)].flat[0]), "finite involute values")
     sign = np.sign(y)
     ay = np.abs(y)
     a = np.where(ay < 0.5, np.cbrt(3.0 * ay), np.pi / 2 - 1.0 / (ay + np.pi / 2))
@@ -57,6 +60,18 @@ def inv_inverse(y: ArrayLike, *, rtol: float = 1e-15,
         if np.all(np.abs(step) <= rtol * np.maximum(np.abs(a), 1e-300)):
             break
     return sign * a
+
+
+def real_array(values: ArrayLike, field: str) -> NDArray[np.float64]:
+    """``values`` (numbers of any shape) as a float array; text, objects or ``bool`` are an
+    :class:`ArgumentError` naming ``field``."""
+    try:
+        raw = np.asarray(values) if not isinstance(values, str | bytes) else np.asarray([values])
+    except ValueError:  # a ragged nesting
+        raw = np.asarray([None])
+    if raw.dtype.kind not in "iuf":
+        raise ArgumentError(field, str(values)[:60], "numbers (a float or an array of them)")
+    return raw.astype(float)
 
 
 def developed_arc(r: ArrayLike, r_base: float) -> NDArray[np.float64]:

@@ -14,11 +14,12 @@ from collections.abc import Callable
 import numpy as np
 from numpy.typing import NDArray
 
+from ..arguments import real
 from ..errors import ArgumentError, GeometryError
 from .hub import HubModel, envelope, flank_depth, flank_u, hub_model, root_radius, round_point
 from .hub import tip_radius as hub_tip_radius
 from .sleeve import SleeveModel, flank_point, sleeve_model
-from .speclike import SpecLike
+from .speclike import SpecLike, as_spec_like
 
 PARTS = ("hub", "sleeve")
 _MAX_POINTS = 2_000_000
@@ -162,12 +163,12 @@ def transverse_section(spec: SpecLike,
     polygon : (n, 2) float
         Vertices counter-clockwise, first vertex not repeated at the end.
     """
+    spec = as_spec_like(spec)
     if part not in PARTS:
-        raise ArgumentError(f"part must be one of {PARTS}, got {part!r}")
-    tol = float(tolerance_mm)
-    if not (math.isfinite(tol) and tol > 0):
-        raise ArgumentError(f"tolerance_mm = {tolerance_mm!r}: must be a positive length in mm")
-    z = float(z_mm)
+        raise ArgumentError("part", part, f"one of {', '.join(PARTS)}")
+    m_ = spec.tooth.module  # the polygon has ~1/sqrt(tolerance) vertices: bounded
+    tol = real(tolerance_mm, "tolerance_mm", 1e-6 * m_, m_, unit="mm (1e-6 to 1 module)")
+    z = real(z_mm, "z_mm", unit="mm")
     if part == "hub":
         m = hub_model(spec)
         if not abs(z) <= m.half_face * (1 + 1e-12):

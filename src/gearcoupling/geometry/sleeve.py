@@ -13,12 +13,12 @@ from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, NDArray
 
 from ..errors import ArgumentError, GeometryError
 from .hub import FLANKS
-from .involute import inv, roll_angle
-from .speclike import SpecLike
+from .involute import inv, real_array, roll_angle
+from .speclike import SpecLike, as_spec_like
 
 
 @dataclass(frozen=True)
@@ -110,7 +110,8 @@ def sleeve_model(spec: SpecLike) -> SleeveModel:
                        rho, 0.5 * sl.face_width, r_form, r_fillet, centre)
 
 
-def sleeve_flank(spec: SpecLike, flank: str, z_mm: ArrayLike, r_mm: ArrayLike):
+def sleeve_flank(spec: SpecLike, flank: str, z_mm: ArrayLike, r_mm: ArrayLike
+                 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Points and unit normals of sleeve space 0's flank facing hub tooth 0's ``flank``.
 
     Parameters
@@ -127,10 +128,11 @@ def sleeve_flank(spec: SpecLike, flank: str, z_mm: ArrayLike, r_mm: ArrayLike):
     points, normals : (..., 3) float
         Normals point out of the sleeve material, into the space.
     """
+    spec = as_spec_like(spec)
     if flank not in FLANKS:
-        raise ArgumentError(f"flank must be one of {FLANKS}, got {flank!r}")
+        raise ArgumentError("flank", flank, f"one of {', '.join(FLANKS)}")
     m = sleeve_model(spec)
-    z, r = np.broadcast_arrays(np.asarray(z_mm, dtype=float), np.asarray(r_mm, dtype=float))
+    z, r = np.broadcast_arrays(real_array(z_mm, "z_mm"), real_array(r_mm, "r_mm"))
     eps = 1e-9 * (m.R + 1.0)
     bad = (~np.isfinite(z) | ~np.isfinite(r) | (np.abs(z) > m.half_face + eps)
            | (r < m.r_form - eps) | (r > m.r_fillet + eps))

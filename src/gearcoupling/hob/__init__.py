@@ -12,9 +12,17 @@ from .charts import (
     plot_measuring_charts,
     write_nominal_csv,
 )
-from .program import MAX_HOB_DIAMETER_MM, HobProgram, Move, check_hob_diameter, hob_program
+from .program import (
+    FEED_RANGE_MM_PER_REV,
+    MAX_HOB_DIAMETER_MM,
+    HobProgram,
+    Move,
+    check_hob_diameter,
+    hob_program,
+)
 
 __all__ = [
+    "FEED_RANGE_MM_PER_REV",
     "MAX_HOB_DIAMETER_MM",
     "HobProgram",
     "MeasuringCharts",

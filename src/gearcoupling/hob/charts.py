@@ -30,11 +30,11 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import ArgumentError
+from ..arguments import count, real
 from ..geometry import FLANKS, HubModel, form_radius, hub_flank_model, hub_model, inv, tip_radius
 from ..io import write_csv_records
 from ..plots import figure_axes
-from ..spec import CouplingSpec
+from ..spec import CouplingSpec, as_spec
 
 _EPS = 1e-9
 
@@ -186,15 +186,15 @@ def measuring_charts(spec: CouplingSpec,
     ----------
     spec : CouplingSpec
     points : int
-        Points per trace (>= 5); the traces are exact (``hub_flank``) at every point.
+        Points per trace (5 to ``MAXIMA["points"]``, 10 001); the traces are exact
+        (``hub_flank``) at every point.
     tip_exclusion : float
         Share of the profile length from the form diameter to the tip left out of
         ``L_alpha`` at the tip end (0 to 0.5).
     """
-    if not (isinstance(points, int) and points >= 5):
-        raise ArgumentError("points", points, "an integer >= 5 points per trace")
-    if not (isinstance(tip_exclusion, int | float) and 0.0 <= tip_exclusion <= 0.5):
-        raise ArgumentError("tip_exclusion", tip_exclusion, "a share from 0 to 0.5")
+    spec = as_spec(spec)
+    count(points, "points", 5)
+    real(tip_exclusion, "tip_exclusion", 0.0, 0.5, unit="(a share of the profile)")
     m = hub_model(spec)
     rb = m.R * math.cos(m.phi)
     half_lead, profile_range, r_lead = evaluation_ranges(spec, tip_exclusion)

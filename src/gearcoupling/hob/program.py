@@ -23,12 +23,16 @@ from itertools import pairwise
 import numpy as np
 from numpy.typing import NDArray
 
+from ..arguments import MAXIMA, count, is_real, real
 from ..errors import ArgumentError
 from ..geometry import HubModel, hub_model, plane_rack, tip_radius
-from ..spec import CouplingSpec
+from ..spec import CouplingSpec, as_spec
 
 _DENSE = 65  # exact-curve samples per move when its chordal deviation is measured
 MAX_HOB_DIAMETER_MM = 1000.0  # hobs are made up to a few hundred mm (module 40: about 500)
+#: axial feed per workpiece revolution a hobbing machine takes (mm/rev): roughing feeds
+#: reach a few mm, finishing ones tenths; controllers refuse numbers far beyond
+FEED_RANGE_MM_PER_REV = (0.001, 50.0)
 
 
 def check_hob_diameter(spec: CouplingSpec,
@@ -39,7 +43,7 @@ def check_hob_diameter(spec: CouplingSpec,
     is made larger than :data:`MAX_HOB_DIAMETER_MM` (its approach travel ``sqrt(H (D - H))``
     would grow without end)."""
     D = hob_diameter_mm
-    if isinstance(D, bool) or not (isinstance(D, int | float) and math.isfinite(D)):
+    if not (is_real(D) and math.isfinite(D)):
         raise ArgumentError(field, D, "a finite hob outside diameter in mm")
     depth = hub_model(spec).dedendum + spec.tooth.module
     if D <= 2.0 * depth:
@@ -123,8 +127,13 @@ class HobProgram:
                                                                     strict=True)]
 
     def gcode(self, feed_mm_per_rev: float = 1.0, retract_mm: float | None = None) -> str:
-        """The program as ISO G-code (``G18`` ZX plane, ``G95`` feed per workpiece turn)."""
-        retract = self.whole_depth_mm if retract_mm is None else retract_mm
+        """The program as ISO G-code (``G18`` ZX plane, ``G95`` feed per workpiece turn;
+        every number fixed-point, as controllers read them). ``feed_mm_per_rev`` in
+        :data:`FEED_RANGE_MM_PER_REV`; ``retract_mm`` from 0 to the hob diameter (default
+        the whole depth)."""
+        feed = real(feed_mm_per_rev, "feed_mm_per_rev", *FEED_RANGE_MM_PER_REV, unit="mm/rev")
+        retract = self.whole_depth_mm if retract_mm is None else real(
+            retract_mm, "retract_mm", 0.0, self.hob_diameter_mm, unit="mm")
         first = self.moves[0].start
         lines = [
             "%",
@@ -138,7 +147,7 @@ class HobProgram:
             f"{self.crown_drop_end_mm:.5f})",
             "G21 G90 G18 G95",
             f"G0 X{first[1] + retract:.5f} Z{first[0]:.5f}",
-            f"G1 X{first[1]:.5f} F{feed_mm_per_rev:g}",
+            f"G1 X{first[1]:.5f} F{feed:.4f}",
         ]
         for m in self.moves:
             z, x = m.end
@@ -277,17 +286,16 @@ def hob_program(spec: CouplingSpec, hob_diameter_mm: float, tolerance_mm: float 
         (every rack depth down to the root reaches both face-end planes), to the
         overtravel point; straight run-outs at constant infeed.
     """
+    spec = as_spec(spec)
     m = hub_model(spec)
     module = spec.tooth.module
     tol = module / 1000.0 if tolerance_mm is None else tolerance_mm
-    if not (isinstance(tol, int | float) and math.isfinite(tol)
-            and module * 1e-6 <= tol <= module * 0.1):
+    if not (is_real(tol) and math.isfinite(tol) and module * 1e-6 <= tol <= module * 0.1):
         raise ArgumentError("tolerance_mm", tolerance_mm,
                         f"a chordal tolerance from {module * 1e-6:.3g} to {module * 0.1:.3g} mm "
                         "(1e-6 to 0.1 module)")
     D = check_hob_diameter(spec, hob_diameter_mm)
-    if not (isinstance(table_points, int) and table_points >= 3):
-        raise ArgumentError("table_points", table_points, "an integer >= 3")
+    count(table_points, "table_points", 3, MAXIMA["points"])
     r_h = 0.5 * D - m.dedendum
     s_gen = float(m.path.solve_plane(m.half_face, m.dedendum)[0])
     z_end = m.half_face

@@ -3,16 +3,18 @@
 from __future__ import annotations
 
 import math
+import os
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import cast
+from typing import cast, overload
 
 import numpy as np
 
+from ..arguments import choice, count, positive
 from ..errors import ArgumentError
 from ..hob import measuring_charts
-from ..spec import CouplingSpec
+from ..spec import CouplingSpec, as_spec
 from ..tables import dataframe
 from .datum import bore_datum
 from .io import load_points
@@ -64,9 +66,16 @@ class PartComparison:
 
 
 def _points(source, units: str):
-    if isinstance(source, str | Path):
-        return load_points(source, units), str(source)
-    pts = np.asarray(source, dtype=float)
+    if isinstance(source, str | os.PathLike):
+        return load_points(Path(source), units), str(source)
+    try:
+        pts = np.asarray(source)
+    except ValueError:  # a ragged nesting
+        pts = np.asarray(None)
+    if pts.dtype.kind not in "iuf":
+        raise ArgumentError("source", source, "a scan file path or an (n, 3) array of "
+                            "point coordinates")
+    pts = pts.astype(float)
     if pts.ndim != 2 or pts.shape[1] != 3 or len(pts) == 0:
         raise ArgumentError("points", f"array of shape {pts.shape}", "an (n, 3) array, n >= 1")
     if not np.all(np.isfinite(pts)):
@@ -74,11 +83,28 @@ def _points(source, units: str):
     return pts * {"mm": 1.0, "in": 25.4, "m": 1000.0}[units], "array"
 
 
+@overload
+def compare_part(spec: CouplingSpec, source, other: None = None, *, units: str = "mm",
+                 limits=None, grade: int | None = None, coarse: str = "auto",
+                 fit_points: int = 20_000, grid: tuple[int, int] = (61, 41),
+                 outlier_mm: float | None = None, min_points: int = 30,
+                 progress: Callable[[int, int], None] | None = None) -> InspectionReport: ...
+
+
+@overload
+def compare_part(spec: CouplingSpec, source, other: str | Path | np.ndarray, *,
+                 units: str = "mm", limits=None, grade: int | None = None,
+                 coarse: str = "auto", fit_points: int = 20_000,
+                 grid: tuple[int, int] = (61, 41), outlier_mm: float | None = None,
+                 min_points: int = 30, progress: Callable[[int, int], None] | None = None
+                 ) -> PartComparison: ...
+
+
 def compare_part(spec: CouplingSpec, source, other=None, *, units: str = "mm", limits=None,
                  grade: int | None = None, coarse: str = "auto", fit_points: int = 20_000,
                  grid: tuple[int, int] = (61, 41), outlier_mm: float | None = None,
-                 min_points: int = 30,
-                 progress: Callable[[int, int], None] | None = None):
+                 min_points: int = 30, progress: Callable[[int, int], None] | None = None
+                 ) -> InspectionReport | PartComparison:
     """Inspect a measured hub against the spec's nominal, tooth by tooth.
 
     Parameters
@@ -117,6 +143,20 @@ def compare_part(spec: CouplingSpec, source, other=None, *, units: str = "mm", l
     -------
     InspectionReport or PartComparison
     """
+    spec = as_spec(spec)
+    if source is None:
+        raise ArgumentError("source", None, "a scan file path or an (n, 3) array of points")
+    choice(units, "units", ("mm", "in", "m"))
+    choice(coarse, "coarse", ("auto", "none"))
+    count(fit_points, "fit_points", 100)
+    count(min_points, "min_points", 1, 1_000_000)
+    if not (isinstance(grid, tuple | list) and len(grid) == 2):
+        raise ArgumentError("grid", grid, "(z, r) counts of the flank table, each 5-1001")
+    grid = (count(grid[0], "grid", 5, 1001), count(grid[1], "grid", 5, 1001))
+    if outlier_mm is not None:
+        positive(outlier_mm, "outlier_mm")
+    if limits is not None and not isinstance(limits, dict):
+        raise ArgumentError("limits", limits, "a dict of limit name -> mm")
     graded = {} if grade is None else grade_limits(spec, grade)
     lim = check_limits({**spec.inspection.as_dict(), **graded, **dict(limits or {})})
     parts = [_points(src, units) for src in (source, other) if src is not None]

@@ -26,10 +26,12 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
+from ..arguments import is_real
 from ..errors import ArgumentError
 from ..geometry import hub_flank_model
 from ..hob import MeasuringCharts
@@ -51,14 +53,13 @@ FLANK_NAMES = ("cw", "ccw")
 
 def check_limits(limits) -> dict[str, float]:
     """Validated tolerance limits (mm); keys from :data:`LIMITS`."""
+    if limits is not None and not isinstance(limits, dict):
+        raise ArgumentError("limits", limits, "a dict of limit name -> mm")
     out = {}
-    for key, value in dict(limits or {}).items():
+    for key, value in (limits or {}).items():
         if key not in LIMITS:
             raise ArgumentError(f"limits.{key}", value, f"a known limit: {', '.join(LIMITS)}")
-        try:
-            v = float(value)
-        except (TypeError, ValueError):
-            v = math.nan
+        v = float(value) if is_real(value) else math.nan  # text is read by the caller
         if not (math.isfinite(v) and v > 0):
             raise ArgumentError(f"limits.{key}", value, "a positive length in mm")
         out[key] = v
@@ -77,7 +78,7 @@ class InspectionReport:
     teeth: NDArray[np.intp]
     flank: dict[str, dict[str, NDArray[np.float64]]] = field(repr=False)
     tooth: dict[str, NDArray[np.float64]] = field(repr=False)
-    part: dict[str, object] = field(default_factory=dict)
+    part: dict[str, Any] = field(default_factory=dict)
     limits: dict[str, float] = field(default_factory=dict)
     passed: NDArray[np.bool_] | None = field(default=None, repr=False)
     sample: dict[str, NDArray] = field(default_factory=dict, repr=False)

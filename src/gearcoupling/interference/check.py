@@ -34,11 +34,12 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..clearance import check_angles, check_misalignment, sweep
+from ..arguments import MAXIMA, angle_list, flag, real
+from ..clearance import check_misalignment, sweep
 from ..errors import ArgumentError
 from ..io import write_text
 from ..parts import SURFACE_KINDS, check_tolerance
-from ..spec import CouplingSpec
+from ..spec import CouplingSpec, as_spec
 from . import distance as dist
 from .attribution import FLANKS, flank_index, nearest_tooth
 from .posed import hub_pose, window_pose, window_to_sleeve
@@ -384,14 +385,13 @@ def check_interference(spec: CouplingSpec, misalignment_deg: float, angles_deg: 
     -------
     InterferenceResult
     """
+    spec = as_spec(spec)
     method = _check_method(method)
     mis = check_misalignment(misalignment_deg)
-    psi = np.radians(check_angles(angles_deg))
+    psi = np.radians(angle_list(angles_deg, "angles_deg", most=MAXIMA["poses"]))
     tol = check_tolerance(spec, tolerance_mm)
-    try:
-        delta_deg = float(hub_rotation_deg)
-    except (TypeError, ValueError) as err:
-        raise ArgumentError("hub_rotation_deg", hub_rotation_deg, "must be a number") from err
+    delta_deg = real(hub_rotation_deg, "hub_rotation_deg", unit="degrees")
+    flag(backlash, "backlash")
     pitch_deg = 360.0 / spec.tooth.teeth
     if not (math.isfinite(delta_deg) and abs(delta_deg) < 0.5 * pitch_deg):
         raise ArgumentError("hub_rotation_deg", hub_rotation_deg,
@@ -399,9 +399,7 @@ def check_interference(spec: CouplingSpec, misalignment_deg: float, angles_deg: 
     delta = math.radians(delta_deg)
     N = spec.tooth.teeth
     k = _check_teeth(teeth, N)
-    margin = tol if margin_mm is None else float(margin_mm)
-    if not (math.isfinite(margin) and margin >= 0):
-        raise ArgumentError(f"margin_mm = {margin_mm!r}: must be a length >= 0 (mm)")
+    margin = tol if margin_mm is None else real(margin_mm, "margin_mm", 0.0, unit="mm")
 
     t0 = time.perf_counter()
     if model is None:

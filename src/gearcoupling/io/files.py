@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import os
 import stat
+import tempfile
 from pathlib import Path
 
 from ..errors import ArgumentError, GearCouplingError, SpecError
@@ -18,6 +19,10 @@ NOUNS = ((stat.S_ISDIR, "a folder"),
 KINDS = tuple((test, f"{noun}, not a file" + (" (a pipe can be read only once)"
                                               if test is stat.S_ISFIFO else ""))
               for test, noun in NOUNS)
+
+
+#: what a writer never replaces and an output folder must not hold
+SPECIAL = tuple(noun for _, noun in NOUNS[1:])
 
 
 def _noun(mode: int) -> str | None:
@@ -123,15 +128,22 @@ def output_folder(path: object, field: str = "out", *, create: bool = True) -> P
                             f"{err.strerror}") from None
     if not p.is_dir():
         raise ArgumentError(field, shown, "names an existing file: give a folder")
-    if not os.access(p, os.W_OK | os.X_OK):
-        raise ArgumentError(field, shown, "a folder without write permission")
+    try:  # a file and a folder made and removed again: what the writers will do
+        probe = Path(tempfile.mkdtemp(prefix=".gearcoupling-probe-", dir=p))
+        fd, name = tempfile.mkstemp(dir=probe)
+        os.close(fd)
+        os.unlink(name)
+        probe.rmdir()
+    except OSError as err:
+        raise ArgumentError(field, shown, f"a folder this process cannot write into "
+                            f"({err.strerror})") from None
     return p
 
 
 def _check_entries(p: Path, field: str, shown: str) -> None:
     for entry in _entries(p):
         kind = _existing_kind(entry)
-        if kind not in (None, "a folder"):
+        if kind in SPECIAL:
             raise ArgumentError(field, shown, f"holds {entry.relative_to(p)}, {kind}, where "
                                 "a file may be written: remove it or give another folder")
 

@@ -15,6 +15,7 @@ import tomllib
 from pathlib import Path
 from typing import Any
 
+from ..arguments import parse_number
 from ..errors import SpecError
 
 
@@ -84,6 +85,9 @@ def parse_override(text: str) -> tuple[str, Any]:
         value = tomllib.loads(f"v = {raw.strip()}")["v"]
     except tomllib.TOMLDecodeError:
         value = raw.strip()
+    if isinstance(value, int | float) and not isinstance(value, bool):
+        # TOML reads 0_5 as 5 and 0x10 as 16: numbers as a person writes them only
+        parse_number(raw, f"--set {key.strip()}", nonfinite=True, error=SpecError)
     return key.strip(), value
 
 

@@ -7,12 +7,16 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from ..arguments import keywords
 from ..clearance import SweepResult, sweep
 from ..errors import ArgumentError
-from ..spec import CouplingSpec
+from ..spec import CouplingSpec, as_spec
 from .inputs import LoadProblem, load_problem, resolve_model, resolve_torque_Nm
 from .models import ModelOutput, Progress, solve
 from .result import LoadResult
+
+#: the keywords a call passes on to :func:`gearcoupling.sweep`
+SWEEP_ACCURACY = ("tolerance_mm", "grid", "periodic")
 
 
 def load(spec: CouplingSpec, misalignment_deg: float, angles_deg: ArrayLike, *,
@@ -46,12 +50,22 @@ def load(spec: CouplingSpec, misalignment_deg: float, angles_deg: ArrayLike, *,
 
     Examples
     --------
+    The teeth carry the torque at every rotation (tangential forces at the pitch radius),
+    and Renzo's load proportion ``q`` is at most 1:
+
     >>> import gearcoupling as gc
     >>> spec = gc.load_spec("renzo-1967")
     >>> res = gc.load(spec, 1.0, range(0, 360, 30), torque_Nm=2000.0)
-    >>> round(res.q(), 2)
-    0.32
+    >>> res.tangential_force_N.shape  # (teeth, rotations)
+    (50, 12)
+    >>> R = spec.tooth.pitch_radius  # mm
+    >>> [round(float(t)) for t in res.tangential_force_N.sum(axis=0) * R / 1e3][:3]  # N·m
+    [2000, 2000, 2000]
+    >>> 0 < res.q() <= 1
+    True
     """
+    spec = as_spec(spec)
+    keywords(accuracy, SWEEP_ACCURACY, "load")
     resolve_torque_Nm(spec, torque_Nm)
     resolve_model(spec, model)
     sw = sweep(spec, misalignment_deg, angles_deg, **accuracy)

@@ -19,8 +19,8 @@ from __future__ import annotations
 
 import math
 
-from ..errors import ArgumentError
-from ..spec import CouplingSpec
+from ..arguments import torque_Nm as check_torque_Nm
+from ..spec import CouplingSpec, as_spec
 
 
 def annulus_twist_rad(torque_Nmm: float, inner_mm: float, outer_mm: float, length_mm: float,
@@ -38,9 +38,8 @@ def body_windup_rad(spec: CouplingSpec, torque_Nm: float) -> dict[str, float]:
     dict
         ``hub_rad``, ``sleeve_rad`` and their sum ``body_rad`` (signed like the torque).
     """
-    if not math.isfinite(torque_Nm):
-        raise ArgumentError("torque_Nm", torque_Nm, "a finite torque in N·m")
-    T = float(torque_Nm) * 1e3
+    spec = as_spec(spec)
+    T = check_torque_Nm(torque_Nm) * 1e3
     hub, sleeve = spec.hub, spec.sleeve
     root = spec.tooth.pitch_radius - hub.root.dedendum
     bore = 0.5 * hub.body.bore_diameter

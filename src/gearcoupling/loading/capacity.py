@@ -28,13 +28,15 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import brentq
 
+from ..arguments import MAXIMA, angle_list, choice, keywords
 from ..clearance import SweepResult, sweep
 from ..errors import ArgumentError, GearCouplingError
 from ..geometry import FLANKS
 from ..io import write_csv_rows
-from ..spec import CouplingSpec
+from ..loadspec import LOAD_MODELS
+from ..spec import MISALIGNMENT_RANGE_DEG, CouplingSpec, as_spec
 from ..tables import dataframe
-from .api import load_from_sweep
+from .api import SWEEP_ACCURACY, load_from_sweep
 from .compliance import first_limit_torque_Nmm
 from .contact import contact_model
 from .inputs import LoadProblem, load_problem, nominal_root_stress_MPa, resolve_model
@@ -535,6 +537,11 @@ def capacity(spec: CouplingSpec, misalignment_deg: float, *, model: str | None =
     -------
     Capacity
     """
+    spec = as_spec(spec)
+    keywords(accuracy, SWEEP_ACCURACY, "capacity")
+    choice(loaded_flank, "loaded_flank", FLANKS)
+    if model is not None:
+        choice(model, "model", LOAD_MODELS)
     if angles_deg is None:
         angles_deg = default_angles(spec, gap_offset_rad, ROTATIONS[resolve_model(spec, model)])
     sw = sweep(spec, misalignment_deg, angles_deg, **accuracy)
@@ -547,11 +554,16 @@ def capacity_curve(spec: CouplingSpec, misalignments_deg: ArrayLike | None = Non
                    angles_deg: ArrayLike | None = None, gap_offset_rad: ArrayLike | None = None,
                    progress=None, **accuracy: Any) -> CapacityCurve:
     """:func:`capacity` at each misalignment (default 25 from 0 to the design angle, at
-    least 0.5°); ``progress(done, total)`` is called after each."""
+    least 0.5°; at most ``MAXIMA["misalignments"]``); ``progress(done, total)`` is called
+    after each."""
+    spec = as_spec(spec)
+    keywords(accuracy, SWEEP_ACCURACY, "capacity_curve")
     if misalignments_deg is None:
         top = max(math.degrees(spec.design_misalignment), 0.5)
         misalignments_deg = np.linspace(0.0, top, 25)
-    mis = np.atleast_1d(np.asarray(misalignments_deg, dtype=float))
+    lo, hi = MISALIGNMENT_RANGE_DEG
+    mis = angle_list(misalignments_deg, "misalignments_deg", lo=lo, hi=hi,
+                     most=MAXIMA["misalignments"])
     out = CapacityCurve()
     for i, m in enumerate(mis):
         out.append(capacity(spec, float(m), model=model, loaded_flank=loaded_flank,

@@ -9,26 +9,26 @@ far field at a load point ``(z, r)`` of the hub flank is
     c_part(z, r) = c_bend(r) / y_F · exp(sum_i a_i f_i(z, r)) - b c_patch exp(-y_F / (l m))
 
 with ``c_bend`` the bending of the tapered tooth of the real thickness per unit width (the
-bending term of :meth:`.cantilever.CantileverCompliance.components`; its shear,
-compression and foundation terms are local deformation that the far field leaves to the
-contact's half-space), spread over a width of the order of the load height ``y_F`` above
-the part's root circle, and ``f_i`` dimensionless features of the load point and the part
+bending term of :meth:`.cantilever.CantileverCompliance.components`; its shear, compression
+and foundation terms are local deformation that the far field leaves to the contact's half-
+space), spread over a width of the order of the load height ``y_F`` above the part's root
+circle, and ``f_i`` dimensionless features of the load point and the part
 (:func:`features`): how high the load sits on the tooth against its root thickness, how
 near it is to a face end and to the tooth's free edge along the depth (where a plate's free
 edge makes it softer). The tooth's shape, pressure angle and tooth count enter through
 ``c_bend``; the rim, the fillets and the tooth count were tried as features too and made
 the fit worse on specs left out of it (``benchmarks/bench_springs.py --holdout``), so the
-ranges of the data set in them are checked instead (:attr:`FittedCompliance.outside`). The last term is the root's confinement: near its root circle a tooth is stiffer
-under a patch than the half-space the far field was split from (an internal tooth's
-concave root most), so the far field there is below zero; ``c_patch`` is the half-space
-work of the table's load patch (a square of side module / 2), ``b`` and ``l`` fitted per
-part. The coefficients ``a_i``
-per part are fitted to FE tables of the bundled templates and of seeded random specs over
-the supported range and shipped as ``fitted.json`` (``benchmarks/bench_springs.py --fit``
-regenerates the data set, fits and prints the error at every load point of every table;
-docs/load.md has the table). The pair's far field is the sum of the two parts', turned to
-Renzo's measure (circumferential at the pitch point per tangential load there) by
-``1 / cos² phi`` like the cantilever's.
+ranges of the data set in them are checked instead (:attr:`FittedCompliance.outside`). The
+last term is the root's confinement: near its root circle a tooth is stiffer under a patch
+than the half-space the far field was split from (an internal tooth's concave root most),
+so the far field there is below zero; ``c_patch`` is the half-space work of the table's
+load patch (a square of side module / 2), ``b`` and ``l`` fitted per part. The coefficients
+``a_i`` per part are fitted to FE tables of the bundled templates and of seeded random
+specs over the supported range and shipped as ``fitted.json``
+(``benchmarks/bench_springs.py --fit`` regenerates the data set, fits and prints the error
+at every load point of every table; docs/load.md has the table). The pair's far field is
+the sum of the two parts', turned to Renzo's measure (circumferential at the pitch point
+per tangential load there) by ``1 / cos² phi`` like the cantilever's.
 
 Where a spec lies outside the ranges the fit was made on (``FittedCompliance.outside``), the
 fit is still evaluated (held at the nearest edge of each feature's fitted range) and the

@@ -6,13 +6,14 @@ it; it imports none of them.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ..arguments import choice
+from ..arguments import torque_Nm as check_torque_Nm
 from ..clearance import SweepResult
 from ..errors import ArgumentError, SpecError
 from ..geometry import FLANKS
@@ -23,25 +24,17 @@ from .springs import cantilever, tooth_compliance
 
 def resolve_torque_Nm(spec: CouplingSpec, torque_Nm: float | None) -> float:
     """The torque to apply: the argument, else ``[load] torque_Nm``; finite or SpecError."""
-    t = spec.load.torque_Nm if torque_Nm is None else torque_Nm
-    if t is None:
+    if torque_Nm is not None:
+        return check_torque_Nm(torque_Nm)  # one range for every entry point
+    if spec.load.torque_Nm is None:
         raise SpecError("load.torque_Nm", None, "no torque: give [load] torque_Nm (or "
                         "torque_lbf_in) in the spec or torque_Nm= / --torque")
-    try:
-        t = float(t)
-    except (TypeError, ValueError) as err:
-        raise ArgumentError(f"torque_Nm = {t!r}: must be a number (N·m)") from err
-    if not math.isfinite(t):
-        raise ArgumentError(f"torque_Nm = {t!r}: must be a finite torque in N·m")
-    return t
+    return spec.load.torque_Nm  # checked by LoadSpec against the same range
 
 
 def resolve_model(spec: CouplingSpec, model: str | None) -> str:
     """The model name: the argument, else ``[load] model``; one of :data:`LOAD_MODELS`."""
-    m = spec.load.model if model is None else model
-    if m not in LOAD_MODELS:
-        raise ArgumentError(f"model = {m!r}: must be one of {', '.join(LOAD_MODELS)}")
-    return m
+    return spec.load.model if model is None else choice(model, "model", LOAD_MODELS)
 
 
 def loaded_gaps(sweep_result: SweepResult, flank: int,

@@ -17,10 +17,12 @@ from dataclasses import asdict, dataclass
 import numpy as np
 from scipy.optimize import brentq
 
+from ..arguments import TORQUE_RANGE_NM, choice, real
 from ..clearance import sweep
 from ..errors import ArgumentError
 from ..fea import FESectorResult, fe_contact_sector
-from ..spec import CouplingSpec
+from ..loadspec import LOAD_MODELS
+from ..spec import CouplingSpec, as_spec, check_misalignment_deg
 from .api import load, load_from_sweep
 from .body import body_windup_rad
 from .inputs import resolve_torque_Nm
@@ -70,12 +72,18 @@ def sector_check(spec: CouplingSpec, misalignment_deg: float, *, rotation_deg: f
     workdir : path, optional
         Keep the solver's deck, log and printout here.
     """
+    spec = as_spec(spec)
     lo = 2 * CUT_DISTANCE_PITCHES + 1
-    if not (isinstance(sector, int) and lo <= sector < spec.tooth.teeth):
+    if isinstance(sector, bool) or not (isinstance(sector, int)
+                                        and lo <= sector < spec.tooth.teeth):
         raise ArgumentError("sector", sector, f"a whole number of teeth from {lo} (teeth "
                             f"{CUT_DISTANCE_PITCHES} pitches from a cut) to "
                             f"{spec.tooth.teeth - 1}")
     T = resolve_torque_Nm(spec, torque_Nm)
+    check_misalignment_deg(misalignment_deg, error=ArgumentError)
+    real(rotation_deg, "rotation_deg", unit="degrees")
+    if model is not None:
+        choice(model, "model", LOAD_MODELS)
     if not T > 0:
         raise ArgumentError("torque_Nm", T, "a torque above 0 N·m: unloaded, nothing touches")
     res = load(spec, misalignment_deg, [rotation_deg], torque_Nm=T, model=model)
@@ -112,18 +120,21 @@ def loads_at_windup(spec: CouplingSpec, misalignment_deg: float, rotation_deg: f
         res = load_from_sweep(sw, torque_Nm=T, model=model)
         return float(res.windup_rad[0]) + body_windup_rad(spec, T)["body_rad"] - windup_rad
 
-    lo = hi = abs(spec.load.torque_Nm or 1000.0)
+    t_min, t_max = TORQUE_RANGE_NM
+    lo = hi = min(max(abs(spec.load.torque_Nm or 1000.0), t_min), t_max)
     f_lo = f_hi = excess(lo)
-    for _ in range(60):  # bracket the root by halving and doubling (2^60: any torque)
+    while f_lo > 0 or f_hi < 0:  # bracket the root by halving and doubling, within the range
         if f_lo > 0:
-            lo /= 2.0
+            if lo == t_min:
+                raise ArgumentError("windup_rad", windup_rad, "a turn beyond the pose's first "
+                                    f"touch (reached at {t_min:g} N·m)")
+            lo = max(lo / 2.0, t_min)
             f_lo = excess(lo)
-        elif f_hi < 0:
-            hi *= 2.0
-            f_hi = excess(hi)
         else:
-            break
-    else:
-        raise ArgumentError("windup_rad", windup_rad, "a turn beyond the pose's first touch")
+            if hi == t_max:
+                raise ArgumentError("windup_rad", windup_rad, f"a turn reached below "
+                                    f"{t_max:g} N·m")
+            hi = min(hi * 2.0, t_max)
+            f_hi = excess(hi)
     T = float(brentq(excess, lo, hi, rtol=rtol)) if lo < hi else lo
     return T, load_from_sweep(sw, torque_Nm=T, model=model).tangential_force_N[:, 0]

@@ -43,8 +43,10 @@ def load_studies(spec: CouplingSpec, torque_Nm: float, model: str | None, out: P
     ``progress(done, total)`` after each misalignment."""
     mis = study_misalignments(spec)
     torques = [0.5 * torque_Nm, torque_Nm, 2.0 * torque_Nm]
-    peak: dict[str, list[float]] = {f"T = {t:.4g} N·m": [] for t in torques}
-    moment: dict[str, list[float]] = {f"T = {t:.4g} N·m": [] for t in torques}
+    # one curve per factor, also where the torques coincide (0 N·m: three flat curves)
+    labels = [f"{f} = {t:.4g} N·m" for f, t in zip(("T/2", "T", "2T"), torques, strict=True)]
+    peak: dict[str, list[float]] = {k: [] for k in labels}
+    moment: dict[str, list[float]] = {k: [] for k in labels}
     q_pts: list[tuple[float, float]] = []
     ld = spec.load
     m = resolve_model(spec, model)

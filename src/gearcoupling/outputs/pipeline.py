@@ -22,7 +22,7 @@ from ..errors import ArgumentError, BackendError
 from ..interference import check_interference
 from ..io import output_folder, remove_stale_temporaries, write_json
 from ..plots import plot_sections
-from ..spec import CouplingSpec
+from ..spec import CouplingSpec, as_spec
 from ..viewer import write_html
 from .interference import write_interference
 from .load import write_load
@@ -108,13 +108,24 @@ def _timed(key: str, spec: CouplingSpec, out: Path, state: dict[str, Any] | None
 
 
 def _chosen(only: Iterable[str] | None, skip: Iterable[str]) -> list[str]:
-    only_set = set(STEPS) if only is None else set(only)
-    skip_set = set(skip)
+    only_set = set(STEPS) if only is None else _names(only, "only")
+    skip_set = _names(skip, "skip")
     unknown = (only_set | skip_set) - set(STEPS)
     if unknown:
         raise ArgumentError(f"steps {', '.join(sorted(unknown))} unknown: the steps are "
                             f"{', '.join(STEPS)}")
     return [k for k in STEPS if k in only_set - skip_set]
+
+
+def _names(value: Any, name: str) -> set[str]:
+    """Step names given as a list (not one string: ``"spec"`` would be four letters)."""
+    try:
+        names = None if isinstance(value, str | bytes) else list(value)
+    except TypeError:
+        names = None
+    if names is None or not all(isinstance(k, str) for k in names):
+        raise ArgumentError(name, value, f"a list of step names from {', '.join(STEPS)}")
+    return set(names)
 
 
 def _can_fork() -> bool:
@@ -128,7 +139,7 @@ def _chain_worker(keys: list[str], spec: CouplingSpec, out: Path, conn) -> None:
     """A forked worker: run the steps ``keys`` in order, sending each ``_timed`` result (or
     the error that stopped the chain) to the parent. It dies with its parent and leaves
     signals to it: the parent stops the workers and cleans up (:func:`_run_forked`)."""
-    die_with_parent()
+    _die_with_parent()
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C reaches the whole group
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
     state: dict[str, Any] = {}
@@ -144,7 +155,7 @@ def _chain_worker(keys: list[str], spec: CouplingSpec, out: Path, conn) -> None:
         conn.close()
 
 
-def die_with_parent() -> None:
+def _die_with_parent() -> None:
     """Ask Linux to kill this process when its parent ends, however it ends (a no-op
     elsewhere): a worker never outlives the process that started it."""
     try:
@@ -229,6 +240,7 @@ def run(spec: CouplingSpec, out: str | os.PathLike, *, only: Iterable[str] | Non
     >>> [p.name for p in res.files]
     ['spec.json', 'run_summary.json']
     """
+    spec = as_spec(spec)
     output_folder(out, "out", create=False)
     keys = _chosen(only, skip)
     if workers is None:

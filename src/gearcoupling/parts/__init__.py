@@ -1,4 +1,5 @@
-"""Watertight hub and sleeve solids as triangle meshes at a chosen chordal tolerance.
+"""Watertight hub and sleeve solids as triangle meshes at a chosen chordal tolerance, and
+as exact OpenCASCADE solids (:func:`part_solid`, the ``step`` extra).
 
 :func:`build_part` returns a :class:`trimesh.Trimesh` whose ``face_attributes`` hold the
 surface kind (``"kind"``, codes into :data:`SURFACE_KINDS`) and the tooth index
@@ -12,18 +13,23 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ..arguments import choice, is_real
 from ..errors import ArgumentError, GeometryError
 from ..geometry import PARTS
-from ..spec import CouplingSpec
+from ..spec import CouplingSpec, as_spec
 from .builder import SURFACE_KINDS, MeshBuilder, Run, tile, tooth_runs
 from .deviation import measure_deviation
 from .hub import build_hub_run, hub_layout
 from .sleeve import build_sleeve_run, sleeve_layout
+from .solid import hub_solid, part_solid, shape_volume, sleeve_solid
 from .validity import PartCheck, check_part
+
+if TYPE_CHECKING:
+    import trimesh
 
 # part -> (layout(spec, tol), add_run(builder, layout, run))
 _BUILDERS: dict[str, tuple[Callable[..., Any], Callable[..., None]]] = {
@@ -38,10 +44,9 @@ def default_tolerance(spec: CouplingSpec) -> float:
 def check_tolerance(spec: CouplingSpec, tolerance_mm) -> float:
     """The tolerance as a float, or :class:`SpecError` (a ``ValueError``) naming the range."""
     tol = default_tolerance(spec) if tolerance_mm is None else tolerance_mm
-    try:
-        tol = float(tol)
-    except (TypeError, ValueError) as err:
-        raise ArgumentError("tolerance_mm", tolerance_mm, "must be a number (mm)") from err
+    if not is_real(tol):
+        raise ArgumentError("tolerance_mm", tolerance_mm, "must be a number (mm)")
+    tol = float(tol)
     lo, hi = spec.tooth.module * 1e-5, spec.tooth.module * 0.1
     if not (math.isfinite(tol) and lo <= tol <= hi):
         raise ArgumentError("tolerance_mm", tolerance_mm, f"must be from {lo:.3g} to {hi:.3g} mm "
@@ -49,7 +54,8 @@ def check_tolerance(spec: CouplingSpec, tolerance_mm) -> float:
     return tol
 
 
-def build_part(spec: CouplingSpec, part: str, tolerance_mm: float | None = None, teeth=None):
+def build_part(spec: CouplingSpec, part: str, tolerance_mm: float | None = None,
+               teeth=None) -> trimesh.Trimesh:
     """Closed triangle mesh of the hub or the sleeve within a chordal tolerance.
 
     Parameters
@@ -74,8 +80,8 @@ def build_part(spec: CouplingSpec, part: str, tolerance_mm: float | None = None,
     """
     import trimesh
 
-    if part not in PARTS:
-        raise ArgumentError(f"part = {part!r}: must be one of {PARTS}")
+    spec = as_spec(spec)
+    choice(part, "part", PARTS)
     tol = check_tolerance(spec, tolerance_mm)
     runs = tooth_runs(spec.tooth.teeth, teeth)
     t0 = time.perf_counter()
@@ -97,7 +103,6 @@ def build_part(spec: CouplingSpec, part: str, tolerance_mm: float | None = None,
     return mesh
 
 
-
 __all__ = [
     "PARTS",
     "SURFACE_KINDS",
@@ -108,8 +113,12 @@ __all__ = [
     "check_tolerance",
     "default_tolerance",
     "hub_layout",
+    "hub_solid",
     "measure_deviation",
+    "part_solid",
+    "shape_volume",
     "sleeve_layout",
+    "sleeve_solid",
     "tile",
     "tooth_runs",
 ]

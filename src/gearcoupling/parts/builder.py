@@ -9,7 +9,9 @@ carries a surface kind and a tooth index (``-1`` where no tooth owns it).
 
 from __future__ import annotations
 
+import itertools
 import math
+import numbers
 from dataclasses import dataclass
 
 import numpy as np
@@ -44,10 +46,14 @@ def tooth_runs(teeth: int, selection) -> list[Run]:
     """Split a tooth selection (``None`` = all) into cyclically contiguous runs."""
     if selection is None:
         return [Run(0, teeth, teeth)]
-    try:
-        sel = sorted({int(k) for k in selection})
-    except (TypeError, ValueError) as err:
-        raise ArgumentError(f"teeth = {selection!r}: must be tooth indices 0..{teeth - 1}") from err
+    allowed = f"a non-empty selection of whole tooth indices from 0 to {teeth - 1}"
+    if isinstance(selection, str | bytes) or not hasattr(selection, "__iter__"):
+        raise ArgumentError("teeth", str(selection)[:60], allowed)
+    picked = list(itertools.islice(selection, 2 * teeth + 1))  # an endless one is refused
+    if len(picked) > 2 * teeth or not all(
+            isinstance(k, numbers.Integral) and not isinstance(k, bool) for k in picked):
+        raise ArgumentError("teeth", str(picked)[:60], allowed)
+    sel = sorted({int(k) for k in picked})
     if not sel or sel[0] < 0 or sel[-1] >= teeth:
         raise ArgumentError(f"teeth = {list(selection)!r}: must be a non-empty selection of tooth "
                          f"indices from 0 to {teeth - 1}")

@@ -14,6 +14,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..errors import ArgumentError
+
 MAX_ANGLE_DEG = 178.0
 
 
@@ -92,6 +94,8 @@ def check_part(mesh, expected: int | None = None) -> PartCheck:
     import manifold3d
     import trimesh
 
+    if not (hasattr(mesh, "vertices") and hasattr(mesh, "faces")):
+        raise ArgumentError("mesh", str(mesh)[:60], "a trimesh.Trimesh (gearcoupling.build_part)")
     v = np.asarray(mesh.vertices, dtype=float)
     f = np.asarray(mesh.faces, dtype=np.int64)
     man = manifold3d.Manifold(manifold3d.Mesh64(vert_properties=v, tri_verts=f.astype(np.uint64)))

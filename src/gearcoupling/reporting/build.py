@@ -2,20 +2,23 @@
 
 from __future__ import annotations
 
+import contextlib
 import os
 import time
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any
 
 from .. import __version__
+from ..arguments import flag, keywords
+from ..browser import browser_backend
 from ..errors import ArgumentError
 from ..hob import check_hob_diameter
-from ..inspection import check_limits, grade_limits
+from ..inspection import check_limits, grade_limits, load_points
 from ..io import output_folder, require_file, write_text
-from ..spec import CouplingSpec
+from ..spec import CouplingSpec, as_spec
 from . import sections as sec
 from .datasheet import datasheet
 from .document import Note, Section, Table, render
@@ -94,13 +97,32 @@ def report(spec: CouplingSpec, out: str | os.PathLike, *, pdf: bool = False,
     -------
     ReportResult
     """
+    spec = as_spec(spec)
     output_folder(out, "out", create=False)
+    if settings is not None and not isinstance(settings, ReportSettings):
+        raise ArgumentError("settings", settings, "a ReportSettings")
+    keywords(options, [f.name for f in fields(ReportSettings)], "report")
+    flag(pdf, "pdf")
     s = settings if settings is not None else ReportSettings(**options)
     t0 = time.perf_counter()
     mis, torque, model = sec.resolve(spec, s)
-    _check_inputs(spec, s)
+    scan_points = _check_inputs(spec, s)
+    if pdf:
+        browser_backend()
+    created = not Path(out).exists()
     folder = output_folder(out, "out")
-    ctx = sec.Context(spec, s, folder, mis, torque, model)
+    ctx = sec.Context(spec, s, folder, mis, torque, model, scan_points=scan_points)
+    try:
+        return _build(ctx, pdf, progress, t0)
+    except BaseException:  # an error or an interruption: no partial report is left
+        _discard(ctx, created)
+        raise
+
+
+def _build(ctx: sec.Context, pdf: bool, progress: Callable[[int, int], None] | None,
+           t0: float) -> ReportResult:
+    spec, s, folder, mis, torque, model = (ctx.spec, ctx.settings, ctx.out,
+                                           ctx.misalignment_deg, ctx.torque_Nm, ctx.model)
     steps = _steps(s)
     total = len(steps) + 1 + (1 if pdf else 0)
     built: list[Section] = []
@@ -125,28 +147,48 @@ def report(spec: CouplingSpec, out: str | os.PathLike, *, pdf: bool = False,
     when = datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC")
     sub = (f"i = {mis:g}°, " + (f"T = {torque:.4g} N·m" if torque is not None else "no torque")
            + f", {model} load model · gearcoupling {__version__} · {when}")
+    ctx.files.append(html_path)
     write_text(html_path, render(title, sub, (cls, text), [head, *built]))
     if progress is not None:
         progress(len(steps) + 1, total)
     pdf_path = None
     if pdf:
+        ctx.files.append(folder / "report.pdf")
         pdf_path = print_pdf(html_path, folder / "report.pdf")
         if progress is not None:
             progress(total, total)
-    return ReportResult(html_path, pdf_path, tuple(ctx.files), cls, text, seconds,
+    data = tuple(p for p in ctx.files if p not in (html_path, pdf_path))
+    return ReportResult(html_path, pdf_path, data, cls, text, seconds,
                         time.perf_counter() - t0)
 
 
-def _check_inputs(spec: CouplingSpec, s: ReportSettings) -> None:
-    """Inputs that would fail late, checked before anything is computed: the scan file,
-    the inspection limits and class, the hob diameter."""
+def _discard(ctx: sec.Context, created: bool) -> None:
+    """Remove what this report wrote (its data folder and the folder itself when they are
+    left empty and were made now)."""
+    for path in ctx.files:
+        path.unlink(missing_ok=True)
+    for folder in (ctx.data_dir, *([ctx.out] if created else [])):
+        with contextlib.suppress(OSError):  # not empty: other files were there before
+            folder.rmdir()
+
+
+def _check_inputs(spec: CouplingSpec, s: ReportSettings):
+    """Inputs that would fail late, checked before anything is computed: the scan (read
+    and checked here; its points are returned), the inspection limits and class, the hob
+    diameter."""
+    points = None
     if s.scan is not None:
         require_file(s.scan, "scan", "a scan or mesh file (STL/PLY/OBJ, CSV/XYZ)", ArgumentError)
+        try:
+            points = load_points(Path(s.scan), s.scan_units)
+        except ArgumentError as err:
+            raise ArgumentError("scan", str(s.scan), getattr(err, "allowed", str(err))) from None
     if s.grade is not None:
         grade_limits(spec, s.grade)
     check_limits(s.limits)
     if s.hob_diameter_mm is not None:
         check_hob_diameter(spec, s.hob_diameter_mm)
+    return points
 
 
 def _verdicts(ctx: sec.Context):

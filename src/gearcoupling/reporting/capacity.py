@@ -9,10 +9,13 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ..arguments import MAXIMA, angle_list, choice
+from ..arguments import count as check_count
 from ..clearance import critical_misalignment_deg
 from ..errors import ArgumentError
 from ..loading import CapacityCurve, capacity_curve
-from ..spec import MISALIGNMENT_RANGE_DEG, CouplingSpec
+from ..loadspec import LOAD_MODELS
+from ..spec import MISALIGNMENT_RANGE_DEG, CouplingSpec, as_spec
 
 DEFAULT_COUNT = 25
 SMALLEST_TOP_DEG = 0.5
@@ -48,17 +51,25 @@ def compare_capacity(specs: Sequence[CouplingSpec], misalignments_deg: ArrayLike
                      *, model: str | None = None, count: int = DEFAULT_COUNT,
                      progress: Callable[[int, int], None] | None = None) -> CapacityComparison:
     """Capacity curves of ``specs`` over the same misalignments (default
-    :func:`comparison_range`); ``progress(done, total)`` after each point."""
-    if not specs:
-        raise ArgumentError("specs: give at least one spec")
-    auto, critical = comparison_range(specs, count)
-    mis = auto if misalignments_deg is None else np.sort(np.unique(np.asarray(
-        misalignments_deg, dtype=float)))
-    if mis.size < 1 or mis[0] < 0 or mis[-1] > MISALIGNMENT_RANGE_DEG[1]:
-        raise ArgumentError(f"misalignments_deg = {mis.tolist()}: values 0-6 degrees")
+    :func:`comparison_range`); ``progress(done, total)`` after each point. Every argument
+    is checked before any work: each spec a CouplingSpec, template name or TOML path, each
+    with its own name."""
+    if isinstance(specs, str | bytes) or not isinstance(specs, Sequence) or not specs:
+        raise ArgumentError("specs", specs, "a non-empty list of specs (CouplingSpec, "
+                            "template names or TOML paths)")
+    specs = [as_spec(s, "specs") for s in specs]
     names = [s.name for s in specs]
     if len(set(names)) < len(names):
-        raise ArgumentError(f"specs {names}: each compared spec needs its own name")
+        raise ArgumentError("specs", names, "each compared spec needs its own name (a spec "
+                            "compared with itself is the same curve)")
+    check_count(count, "count", 2, MAXIMA["misalignments"])
+    if model is not None:
+        choice(model, "model", LOAD_MODELS)
+    lo, hi = MISALIGNMENT_RANGE_DEG
+    given = None if misalignments_deg is None else np.unique(angle_list(
+        misalignments_deg, "misalignments_deg", lo=lo, hi=hi, most=MAXIMA["misalignments"]))
+    auto, critical = comparison_range(specs, count)
+    mis = auto if given is None else given
     total = len(specs) * mis.size
     curves = {}
     for k, spec in enumerate(specs):

@@ -1,69 +1,50 @@
 """Print the report to PDF through headless chromium (playwright, Debian's chromium).
 
-The page is opened from disk; once the embedded 3D view has drawn (software WebGL: seconds
-to tens of seconds), its picture replaces the interactive view for print, then chromium
-prints A4 pages with the section headings as the PDF outline. Never downloads a browser.
+The page is opened from disk with WebGL off: the embedded 3D view's still picture (drawn
+once when the report was written, :mod:`gearcoupling.viewer.still`) replaces the
+interactive view for print, so nothing waits for software WebGL. Chromium prints A4
+pages with the section headings as the PDF outline. Never downloads a browser.
 """
 
 from __future__ import annotations
 
-import base64
-import contextlib
-import io
-import time
 from pathlib import Path
 from typing import Any, cast
 
-import numpy as np
-
+from ..browser import chromium
 from ..io import atomic_path
-from ..viewer import chromium
 
 VIEWPORT = {"width": 1240, "height": 900}
-RENDER_TIMEOUT_S = 90.0
+NO_WEBGL = """(() => {
+    const getContext = HTMLCanvasElement.prototype.getContext;
+    HTMLCanvasElement.prototype.getContext = function (type, attrs) {
+        return /webgl/.test(type) ? null : getContext.call(this, type, attrs);
+    };
+})();"""
+"""Page script that leaves the page without WebGL (in every frame)."""
 
 
-def drawn_fraction(png: bytes) -> float:
-    """Share of the picture's pixels that differ from its corner pixel (the background)."""
-    from PIL import Image
-
-    img = np.asarray(Image.open(io.BytesIO(png)).convert("RGB"), dtype=np.int16)
-    return float(np.mean(np.abs(img - img[-1, 0]).max(axis=-1) > 40))
-
-
-def viewer_picture(page, timeout_s: float = RENDER_TIMEOUT_S) -> bytes | None:
-    """A screenshot of the embedded 3D view once it has drawn and settled (two shots in a
-    row alike), or None when there is no view or it does not draw within ``timeout_s``."""
-    frame = page.locator(".viewer iframe")
-    if frame.count() == 0:
+def still_picture(page) -> str | None:
+    """The ``data:`` URL of the embedded 3D view's still picture, or None without a view."""
+    if page.locator(".viewer iframe").count() == 0:
         return None
-    frame.first.scroll_into_view_if_needed()
-    notes = page.frame_locator(".viewer iframe").locator(".mantine-Notification-closeButton")
-    t0, last = time.perf_counter(), None
-    while time.perf_counter() - t0 < timeout_s:
-        for i in range(notes.count()):  # viser's "software WebGL" notice covers the view
-            with contextlib.suppress(Exception):
-                notes.nth(i).click(timeout=1000)
-        shot = frame.first.screenshot()
-        if drawn_fraction(shot) > 0.05 and last is not None and shot == last:
-            return shot
-        last = shot
-        time.sleep(1.0)
-    return None
+    still = page.frame_locator(".viewer iframe").first.locator("#gc-still")
+    still.wait_for(state="attached")
+    return still.get_attribute("src")
 
 
-def print_pdf(html_path: Path, pdf_path: Path, *, timeout_s: float = RENDER_TIMEOUT_S) -> Path:
+def print_pdf(html_path: Path, pdf_path: Path) -> Path:
     """Print ``html_path`` (a report) to ``pdf_path`` atomically; returns the path."""
     with chromium() as browser:
         page = cast(Any, browser).new_page(viewport=VIEWPORT)
         try:
+            page.add_init_script(NO_WEBGL)
             page.goto(Path(html_path).resolve().as_uri(), wait_until="load")
-            shot = viewer_picture(page, timeout_s)
-            if shot is not None:
-                src = "data:image/png;base64," + base64.b64encode(shot).decode("ascii")
+            src = still_picture(page)
+            if src is not None:
                 page.evaluate("""src => {
                     for (const p of document.querySelectorAll('.viewer .print-only')) {
-                        p.textContent = 'The 3D view as drawn in the HTML report:';
+                        p.textContent = 'The 3D view of the HTML report:';
                         const img = document.createElement('img');
                         img.src = src; img.style.maxWidth = '100%';
                         p.after(img); img.className = 'print-only';

@@ -72,6 +72,7 @@ class Context:
     model: str
     files: list[Path] = field(default_factory=list)
     found: dict[str, Any] = field(default_factory=dict)
+    scan_points: Any = None  # the scan's (n, 3) points in mm, read before any work
 
     @property
     def data_dir(self) -> Path:
@@ -462,11 +463,12 @@ def manufacturing(ctx: Context) -> Section:
 def measured(ctx: Context) -> Section:
     spec, s = ctx.spec, ctx.settings
     sec = Section("measured", "Measured part against the nominal")
-    rep = compare_part(spec, s.scan, units=s.scan_units, limits=s.limits, grade=s.grade,
-                       fit_points=s.fit_points)
+    scan = s.scan if ctx.scan_points is None else ctx.scan_points
+    rep = compare_part(spec, scan, units="mm" if ctx.scan_points is not None else s.scan_units,
+                       limits=s.limits, grade=s.grade, fit_points=s.fit_points)
     ctx.found["inspection"] = rep
     part = rep.part
-    rows = [("source", Path(str(rep.source)).name), ("points", rep.points),
+    rows = [("source", Path(str(s.scan)).name), ("points", rep.points),
             ("teeth measured", part["teeth_measured"]),
             ("registration rms", f"{rep.registration.rms_mm * 1e3:.2f} µm"),
             ("runout datum", part["runout_datum"])]

@@ -3,13 +3,15 @@
 
 from __future__ import annotations
 
-import math
 import os
 from dataclasses import asdict, dataclass, field
 from typing import Any
 
+from ..arguments import choice, count, flag, positive, real, torque_Nm
 from ..errors import ArgumentError
+from ..io import as_path
 from ..loadspec import LOAD_MODELS
+from ..spec import check_misalignment_deg
 
 # (smallest, largest) of each count: enough to draw, small enough to stay interactive
 KNOB_RANGES = {"angles": (8, 3600), "capacity_count": (2, 200), "check_angles": (1, 720),
@@ -74,17 +76,24 @@ class ReportSettings:
 
     def __post_init__(self):
         for name, (lo, hi) in KNOB_RANGES.items():
-            v = getattr(self, name)
-            if isinstance(v, bool) or not isinstance(v, int) or not lo <= v <= hi:
-                raise ArgumentError(f"{name} = {v!r}: must be a whole number from {lo} to {hi}")
-        t = self.tolerance_mm
-        if not (isinstance(t, int | float) and math.isfinite(t) and 1e-9 <= t <= 1e-3):
-            raise ArgumentError(f"tolerance_mm = {t!r}: must be from 1e-9 to 1e-3 mm")
-        if self.model is not None and self.model not in LOAD_MODELS:
-            raise ArgumentError(f"model = {self.model!r}: must be one of {', '.join(LOAD_MODELS)}")
-        if self.torque_Nm is not None and not (isinstance(self.torque_Nm, int | float)
-                                               and math.isfinite(self.torque_Nm)):
-            raise ArgumentError(f"torque_Nm = {self.torque_Nm!r}: must be a finite torque in N·m")
+            count(getattr(self, name), name, lo, hi)
+        real(self.tolerance_mm, "tolerance_mm", 1e-9, 1e-3, unit="mm")
+        if self.misalignment_deg is not None:
+            check_misalignment_deg(self.misalignment_deg, "misalignment_deg", ArgumentError)
+        if self.model is not None:
+            choice(self.model, "model", LOAD_MODELS)
+        if self.torque_Nm is not None:
+            torque_Nm(self.torque_Nm)
+        if self.hob_diameter_mm is not None:
+            positive(self.hob_diameter_mm, "hob_diameter_mm")
+        if self.scan is not None:
+            as_path(self.scan, "scan")
+        choice(self.scan_units, "scan_units", ("mm", "in", "m"))
+        if self.grade is not None:
+            count(self.grade, "grade", 1, 11)
+        if not isinstance(self.limits, dict):
+            raise ArgumentError("limits", self.limits, "a dict of limit name -> mm")
+        flag(self.viewer, "viewer")
 
     def as_dict(self) -> dict[str, Any]:
         """Plain data for the report's settings table."""

@@ -14,10 +14,11 @@ from .optimise import (
     write_rows,
 )
 from .plots import plot_k_histogram, study_plots
-from .runner import StudyRun, chunks, read_table, run_study
+from .runner import MAX_WORKERS, StudyRun, chunks, read_table, run_study, scheduler_address
 from .tolerance import summarise_rows
 
 __all__ = [
+    "MAX_WORKERS",
     "Parameter",
     "Study",
     "StudyRun",
@@ -32,6 +33,7 @@ __all__ = [
     "read_table",
     "run_study",
     "samples",
+    "scheduler_address",
     "spec_hash",
     "study_names",
     "study_plots",

@@ -48,10 +48,24 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from ..arguments import (
+    ANGLE_TOLERANCE_RANGE_DEG,
+    MAXIMA,
+    count,
+    real,
+    sweep_tolerance_mm,
+    torque_Nm,
+)
 from ..errors import SpecError
-from ..io import Table, bundled_names, line_of, resolve_bundled, set_dotted
+from ..io import Table, as_path, bundled_names, line_of, resolve_bundled, set_dotted
 from ..loadspec import UNIT_SIBLINGS
-from ..spec import MISALIGNMENT_RANGE_DEG, CouplingSpec, resolve_spec_path, spec_from_dict
+from ..spec import (
+    MISALIGNMENT_RANGE_DEG,
+    CouplingSpec,
+    check_misalignment_deg,
+    resolve_spec_path,
+    spec_from_dict,
+)
 from .tolerance import MODELS, PATHS, Tolerances
 
 METHODS = ("grid", "random", "lhs")
@@ -66,7 +80,7 @@ TOLERANCE_KEYS = ("index_sd_mm", "pitch_sd_mm", "hub_runout_mm", "sleeve_runout_
                   "thickness_sd_mm", "crown_sd_mm")
 LIMIT_KEYS = ("index_mm", "pitch_mm", "thickness_mm", "crown_mm")
 ACCURACY = {"tolerance_mm": 1e-7, "angle_tolerance_deg": 1e-4, "steps": 16, "load_angles": 72}
-MAX_SAMPLES = 10_000_000
+MAX_SAMPLES = MAXIMA["samples"]
 OBJECTIVES = ("mean", "min")  # of a crown optimisation
 
 
@@ -81,6 +95,10 @@ class Parameter:
     high: float | None = None
     steps: int | None = None
     integer: bool = False
+
+    def count(self) -> int:
+        """How many grid values :meth:`grid` gives (without making them)."""
+        return len(self.values) if self.values else (self.steps or 1)
 
     def grid(self) -> tuple[Any, ...]:
         """The grid values: ``values`` or ``steps`` evenly spaced over the range."""
@@ -176,8 +194,8 @@ def _parameter(entry: Any, index: int, text: str, path: str) -> Parameter:
         r.fail(where, rng, "range must be [low, high], two finite numbers", line)
     if not rng[0] < rng[1]:
         r.fail(where, rng, "empty range: low must be below high", line)
-    if steps is not None and steps < 1:
-        r.fail(where, steps, "steps must be at least 1", line)
+    if steps is not None and not 1 <= steps <= MAX_SAMPLES:
+        r.fail(where, steps, f"steps must be from 1 to {MAX_SAMPLES}", line)
     integer = all(isinstance(v, int) for v in rng)
     return Parameter(key, line, low=float(rng[0]), high=float(rng[1]), steps=steps,
                      integer=integer)
@@ -196,10 +214,8 @@ def _check_values(p: Parameter, study_path: str, base_name: str, base_text: str,
                 raise SpecError(f"{study_path}:{p.line} vary '{p.key}'", value,
                                 f"misalignment must be {lo}-{hi} degrees")
             continue
-        if p.key == "torque_Nm":
-            if not (isinstance(value, int | float) and math.isfinite(value)):
-                raise SpecError(f"{study_path}:{p.line} vary '{p.key}'", value,
-                                "torque must be a finite number of N m")
+        if p.key == "torque_Nm":  # the range of every entry point
+            torque_Nm(value, f"{study_path}:{p.line} vary '{p.key}'", error=SpecError)
             continue
         try:
             build_spec(base_name, base_text, {**fixed, p.key: value})
@@ -210,6 +226,7 @@ def _check_values(p: Parameter, study_path: str, base_name: str, base_text: str,
 
 def load_study(path: str | Path) -> Study:
     """Parse and validate a study file (a path, or the name of a bundled study)."""
+    as_path(path, "path")
     p = resolve_study_path(path)
     text = p.read_text()
     src = str(p)
@@ -244,15 +261,24 @@ def load_study(path: str | Path) -> Study:
     cond_r = Table(root.get("conditions", dict, {}), "conditions", source=src, text=text)
     conditions: dict[str, Any] = {k: cond_r.get(k, float) for k in CONDITIONS
                                   if k in cond_r.data}
+    where = f"{src}:{line_of(text, '[conditions]')} conditions"
+    if "torque_Nm" in conditions:  # the range of every entry point
+        torque_Nm(conditions["torque_Nm"], f"{where}.torque_Nm", error=SpecError)
+    if "misalignment_deg" in conditions:
+        check_misalignment_deg(conditions["misalignment_deg"], f"{where}.misalignment_deg")
     if "load_model" in cond_r.data:
         conditions["load_model"] = cond_r.get("load_model", str)
     cond_r.done()
     acc_r = Table(root.get("accuracy", dict, {}), "accuracy", source=src, text=text)
     accuracy = {k: acc_r.get(k, type(v), v) for k, v in ACCURACY.items()}
     acc_r.done()
+    limits = {"tolerance_mm": lambda v, f: sweep_tolerance_mm(v, f, SpecError),
+              "angle_tolerance_deg": lambda v, f: real(v, f, *ANGLE_TOLERANCE_RANGE_DEG,
+                                                       unit="degrees", error=SpecError),
+              "steps": lambda v, f: count(v, f, 1, MAXIMA["steps"], error=SpecError),
+              "load_angles": lambda v, f: count(v, f, 1, MAXIMA["angles"], error=SpecError)}
     for k, v in accuracy.items():
-        if not v > 0:
-            acc_r.fail(f"accuracy.{k}", v, "must be > 0")
+        limits[k](v, f"{src}:{line_of(text, k)} accuracy.{k}")
     params = tuple(_parameter(e, k, text, src) for k, e in enumerate(root.get("vary", list, [])))
     plots = tuple(root.get("plot", list, []))
     optimise = root.get("optimise", dict)
@@ -276,8 +302,9 @@ def load_study(path: str | Path) -> Study:
     for q in params:
         _check_values(q, src, base_path.stem, base_text, fixed)
     if method != "grid":
-        if samples < 1:
-            s.fail("study.samples", samples, f"method '{method}' needs samples >= 1")
+        if not 1 <= samples <= MAX_SAMPLES:
+            s.fail("study.samples", samples, f"method '{method}' needs samples from 1 to "
+                   f"{MAX_SAMPLES}")
         for q in params:
             if q.steps is not None:
                 raise SpecError(f"{src}:{q.line} vary '{q.key}'", q.steps,
@@ -347,8 +374,9 @@ def _tolerances(r: Table) -> dict[str, Any]:
         r.fail("tolerances.path", path, f"one of {PATHS}")
     if model not in MODELS:
         r.fail("tolerances.model", model, f"one of {MODELS}")
-    if draws < 1 or not precision > 0:
-        r.fail("tolerances.draws", (draws, precision), "draws >= 1 and precision > 0")
+    if not 1 <= draws <= MAX_SAMPLES or not precision > 0:
+        r.fail("tolerances.draws", (draws, precision), f"draws from 1 to {MAX_SAMPLES} and "
+               "precision > 0")
     for key in limits:
         if key.replace("_mm", "_sd_mm") in values:
             r.fail(f"tolerances.{key}", limits[key], "give a limit or a standard deviation")
@@ -367,7 +395,7 @@ def sample_count(study: Study) -> int:
     draws = study.tolerances["draws"] if study.tolerances else 1
     if study.method != "grid":
         return study.samples * draws
-    return math.prod(len(q.grid()) for q in study.parameters) * draws
+    return math.prod(q.count() for q in study.parameters) * draws
 
 
 def samples(study: Study) -> list[dict[str, Any]]:

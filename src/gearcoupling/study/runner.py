@@ -11,6 +11,7 @@ from __future__ import annotations
 import json
 import logging
 import os
+import re
 import signal
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
@@ -18,6 +19,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from ..arguments import count, flag, real
 from ..errors import ArgumentError, BackendError
 from ..io import atomic_path, output_folder, write_json
 from ..tables import import_pandas
@@ -92,35 +94,54 @@ def _write_part(rows: list[dict[str, Any]], names: list[str], path: Path) -> Non
         pq.write_table(table, tmp)
 
 
+def _check_manifest(study: Study, out: Path, fresh: bool) -> None:
+    """Refuse a folder holding the parts of another study (unless ``fresh``)."""
+    path = out / "study_manifest.json"
+    if path.is_file() and not fresh:
+        try:
+            old = json.loads(path.read_text())
+        except (OSError, ValueError):
+            old = {}
+        if not isinstance(old, dict) or old.get("digest") != study.digest():
+            raise ArgumentError("output", str(out), "holds the parts of another study (its file "
+                            "changed); use a new --output folder or --fresh")
+
+
 def _manifest(study: Study, out: Path, fresh: bool) -> None:
     path = out / "study_manifest.json"
     data = {"study": study.name, "source": study.source, "digest": study.digest(),
             "samples": sample_count(study), "chunk": study.chunk}
-    if path.is_file() and not fresh:
-        old = json.loads(path.read_text())
-        if old.get("digest") != data["digest"]:
-            raise ArgumentError("output", str(out), "holds the parts of another study (its file "
-                            "changed); use a new --output folder or --fresh")
     if (out / "parts").is_dir():  # temporaries of a killed run; with --fresh every part
         for part in (out / "parts").glob("*chunk-*.parquet" if fresh else ".chunk-*"):
             part.unlink()
     write_json(path, data)
 
 
+MAX_WORKERS = 256
+_ADDRESS = re.compile(r"(?:(?:tcp|tls)://)?(?:\[[0-9A-Fa-f:.]+\]|[A-Za-z0-9._-]+):[0-9]{1,5}")
+
+
+def scheduler_address(text: object, field: str = "scheduler") -> str:
+    """A dask scheduler address ``tcp://HOST:PORT`` (or ``tls://``, or ``HOST:PORT``)."""
+    if not (isinstance(text, str) and _ADDRESS.fullmatch(text)
+            and 1 <= int(text.rsplit(":", 1)[1]) <= 65535):
+        raise ArgumentError(field, text, "a dask scheduler address tcp://HOST:PORT, "
+                            "e.g. tcp://127.0.0.1:8786")
+    return text
+
+
 def connect(scheduler: str | None, workers: int | None, timeout_s: float = CONNECT_TIMEOUT_S):
     """A dask Client: to ``scheduler`` (``tcp://HOST:PORT``) or a new LocalCluster with
     ``workers`` single-threaded worker processes (default: one per core)."""
     distributed = _distributed()
-    if scheduler:
+    if scheduler is not None:
         try:
             return distributed.Client(scheduler, timeout=timeout_s)
-        except (OSError, TimeoutError) as err:
+        except (OSError, TimeoutError, ValueError) as err:
             raise BackendError(f"cannot reach the dask scheduler at {scheduler} within "
                                f"{timeout_s:g} s ({type(err).__name__}); start one with "
                                "'dask scheduler' or drop --scheduler") from err
     n = workers or os.cpu_count() or 1
-    if n < 1:
-        raise ArgumentError("--workers", workers, "must be at least 1")
     # ":0": the scheduler's HTTP server on a free port (8787 may belong to another cluster);
     # critical logs only: a failed sample is a row's "error" and a lost worker an exception
     # here, while the cluster's teardown after an interruption logs warnings and errors
@@ -164,22 +185,33 @@ def run_study(study: Study, out: str | Path, *, scheduler: str | None = None,
     ``progress(done, total)`` counts chunks, those finished by an earlier run first (called
     once with them before any new one). ``client`` reuses a dask Client.
     """
+    if not isinstance(study, Study):
+        raise ArgumentError("study", study, "a Study (gearcoupling.load_study)")
+    output_folder(out, "out", create=False)
+    if workers is not None:
+        count(workers, "workers", 1, MAX_WORKERS)
+    if scheduler is not None:
+        scheduler_address(scheduler)
+    real(connect_timeout_s, "connect_timeout_s", 0.0, 3600.0, open_lo=True, unit="s")
+    flag(fresh, "fresh")
     out = output_folder(out, "out")
-    _manifest(study, out, fresh)
+    _check_manifest(study, out, fresh)
     names = columns(study)
     groups = chunks(study)
-    todo = [c for c in range(len(groups)) if not _part_path(out, c).is_file()]
+    todo = [c for c in range(len(groups)) if fresh or not _part_path(out, c).is_file()]
     skipped = len(groups) - len(todo)
-    if progress is not None:
-        progress(skipped, len(groups))
-    if todo:
-        own = client is None
-        client = client or connect(scheduler, workers, connect_timeout_s)
-        try:
+    own = client is None and bool(todo)
+    if own:  # before anything is written: a scheduler that cannot be reached leaves nothing
+        client = connect(scheduler, workers, connect_timeout_s)
+    try:
+        _manifest(study, out, fresh)
+        if progress is not None:
+            progress(skipped, len(groups))
+        if todo:
             _compute(client, study, groups, todo, out, names, progress, skipped)
-        finally:
-            if own:
-                _close(client, scheduler is None)
+    finally:
+        if own:
+            _close(client, scheduler is None)
     return _merge(out, names, len(groups), skipped)
 
 

@@ -7,7 +7,6 @@ viser is imported only when a server is made and is an optional extra
 (``pip install 'gearcoupling[viewer]'``).
 """
 
-from .browser import chromium
 from .html import write_html
 from .nodes import FRAMES, ViewSettings
 from .scene import (
@@ -20,7 +19,7 @@ from .scene import (
     lod_tolerance,
     pose_state,
 )
-from .server import exposure_warning, serve
+from .server import ViewerApp, exposure_warning, serve
 
 __all__ = [
     "COLOR_MODES",
@@ -29,9 +28,9 @@ __all__ = [
     "LOD_DIVISORS",
     "PoseState",
     "ViewSettings",
+    "ViewerApp",
     "build_scene_meshes",
     "check_pose",
-    "chromium",
     "exposure_warning",
     "lod_tolerance",
     "pose_state",

@@ -25,13 +25,18 @@ import numpy as np
 
 from ..errors import ArgumentError, BackendError
 from ..geometry import FLANKS, rot_z
+from ..loading import LoadResult, load
 from ..spec import CouplingSpec
 from .scene import (
     COLOR_MODES,
     CUTAWAYS,
+    INTERFERENCE_RGB,
+    VIEW_SWEEP_TOLERANCE_MM,
+    Patch,
     PoseState,
     SceneMeshes,
     build_scene_meshes,
+    check_pose,
     default_color_scale_mm,
     flank_colors,
     hub_rotation,
@@ -92,6 +97,14 @@ class ViewSettings:
                 raise ArgumentError(f"{name} = {v!r}: must be from 0 to 1")
 
 
+def pose_loads(spec: CouplingSpec, misalignment_deg: float, psi_deg: float) -> LoadResult:
+    """The loads the pressure colours show: :func:`gearcoupling.load` at the pose and the
+    spec's torque with the ``surface`` model (about a second), on the viewer's sweep
+    accuracy."""
+    return load(spec, misalignment_deg, [psi_deg], model="surface",
+                tolerance_mm=VIEW_SWEEP_TOLERANCE_MM)
+
+
 class CouplingScene:
     """Hub and sleeve of one spec as viser scene nodes.
 
@@ -115,6 +128,7 @@ class CouplingScene:
         self.settings = settings
         self.state: PoseState | None = None
         self.interference_volume_mm3 = 0.0
+        self.interference_patch: Patch | None = None  # sleeve frame
         self._interference = None
         self._flanks: list[list] = [[], []]
         self._legend_in_scene = legend_in_scene
@@ -183,14 +197,14 @@ class CouplingScene:
             opacity=_opacity(st.sleeve_opacity), side="double", visible=st.show_sleeve,
             wxyz=self._ground_wxyz())
 
-    def _ground(self) -> np.ndarray:
+    def ground(self) -> np.ndarray:
         """Sleeve body frame to screen: ``Rz(psi)`` in the ground frame, else identity."""
         if self.settings.frame == "ground":
             return rot_z(np.radians(self.settings.psi_deg))
         return np.eye(3)
 
     def _ground_wxyz(self) -> np.ndarray:
-        return quaternion_wxyz(self._ground())
+        return quaternion_wxyz(self.ground())
 
     def set_display(self) -> None:
         """Apply visibility and opacity from the settings to the existing nodes."""
@@ -212,8 +226,9 @@ class CouplingScene:
         """Move the hub to a pose and recolour: no mesh is rebuilt (the interference
         solid, which is new geometry at every pose, is the only node re-added)."""
         st = self.settings
-        state = pose_state(self.spec, misalignment_deg, psi_deg, band_mm=st.band_mm,
-                           pressure=st.color_mode == "pressure")
+        mis, psi = check_pose(misalignment_deg, psi_deg)
+        loads = pose_loads(self.spec, mis, psi) if st.color_mode == "pressure" else None
+        state = pose_state(self.spec, mis, psi, band_mm=st.band_mm, loads=loads)
         st.misalignment_deg, st.psi_deg = state.misalignment_deg, state.psi_deg
         rot = hub_rotation(state.misalignment_deg, state.psi_deg)
         colors = flank_colors(state, st.color_mode, self.color_scale_mm, self.spec)
@@ -223,7 +238,7 @@ class CouplingScene:
         # apart, the meshes cannot overlap by more than chord error at the flanks
         if np.min(state.clearance_mm) < self.meshes.tolerance_mm:
             patch, volume = interference_mesh(self.meshes, rot, state.interfering)
-        ground = self._ground()
+        ground = self.ground()
         with self.server.atomic():
             self.hub_frame.wxyz = quaternion_wxyz(ground @ rot)
             self.sleeve.wxyz = quaternion_wxyz(ground)
@@ -241,11 +256,12 @@ class CouplingScene:
                 self._interference = None
             if patch is not None and patch.faces.shape[0]:
                 self._interference = self.server.scene.add_mesh_simple(
-                    "/interference", patch.vertices, patch.faces, color=(220, 20, 20),
+                    "/interference", patch.vertices, patch.faces, color=INTERFERENCE_RGB,
                     side="double", visible=st.show_interference,
                     wxyz=quaternion_wxyz(ground))
         self.state = state
         self.interference_volume_mm3 = volume
+        self.interference_patch = patch
         return state
 
     def recolor(self) -> None:
@@ -254,7 +270,7 @@ class CouplingScene:
             return
         st = self.settings
         if st.color_mode == "pressure" and self.state.pressure_MPa is None:
-            self.set_pose(st.misalignment_deg, st.psi_deg)  # solves the pressure
+            self.set_pose(st.misalignment_deg, st.psi_deg)  # computes the loads
             return
         colors = flank_colors(self.state, st.color_mode, self.color_scale_mm, self.spec)
         with self.server.atomic():

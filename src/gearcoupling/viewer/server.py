@@ -21,22 +21,19 @@ import threading
 import time
 from pathlib import Path
 
-import numpy as np
-
+from ..arguments import choice, count, keywords
 from ..errors import ArgumentError, GearCouplingError
 from ..io import default_output_dir
-from ..spec import CouplingSpec
+from ..spec import CouplingSpec, as_spec
 from .html import save_html
-from .nodes import FRAMES, CouplingScene, ViewSettings, import_viser
+from .nodes import CouplingScene, ViewSettings, import_viser
+from .panel import Panel
 from .scene import (
-    COLOR_MODES,
-    CUTAWAYS,
     LOD_DIVISORS,
     ClearanceCurve,
     clearance_curve,
     legend_markdown,
     lod_tolerance,
-    plot_range,
     plot_series,
     view_tolerance,
 )
@@ -131,10 +128,14 @@ class ViewerApp:
         self._stop = threading.Event()
         self._dirty: set[str] = set()
         self._curve: ClearanceCurve | None = None
+        self.playing = False
         try:
             self.scene = CouplingScene(self.server, spec, settings, tol)
-            self._build_gui(lod if tolerance_mm is None else None)
-            self._update_readouts()
+            self.panel = Panel(self.server.gui, spec, settings, self.scene.color_scale_mm,
+                               lod if tolerance_mm is None else None, self._plot_data())
+            self.panel.on_change(self._mark)
+            self.panel.play.on_click(lambda _: self._toggle_play())
+            self.panel.show_scene(self.scene)
         except BaseException:
             self.server.stop()  # bad input: leave no server behind
             raise
@@ -152,69 +153,6 @@ class ViewerApp:
 
     # ------------------------------------------------------------------ GUI
 
-    def _build_gui(self, lod: str | None) -> None:
-        gui, st, spec = self.server.gui, self.scene.settings, self.spec
-        gui.add_markdown(f"**{spec.name}** — {spec.tooth.teeth} teeth, module "
-                         f"{spec.tooth.module:.4g} mm")
-        with gui.add_folder("Pose"):
-            self.misalignment = gui.add_slider("misalignment (°)", 0.0, 6.0, 0.05,
-                                               round(st.misalignment_deg, 2))
-            self.rotation = gui.add_slider("rotation ψ (°)", 0.0, 360.0, 0.5,
-                                           float(np.mod(st.psi_deg, 360.0)))
-            self.play = gui.add_button("Play", icon=None)
-            self.speed = gui.add_slider("speed (°/s)", 1.0, 90.0, 1.0, 15.0)
-            self.frame = gui.add_dropdown("still frame", FRAMES, initial_value=st.frame,
-                                          hint="sleeve: the hub wobbles in the sleeve; "
-                                               "ground: both turn about their axes")
-        data, series = self._plot_args()
-        self.plot = gui.add_uplot(data, series, aspect=1.3,
-                                  title="clearance (mm) vs θ; dots: teeth now, ring: θ = ψ",
-                                  scales=_scales(data),
-                                  axes=({"label": "θ (°)"}, {"label": "mm", "size": 60}))
-        with gui.add_folder("Clearance"):
-            self.color_mode = gui.add_dropdown("colour by", COLOR_MODES,
-                                               initial_value=st.color_mode)
-            self.scale = gui.add_number("colour scale (mm)", round(self.scene.color_scale_mm, 5),
-                                        min=1e-5, max=10.0, step=1e-4)
-            self.band = gui.add_number("contact band (mm)", st.band_mm, min=0.0, max=1.0,
-                                       step=1e-4)
-            self.show_contacts = gui.add_checkbox("mark contact points", st.show_contacts)
-            self.show_interference = gui.add_checkbox("show interference (red)",
-                                                      st.show_interference)
-            self.legend = gui.add_markdown(legend_markdown(self.scene.color_scale_mm,
-                                                           st.color_mode))
-            self.status = gui.add_markdown("")
-        with gui.add_folder("Parts"):
-            self.show_hub = gui.add_checkbox("show hub", st.show_hub)
-            self.hub_opacity = gui.add_slider("hub opacity", 0.1, 1.0, 0.05, st.hub_opacity)
-            self.show_sleeve = gui.add_checkbox("show sleeve", st.show_sleeve)
-            self.sleeve_opacity = gui.add_slider("sleeve opacity", 0.1, 1.0, 0.05,
-                                                 st.sleeve_opacity)
-            self.cutaway = gui.add_dropdown("sleeve cutaway", CUTAWAYS, initial_value=st.cutaway)
-            options = (*LOD_DIVISORS,) if lod else (*LOD_DIVISORS, "custom")
-            self.lod = gui.add_dropdown("level of detail", options,
-                                        initial_value=lod or "custom")
-            self.mesh_info = gui.add_markdown("")
-        with gui.add_folder("Share"):
-            self.save = gui.add_button("Save static HTML")
-            self.saved = gui.add_markdown("")
-
-        for handle, what in ((self.misalignment, "misalignment"), (self.rotation, "pose"),
-                             (self.frame, "pose"),
-                             (self.band, "pose"), (self.show_hub, "display"),
-                             (self.hub_opacity, "display"), (self.show_sleeve, "display"),
-                             (self.sleeve_opacity, "display"), (self.cutaway, "cutaway"),
-                             (self.lod, "lod"), (self.scale, "scale"), (self.color_mode, "scale"),
-                             (self.show_contacts, "display"),
-                             (self.show_interference, "display")):
-            handle.on_update(self._marker(what))
-        self.play.on_click(lambda _: self._toggle_play())
-        self.save.on_click(lambda _: self._mark("save"))
-        self.playing = False
-
-    def _marker(self, what: str):
-        return lambda _event: self._mark(what)
-
     def _mark(self, what: str) -> None:
         with self._lock:
             self._dirty.add(what)
@@ -222,42 +160,18 @@ class ViewerApp:
 
     def _toggle_play(self) -> None:
         self.playing = not self.playing
-        self.play.label = "Pause" if self.playing else "Play"
+        self.panel.play.label = "Pause" if self.playing else "Play"
         self._wake.set()
 
-    def _plot_args(self):
-        import viser.uplot as up
-
-        curve = self._get_curve()
-        data = plot_series(curve, self.scene.state)
-        series = (up.Series(label="θ (°)"),
-                  up.Series(label="cw", stroke="rgb(30,110,200)", width=2),
-                  up.Series(label="ccw", stroke="rgb(230,120,20)", width=2),
-                  up.Series(label="cw now", stroke="rgb(30,110,200)", width=0,
-                            points={"show": True, "size": 6, "fill": "rgb(30,110,200)"}),
-                  up.Series(label="ccw now", stroke="rgb(230,120,20)", width=0,
-                            points={"show": True, "size": 6, "fill": "rgb(230,120,20)"}),
-                  up.Series(label="tooth 0 (θ = ψ)", stroke="black", width=0,
-                            points={"show": True, "size": 12, "width": 2,
-                                    "stroke": "black", "fill": "rgba(0,0,0,0)"}))
-        return data, series
-
-    def _get_curve(self) -> ClearanceCurve:
-        mis = self.scene.settings.misalignment_deg
-        if self._curve is None or self._curve.misalignment_deg != mis:
-            self._curve = clearance_curve(self.spec, mis)
-        return self._curve
-
-    def _update_readouts(self) -> None:
-        sc = self.scene
-        self.mesh_info.content = (f"tolerance {sc.meshes.tolerance_mm:.4g} mm, "
-                                  f"{sc.meshes.triangles} triangles")
-        if sc.state is None:  # CouplingScene sets a pose when it is built
+    def _plot_data(self) -> tuple:
+        """The clearance plot's data at the scene's pose (the curve is kept per
+        misalignment)."""
+        state = self.scene.state
+        if state is None:  # CouplingScene sets a pose when it is built
             raise GearCouplingError("the viewer scene has no pose")
-        text = sc.state.summary().replace("\n", "<br/>")
-        if sc.interference_volume_mm3 > 0:
-            text += f"<br/>**interference volume {sc.interference_volume_mm3:.3f} mm³**"
-        self.status.content = text
+        if self._curve is None or self._curve.misalignment_deg != state.misalignment_deg:
+            self._curve = clearance_curve(self.spec, state.misalignment_deg)
+        return plot_series(self._curve, state)
 
     # ------------------------------------------------------------------ worker
 
@@ -268,8 +182,8 @@ class ViewerApp:
             self._wake.clear()
             now = time.monotonic()
             if self.playing:
-                self.rotation.value = (self.rotation.value
-                                       + self.speed.value * (now - last)) % 360.0
+                rotation = self.panel.rotation
+                rotation.value = (rotation.value + self.panel.speed.value * (now - last)) % 360.0
                 with self._lock:
                     self._dirty.add("pose")
             last = now
@@ -279,7 +193,7 @@ class ViewerApp:
                 try:
                     self.apply(dirty)
                 except Exception as err:  # keep serving; show what went wrong
-                    self.status.content = f"**error:** {err}"
+                    self.panel.status.content = f"**error:** {err}"
             with self._ticked:
                 self.ticks += 1
                 self._ticked.notify_all()
@@ -299,35 +213,28 @@ class ViewerApp:
             self._apply(dirty)
 
     def _apply(self, dirty: set[str]) -> None:
-        sc, st = self.scene, self.scene.settings
-        if "lod" in dirty and self.lod.value in LOD_DIVISORS:
-            sc.set_tolerance(lod_tolerance(self.spec, self.lod.value))
+        sc, st, panel = self.scene, self.scene.settings, self.panel
+        if "lod" in dirty and panel.lod.value in LOD_DIVISORS:
+            sc.set_tolerance(lod_tolerance(self.spec, panel.lod.value))
         if "cutaway" in dirty:
-            sc.set_cutaway(self.cutaway.value)
-        st.show_hub, st.show_sleeve = self.show_hub.value, self.show_sleeve.value
-        st.hub_opacity, st.sleeve_opacity = self.hub_opacity.value, self.sleeve_opacity.value
-        st.show_contacts = self.show_contacts.value
-        st.show_interference = self.show_interference.value
-        st.band_mm = float(self.band.value)
-        st.frame = self.frame.value
-        if "scale" in dirty and self.scale.value > 0:
-            st.color_scale_mm = float(self.scale.value)
-            st.color_mode = self.color_mode.value
-            self.legend.content = legend_markdown(sc.color_scale_mm, st.color_mode)
+            sc.set_cutaway(panel.cutaway.value)
+        panel.read_display(st)
+        if "scale" in dirty and panel.scale.value > 0:
+            st.color_scale_mm = float(panel.scale.value)
+            st.color_mode = panel.color_mode.value
+            panel.legend.content = legend_markdown(sc.color_scale_mm, st.color_mode)
             sc.recolor()
         if dirty & {"pose", "misalignment", "lod"}:
-            sc.set_pose(self.misalignment.value, self.rotation.value)
+            sc.set_pose(panel.misalignment.value, panel.rotation.value)
             self.pose_updates += 1
         if dirty & {"display", "cutaway", "lod", "pose", "misalignment"}:
             sc.set_display()
         if dirty & {"pose", "misalignment", "lod", "scale"}:
-            data = self._plot_args()[0]
-            self.plot.scales = _scales(data)
-            self.plot.data = data
-        self._update_readouts()
+            panel.show_plot(self._plot_data())
+        panel.show_scene(sc)
         if "save" in dirty:
             save_html(sc, self.html_path)
-            self.saved.content = f"saved {self.html_path}"
+            panel.saved.content = f"saved {self.html_path}"
 
     def stop(self) -> None:
         """Stop the worker and the server."""
@@ -337,11 +244,14 @@ class ViewerApp:
         self.server.stop()
 
 
-def _scales(data) -> dict:
-    lo, hi = plot_range(data)
-    return {"x": {"time": False}, "y": {"auto": False, "range": [lo, hi]}}
-
-
 def serve(spec: CouplingSpec, **kwargs) -> ViewerApp:
-    """Start a :class:`ViewerApp` (returns at once; the server runs in threads)."""
+    """Start a :class:`ViewerApp` (returns at once; the server runs in threads);
+    ``kwargs``: ``host``, ``port`` (1-65535), ``settings``, ``lod``, ``tolerance_mm``,
+    ``html_path``."""
+    spec = as_spec(spec)
+    keywords(kwargs, ("host", "port", "settings", "lod", "tolerance_mm", "html_path"), "serve")
+    if "port" in kwargs:
+        count(kwargs["port"], "port", 1, 65535)
+    if "lod" in kwargs:
+        choice(kwargs["lod"], "lod", tuple(LOD_DIVISORS))
     return ViewerApp(spec, **kwargs)

@@ -1,64 +1,24 @@
-"""Drive the viewer in a real browser (Debian chromium through playwright, software WebGL):
-used by the browser tests and ``benchmarks/bench_viewer.py``.
-
-Never runs ``playwright install``: the browser is the system's ``/usr/bin/chromium``
-(``apt-get install chromium``; ``scripts/test.sh`` does it).
+"""The viewer's page in a real browser (:func:`gearcoupling.browser.chromium`): its 3D
+view's pixels, viser's notifications, waiting until it has drawn. Used by the browser
+tests and ``benchmarks/bench_viewer.py``.
 """
 
 from __future__ import annotations
 
 import contextlib
-import importlib
-import io
-import os
 import time
-from collections.abc import Iterator
 
 import numpy as np
 
-from ..errors import BackendError
-
-CHROMIUM = "/usr/bin/chromium"
-CHROMIUM_FLAGS = ("--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-                  "--disable-background-networking", "--disable-component-update",
-                  "--disable-sync", "--use-angle=swiftshader", "--enable-unsafe-swiftshader")
-"""Flags that give WebGL in software (``--use-gl=swiftshader`` alone gives none)."""
-
-
-@contextlib.contextmanager
-def chromium(executable: str = CHROMIUM) -> Iterator[object]:
-    """A headless chromium ``playwright`` Browser; closed on exit."""
-    if not os.access(executable, os.X_OK):
-        raise BackendError(f"{executable} is missing: apt-get install chromium (scripts/test.sh "
-                           "installs it)")
-    try:
-        sync_api = importlib.import_module("playwright.sync_api")
-    except ImportError as err:
-        raise BackendError("driving a browser needs playwright: pip install "
-                           "'gearcoupling[browser]'") from err
-    with sync_api.sync_playwright() as p:
-        browser = p.chromium.launch(executable_path=executable, args=list(CHROMIUM_FLAGS))
-        try:
-            yield browser
-        finally:
-            browser.close()
+from ..browser import drawn_fraction, png_pixels
 
 
 def view_pixels(page) -> np.ndarray:
     """RGB pixels ``(h, w, 3) int16`` of the 3D view in a screenshot of the page: the
     region left of viser's GUI panel and below its notifications."""
-    from PIL import Image
-
-    img = np.asarray(Image.open(io.BytesIO(page.screenshot())).convert("RGB"), dtype=np.int16)
+    img = png_pixels(page.screenshot())
     h, w, _ = img.shape
     return img[int(0.2 * h):int(0.95 * h), int(0.03 * w):int(0.5 * w)]
-
-
-def drawn_fraction(view: np.ndarray, threshold: int = 40) -> float:
-    """Share of pixels differing from the background (the view's bottom-left pixel) by
-    more than ``threshold`` in some channel."""
-    background = view[-1, 0]
-    return float(np.mean(np.abs(view - background).max(axis=-1) > threshold))
 
 
 def close_notifications(page) -> None:

@@ -1,0 +1,235 @@
+"""Before / after: the paths where users wait (issue 26's table), old and new in one run.
+
+Run: ``python benchmarks/bench_speed.py [--against OLD_CHECKOUT [--old-numpy]] [--repeats 5]
+[--command-repeats 2] [--only ROW ...] [--fe] [--ci-log NEW.log [OLD.log]] [--ci]``.
+
+Every row runs in fresh subprocesses, one per checkout, with ``PYTHONPATH=<checkout>/src``:
+the library of that checkout, the measuring code of this script for both, on the same
+machine at the same moment (old and new alternate row by row). Printed per row: the
+minimum and the median of the repeats, before and after, and the speed-up of the minima.
+``--old-numpy`` runs the old checkout with ``GEARCOUPLING_NUMBA=0``: its default install,
+where numba was an optional extra.
+
+- ``map``, ``per-tooth``: :func:`gearcoupling.sweep` of renzo-1967 at 1°, 360 rotations,
+  tolerance 1e-6 mm (``benchmarks/bench_sweep.py``'s map), periodic and ``periodic=False``;
+  CPU time of the process, repeated in one process after a first call.
+- ``first-map``: the first map in a new process (``import gearcoupling`` apart): what
+  ``gearcoupling run`` pays once, with the compiled kernels in numba's cache;
+  ``first-map-compile``: the same with an empty cache (a new install: numba compiles);
+  wall time, one process per repeat (``first-map-compile`` once).
+- ``run``, ``report``: ``gearcoupling run renzo-1967`` and ``gearcoupling report
+  renzo-1967`` into a temporary folder; wall time of the command.
+- with ``--fe`` (minutes each, once): ``fe-table``, the FE tooth-spring table of renzo-1967
+  (``stiffness = "fe"``, the cache bypassed: ``refresh``, a temporary cache folder);
+  ``fea-contact``, ``gearcoupling fea-contact renzo-1967`` (aligned, default mesh);
+  ``sector``, one misaligned sector pose, 5 teeth (``gearcoupling fea-contact renzo-1967
+  --misalignment 1 --rotation 3.6 --sector 5 --size 0.85``, the first pose of
+  ``benchmarks/bench_fea_sector.py``); wall time.
+- ``ci``: the test suite's total, read from pytest logs (``--ci-log NEW.log [OLD.log]``,
+  the summary line ``N passed ... in S s``), or timed with ``--ci`` (``bash
+  scripts/test.sh`` in each checkout: half an hour each).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import re
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent.parent
+SPEC = "renzo-1967"
+ENV: dict[Path, dict[str, str]] = {}  # per checkout: variables set for its processes
+
+MAP = """
+import json, time, numpy as np
+from gearcoupling import load_spec, sweep
+spec, angles = load_spec({spec!r}), np.arange(360.0)
+sweep(spec, 1.0, angles[:2], tolerance_mm=1e-6, periodic={periodic})  # loads what it needs
+out = []
+for _ in range({repeats}):
+    c = time.process_time()
+    sweep(spec, 1.0, angles, tolerance_mm=1e-6, periodic={periodic})
+    out.append(time.process_time() - c)
+print(json.dumps(out))
+"""
+FIRST_MAP = """
+import json, time, numpy as np
+from gearcoupling import load_spec, sweep
+spec, angles = load_spec({spec!r}), np.arange(360.0)
+t = time.perf_counter()
+sweep(spec, 1.0, angles, tolerance_mm=1e-6)
+print(json.dumps([time.perf_counter() - t]))
+"""
+FE_TABLE = """
+import json, tempfile, time
+from gearcoupling import load_spec
+from gearcoupling.fea import tooth_compliance_table
+spec = load_spec({spec!r})
+with tempfile.TemporaryDirectory() as cache:
+    t = time.perf_counter()
+    tooth_compliance_table(spec, cache=cache, refresh=True)
+    print(json.dumps([time.perf_counter() - t]))
+"""
+
+
+def _env(checkout: Path, **extra: str) -> dict[str, str]:
+    return {**os.environ, "PYTHONPATH": str(checkout / "src"), "OPENBLAS_NUM_THREADS": "1",
+            **ENV.get(checkout, {}), **extra}
+
+
+def python_row(code: str, processes: int = 1, **extra: str):
+    """A row timed inside a Python process (its code prints a JSON list of seconds);
+    ``processes`` new processes, their lists joined."""
+    def measure(checkout: Path) -> list[float]:
+        times: list[float] = []
+        for _ in range(processes):
+            with tempfile.TemporaryDirectory() as cache:
+                env = _env(checkout, **extra)
+                if "NUMBA_CACHE_DIR" in extra:  # an empty numba cache of its own
+                    env["NUMBA_CACHE_DIR"] = cache
+                out = subprocess.run([sys.executable, "-c", code], env=env,
+                                     capture_output=True, text=True, check=False)
+            if out.returncode:
+                raise RuntimeError(out.stderr.strip().splitlines()[-1] if out.stderr else
+                                   f"exit {out.returncode}")
+            times += json.loads(out.stdout.strip().splitlines()[-1])
+        return times
+    return measure
+
+
+def command_row(args: list[str], repeats: int):
+    """``gearcoupling ARGS -o <temporary folder>``, wall time, ``repeats`` times."""
+    def measure(checkout: Path) -> list[float]:
+        times = []
+        for _ in range(repeats):
+            with tempfile.TemporaryDirectory() as out:
+                t = time.perf_counter()
+                res = subprocess.run([sys.executable, "-m", "gearcoupling.cli", *args, "-o", out],
+                                     env=_env(checkout), capture_output=True, text=True,
+                                     check=False)
+                times.append(time.perf_counter() - t)
+            if res.returncode:
+                raise RuntimeError(res.stderr.strip().splitlines()[-1] if res.stderr else
+                                   f"exit {res.returncode}")
+        return times
+    return measure
+
+
+def ci_row(logs: list[Path] | None, run_suite: bool):
+    """The suite's total seconds: from a pytest log (the new one first, the old one second)
+    or, with ``run_suite``, by running ``bash scripts/test.sh`` in the checkout."""
+    def measure(checkout: Path) -> list[float]:
+        if run_suite:
+            t = time.perf_counter()
+            subprocess.run(["bash", "scripts/test.sh"], cwd=checkout, check=False,
+                           capture_output=True)
+            return [time.perf_counter() - t]
+        log = (logs or [])[0 if checkout == HERE else 1] if logs else None
+        return [] if log is None else [pytest_total(log)]
+    return measure
+
+
+def pytest_total(log: Path) -> float:
+    """Seconds of a pytest run from its summary line (``... passed ... in 1234.5s``)."""
+    found = re.findall(r"\d+ passed.*? in ([\d.]+)s", log.read_text(errors="replace"))
+    if not found:
+        raise RuntimeError(f"{log}: no pytest summary line ('N passed ... in S s')")
+    return float(found[-1])
+
+
+def rows(args) -> list[tuple[str, str, str, object]]:
+    """``(key, path, clock, measure)`` of every row asked for."""
+    r, rc = args.repeats, args.command_repeats
+    out = [
+        ("map", f"full clearance map, {SPEC}, 1°, 360 rotations", "CPU",
+         python_row(MAP.format(spec=SPEC, periodic=True, repeats=r))),
+        ("per-tooth", "exact per-tooth map (periodic=False)", "CPU",
+         python_row(MAP.format(spec=SPEC, periodic=False, repeats=max(1, r // 2)))),
+        ("first-map", "first map in a new process (compiled code cached)", "wall",
+         python_row(FIRST_MAP.format(spec=SPEC), processes=r)),
+        ("first-map-compile", "first map after install (empty numba cache)", "wall",
+         python_row(FIRST_MAP.format(spec=SPEC), NUMBA_CACHE_DIR="")),
+        ("run", f"gearcoupling run {SPEC}", "wall", command_row(["run", SPEC], rc)),
+        ("report", f"gearcoupling report {SPEC}", "wall", command_row(["report", SPEC], rc)),
+    ]
+    if args.fe:
+        out += [
+            ("fe-table", f"FE tooth-spring table, {SPEC}, cache bypassed", "wall",
+             python_row(FE_TABLE.format(spec=SPEC))),
+            ("fea-contact", f"fea-contact {SPEC} aligned, default mesh", "wall",
+             command_row(["fea-contact", SPEC], 1)),
+            ("sector", "one misaligned sector pose, 5 teeth", "wall",
+             command_row(["fea-contact", SPEC, "--misalignment", "1", "--rotation", "3.6",
+                          "--sector", "5", "--size", "0.85"], 1)),
+        ]
+    if args.ci_log or args.ci:
+        out.append(("ci", "CI: the whole suite (scripts/test.sh)", "wall",
+                    ci_row(args.ci_log, args.ci)))
+    return [row for row in out if args.only is None or row[0] in args.only]
+
+
+def _fmt(seconds: list[float]) -> str:
+    if not seconds:
+        return "-"
+    lo, med = min(seconds), statistics.median(seconds)
+    if lo < 1.0:
+        return f"{lo * 1e3:.1f} / {med * 1e3:.1f} ms"
+    return f"{lo:.2f} / {med:.2f} s"
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--against", type=Path, metavar="OLD_CHECKOUT",
+                    help="the checkout to compare with (its src/ is imported)")
+    ap.add_argument("--old-numpy", action="store_true",
+                    help="the old checkout with GEARCOUPLING_NUMBA=0 (its default install)")
+    ap.add_argument("--repeats", type=int, default=5, help="repeats of the map rows")
+    ap.add_argument("--command-repeats", type=int, default=2, help="repeats of run, report")
+    ap.add_argument("--only", nargs="*", default=None, metavar="ROW",
+                    help="rows: map per-tooth first-map first-map-compile run report "
+                         "fe-table fea-contact sector ci")
+    ap.add_argument("--fe", action="store_true", help="also the FE rows (minutes each)")
+    ap.add_argument("--ci-log", type=Path, nargs="+", metavar="LOG",
+                    help="pytest logs of the whole suite: the new one, then the old one")
+    ap.add_argument("--ci", action="store_true", help="time scripts/test.sh in each checkout")
+    args = ap.parse_args(argv)
+    if args.repeats < 1 or args.command_repeats < 1:
+        ap.error("--repeats and --command-repeats must be at least 1")
+    checkouts = [HERE] if args.against is None else [args.against.resolve(), HERE]
+    if args.old_numpy and args.against is not None:
+        ENV[checkouts[0]] = {"GEARCOUPLING_NUMBA": "0"}
+    for c in checkouts:
+        if not (c / "src" / "gearcoupling").is_dir():
+            ap.error(f"{c}: no src/gearcoupling in it")
+    head = ["path", "clock"] + (["before (min / median)"] if args.against else []) + \
+        ["after (min / median)"] + (["speed-up"] if args.against else [])
+    print(f"{time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, load average "
+          f"{os.getloadavg()[0]:.1f}, {os.cpu_count()} cores; after = {HERE}" +
+          (f", before = {args.against}" if args.against else "") +
+          (" with GEARCOUPLING_NUMBA=0" if args.old_numpy and args.against else ""))
+    print("\n| " + " | ".join(head) + " |\n|" + "---|" * len(head))
+    for _, path, clock, measure in rows(args):
+        cells = []
+        for c in checkouts:
+            try:
+                cells.append(measure(c))
+            except (RuntimeError, OSError) as err:
+                cells.append(err)
+        text = [_fmt(x) if isinstance(x, list) else f"failed: {x}" for x in cells]
+        if args.against:
+            old, new = cells
+            ok = isinstance(old, list) and isinstance(new, list) and old and new
+            text.append(f"{min(old) / min(new):.1f}x" if ok else "-")
+        print(f"| {path} | {clock} | " + " | ".join(text) + " |", flush=True)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
