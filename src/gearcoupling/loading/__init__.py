@@ -25,6 +25,7 @@ from .capacity import (
     turn_phases,
     write_capacity_csv,
 )
+from .fitted import FittedCompliance
 from .inputs import resolve_model, resolve_torque_Nm
 from .linear import solve_windup
 from .linear_model import mesh_stiffness_N_per_mm
@@ -52,6 +53,7 @@ __all__ = [
     "CantileverCompliance",
     "Capacity",
     "CapacityCurve",
+    "FittedCompliance",
     "LoadResult",
     "PatchMap",
     "SectorCheck",
