@@ -15,20 +15,22 @@ space), spread over a width of the order of the load height ``y_F`` above the pa
 circle, and ``f_i`` dimensionless features of the load point and the part
 (:func:`features`): how high the load sits on the tooth against its root thickness, how
 near it is to a face end and to the tooth's free edge along the depth (where a plate's free
-edge makes it softer). The tooth's shape, pressure angle and tooth count enter through
-``c_bend``; the rim, the fillets and the tooth count were tried as features too and made
-the fit worse on specs left out of it (``benchmarks/bench_springs.py --holdout``), so the
-ranges of the data set in them are checked instead (:attr:`FittedCompliance.outside`). The
-last term is the root's confinement: near its root circle a tooth is stiffer under a patch
-than the half-space the far field was split from (an internal tooth's concave root most),
-so the far field there is below zero; ``c_patch`` is the half-space work of the table's
-load patch (a square of side module / 2), ``b`` and ``l`` fitted per part. The coefficients
-``a_i`` per part are fitted to FE tables of the bundled templates and of seeded random
-specs over the supported range and shipped as ``fitted.json``
-(``benchmarks/bench_springs.py --fit`` regenerates the data set, fits and prints the error
-at every load point of every table; docs/load.md has the table). The pair's far field is
-the sum of the two parts', turned to Renzo's measure (circumferential at the pitch point
-per tangential load there) by ``1 / cos² phi`` like the cantilever's.
+edge makes it softer), and how much thinner the crown makes the hub tooth there (the hob's
+infeed ``delta(z)`` along the face takes ``delta tan(phi)`` off each flank; the
+cantilever's bending is that of mid-face). The tooth's shape, pressure angle and tooth
+count enter through ``c_bend``; the rim, the fillets and the tooth count were tried as
+features too and made the fit worse on specs left out of it (``benchmarks/bench_springs.py
+--holdout``), so the ranges of the data set in them are checked instead
+(:attr:`FittedCompliance.outside`). The last term is the root's confinement: near its root
+circle a tooth is stiffer under a patch than the half-space the far field was split from
+(an internal tooth's concave root most), so the far field there is below zero; ``c_patch``
+is the half-space work of the table's load patch (a square of side module / 2), ``b`` and
+``l`` fitted per part. The coefficients ``a_i`` per part are fitted to FE tables of the
+bundled templates and of seeded random specs over the supported range and shipped as
+``fitted.json`` (``benchmarks/bench_springs.py --fit`` regenerates the data set, fits and
+prints the error at every load point of every table; docs/load.md has the table). The
+pair's far field is the sum of the two parts', turned to Renzo's measure (circumferential
+at the pitch point per tangential load there) by ``1 / cos² phi`` like the cantilever's.
 
 Where a spec lies outside the ranges the fit was made on (``FittedCompliance.outside``), the
 fit is still evaluated (held at the nearest edge of each feature's fitted range) and the
@@ -47,19 +49,21 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..fea import rectangle_halfspace_work_mm_per_N
+from ..geometry import hub_model
 from ..spec import CouplingSpec
 from .cantilever import CantileverCompliance
 
 PARTS = ("hub", "sleeve")
 FEATURES = ("one", "height", "height_squared", "face_end", "face_end_height", "other_end",
-            "tip_edge")
+            "tip_edge", "crown_thinning")
 
 
-def features(y_F: ArrayLike, to_face_ends: tuple[ArrayLike, ArrayLike], to_tip: ArrayLike, *,
-             module: float, root_thickness: float) -> NDArray[np.float64]:
+def features(y_F: ArrayLike, to_face_ends: tuple[ArrayLike, ArrayLike], to_tip: ArrayLike,
+             thinning: ArrayLike, *, module: float,
+             root_thickness: float) -> NDArray[np.float64]:
     """Features ``(..., len(FEATURES))`` of load points of one part (:data:`FEATURES`):
     ``1``, ``ln(y_F / S_f)`` and its square, ``exp(-d1 / m)``, ``exp(-d1 / y_F)``,
-    ``exp(-d2 / m)``, ``exp(-d_t / m)``.
+    ``exp(-d2 / m)``, ``exp(-d_t / m)``, ``ln(1 - t_c / S_f)``.
 
     Parameters
     ----------
@@ -71,6 +75,10 @@ def features(y_F: ArrayLike, to_face_ends: tuple[ArrayLike, ArrayLike], to_tip: 
     to_tip : (...) float
         Distance ``d_t`` from the load point to the tooth's free edge along the depth (the
         hub tip, the sleeve minor circle), mm.
+    thinning : (...) float
+        ``t_c``: how much thinner the crown makes the tooth at the load's face position,
+        ``2 delta(z) tan(phi)`` for the hub's crown drop ``delta``, 0 for the straight
+        sleeve (mm); held below 0.9 ``S_f``.
     module : float
     root_thickness : float
         The tooth's thickness ``S_f`` at its root circle (mm).
@@ -78,10 +86,11 @@ def features(y_F: ArrayLike, to_face_ends: tuple[ArrayLike, ArrayLike], to_tip: 
     m = module
     y = np.maximum(np.asarray(y_F, dtype=float), 1e-3 * m)
     d1, d2, dt = (np.maximum(np.asarray(v, dtype=float), 0.0) for v in (*to_face_ends, to_tip))
-    y, d1, d2, dt = np.broadcast_arrays(y, d1, d2, dt)
+    thin = np.clip(np.asarray(thinning, dtype=float) / root_thickness, 0.0, 0.9)
+    y, d1, d2, dt, thin = np.broadcast_arrays(y, d1, d2, dt, thin)
     h = np.log(y / root_thickness)
     return np.stack([np.ones(y.shape), h, h * h, np.exp(-d1 / m), np.exp(-d1 / y),
-                     np.exp(-d2 / m), np.exp(-dt / m)], axis=-1)
+                     np.exp(-d2 / m), np.exp(-dt / m), np.log1p(-thin)], axis=-1)
 
 
 def load_fit() -> dict[str, Any]:
@@ -112,6 +121,7 @@ class FittedCompliance(CantileverCompliance):
         self.tip_radius = {"hub": 0.5 * spec.hub.tip.diameter,
                            "sleeve": 0.5 * spec.sleeve.minor_diameter}
         self.bend = {p: self.terms[p][0] for p in PARTS}
+        self.crown = hub_model(spec).path  # the hub's crown drop along the face
 
     def part_features(self, part: str, z_mm: ArrayLike, r_mm: ArrayLike) -> NDArray:
         """:func:`features` of ``part`` at hub flank points ``(z, r)``."""
@@ -119,8 +129,10 @@ class FittedCompliance(CantileverCompliance):
         root, _ = self._heights(part, 0.0)
         half = self.half_face_hub if part == "hub" else self.half_face_sleeve
         z = np.abs(np.asarray(z_mm, dtype=float))
+        thinning = (2.0 * math.tan(self.phi) * self.crown.drop(np.minimum(z, half))
+                    if part == "hub" else np.zeros_like(z))
         return features(np.abs(r - root), (half - z, half + z),
-                        np.abs(self.tip_radius[part] - r), module=self.module,
+                        np.abs(self.tip_radius[part] - r), thinning, module=self.module,
                         root_thickness=self.root_thickness[part])
 
     def bending(self, part: str, z_mm: ArrayLike, r_mm: ArrayLike) -> NDArray:
