@@ -287,6 +287,12 @@ def loads(ctx: Context) -> Section:
     sec.blocks.append(Table(("quantity", "value", "unit"), rows, _load_settings(ctx, res)))
     for text in summ["limits"]:
         sec.blocks.append(Note(text, "warn"))
+    outside = summ["accuracy"]["outside_fitted_range"]
+    if outside:
+        sec.blocks.append(Note("The fe-fit tooth springs are evaluated outside the range they "
+                               f"were fitted on ({'; '.join(outside)}): their error there is "
+                               "not measured; --set load.stiffness=fe computes this spec's "
+                               "own FE table.", "warn"))
     res.write_csv(ctx.data_path("load.csv"))
     how = _load_settings(ctx, res)
     sec.blocks.append(ctx.figure("tooth-load", "Tooth load against the turning angle (Renzo "
