@@ -397,12 +397,13 @@ def test_coupling_data_is_consistent(data, renzo):
     assert t.tangent_Nm_per_rad == data.stiffness.matrix[5, 5]
     assert t.torque_Nm[0] == 0 and t.windup_rad[0] == 0
     assert np.all(np.diff(t.windup_rad) > 0)
-    assert t.torque_Nm[-1] == pytest.approx(data.capacity_Nm)
+    # the curve runs to the capacity, or to the torque where that is higher
+    assert t.torque_Nm[-1] == pytest.approx(max(data.capacity_Nm, abs(data.torque_Nm)))
     assert t.tangent_Nm_per_rad > t.secant_Nm_per_rad  # the contact stiffens
     a = data.allowable
     assert a.misalignment_deg <= a.critical_misalignment_deg
     if a.criterion == "capacity":
-        cap = gc.capacity(renzo, a.misalignment_deg).capacity_Nm
+        cap = gc.capacity(renzo, a.misalignment_deg, model=data.model).capacity_Nm
         assert cap == pytest.approx(abs(data.torque_Nm), rel=0.01)
     assert np.all(a.bending_moment_Nm > 0)
     coupling = data.mass["coupling"]

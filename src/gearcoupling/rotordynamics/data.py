@@ -26,6 +26,7 @@ from .allowable import DEFAULT_TURN_ANGLES, AllowableLoads, allowable_loads
 from .mass import MassProperties, mass_properties
 from .ross import coupling_element
 from .stiffness import (
+    DATASHEET_MODEL,
     DEFAULT_RELATIVE_STEP,
     DEFAULT_ROTATIONS,
     DISPLACEMENT_UNITS,
@@ -244,15 +245,6 @@ def check_inputs(spec: CouplingSpec, torque_Nm: float | None) -> float:
                             f"{MAX_TORQUE_NM:g} N·m, not 0 (the data are those of loaded "
                             "teeth; at zero torque the coupling turns freely in its backlash)")
     return T
-
-
-DATASHEET_MODEL = "compliance"
-"""The load model of the data sheet unless one is given: its entries take a few hundred load
-solves (the matrix's differences over the pitch, the wind-up curve, the capacity at several
-misalignments), 0.6 s of CPU with the compliance model against about a minute with the
-surface model, the default elsewhere. With the default springs both are on the accuracy
-ladder aligned (docs/load.md); at the templates' design misalignment the compliance
-model's stiffness diagonal is 2-27 % above the surface model's (tilt the most)."""
 
 
 def coupling_data(spec: CouplingSpec, misalignment_deg: float | None = None,
