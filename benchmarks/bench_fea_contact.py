@@ -1,18 +1,17 @@
 """The aligned contact reference: convergence, cost, and the load models against it.
 
 Run: ``python benchmarks/bench_fea_contact.py [--specs A B] [--sizes MM ...] [--runs FILE]
-[--golden]``. For each spec, :func:`gearcoupling.fe_contact` at the spec's torque on a
-ladder of contact-zone element sizes (ratio sqrt 2; the rest of the teeth at module / 4 or
-the contact size where that is coarser),
-each run also giving the half-torque point of its load curve. Printed: per size the nodes,
-solve time, memory, wind-up beyond first touch and interior pressure; the Richardson
-extrapolation of both with the observed order; then the ``linear``, ``compliance`` and
-``surface`` models at the same poses, with the tapered-cantilever and the FE far-field
-tooth springs, their wind-up plus the bodies' torsion against the reference and their time
-per pose (the accuracy ladder of docs/load.md). ``--runs`` keeps the FE runs in a JSON
-file and reuses those already there; ``--golden`` writes the extrapolated figures to
-``tests/golden/fe_contact_reference.json``.
-"""
+[--golden] [--from-golden]``. For each spec, :func:`gearcoupling.fe_contact` at the spec's
+torque on a ladder of contact-zone element sizes (ratio sqrt 2; the rest of the teeth at
+module / 4 or the contact size where that is coarser), each run also giving the half-torque
+point of its load curve. Printed: per size the nodes, solve time, memory, wind-up beyond
+first touch and interior pressure; the Richardson extrapolation of both with the observed
+order; then the ``linear``, ``compliance`` and ``surface`` models at the same poses, with
+the tapered-cantilever and the FE far-field tooth springs, their wind-up plus the bodies'
+torsion against the reference and their time per pose (the accuracy ladder of
+docs/load.md). ``--runs`` keeps the FE runs in a JSON file and reuses those already there;
+``--golden`` adds the extrapolated figures to ``tests/golden/fe_contact_reference.json``;
+``--from-golden`` solves no FE and compares the models with the figures already there. """
 
 from __future__ import annotations
 
@@ -109,7 +108,8 @@ def convergence(name: str, runs: dict) -> dict:
 
 
 MODELS = (("linear", "cantilever"), ("compliance", "cantilever"), ("surface", "cantilever"),
-          ("compliance", "fe"), ("surface", "fe"))
+          ("compliance", "fe"), ("surface", "fe"), ("compliance", "fe-fit"),
+          ("surface", "fe-fit"))
 
 
 def models(name: str, refs: dict) -> None:
@@ -171,10 +171,17 @@ def main() -> None:
     ap.add_argument("--runs", type=Path, default=ROOT / "outputs" / "bench_fea_contact.json")
     ap.add_argument("--golden", action="store_true")
     ap.add_argument("--stored", action="store_true", help="only the runs in --runs")
+    ap.add_argument("--from-golden", action="store_true",
+                    help="no FE: the references already in the golden file")
     a = ap.parse_args()
-    runs = fe_runs(a.specs, a.sizes, a.runs, solve=not a.stored)
-    print("## The aligned contact reference (one pitch, cyclic, loaded by the torque)")
-    refs = {name: convergence(name, runs[name]) for name in a.specs}
+    golden = json.loads(GOLDEN.read_text())["references"] if GOLDEN.exists() else {}
+    if a.from_golden:
+        refs = {name: golden[name] for name in a.specs if name in golden}
+    else:
+        runs = fe_runs(a.specs, a.sizes, a.runs, solve=not a.stored)
+        print("## The aligned contact reference (one pitch, cyclic, loaded by the torque)")
+        refs = {name: convergence(name, runs[name]) for name in a.specs}
+    a.specs = list(refs)
     print("\n## The load models against it (aligned, each spec's torque and half of it)")
     for name in a.specs:
         models(name, refs[name])
@@ -187,7 +194,7 @@ def main() -> None:
                      "Richardson-extrapolated over the contact-zone sizes of "
                      "benchmarks/bench_fea_contact.py; wind-up in rad beyond the exact first "
                      "touch, interior pressure in MPa (at the spec's torque)",
-            "references": refs}, indent=1) + "\n")
+            "references": {**golden, **refs}}, indent=1) + "\n")
         print(f"\nwrote {GOLDEN}")
 
 

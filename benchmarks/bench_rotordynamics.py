@@ -19,14 +19,13 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 import numpy as np
 
 import gearcoupling as gc
-from gearcoupling.loading import mesh_stiffness_N_per_mm
+from gearcoupling.loading import mesh_stiffness_N_per_mm, springs_name
 from gearcoupling.rotordynamics import (
     WINDUP_ERROR_PCT,
     coupling_data,
     mass_properties,
     stiffness_matrix,
 )
-from gearcoupling.rotordynamics.accuracy import springs
 from gearcoupling.rotordynamics.torsion import mesh_windup_from_touch
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -116,7 +115,7 @@ def validation(quick: bool) -> None:
     refs = json.loads((ROOT / "tests" / "golden" / "fe_contact_reference.json").read_text())
     for name, by_torque in refs["references"].items():
         s = gc.load_spec(name)
-        lo, hi = WINDUP_ERROR_PCT[(s.load.model, springs(s, s.load.model))]
+        lo, hi = WINDUP_ERROR_PCT[(s.load.model, springs_name(s, s.load.model))]
         sw = gc.sweep(s, 0.0, [0.0])
         for torque, ref in by_torque.items():
             T = float(torque)

@@ -69,14 +69,15 @@ def test_huge_torque_is_reported_as_a_limit_not_hidden():
     assert any("root bending" in n for n in s["limits"])
 
 
+@pytest.mark.parametrize("model", ["compliance", "surface"])
 @pytest.mark.parametrize("torque_Nm", [1e9, -1e9])
-def test_absurd_torque_stays_finite_and_scales(torque_Nm):
+def test_absurd_torque_stays_finite_and_scales(torque_Nm, model):
     """At the top of the torque range, far past any limit, the tooth loads stay finite (no
     overflow in the contact law) and still carry the torque to 1e-9; beyond it the torque
     is refused, naming the range."""
     spec = gc.load_spec("renzo-1967")
     sw = sweep(spec, 1.0, [0.0])
-    res = load_from_sweep(sw, torque_Nm=torque_Nm)
+    res = load_from_sweep(sw, torque_Nm=torque_Nm, model=model)
     P = res.tangential_force_N
     assert np.all(np.isfinite(P)) and np.all(np.isfinite(res.windup_rad))
     np.testing.assert_allclose(P.sum() * spec.tooth.pitch_radius * 1e-3, abs(torque_Nm),

@@ -130,8 +130,12 @@ def test_verdicts_without_limits_or_inputs_are_not_judged(renzo):
     no_pi = renzo.replace(**{"load.allowable_tooth_load_N": None})
     rows = load_verdicts(no_pi, gc.load(no_pi, 1.0, [0.0, 3.6]), None)
     assert rows[0].verdict == OPEN and "allowable_tooth_load" in rows[0].reason
-    rows = load_verdicts(renzo, res, gc.capacity(renzo, 1.0))
-    assert [r.verdict for r in rows] == [PASS] * 5  # 2260 N·m below the capacity, no edge
+    cap = gc.capacity(renzo, 1.0)
+    rows = load_verdicts(renzo, res, cap)
+    # judged against each limit: the stresses and the patch pass at 1°; the torque is judged
+    # against the capacity (the template's 2260 N·m lies just above it with the default model)
+    fits = PASS if abs(res.torque_Nm) <= cap.capacity_Nm else FAIL
+    assert [r.verdict for r in rows] == [PASS] * 3 + [fits, PASS]
     assert interference_verdict(None, "not run: no python-fcl").verdict == OPEN
 
 
@@ -241,3 +245,22 @@ def test_report_renders_in_chromium_and_prints_a_page_per_section(made, tmp_path
     headings = [html.unescape(h) for h in re.findall(r"<h2[^>]*>([^<]+)</h2>", text)]
     assert titles == headings
     assert pages >= len(headings)  # every section starts a page
+
+
+def test_margin_says_whether_the_models_error_band_crosses_the_limit():
+    """A load 5 % under its limit with a band of 0.9-1.1 x the load crosses it; 20 % under
+    does not; a capacity 5 % over the torque with the same band crosses (the capacity's
+    band is 1/1.1-1/0.9); the overall verdict names the checks whose band crosses."""
+    from gearcoupling.reporting.verdict import judged, margin
+
+    text, crosses = margin(95.0, 100.0, (0.9, 1.1))
+    assert crosses and "+5.0 %" in text and "crosses" in text
+    assert not margin(80.0, 100.0, (0.9, 1.1))[1]
+    assert margin(100.0, 105.0, (0.9, 1.1), scales_with_load=False)[1]
+    assert not margin(100.0, 130.0, (0.9, 1.1), scales_with_load=False)[1]
+    assert not margin(95.0, 100.0, None)[1]
+    row = judged("torque ≤ capacity", 100.0, 105.0, ("100", "105", "x"), (0.9, 1.1),
+                 scales_with_load=False)
+    assert row.verdict == PASS and row.band_crosses
+    cls, sentence = overall([row])
+    assert cls == "pass" and "crosses the limit of: torque ≤ capacity" in sentence

@@ -27,7 +27,8 @@ MPA_PER_PSI = N_PER_LBF / 25.4**2
 KG_PER_M3_PER_LB_PER_IN3 = 0.45359237 / 0.0254**3
 
 LOAD_MODELS = ("linear", "compliance", "surface")
-STIFFNESS_SOURCES = ("cantilever", "fe")
+# the tooth springs (gearcoupling.loading.springs.SPRINGS holds what each is)
+STIFFNESS_SOURCES = ("fe-fit", "fe", "cantilever")
 STEEL = {"youngs_modulus_MPa": 206_000.0, "poisson_ratio": 0.3,
          "allowable_contact_stress_MPa": 700.0, "allowable_bending_stress_MPa": 280.0,
          "density_kg_per_m3": 7850.0}
@@ -52,7 +53,8 @@ class LoadSpec:
     torque_Nm : float or None
         Transmitted torque; the sign picks the loaded flank (positive loads ccw).
     model : str
-        ``linear`` (Renzo), ``compliance`` (default) or ``surface``.
+        ``surface`` (default: the validated one), ``compliance`` (a fast estimate) or
+        ``linear`` (Renzo).
     mesh_stiffness_N_per_mm : float or None
         Renzo's ``C`` for the linear model; ``None`` takes the cantilever pair stiffness at
         the pitch point in the midplane.
@@ -63,16 +65,18 @@ class LoadSpec:
     accuracy_factor : float
         Renzo's ``K`` (0-1], 1 = perfect teeth.
     stiffness : str
-        Tooth compliance of the compliance model: ``cantilever`` or ``fe``.
+        Tooth springs of the compliance and surface models: ``fe-fit`` (default: the FE
+        far field by the shipped fit), ``fe`` (the FE table itself) or ``cantilever``
+        (gearcoupling.loading.springs).
     """
 
     torque_Nm: float | None = None
-    model: str = "compliance"
+    model: str = "surface"
     mesh_stiffness_N_per_mm: float | None = None
     allowable_tooth_load_N: float | None = None
     friction: float = 0.1
     accuracy_factor: float = 1.0
-    stiffness: str = "cantilever"
+    stiffness: str = "fe-fit"
 
     def __post_init__(self):
         if self.torque_Nm is not None:  # the range of every entry point

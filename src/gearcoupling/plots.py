@@ -163,7 +163,7 @@ def sections_figure(spec: CouplingSpec, tolerance_mm: float | None = None, *,
     a1.set_xlabel("z (mm)")
     a1.set_ylabel("tooth thickness at pitch circle (mm)")
     a1.set_title("crown: tooth thickness along the face")
-    a1.legend(fontsize=8)
+    a1.legend(fontsize=8, loc="best")
     ax2 = a1.twinx()
     ax2.plot(z, prof["crown_drop_mm"], color="grey", lw=0.8)
     ax2.set_ylabel("feed-path crown drop (mm)", color="grey")
@@ -176,7 +176,7 @@ def sections_figure(spec: CouplingSpec, tolerance_mm: float | None = None, *,
     a2.set_xlabel("z (mm)")
     a2.set_ylabel("transverse pressure angle at pitch circle (deg)")
     a2.set_title("transverse pressure angle (cf. Renzo Fig. 7)")
-    a2.legend(fontsize=8)
+    a2.legend(fontsize=8, loc="best")
     if own:
         fig.tight_layout()
     return fig

@@ -146,7 +146,7 @@ def plot_clearance_map(result: SweepResult, spec: CouplingSpec, *, ax=None):
         fig.colorbar(cs, ax=ax_, label="circumferential gap (µm)")
         k = np.nanargmin(c)
         ax_.plot(z.ravel()[k], r.ravel()[k], "r*", ms=12, label="minimum")
-        ax_.legend(fontsize=8)
+        ax_.legend(fontsize=8, loc="best")
     axes[0].set_ylabel("r (mm)")
     fig.suptitle(f"{result.spec_name}: clearance map at i = {result.misalignment_deg:g}° "
                  "(blank: facing the sleeve tip chamfer)")
@@ -195,7 +195,7 @@ def plot_backlash(spec: CouplingSpec, *, max_deg: float = 6.0, count: int = 25,
     ax.set_xlabel("misalignment i (deg)")
     ax.set_ylabel("backlash at the pitch circle (µm)")
     ax.set_title(f"{spec.name}: backlash against misalignment")
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=8, loc="best")
     return fig
 
 
@@ -226,7 +226,7 @@ def plot_critical_vs_radius(spec: CouplingSpec,
     ax.set_xlabel("crowning radius R_c / R")
     ax.set_ylabel("critical misalignment (deg)")
     ax.set_title(f"{spec.name}: critical misalignment against crowning radius")
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=8, loc="best")
     return fig
 
 
@@ -245,13 +245,13 @@ def plot_generation(spec: CouplingSpec, misalignment_deg: float, *, count: int =
         axes[0].plot(np.degrees(theta), mins["clearance"] * 1e3, ls="--",
                      label=f"{gen}, whole flank")
     axes[0].set_ylabel("clearance, cw (µm)")
-    axes[0].legend(fontsize=8)
+    axes[0].legend(fontsize=8, loc="best")
     axes[0].set_title(f"{spec.name}: enveloped (hob) vs revolved crown at i = "
                       f"{misalignment_deg:g}°")
     for key, label in (("pitch", "pitch line"), ("clearance", "whole flank")):
         diff = curves["revolved"][key] - curves["enveloped"][key]
         axes[1].plot(np.degrees(theta), diff * 1e3, label=label)
-    axes[1].legend(fontsize=8)
+    axes[1].legend(fontsize=8, loc="best")
     axes[1].set_ylabel("revolved - enveloped (µm)")
     axes[1].set_xlabel("turning angle θ (deg)")
     return fig

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from ..arguments import TORQUE_RANGE_NM
+from ..loading import PHASES
 from ..loadspec import LOAD_MODELS
 from ..outputs import write_load
 from .common import (
@@ -30,8 +31,9 @@ def register(sub) -> None:
                    help=f"torque in N·m, |T| from {TORQUE_RANGE_NM[0]:g} to "
                         f"{TORQUE_RANGE_NM[1]:g} or 0; the sign picks the loaded flank; write a "
                         "negative one as --torque=-5e3 (default: the spec's)")
-    p.add_argument("--angles", type=count(1, MAX_ANGLES), default=360, metavar="N",
-                   help=f"rotations over one turn, 1-{MAX_ANGLES} (default 360)")
+    p.add_argument("--angles", type=count(1, MAX_ANGLES), default=None, metavar="N",
+                   help=f"rotations evenly over one turn, 1-{MAX_ANGLES} (default "
+                        f"{PHASES} per tooth pitch: a turn of {PHASES} distinct poses)")
     p.add_argument("--tolerance", type=positive_length, default=1e-7, metavar="MM",
                    help="sweep accuracy of every gap in mm, > 0 (default 1e-7)")
     p.add_argument("--no-plots", action="store_true", help="write only the CSV and JSON")
@@ -45,7 +47,7 @@ def run(args) -> int:
     mis = misalignment_deg(args, spec)
     out = output_dir(args, spec)
     # one bar: the turn's poses, then the studies' misalignments
-    with progress(f"load {spec.name}", args.angles) as update:
+    with progress(f"load {spec.name}", args.angles or PHASES) as update:
         paths = write_load(spec, out, mis, args.angles, torque_Nm=args.torque,
                            model=args.model, tolerance_mm=args.tolerance,
                            plots=not args.no_plots, with_studies=not args.quick_plots,

@@ -20,6 +20,7 @@ from .stiffness import (
     ComplianceTable,
     compute_compliance_table,
     pitch_point_compliance,
+    rectangle_halfspace_work_mm_per_N,
     tooth_compliance_table,
 )
 from .volume import VolumeMesh
@@ -42,6 +43,7 @@ __all__ = [
     "gmsh_module",
     "mesh_part",
     "pitch_point_compliance",
+    "rectangle_halfspace_work_mm_per_N",
     "region_ids",
     "sector_teeth",
     "tooth_compliance_table",

@@ -78,9 +78,11 @@ def material(spec: CouplingSpec, part: str) -> tuple[float, float]:
 
 
 def spec_hash(spec: CouplingSpec, **settings) -> str:
-    """Hash of what the table depends on (teeth, hub, sleeve, material) and the FE settings:
-    the cache key, the same for specs differing only in their load, name or inspection."""
-    solid = (spec.tooth, spec.hub, spec.sleeve, spec.material)
+    """Hash of what the table depends on (teeth, hub, sleeve, the elastic constants) and the
+    FE settings: the cache key, the same for specs differing only in their load,
+    allowables, density, name or inspection."""
+    elastic = [material(spec, part) for part in ("hub", "sleeve")]  # not the allowables
+    solid = (spec.tooth, spec.hub, spec.sleeve, elastic)
     text = repr(solid) + json.dumps(settings, sort_keys=True) + f"v{VERSION}"
     return hashlib.sha256(text.encode()).hexdigest()[:16]
 

@@ -280,7 +280,7 @@ def plot_measuring_charts(charts: MeasuringCharts, ax=None):
         la.set_xlabel("z (mm)")
         for a in (pa, la):
             a.set_ylabel("deviation from midplane involute (µm, + material)")
-            a.legend(fontsize=7)
+            a.legend(fontsize=7, loc="best")
             a.grid(True, lw=0.3)
     fig.suptitle(f"{charts.spec_name}: nominal measuring charts (evaluation ranges dotted)")
     fig.tight_layout()

@@ -51,7 +51,7 @@ def plot_inspection(report: InspectionReport, ax=None):
             lim = um * report.limits[limits[i]]
             a.axhline(lim, color="r", lw=0.8, ls="--")
             a.axhline(-lim if i == 1 else 0, color="r", lw=0.8, ls="--")
-        a.legend(fontsize=7)
+        a.legend(fontsize=7, loc="best")
     if report.passed is not None and len(k):
         for kk in k[~report.passed]:
             axes[0].axvspan(kk - 0.5, kk + 0.5, color="r", alpha=0.12)

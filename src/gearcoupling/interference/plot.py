@@ -55,7 +55,7 @@ def plot_interference(result, reference_mm: ArrayLike | None = None,
     ax2.axhspan(-tol, tol, color="0.85", label="± chordal tolerance")
     ax2.axhline(0.0, color="tab:red", lw=0.8)
     ax2.set_ylabel("gap (mm)")
-    ax2.legend(fontsize=8)
+    ax2.legend(fontsize=8, loc="best")
     ax2.grid(alpha=0.3)
     if rows == 3:
         ax3 = axes[2]
@@ -64,7 +64,7 @@ def plot_interference(result, reference_mm: ArrayLike | None = None,
             ax3.plot(a, backlash_mm, "--", color="k", lw=1, label="sweep backlash")
         ax3.axhline(0.0, color="tab:red", lw=0.8)
         ax3.set_ylabel("backlash at R (mm)")
-        ax3.legend(fontsize=8)
+        ax3.legend(fontsize=8, loc="best")
         ax3.grid(alpha=0.3)
     axes[-1].set_xlabel("rotation ψ (deg)")
     return fig

@@ -22,7 +22,7 @@ SWEEP_ACCURACY = ("tolerance_mm", "grid", "periodic")
 def load(spec: CouplingSpec, misalignment_deg: float, angles_deg: ArrayLike, *,
          torque_Nm: float | None = None, model: str | None = None,
          gap_offset_rad: ArrayLike | None = None, progress: Progress = None,
-         **accuracy: Any) -> LoadResult:
+         pressure_grid: tuple[int, int] | None = None, **accuracy: Any) -> LoadResult:
     """Load sharing of every tooth over rotations ``angles_deg`` at a misalignment.
 
     Parameters
@@ -41,6 +41,10 @@ def load(spec: CouplingSpec, misalignment_deg: float, angles_deg: ArrayLike, *,
     progress : callable, optional
         ``progress(done, total)`` as the load model advances (the ``surface`` model: after
         each distinct pose; for a progress bar).
+    pressure_grid : (int, int), optional
+        The surface model's cells along the face and across the depth of each loaded
+        tooth (default 48 x 32; ``benchmarks/bench_surface.py`` gives what a grid costs
+        and buys).
     **accuracy
         Passed to :func:`gearcoupling.sweep` (``tolerance_mm``, ``grid``).
 
@@ -66,15 +70,16 @@ def load(spec: CouplingSpec, misalignment_deg: float, angles_deg: ArrayLike, *,
     resolve_model(spec, model)
     sw = sweep(spec, misalignment_deg, angles_deg, **accuracy)
     return load_from_sweep(sw, torque_Nm=torque_Nm, model=model, gap_offset_rad=gap_offset_rad,
-                           progress=progress)
+                           progress=progress, pressure_grid=pressure_grid)
 
 
 def load_from_sweep(sweep_result: SweepResult, *, torque_Nm: float | None = None,
                     model: str | None = None, gap_offset_rad: ArrayLike | None = None,
-                    progress: Progress = None) -> LoadResult:
+                    progress: Progress = None,
+                    pressure_grid: tuple[int, int] | None = None) -> LoadResult:
     """Load sharing on an existing sweep (its spec gives the teeth, materials and defaults);
     arguments as :func:`load`."""
-    problem = load_problem(sweep_result, torque_Nm, gap_offset_rad)
+    problem = load_problem(sweep_result, torque_Nm, gap_offset_rad, pressure_grid)
     m = resolve_model(problem.spec, model)
     return _result(problem, m, solve(problem, m, progress))
 

@@ -32,33 +32,44 @@ FOUNDATION_L, FOUNDATION_P, FOUNDATION_Q = 5.306, 1.534, 0.4167
 SHEAR_FACTOR = 1.2  # 1 / kappa for a rectangular section
 
 
-def beam_compliance(y: NDArray[np.float64], S: NDArray[np.float64], y_F: float, *,
-                    E: float, G: float, beta: float = 0.0) -> float:
-    """Normal deflection per unit load and unit width of a cantilever of thickness ``S(y)``.
+def beam_terms(y: NDArray[np.float64], S: NDArray[np.float64], y_F: ArrayLike, *,
+               E: float, G: float, beta: ArrayLike = 0.0) -> NDArray[np.float64]:
+    """Normal deflection per unit load and unit width of a cantilever of thickness ``S(y)``,
+    in its terms: bending, shear and compression.
 
     Parameters
     ----------
-    y : (n,) float
+    y : (..., n) float
         Heights from the clamped root to the load height ``y_F`` (increasing).
-    S : (n,) float
+    S : (..., n) float
         Section thickness at ``y`` (mm).
-    y_F : float
+    y_F : (...) float
         Load height (mm).
     E, G : float
         Young's modulus for bending and shear modulus (MPa).
-    beta : float
+    beta : (...) float
         Load angle from the perpendicular to the beam axis (radians).
 
     Returns
     -------
-    float
-        Deflection along the load per unit load per unit width (mm²/N), Simpson's rule.
+    (3, ...) float
+        Deflection along the load per unit load per unit width (mm²/N) of bending, shear
+        and compression, Simpson's rule.
     """
     from scipy.integrate import simpson
 
-    cb2, sb2 = math.cos(beta) ** 2, math.sin(beta) ** 2
-    f = cb2 * (12.0 * (y_F - y) ** 2 / (E * S**3) + SHEAR_FACTOR / (G * S)) + sb2 / (E * S)
-    return float(simpson(f, x=y))
+    yF = np.asarray(y_F, dtype=float)[..., None]
+    b = np.asarray(beta, dtype=float)[..., None]
+    cb2, sb2 = np.cos(b) ** 2, np.sin(b) ** 2
+    f = np.stack(np.broadcast_arrays(cb2 * 12.0 * (yF - y) ** 2 / (E * S**3),
+                                     cb2 * SHEAR_FACTOR / (G * S), sb2 / (E * S)))
+    return simpson(f, x=np.broadcast_to(y, f.shape), axis=-1)
+
+
+def beam_compliance(y: NDArray[np.float64], S: NDArray[np.float64], y_F: ArrayLike, *,
+                    E: float, G: float, beta: ArrayLike = 0.0) -> NDArray[np.float64]:
+    """The sum of :func:`beam_terms` (same arguments; ``(...)`` float, mm²/N)."""
+    return beam_terms(y, S, y_F, E=E, G=G, beta=beta).sum(axis=0)
 
 
 class CantileverCompliance:
@@ -88,9 +99,13 @@ class CantileverCompliance:
         r_hi = min(0.5 * spec.hub.tip.diameter, self.r_root_sleeve)
         self.r_table = np.linspace(r_lo, r_hi, n_radii)
         self.n_quad = n_quad
-        hub, sl = spec.material.hub, spec.material.sleeve
-        self.hub_unit = np.array([self._unit(r, "hub", hub) for r in self.r_table])
-        self.sleeve_unit = np.array([self._unit(r, "sleeve", sl) for r in self.r_table])
+        mats = {"hub": spec.material.hub, "sleeve": spec.material.sleeve}
+        #: per part, the terms of the unit compliance at ``r_table`` (``(5, n_radii)``,
+        #: mm²/N: :meth:`components`)
+        self.terms = {p: np.stack(self.components(self.r_table, p, m))
+                      for p, m in mats.items()}
+        self.hub_unit = self.terms["hub"].sum(axis=0)
+        self.sleeve_unit = self.terms["sleeve"].sum(axis=0)
 
     # ---------------------------------------------------------------- tooth geometry
     def half_thickness(self, part: str, r: ArrayLike) -> NDArray[np.float64]:
@@ -114,22 +129,23 @@ class CantileverCompliance:
             return self.r_root_hub, r_F - self.r_root_hub
         return self.r_root_sleeve, self.r_root_sleeve - r_F
 
-    def _unit(self, r_F: float, part: str, mat) -> float:
-        """Normal compliance times width (mm²/N) of one tooth loaded at radius ``r_F``."""
+    def components(self, r_F: ArrayLike, part: str, mat):
+        """Normal compliance times width (mm²/N) of one tooth loaded at radii ``r_F``
+        ``(...)``, in its terms: the beam's bending, shear and compression, the
+        foundation's rotation and its translation (each ``(...)``)."""
+        r_F = np.asarray(r_F, dtype=float)
         root, y_F = self._heights(part, r_F)
-        y = np.linspace(0.0, y_F, self.n_quad)
+        y = y_F[..., None] * np.linspace(0.0, 1.0, self.n_quad)
         r = root + y if part == "hub" else root - y
         S = 2.0 * self.half_thickness(part, r)
         nu = mat.poisson_ratio
         E_ps = mat.youngs_modulus_MPa / (1 - nu**2)
-        beta = float(self.load_angle(part, r_F))
-        c = beam_compliance(y, S, y_F, E=E_ps, G=mat.shear_modulus_MPa, beta=beta)
+        beta = self.load_angle(part, r_F)
+        bend, shear, comp = beam_terms(y, S, y_F, E=E_ps, G=mat.shear_modulus_MPa, beta=beta)
         S_f = 2.0 * float(self.half_thickness(part, root))
-        u = y_F
-        found = (math.cos(beta) ** 2 / mat.youngs_modulus_MPa
-                 * (FOUNDATION_L * (u / S_f) ** 2
-                    + FOUNDATION_P * (1 + FOUNDATION_Q * math.tan(beta) ** 2)))
-        return c + found
+        scale = np.cos(beta) ** 2 / mat.youngs_modulus_MPa
+        return (bend, shear, comp, scale * FOUNDATION_L * (y_F / S_f) ** 2,
+                scale * FOUNDATION_P * (1 + FOUNDATION_Q * np.tan(beta) ** 2))
 
     # ---------------------------------------------------------------- public protocol
     def loaded_width_mm(self, part: str, z_mm: ArrayLike, r_mm: ArrayLike) -> NDArray:

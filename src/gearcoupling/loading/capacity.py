@@ -41,7 +41,7 @@ from .compliance import first_limit_torque_Nmm
 from .contact import contact_model
 from .inputs import LoadProblem, load_problem, nominal_root_stress_MPa, resolve_model
 from .linear_model import mesh_stiffness_N_per_mm
-from .surface import BendingSprings, SurfaceSolver, flank_offsets
+from .surface import DEFAULT_GRID, BendingSprings, SurfaceSolver, flank_offsets
 
 CRITERIA = ("tooth_load", "contact_stress", "bending_stress")
 RTOL = 1e-7  # relative accuracy of a root-found torque (the closed forms are exact)
@@ -163,40 +163,94 @@ class CapacityCurve(list):
 
 
 def _flank_problem(sweep_result: SweepResult, loaded_flank: str,
-                   gap_offset_rad: ArrayLike | None) -> LoadProblem:
+                   gap_offset_rad: ArrayLike | None,
+                   pressure_grid: tuple[int, int] | None = None) -> LoadProblem:
     """The load problem of ``loaded_flank`` (a unit torque of that sign picks the flank)."""
     if loaded_flank not in FLANKS:
         raise ArgumentError(f"loaded_flank = {loaded_flank!r}: must be 'ccw' (positive torque) "
                             "or 'cw' (negative torque)")
-    return load_problem(sweep_result, 1.0 if loaded_flank == "ccw" else -1.0, gap_offset_rad)
+    return load_problem(sweep_result, 1.0 if loaded_flank == "ccw" else -1.0, gap_offset_rad,
+                        pressure_grid)
 
 
 def capacity_from_sweep(sweep_result: SweepResult, *, model: str | None = None,
                         gap_offset_rad: ArrayLike | None = None,
-                        loaded_flank: str = "ccw") -> Capacity:
+                        loaded_flank: str = "ccw",
+                        pressure_grid: tuple[int, int] | None = None) -> Capacity:
     """:func:`capacity` on an existing sweep (its spec gives the limits)."""
-    problem = _flank_problem(sweep_result, loaded_flank, gap_offset_rad)
+    problem = _flank_problem(sweep_result, loaded_flank, gap_offset_rad, pressure_grid)
     spec, g, z, r, comp = (problem.spec, problem.gap_rad, problem.z_mm, problem.r_mm,
                            problem.compliance)
     m = resolve_model(spec, model)
     limits = limit_loads(spec, z, r, comp)
     torques: dict[str, float] = {}
-    surface = _SurfaceLimits(problem) if m == "surface" else None
+    if m == "surface":
+        torques, search = _surface_torques(problem, limits)
+        return _summarise(problem, m, torques, search)
     for name, W_lim in limits.items():
         if m == "linear":
             T = _linear_capacity(spec, g, W_lim)
-        elif surface is None:
+        else:
             T = first_limit_torque_Nmm(spec, g, z, r, W_lim, comp)
-        else:  # each rotation's compliance-model root orders the surface model's search
-            guess = np.array([first_limit_torque_Nmm(spec, g[:, j:j + 1], z[:, j:j + 1],
-                                                     r[:, j:j + 1], W_lim[:, j:j + 1], comp)
-                              for j in range(g.shape[1])])
-            T = _surface_capacity(surface, name, guess)
         torques[name] = T * 1e-3
-    return _summarise(problem, m, torques, 0 if surface is None else surface.solves)
+    return _summarise(problem, m, torques)
+
+
+def _surface_torques(problem: LoadProblem, limits: dict[str, NDArray]
+                     ) -> tuple[dict[str, float], list[_SurfaceLimits]]:
+    """Each criterion's torque (N·m) on the surface model and the searches (load grid
+    first) that found them.
+
+    Every criterion is first solved at the rotation where the compliance model reaches it
+    first (its root there, :func:`_rotation_root`). In the order of those torques, a
+    criterion within :data:`SCREEN_MARGIN` of the smallest so far is then screened on the
+    other rotations (:func:`_surface_capacity`); one further above cannot govern and keeps
+    its first root (which may stand up to the rotations' spread above its own smallest,
+    a few per cent), as does the face end (reported, not a capacity; 0 without a search
+    where the first touch lies on a face end). Loads, bending and the face end are solved
+    on the load grid, the contact pressure on the pressure grid, started from the load
+    grid's root (:data:`LOAD_GRID`, :data:`PRESSURE_GRID`; one grid for all where the
+    problem names one)."""
+    spec, g, z, r, comp = (problem.spec, problem.gap_rad, problem.z_mm, problem.r_mm,
+                           problem.compliance)
+    grids = (LOAD_GRID, PRESSURE_GRID) if problem.pressure_grid is None else \
+        (problem.pressure_grid,) * 2
+    load = _SurfaceLimits(problem, grids[0])
+    pressure = _SurfaceLimits(problem, grids[1], coarser=load)
+    guesses, first = {}, {}
+    for name, W_lim in sorted(limits.items(), key=lambda kv: kv[0] != "bending_stress"):
+        guesses[name] = np.array([first_limit_torque_Nmm(spec, g[:, j:j + 1], z[:, j:j + 1],
+                                                         r[:, j:j + 1], W_lim[:, j:j + 1], comp)
+                                  for j in range(g.shape[1])])
+        if name == "face_end" and np.any(guesses[name] == 0.0):
+            first[name] = (0, 0.0)  # the first touch lies on a face end: at any torque
+            continue
+        # roughly (INFO_RTOL) on the load grid first: the order of the criteria
+        first[name] = _first_root(load, name, guesses[name], INFO_RTOL)
+    torques: dict[str, float] = {}
+    best = math.inf
+    for name in sorted(first, key=lambda k: first[k][1]):
+        j, T = first[name]
+        search = pressure if name == "contact_stress" else load
+        if name in CRITERIA and (T <= (1.0 + SCREEN_MARGIN) * best or search is pressure):
+            # to SURFACE_RTOL on its own grid, from the rough root
+            T = _rotation_root(search, name, j, T, SURFACE_RTOL if T <= (
+                1.0 + SCREEN_MARGIN) * best else INFO_RTOL)
+        if name in CRITERIA and T <= (1.0 + SCREEN_MARGIN) * best:
+            T = _surface_capacity(search, name, guesses[name], j, T)
+        if name in CRITERIA:
+            best = min(best, T)
+        torques[name] = T * 1e-3
+    return torques, [load, pressure]
 
 
 SURFACE_RTOL = 1e-3  # relative accuracy of a surface-model capacity torque
+INFO_RTOL = 1e-2  # ... of a criterion more than SCREEN_MARGIN above the governing one
+FACE_END_RTOL = 3e-2  # the face-end torque (reported, not a capacity) by bisection
+LOAD_GRID = (24, 16)  # surface-model cells of the load and bending criteria (bench_surface.py)
+PRESSURE_GRID = DEFAULT_GRID  # ... of the contact-pressure criterion
+SCREEN_MARGIN = 0.15  # criteria within this of the smallest are screened over the rotations
+SCREEN_RANGE = 0.25  # rotations screened: compliance-model root within this of the smallest
 SLOPES = {"tooth_load": 1.0, "contact_stress": 0.5, "bending_stress": 1.0}  # d ln f / d ln T
 
 
@@ -204,8 +258,10 @@ class _SurfaceLimits:
     """The surface model's criterion ratios per rotation and torque (single poses: each
     solve warm-started from the nearest solved one, kept for the other criteria)."""
 
-    def __init__(self, problem: LoadProblem):
+    def __init__(self, problem: LoadProblem, grid: tuple[int, int],
+                 coarser: _SurfaceLimits | None = None):
         spec = problem.spec
+        self.coarser = coarser  # a search on a coarser grid whose poses may start this one
         self.problem = problem
         self.spec = spec
         t = spec.tooth
@@ -214,7 +270,7 @@ class _SurfaceLimits:
         self.solver = SurfaceSolver(
             spec, problem.sweep, flank, BendingSprings(problem.compliance, t.base_radius,
                                                        t.pitch_radius),
-            offsets=flank_offsets(problem.gap_offset_rad, FLANKS.index(flank), N))
+            grid=grid, offsets=flank_offsets(problem.gap_offset_rad, FLANKS.index(flank), N))
         mat = spec.material
         self.limit = {
             "tooth_load": spec.load.allowable_tooth_load_N,
@@ -230,19 +286,36 @@ class _SurfaceLimits:
 
     def _start(self, j: int, T: float):
         """The solved pose nearest to ``(j, T)``: the same rotation at the nearest torque,
-        else the nearest rotation (None: cold)."""
+        else the nearest rotation; with none solved, the coarser search's (None: cold)."""
         if not self.solved:
-            return None
+            return None if self.coarser is None else self.coarser._start(j, T)
         key = min(self.solved, key=lambda k: (abs(k[0] - j), abs(math.log(k[1] / T))))
         return self.solved[key][1]
 
     def out(self, j: int, T_Nmm: float) -> dict:
-        key = (j, T_Nmm)
+        key = (j, float(f"{T_Nmm:.12g}"))  # one pose for a torque that went through N·m
         if key not in self.solved:
             load_N = T_Nmm / self.spec.tooth.base_radius
             out, _, pose = self.solver.solve_pose(j, load_N, self._start(j, T_Nmm))
             self.solved[key] = (out, pose)
         return self.solved[key][0]
+
+    def peak_load_N(self, T_Nmm: float, within: float = 0.1) -> float:
+        """The largest tangential tooth load at torque ``T`` over the rotations: from each
+        rotation's pose solved nearest ``T`` (within ``within``, relative), scaled to ``T``
+        (the load grows about linearly with the torque there); the rotations without one
+        are those the compliance model puts well below the worst, unless none has one:
+        then the rotation of the pose solved nearest ``T`` is solved at ``T``."""
+        near: dict[int, float] = {}
+        for j, T in self.solved:
+            if abs(math.log(T / T_Nmm)) <= math.log1p(within) and (
+                    j not in near or abs(math.log(T / T_Nmm)) < abs(math.log(near[j] / T_Nmm))):
+                near[j] = T
+        if not near:
+            j, _ = min(self.solved, key=lambda k: abs(math.log(k[1] / T_Nmm)))
+            near[j] = T_Nmm
+        return max(float(np.max(self.out(j, T)["tangential_force_N"])) * T_Nmm / T
+                   for j, T in near.items())
 
     def ratio(self, name: str, j: int, T_Nmm: float) -> float:
         """``max over the teeth of criterion / limit`` at rotation ``j`` and torque ``T``
@@ -259,26 +332,42 @@ class _SurfaceLimits:
         return float(np.max(value)) / self.limit[name]
 
 
-def _surface_capacity(limits: _SurfaceLimits, name: str, guess_Nmm: NDArray) -> float:
-    """Smallest torque (N·mm) at which criterion ``name`` reaches its limit on the surface
-    model, to :data:`SURFACE_RTOL`. Each tooth's load grows with the torque, so at each
-    rotation the ratio ``criterion / limit`` does; the capacity is the smallest of the
-    rotations' roots. The rotation with the smallest compliance-model root (``guess_Nmm
-    (M,)``) is solved for its root; every other rotation is screened at that torque (a
-    ratio at or below 1: its root is no smaller); those above are searched in the order of
-    their estimated roots (``T ratio^(-1/slope)``; face end: most teeth on a face end
-    first), each first checked at the best torque so far."""
-    M = guess_Nmm.size
-    if M == 0:
-        return math.inf
+def _first_root(limits: _SurfaceLimits, name: str, guess_Nmm: NDArray,
+                rtol: float = SURFACE_RTOL) -> tuple[int, float]:
+    """The rotation where the compliance model reaches criterion ``name`` first (from its
+    roots ``guess_Nmm (M,)``) and the surface model's root there (N·mm, to ``rtol``),
+    started from the pose already solved nearest to it, where there is one (its ratio and
+    the criterion's slope give the start), else from the compliance model's root."""
     fallback = 1e3 * limits.spec.tooth.pitch_radius
     start = np.where(np.isfinite(guess_Nmm) & (guess_Nmm > 0), guess_Nmm, fallback)
-    first = int(np.argmin(start))
-    best = _rotation_root(limits, name, first, float(start[first]))
+    j = int(np.argmin(start))
+    T0 = float(start[j])
+    if limits.solved and name in SLOPES:
+        k, T = min(limits.solved, key=lambda key: (abs(key[0] - j), abs(math.log(key[1] / T0))))
+        ratio = limits.ratio(name, k, T)
+        if ratio > 0:
+            T0 = T * ratio ** (-1.0 / SLOPES[name])
+    return j, _rotation_root(limits, name, j, T0, rtol)
+
+
+def _surface_capacity(limits: _SurfaceLimits, name: str, guess_Nmm: NDArray, first: int,
+                      best: float) -> float:
+    """Smallest torque (N·mm) at which criterion ``name`` reaches its limit on the surface
+    model, to :data:`SURFACE_RTOL`, given its root ``best`` at rotation ``first``. Each
+    tooth's load grows with the torque, so at each rotation the ratio ``criterion / limit``
+    does; the capacity is the smallest of the rotations' roots. Every other rotation whose
+    compliance-model root (``guess_Nmm (M,)``) lies within :data:`SCREEN_RANGE` of the
+    smallest is screened at ``best`` (a ratio at or below 1: its root is no smaller); those
+    above are searched in the order of their estimated roots (``T ratio^(-1/slope)``; face
+    end: most teeth on a face end first), each first checked at the best torque so far."""
     if not math.isfinite(best) or best <= 0.0:  # never reached, or over it at no torque
         return best
+    finite = np.isfinite(guess_Nmm) & (guess_Nmm > 0)
+    low = np.min(guess_Nmm[finite]) if np.any(finite) else math.inf
+    near = ~finite | (guess_Nmm <= (1.0 + SCREEN_RANGE) * low)
     estimate: dict[int, float] = {}
-    for j in range(M):
+    for j in np.flatnonzero(near):
+        j = int(j)
         if j == first or limits.ratio(name, j, best) <= 1.0:
             continue
         if name == "face_end":
@@ -292,13 +381,14 @@ def _surface_capacity(limits: _SurfaceLimits, name: str, guess_Nmm: NDArray) -> 
     return best
 
 
-def _rotation_root(limits: _SurfaceLimits, name: str, j: int, T0: float) -> float:
+def _rotation_root(limits: _SurfaceLimits, name: str, j: int, T0: float,
+                   rtol: float = SURFACE_RTOL) -> float:
     def ratio(T):
         return limits.ratio(name, j, T)
 
     if name == "face_end":
-        return _bisect_root(ratio, T0)
-    return _secant_root(ratio, T0, SLOPES[name])
+        return _bisect_root(ratio, T0, FACE_END_RTOL)
+    return _secant_root(ratio, T0, SLOPES[name], rtol)
 
 
 LOG_T_MAX = math.log(1e18)  # N·mm: a torque never reached
@@ -359,7 +449,9 @@ def _bisect_root(ratio, T0: float, rtol: float = SURFACE_RTOL) -> float:
 
 
 def _summarise(problem: LoadProblem, model: str, torques: dict[str, float],
-               solves: int) -> Capacity:
+               searches: list[_SurfaceLimits] | None = None) -> Capacity:
+    """The :class:`Capacity` of the criteria's torques (N·m); q at the governing torque from
+    a load solve of every rotation (the surface model: the first search's single poses)."""
     spec, sw = problem.spec, problem.sweep
     K = spec.load.accuracy_factor
     crit = {k: v for k, v in torques.items() if k in CRITERIA}
@@ -368,12 +460,18 @@ def _summarise(problem: LoadProblem, model: str, torques: dict[str, float],
     R, N = spec.tooth.pitch_radius, spec.tooth.teeth
     P_i = spec.load.allowable_tooth_load_N
     q = P_max = None
+    solves = 0
     if math.isfinite(T_gov) and T_gov > 0:  # q at the governing torque (T = q N P_max R)
-        sign = 1.0 if problem.torque_Nm >= 0 else -1.0
-        res = load_from_sweep(sw, torque_Nm=sign * T_gov, model=model,
-                              gap_offset_rad=problem.gap_offset_rad)
-        q, P_max = res.q(), float(np.max(res.tangential_force_N))
-        solves += sw.angles_deg.size if model == "surface" else 1
+        if searches:
+            P_max = searches[0].peak_load_N(1e3 * T_gov)
+            q = 1e3 * T_gov / (R * N * P_max)
+        else:
+            sign = 1.0 if problem.torque_Nm >= 0 else -1.0
+            res = load_from_sweep(sw, torque_Nm=sign * T_gov, model=model,
+                                  gap_offset_rad=problem.gap_offset_rad)
+            q, P_max = res.q(), float(np.max(res.tangential_force_N))
+            solves = 1
+    solves += sum(s.solves for s in searches or ())
     return Capacity(
         spec=spec, misalignment_deg=float(sw.misalignment_deg), model=model,
         loaded_flank=problem.loaded_flank, accuracy_factor=K,
@@ -389,16 +487,31 @@ def _finite_or_none(v: float) -> float | None:
     return float(v) if math.isfinite(v) else None
 
 
+ROTATIONS = {"linear": 25, "compliance": 25, "surface": 8}  # default rotations per pitch
+PHASES = 8  # rotations per tooth pitch of a turn's default load (turn_phases)
+
+
+def turn_phases(spec: CouplingSpec, per_pitch: int = PHASES) -> NDArray:
+    """Rotations of a whole turn, ``per_pitch`` per tooth pitch (degrees): with ideal teeth
+    the turn holds only ``per_pitch`` distinct poses, which the surface model solves once
+    each (a rotation one pitch on is the same pose, its teeth renumbered)."""
+    return np.arange(spec.tooth.teeth * per_pitch) * 360.0 / (spec.tooth.teeth * per_pitch)
+
+
+
 def default_angles(spec: CouplingSpec, gap_offset_rad, n: int = 25) -> NDArray:
     """Rotations covering every pose: one tooth pitch for ideal teeth (the pattern repeats
-    every pitch), a full turn when per-tooth offsets break the periodicity."""
+    every pitch), a full turn when per-tooth offsets break the periodicity. ``n`` per
+    model: :data:`ROTATIONS` (the largest tooth load varies by about 2 % over a pitch, so
+    the surface model's 8 find the capacity within 0.5 % of 25: bench_surface.py)."""
     span = 360.0 if gap_offset_rad is not None else 360.0 / spec.tooth.teeth
     return np.linspace(0.0, span, n, endpoint=False)
 
 
 def capacity(spec: CouplingSpec, misalignment_deg: float, *, model: str | None = None,
              loaded_flank: str = "ccw", angles_deg: ArrayLike | None = None,
-             gap_offset_rad: ArrayLike | None = None, **accuracy: Any) -> Capacity:
+             gap_offset_rad: ArrayLike | None = None,
+             pressure_grid: tuple[int, int] | None = None, **accuracy: Any) -> Capacity:
     """Torque capacity at a misalignment, per criterion, with the governing one and q.
 
     Parameters
@@ -410,9 +523,13 @@ def capacity(spec: CouplingSpec, misalignment_deg: float, *, model: str | None =
     loaded_flank : {"ccw", "cw"}
         The flank the torque loads: ``ccw`` for positive torque, ``cw`` for negative.
     angles_deg : (M,) float, optional
-        Rotations searched for the worst pose; default 25 over one tooth pitch (a full
-        turn with ``gap_offset_rad``).
+        Rotations searched for the worst pose; default over one tooth pitch (a full turn
+        with ``gap_offset_rad``), 25 for the linear and compliance models, 8 for surface.
     gap_offset_rad : (N,) or (2, N) float, optional
+    pressure_grid : (int, int), optional
+        The surface model's cells per loaded tooth; default 24 x 16 for the load and
+        bending criteria and 48 x 32 for the contact pressure (:data:`LOAD_GRID`,
+        :data:`PRESSURE_GRID`).
     **accuracy
         Passed to the sweep (``tolerance_mm``, ``grid``).
 
@@ -425,10 +542,11 @@ def capacity(spec: CouplingSpec, misalignment_deg: float, *, model: str | None =
     choice(loaded_flank, "loaded_flank", FLANKS)
     if model is not None:
         choice(model, "model", LOAD_MODELS)
-    a = default_angles(spec, gap_offset_rad) if angles_deg is None else angles_deg
-    sw = sweep(spec, misalignment_deg, a, **accuracy)
+    if angles_deg is None:
+        angles_deg = default_angles(spec, gap_offset_rad, ROTATIONS[resolve_model(spec, model)])
+    sw = sweep(spec, misalignment_deg, angles_deg, **accuracy)
     return capacity_from_sweep(sw, model=model, gap_offset_rad=gap_offset_rad,
-                               loaded_flank=loaded_flank)
+                               loaded_flank=loaded_flank, pressure_grid=pressure_grid)
 
 
 def capacity_curve(spec: CouplingSpec, misalignments_deg: ArrayLike | None = None, *,

@@ -31,8 +31,10 @@ INNER_ITER, OUTER_ITER = 60, 100
 def _solve_load(d: NDArray, c: NDArray, law, W0: NDArray | None = None,
                 tol: float = 1e-14) -> tuple[NDArray, NDArray]:
     """Normal loads ``W`` with ``c W + delta(W) = d`` (``d >= 0``) and ``dW/dd``; ``W0`` a
-    start at or above the root (default ``d / c``: ``delta >= 0`` makes it one)."""
-    W = d / c if W0 is None else np.minimum(W0, d / c)
+    start at or above the root (default ``d / c``: ``delta >= 0`` makes it one). A tooth
+    that ``W0`` leaves unloaded starts from ``d / c`` too: at ``W = 0`` the contact law's
+    slope is infinite and Newton would not leave it."""
+    W = d / c if W0 is None else np.where(W0 > 0, np.minimum(W0, d / c), d / c)
     for _ in range(INNER_ITER):
         delta, s = law(W)
         step = (c * W + delta - d) / (c + s)

@@ -46,6 +46,7 @@ from ..geometry import developed_arc, form_radius, hub_flank_model, hub_model, t
 from ..spec import CouplingSpec
 from .cantilever import CantileverCompliance
 from .inputs import nominal_root_stress_MPa
+from .springs import springs_of
 
 LN_FLOOR = 1.0
 ELLIPTIC_STRIP_WIDTH = 0.5 * math.exp(1.25)
@@ -187,7 +188,7 @@ class ContactModel:
             a_h = F * np.cbrt(9 / (2 * g["eps"] * g["Rp"]) / (math.pi * g["k"] * E2) ** 2)
         beta = np.sqrt(4 / (g["A_f"] * math.pi * g["L"] * self.E_star))  # b = beta sqrt(W)
         kap, lam = [], []
-        halfspace = self.spec.load.stiffness == "fe"  # the strip's bracket (docstring)
+        halfspace = springs_of(self.spec).far_field  # the strip's bracket (docstring)
         strip = np.log(2 * g["L"] / beta) - math.log(ELLIPTIC_STRIP_WIDTH) + 0.5 if halfspace \
             else None
         for mat, h in zip(self.mats, self._half_thickness(g["r"]), strict=True):

@@ -7,7 +7,6 @@ it; it imports none of them.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from functools import lru_cache
 from typing import Any
 
 import numpy as np
@@ -17,11 +16,10 @@ from ..arguments import choice
 from ..arguments import torque_Nm as check_torque_Nm
 from ..clearance import SweepResult
 from ..errors import ArgumentError, SpecError
-from ..fea import tooth_compliance_table
 from ..geometry import FLANKS
 from ..loadspec import LOAD_MODELS
 from ..spec import CouplingSpec
-from .cantilever import CantileverCompliance
+from .springs import cantilever, tooth_compliance
 
 
 def resolve_torque_Nm(spec: CouplingSpec, torque_Nm: float | None) -> float:
@@ -65,25 +63,12 @@ def contact_points(spec: CouplingSpec, sweep_result: SweepResult,
     return np.where(ok, z, 0.0), np.where(ok, r, spec.tooth.pitch_radius)
 
 
-def tooth_compliance(spec: CouplingSpec):
-    """The tooth-pair compliance of ``[load] stiffness``: the tapered cantilever, or the FE
-    table (:func:`gearcoupling.fea.tooth_compliance_table`, cached per spec)."""
-    if spec.load.stiffness == "fe":
-        return tooth_compliance_table(spec)
-    return _cantilever(spec)
-
-
 def nominal_root_stress_MPa(spec: CouplingSpec, normal_force_N, z_mm, r_mm) -> NDArray:
     """The root bending stress the allowable bending stress is compared with: the tapered
     cantilever's nominal stress, whichever tooth springs ``[load] stiffness`` chooses (the
     FE table's fillet stresses hold the fillet's stress concentration; they are reported in
     ``stiffness.csv``, not judged)."""
-    return _cantilever(spec).root_stress_MPa(normal_force_N, z_mm, r_mm)
-
-
-@lru_cache(maxsize=32)
-def _cantilever(spec: CouplingSpec) -> CantileverCompliance:
-    return CantileverCompliance(spec)
+    return cantilever(spec).root_stress_MPa(normal_force_N, z_mm, r_mm)
 
 
 @dataclass(frozen=True, eq=False)
@@ -100,6 +85,11 @@ class LoadProblem:
         Gap angles (with offsets) and first-touch points of the loaded flank.
     gap_offset_rad : (N,) or (2, N) float or None
         Per-tooth additions to the gap angles (index errors).
+    compliance : object with ``pair_compliance_mm_per_N(z_mm, r_mm)``
+        The tooth springs of ``[load] stiffness``.
+    pressure_grid : (int, int) or None
+        Cells of the surface model's pressure grid (along the face, across the depth);
+        None: its default.
     """
 
     sweep: SweepResult
@@ -109,6 +99,7 @@ class LoadProblem:
     r_mm: NDArray[np.float64]
     gap_offset_rad: NDArray[np.float64] | None = None
     compliance: Any = field(default=None, repr=False)
+    pressure_grid: tuple[int, int] | None = None
 
     @property
     def spec(self):
@@ -130,7 +121,8 @@ class LoadProblem:
 
 
 def load_problem(sweep_result: SweepResult, torque_Nm: float | None = None,
-              gap_offset_rad: ArrayLike | None = None) -> LoadProblem:
+                 gap_offset_rad: ArrayLike | None = None,
+                 pressure_grid: tuple[int, int] | None = None) -> LoadProblem:
     """The :class:`LoadProblem` of a sweep at a torque (default the spec's ``[load]`` torque)."""
     if not isinstance(sweep_result, SweepResult):
         raise ArgumentError(f"sweep_result is a {type(sweep_result).__name__}: must be the "
@@ -141,4 +133,4 @@ def load_problem(sweep_result: SweepResult, torque_Nm: float | None = None,
     g = loaded_gaps(sweep_result, flank, gap_offset_rad)
     z, r = contact_points(spec, sweep_result, flank)
     off = None if gap_offset_rad is None else np.asarray(gap_offset_rad, dtype=float)
-    return LoadProblem(sweep_result, T, g, z, r, off, tooth_compliance(spec))
+    return LoadProblem(sweep_result, T, g, z, r, off, tooth_compliance(spec), pressure_grid)

@@ -9,8 +9,8 @@ from numpy.typing import NDArray
 
 from ..spec import CouplingSpec
 from .contact import contact_estimates
-from .inputs import tooth_compliance
 from .linear import solve_windup
+from .springs import tooth_compliance
 
 
 def mesh_stiffness_N_per_mm(spec: CouplingSpec) -> float:

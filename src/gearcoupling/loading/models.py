@@ -18,7 +18,7 @@ from numpy.typing import NDArray
 from .compliance import solve_compliance
 from .inputs import LoadProblem, nominal_root_stress_MPa
 from .linear_model import solve_linear
-from .surface import solve_surface
+from .surface import DEFAULT_GRID, solve_surface
 
 #: per-tooth arrays ``(N, M)`` every model reports, with the value where a model has none
 TOOTH_ARRAYS: dict[str, Any] = {
@@ -103,6 +103,7 @@ def _compliance(problem: LoadProblem, progress: Progress = None) -> ModelOutput:
 def _surface(problem: LoadProblem, progress: Progress = None) -> ModelOutput:
     spec, c = problem.spec, problem.compliance
     out = solve_surface(spec, problem.sweep, torque_Nm=problem.torque_Nm, compliance=c,
+                        grid=problem.pressure_grid or DEFAULT_GRID,
                         gap_offset_rad=problem.gap_offset_rad, progress=progress)
     Fn = np.asarray(out["normal_force_N"])
     z, r = out["contact_z_mm"], out["contact_r_mm"]

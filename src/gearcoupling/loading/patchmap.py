@@ -21,7 +21,7 @@ from ..clearance import sweep
 from ..errors import ArgumentError
 from ..geometry import developed_arc
 from .contact import REGIMES, contact_model
-from .inputs import tooth_compliance
+from .springs import tooth_compliance
 from .surface import solve_surface
 
 

@@ -56,7 +56,7 @@ def plot_tooth_load(res, ax=None, rotation: int = 0):
                  f"i = {res.misalignment_deg:.3g}°, q = {res.q():.3f}")
     ax.set_xlim(0, 360)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=8, loc="best")
     return fig
 
 
@@ -119,7 +119,7 @@ def plot_q_graph(points: dict[str, Sequence[tuple[float, float]]] | None = None,
     ax.set_ylabel("load proportion q")
     ax.set_ylim(0, 1)
     ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=8, loc="best")
     ax.set_title(title, fontsize=10)
     return fig
 
@@ -134,7 +134,7 @@ def plot_vs_misalignment(misalignments_deg, series: dict[str, Sequence[float]], 
     ax.set_ylabel(ylabel)
     ax.set_title(title)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=8, loc="best")
     return fig
 
 

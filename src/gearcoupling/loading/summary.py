@@ -19,7 +19,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..geometry import form_radius, hub_flank_model, hub_model, tip_radius
+from .accuracy import springs_name, tooth_load_error, windup_error
 from .contact import REGIMES
+from .springs import tooth_compliance
 
 
 def contact_frames(res) -> tuple[NDArray, NDArray]:
@@ -101,6 +103,7 @@ def summarise(res) -> dict[str, Any]:
                if k > 0}
     out = {
         "spec": res.spec.name, "model": res.model, "stiffness": res.spec.load.stiffness,
+        "accuracy": accuracy_notes(res.spec, res.model),
         "torque_Nm": res.torque_Nm,
         "loaded_flank": res.loaded_flank, "misalignment_deg": res.misalignment_deg,
         "angles": int(res.angles_deg.size), "teeth": res.teeth,
@@ -124,6 +127,15 @@ def summarise(res) -> dict[str, Any]:
         "limits": _limits(res),
     }
     return out
+
+
+def accuracy_notes(spec, model: str) -> dict[str, Any]:
+    """What the accuracy ladder measured for this model and its springs (docs/load.md), and
+    what of the spec lies outside the range the springs were fitted on."""
+    springs = springs_name(spec, model)
+    outside = getattr(tooth_compliance(spec), "outside", []) if springs == "fe-fit" else []
+    return {"springs": springs, "windup": windup_error(model, springs),
+            "tooth_load": tooth_load_error(model, springs), "outside_fitted_range": outside}
 
 
 def _limits(res) -> list[str]:

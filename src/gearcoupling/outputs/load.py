@@ -13,6 +13,8 @@ from ..clearance import SweepResult, sweep
 from ..geometry import renzo_z0_mm
 from ..io import write_json
 from ..loading import (
+    LOAD_GRID,
+    ROTATIONS,
     capacity_from_sweep,
     default_angles,
     load_from_sweep,
@@ -20,7 +22,9 @@ from ..loading import (
     plot_q_graph,
     plot_tooth_load,
     plot_vs_misalignment,
+    resolve_model,
     resolve_torque_Nm,
+    turn_phases,
 )
 from ..plots import save_figure
 from ..spec import CouplingSpec
@@ -45,10 +49,12 @@ def load_studies(spec: CouplingSpec, torque_Nm: float, model: str | None, out: P
     moment: dict[str, list[float]] = {k: [] for k in labels}
     q_pts: list[tuple[float, float]] = []
     ld = spec.load
+    m = resolve_model(spec, model)
+    grid = LOAD_GRID if m == "surface" else None  # the load criteria's grid of capacity
     for n, i in enumerate(mis):
-        sw = sweep(spec, float(i), default_angles(spec, None))
+        sw = sweep(spec, float(i), default_angles(spec, None, ROTATIONS[m]))
         for t, key in zip(torques, peak, strict=True):
-            res = load_from_sweep(sw, torque_Nm=t, model=model)
+            res = load_from_sweep(sw, torque_Nm=t, model=model, pressure_grid=grid)
             peak[key].append(float(np.max(res.tangential_force_N)))
             moment[key].append(res.summary()["tilting_moment_Nm"]["mean"])
         if ld.allowable_tooth_load_N is not None and ld.mesh_stiffness_N_per_mm is not None:
@@ -78,17 +84,20 @@ def load_studies(spec: CouplingSpec, torque_Nm: float, model: str | None, out: P
     return paths
 
 
-def write_load(spec: CouplingSpec, out: Path, misalignment_deg: float, angles: int = 360, *,
+def write_load(spec: CouplingSpec, out: Path, misalignment_deg: float,
+               angles: int | None = None, *,
                torque_Nm: float | None = None, model: str | None = None,
                tolerance_mm: float = 1e-7, plots: bool = True, with_studies: bool = True,
                swept: SweepResult | None = None,
                progress: Callable[[int, int], None] | None = None) -> list[Path]:
-    """The loaded analysis over ``angles`` rotations of a turn: ``load.csv``,
-    ``load_summary.json`` and plots. ``swept``: a sweep of this spec at these rotations
-    and misalignment to reuse (else one is made); ``progress(done, total)`` as the
-    surface model and the studies go."""
+    """The loaded analysis over ``angles`` rotations of a turn (default
+    :data:`~gearcoupling.loading.PHASES` per tooth pitch, a turn of as many distinct poses):
+    ``load.csv``, ``load_summary.json`` and plots. ``swept``: a sweep of this spec at these
+    rotations and misalignment to reuse (else one is made); ``progress(done, total)`` as
+    the surface model and the studies go."""
     if swept is None:
-        swept = sweep(spec, misalignment_deg, turn_angles(angles), tolerance_mm=tolerance_mm)
+        a = turn_phases(spec) if angles is None else turn_angles(angles)
+        swept = sweep(spec, misalignment_deg, a, tolerance_mm=tolerance_mm)
     res = load_from_sweep(swept, torque_Nm=torque_Nm, model=model, progress=progress)
     summary = res.summary()
     paths = [res.write_csv(out / "load.csv"), write_json(out / "load_summary.json", summary)]

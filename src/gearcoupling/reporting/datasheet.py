@@ -19,7 +19,8 @@ def datasheet(ctx: Context) -> Section:
                                "teeth; give [load] torque_Nm or --torque.", "skip"))
         return sec
     try:
-        data = coupling_data(ctx.spec, ctx.misalignment_deg, ctx.torque_Nm, model=ctx.model)
+        data = coupling_data(ctx.spec, ctx.misalignment_deg, ctx.torque_Nm,
+                             model=ctx.settings.model)  # the data sheet's own default
     except SpecError as err:
         sec.blocks.append(Note(f"Not made: {err}", "skip"))
         return sec

@@ -44,6 +44,9 @@ from ..loading import (
     renzo_q,
     resolve_torque_Nm,
     rotation_table,
+    springs_name,
+    tooth_load_error,
+    windup_error,
     write_capacity_csv,
 )
 from ..plots import crown_profile, new_figure, sections_figure
@@ -99,25 +102,13 @@ def _sweep_settings(sw) -> str:
             f"i = {sw.misalignment_deg:g}°.")
 
 
-#: what the accuracy ladder (docs/load.md) measured for each tooth spring
-SPRING_ACCURACY = {
-    "cantilever": "wind-up 58–87 % more compliant than the CalculiX contact reference; "
-                  "at 1–2° the most loaded teeth carry 1.4–1.8 times less than a CalculiX "
-                  "sector at equal wind-up; [load] stiffness = \"fe\" brings the wind-up "
-                  "within 9 %",
-    "fe": "FE far-field springs: wind-up within 9 % of the CalculiX contact reference; "
-          "at 1–2° the most loaded teeth carry 0–20 % (surface) and 8–40 % (compliance) "
-          "more than a CalculiX sector at equal wind-up",
-}
-
-
 def _load_settings(ctx: Context, res) -> str:
     spec = ctx.spec
-    stiff = spec.load.stiffness
-    return (f"{res.model} model ({stiff} tooth stiffness: {SPRING_ACCURACY[stiff]}), "
-            f"T = {res.torque_Nm:.4g} N·m on the {res.loaded_flank} flanks, friction "
-            f"{spec.load.friction:g}, {res.angles_deg.size} rotations, "
-            f"i = {res.misalignment_deg:g}°.")
+    springs = springs_name(spec, res.model)
+    return (f"{res.model} model, {springs} tooth springs ({windup_error(res.model, springs)}; "
+            f"{tooth_load_error(res.model, springs)}), T = {res.torque_Nm:.4g} N·m on the "
+            f"{res.loaded_flank} flanks, friction {spec.load.friction:g}, "
+            f"{res.angles_deg.size} rotations, i = {res.misalignment_deg:g}°.")
 
 
 # --------------------------------------------------------------------------- coupling
@@ -296,6 +287,12 @@ def loads(ctx: Context) -> Section:
     sec.blocks.append(Table(("quantity", "value", "unit"), rows, _load_settings(ctx, res)))
     for text in summ["limits"]:
         sec.blocks.append(Note(text, "warn"))
+    outside = summ["accuracy"]["outside_fitted_range"]
+    if outside:
+        sec.blocks.append(Note("The fe-fit tooth springs are evaluated outside the range they "
+                               f"were fitted on ({'; '.join(outside)}): their error there is "
+                               "not measured; --set load.stiffness=fe computes this spec's "
+                               "own FE table.", "warn"))
     res.write_csv(ctx.data_path("load.csv"))
     how = _load_settings(ctx, res)
     sec.blocks.append(ctx.figure("tooth-load", "Tooth load against the turning angle (Renzo "

@@ -22,6 +22,7 @@ from numpy.typing import NDArray
 from ..clearance import critical_misalignment_deg
 from ..loading import capacity, load, machine_loads
 from ..spec import MISALIGNMENT_RANGE_DEG
+from .stiffness import DATASHEET_MODEL
 
 DEFAULT_TURN_ANGLES = 360
 ANGLE_TOLERANCE_DEG = 0.01
@@ -105,7 +106,9 @@ def allowable_loads(spec, torque_Nm: float, *, model: str | None = None,
                     angles: int = DEFAULT_TURN_ANGLES,
                     tolerance_deg: float = ANGLE_TOLERANCE_DEG) -> AllowableLoads:
     """The allowable misalignment at ``torque_Nm`` and the machine loads over a turn there
-    (``angles`` rotations; module docstring)."""
+    (``angles`` rotations; module docstring); ``model`` default
+    :data:`~.stiffness.DATASHEET_MODEL`."""
+    model = DATASHEET_MODEL if model is None else model
     top = MISALIGNMENT_RANGE_DEG[1]
     critical = critical_misalignment_deg(spec)
     limit, governing = capacity_limit_deg(spec, torque_Nm, critical or top, model=model,

@@ -19,14 +19,14 @@ from typing import Any
 from ..clearance import sweep
 from ..errors import ArgumentError
 from ..io import write_csv_rows, write_json
-from ..loading import capacity, resolve_torque_Nm
+from ..loading import capacity, resolve_torque_Nm, springs_name, tooth_load_error, windup_error
 from ..spec import CouplingSpec, check_misalignment_deg
 from ..tables import dataframe
-from .accuracy import springs, tooth_load_error, windup_error
 from .allowable import DEFAULT_TURN_ANGLES, AllowableLoads, allowable_loads
 from .mass import MassProperties, mass_properties
 from .ross import coupling_element
 from .stiffness import (
+    DATASHEET_MODEL,
     DEFAULT_RELATIVE_STEP,
     DEFAULT_ROTATIONS,
     DISPLACEMENT_UNITS,
@@ -264,7 +264,7 @@ def coupling_data(spec: CouplingSpec, misalignment_deg: float | None = None,
     torque_Nm : float, optional
         Signed, not zero; default the spec's ``[load]`` torque.
     model : str, optional
-        Load model; default the spec's.
+        Load model; default :data:`DATASHEET_MODEL` (``"compliance"``), whatever the spec's.
     rotations : int
         Rotations over one tooth pitch the stiffness is averaged over (accuracy knob).
     relative_step : float
@@ -290,6 +290,8 @@ def coupling_data(spec: CouplingSpec, misalignment_deg: float | None = None,
     mis = (spec.design_misalignment_deg if misalignment_deg is None else
            check_misalignment_deg(misalignment_deg, "misalignment_deg", ArgumentError))
     T = check_inputs(spec, torque_Nm)
+    model = DATASHEET_MODEL if model is None else model
+
     def step(done: int) -> None:
         if progress is not None:
             progress(done, 4)
@@ -306,9 +308,9 @@ def coupling_data(spec: CouplingSpec, misalignment_deg: float | None = None,
     allowed = allowable_loads(spec, T, model=model, angles=turn_angles)
     step(4)
     used = K.model
-    return CouplingData(spec, float(mis), T, used, springs(spec, used), mass, torsion, K,
+    return CouplingData(spec, float(mis), T, used, springs_name(spec, used), mass, torsion, K,
                         cap.capacity_Nm, allowed, time.perf_counter() - t0)
 
 
-__all__ = ["DATASHEET_COLUMNS", "FILES", "MAX_TORQUE_NM", "NOT_MODELLED", "CouplingData",
-           "check_inputs", "coupling_data"]
+__all__ = ["DATASHEET_COLUMNS", "DATASHEET_MODEL", "FILES", "MAX_TORQUE_NM", "NOT_MODELLED",
+           "CouplingData", "check_inputs", "coupling_data"]

@@ -32,7 +32,7 @@ def plot_windup(torsion, title: str = ""):
     ax.set_ylabel("torque (N·m)")
     ax.set_xlim(left=0)
     ax.set_ylim(bottom=0)
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=8, loc="best")
     ax.set_title(title, fontsize=10)
     return fig
 
@@ -48,7 +48,7 @@ def plot_allowable_loads(allowable, title: str = ""):
     a1.plot(psi, allowable.radial_force_N, color="C3", label="radial force")
     a1.set_ylabel("force (N)")
     a1.set_xlabel("rotation ψ (deg)")
-    a1.legend(fontsize=8)
+    a1.legend(fontsize=8, loc="best")
     a0.set_title(title, fontsize=10)
     return fig
 

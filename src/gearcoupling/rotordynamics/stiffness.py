@@ -26,9 +26,8 @@ from numpy.typing import NDArray
 
 from ..clearance import SweepResult, sweep
 from ..errors import ArgumentError
-from ..loading import body_windup_rad, load_from_sweep, resolve_torque_Nm
+from ..loading import body_windup_rad, load_from_sweep, resolve_torque_Nm, springs_name
 from ..spec import MISALIGNMENT_RANGE_DEG
-from .accuracy import springs
 from .pose import generalized_forces, translation_gap_offsets
 from .wrench import hub_wrench
 
@@ -37,6 +36,14 @@ FORCE_UNITS = ("N", "N", "N", "N·m", "N·m", "N·m")
 DISPLACEMENT_UNITS = ("m", "m", "m", "rad", "rad", "rad")
 DEFAULT_RELATIVE_STEP = 0.02
 DEFAULT_ROTATIONS = 8
+DATASHEET_MODEL = "compliance"
+"""The load model of the rotordynamic data unless one is given: they take a few hundred
+load solves (the matrix's differences over the pitch, the wind-up curve, the capacity at
+several misalignments), 0.6 s of CPU with the compliance model against about a minute with
+the surface model, the default elsewhere. With the default springs both are on the
+accuracy ladder aligned (docs/load.md); at the templates' design misalignment the
+compliance model's stiffness diagonal is 2-27 % above the surface model's (tilt the
+most)."""
 _TRANSLATIONS = 3
 _TILT_X, _TILT_Y, _TORSION = 3, 4, 5
 
@@ -191,6 +198,7 @@ def stiffness_from_sweep(sw: SweepResult, torque_Nm: float, *, model: str | None
         notes.append("aligned: the teeth do not slide, so friction adds no stiffness (a "
                      "Coulomb force has no linear part at zero sliding); the slip force holds")
         mu = 0.0
+    model = DATASHEET_MODEL if model is None else model
     case = _Case(spec, float(torque_Nm), model, mu, sw.tolerance_mm)
     Q0, c0, res0 = case.state(sw)
     deflection = float(np.mean(np.max(res0.deflection_mm, axis=0)))
@@ -225,8 +233,8 @@ def stiffness_from_sweep(sw: SweepResult, torque_Nm: float, *, model: str | None
     steps = {"translation_mm": h_t, "tilt_rad": h_a, "torque_Nm": h_T,
              "relative_step": float(relative_step), "rotations": n}
     return StiffnessMatrix(float(sw.misalignment_deg), case.torque_Nm, res0.model,
-                           springs(spec, res0.model), _round_off(K), k_body, slip, Qbar, spread,
-                           steps, mu, tuple(notes))
+                           springs_name(spec, res0.model), _round_off(K), k_body, slip, Qbar,
+                           spread, steps, mu, tuple(notes))
 
 
 def _translations(case: _Case, sw: SweepResult, flank: str, h: float, dQdu: NDArray,
@@ -322,7 +330,7 @@ def stiffness_matrix(spec, misalignment_deg: float, torque_Nm: float | None = No
     torque_Nm : float, optional
         Signed, not zero; default the spec's ``[load]`` torque.
     model : str, optional
-        Load model; default the spec's.
+        Load model; default :data:`DATASHEET_MODEL` (``"compliance"``), whatever the spec's.
     friction : float, optional
         Coulomb coefficient; default the spec's ``[load] friction``.
     rotations : int

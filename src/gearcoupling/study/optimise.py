@@ -174,7 +174,7 @@ def plot_capacity_curves(curves: dict[str, tuple[np.ndarray, np.ndarray]], *, ax
         ax.plot(angles, cap, "o-", ms=3, label=name)
     ax.set_xlabel("misalignment (deg)")
     ax.set_ylabel("capacity (N m)")
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=8, loc="best")
     ax.grid(alpha=0.3)
     return fig
 

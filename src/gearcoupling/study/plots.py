@@ -31,7 +31,7 @@ def plot_study(rows: list[dict[str, Any]], x: str, y: str, group: list[str] | tu
     if title:
         ax.set_title(title)
     if group:
-        ax.legend(fontsize=7)
+        ax.legend(fontsize=7, loc="best")
     ax.grid(alpha=0.3)
     return fig
 
@@ -59,5 +59,5 @@ def plot_k_histogram(rows: list[dict[str, Any]], summary: dict[str, Any], *, ax=
     ax.set_xlabel("accuracy factor K = capacity with errors / without")
     ax.set_ylabel("samples")
     ax.set_title(f"{summary['samples']} samples, {summary['path']} path")
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=7, loc="best")
     return fig

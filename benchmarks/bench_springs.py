@@ -1,0 +1,232 @@
+"""The default tooth springs against the FE tooth-spring tables they reproduce.
+
+Run: ``python benchmarks/bench_springs.py [--random 30] [--seed 2026] [--no-compute] [--fit]
+[--holdout K]``.
+
+The data set: the five bundled templates and ``--random`` seeded random specs whose teeth,
+module, pressure angle, face width, tooth proportions, fillets, rim and bore and crown
+are drawn over the supported range (``tests/random_specs.py``,
+``proportions_spec``). For each, the FE tooth-spring table
+(:func:`gearcoupling.fea.tooth_compliance_table`, default settings: a 3 x 3 grid of load
+points, real gmsh and CalculiX; cached in ``$GEARCOUPLING_CACHE`` or the user's cache, so a
+second run only reads) and the default springs (:class:`gearcoupling.loading.FittedCompliance`)
+at the same load points. Printed: per spec, the largest error of the pair far field over
+the grid, and of the whole compliance (far field + the table's half-space near field, what a
+load model adds up); the error over every spec and grid point; the springs' time per spec. With
+``--no-compute`` specs without a cached table are left out. ``--fit`` fits the coefficients
+of :mod:`gearcoupling.loading.fitted` to the data set first and writes them to
+``src/gearcoupling/loading/fitted.json`` (the table then shows the new fit);
+``--holdout K`` fits on all but every K-th random spec and prints the error on those left out.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import os
+import sys
+import time
+from dataclasses import replace
+from pathlib import Path
+
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+import gearcoupling as gc
+from gearcoupling.errors import GearCouplingError
+from gearcoupling.fea.stiffness import ComplianceTable, cache_dir, spec_hash
+from random_specs import proportions_spec
+
+ROOT = Path(__file__).resolve().parents[1]
+TEMPLATES = ("renzo-1967", "renzo-1967-vari-crown", "renzo-1967-end-round", "industrial-m2",
+             "mill-spindle")
+
+
+def dataset_specs(count: int, seed: int) -> list[gc.CouplingSpec]:
+    """The templates and ``count`` random specs (named ``springs-<i>-<crown>``)."""
+    rng = np.random.default_rng(seed)
+    specs = [gc.load_spec(name) for name in TEMPLATES]
+    for i in range(count):
+        s = proportions_spec(rng)
+        specs.append(replace(s, name=f"springs-{i:02d}-{s.hub.crowning.kind}"))
+    return specs
+
+
+def cached_table(spec: gc.CouplingSpec) -> ComplianceTable | None:
+    """The cached FE table of ``spec`` at the default settings, or None."""
+    key = spec_hash(spec, size_mm=None, sector=3, nz=3, nr=3)
+    for path in cache_dir().glob(f"*-{key}.json"):
+        return ComplianceTable.from_dict(json.loads(path.read_text()))
+    return None
+
+
+def fe_table(spec: gc.CouplingSpec, compute: bool) -> ComplianceTable | None:
+    table = cached_table(spec)
+    if table is None and compute:
+        from gearcoupling.fea import tooth_compliance_table
+
+        t0 = time.perf_counter()
+        table = tooth_compliance_table(spec)
+        print(f"  {spec.name}: FE table in {time.perf_counter() - t0:.0f} s", flush=True)
+    return table
+
+
+def part_records(spec: gc.CouplingSpec, table: ComplianceTable, springs) -> dict:
+    """Per part at the table's ``P`` load points: features ``(P, F)``, the bending base
+    ``(P,)`` (mm/N), the confinement shape ``(P,)`` per trial length (mm/N) and the FE far
+    field ``(P,)`` (normal, mm/N); the pair's FE far field ``(P,)``."""
+    from gearcoupling.loading.fitted import PARTS
+
+    Z, R = (a.ravel() for a in np.meshgrid(table.z_mm, table.r_mm, indexing="ij"))
+    cos2 = math.cos(spec.tooth.pressure_angle) ** 2
+    out = {"pair": cos2 * table.far_field_mm_per_N.ravel()}
+    whole = {"hub": table.hub_mm_per_N, "sleeve": table.sleeve_mm_per_N}
+    for i, part in enumerate(PARTS):
+        out[part] = {"features": springs.part_features(part, Z, R),
+                     "bending": springs.bending(part, Z, R),
+                     "confinement": {L: springs.confinement(part, R, L) for L in LENGTHS},
+                     "far": cos2 * (whole[part] - table.near_field_mm_per_N[i]).ravel()}
+    return out
+
+
+LENGTHS = (0.2, 0.3, 0.45, 0.7, 1.0)  # trial confinement lengths (modules)
+
+
+def fit(data: list[dict], ridge: float = 0.1) -> dict:
+    """Coefficients per part minimising the log error of the pair far field over ``data``
+    (:func:`part_records` of each spec), a small ridge on all but the constant; the
+    confinement length per part the best of :data:`LENGTHS`."""
+    from scipy.optimize import least_squares
+
+    from gearcoupling.loading.fitted import FEATURES, PARTS
+
+    nf = len(FEATURES)
+
+    def model(x, d, lengths):
+        total = 0.0
+        for i, p in enumerate(PARTS):
+            a, b = x[i * (nf + 1):i * (nf + 1) + nf], x[i * (nf + 1) + nf]
+            q = d[p]
+            total = total + q["bending"] * np.exp(q["features"] @ a) \
+                - b * q["confinement"][lengths[p]]
+        return total
+
+    def resid(x, lengths):
+        r = [np.log(np.maximum(model(x, d, lengths), 1e-3 * d["pair"]) / d["pair"])
+             for d in data]
+        reg = [x[i * (nf + 1) + 1:i * (nf + 1) + nf] for i in range(len(PARTS))]
+        return np.concatenate([*r, ridge * np.concatenate(reg)])
+
+    best = None
+    for lh in LENGTHS:
+        for ls in LENGTHS:
+            lengths = {"hub": lh, "sleeve": ls}
+            sol = least_squares(resid, np.zeros(2 * (nf + 1)), args=(lengths,), method="lm")
+            if best is None or sol.cost < best[0].cost:
+                best = (sol, lengths)
+    sol, lengths = best
+    parts = {}
+    for i, p in enumerate(PARTS):
+        f = np.concatenate([d[p]["features"] for d in data])
+        x = sol.x[i * (nf + 1):(i + 1) * (nf + 1)]
+        parts[p] = {"coefficients": x[:nf].tolist(), "confinement": float(x[nf]),
+                    "confinement_length": lengths[p],
+                    "low": f.min(axis=0).tolist(), "high": f.max(axis=0).tolist()}
+    return {"features": list(FEATURES), "parts": parts}
+
+
+def spec_ranges(specs) -> dict:
+    """The data set's range of what :attr:`FittedCompliance.outside` checks."""
+    from gearcoupling.loading.fitted import FittedCompliance
+
+    vals: dict[str, list[float]] = {}
+    for spec in specs:
+        c = FittedCompliance(spec)
+        for k, v in (("teeth", c.teeth), ("module_mm", c.module),
+                     ("pressure_angle_deg", math.degrees(c.phi)),
+                     ("face_over_module", 2.0 * c.half_face_hub / c.module),
+                     ("hub_rim_over_module", c.rim["hub"] / c.module),
+                     ("sleeve_ring_over_module", c.rim["sleeve"] / c.module),
+                     ("hub_fillet_over_module", c.fillet["hub"] / c.module),
+                     ("sleeve_fillet_over_module", c.fillet["sleeve"] / c.module)):
+            vals.setdefault(k, []).append(v)
+    return {k: [min(v), max(v)] for k, v in vals.items()}
+
+
+def describe(spec: gc.CouplingSpec) -> str:
+    t = spec.tooth
+    return (f"{t.teeth} teeth, m {t.module:.3g}, {math.degrees(t.pressure_angle):.1f}°, "
+            f"b/m {spec.hub.face_width / t.module:.1f}")
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--random", type=int, default=30)
+    ap.add_argument("--seed", type=int, default=2026)
+    ap.add_argument("--no-compute", action="store_true")
+    ap.add_argument("--fit", action="store_true")
+    ap.add_argument("--holdout", type=int, default=0)
+    a = ap.parse_args()
+    from gearcoupling.loading.fitted import FittedCompliance
+
+    specs, tables = [], []
+    for spec in dataset_specs(a.random, a.seed):
+        try:
+            table = fe_table(spec, not a.no_compute)
+        except GearCouplingError as err:
+            print(f"  {spec.name}: FE refused: {err}")
+            continue
+        if table is not None:
+            specs.append(spec)
+            tables.append(table)
+    fitted = None
+    if a.fit or a.holdout:
+        data = [part_records(s, t, FittedCompliance(s)) for s, t in zip(specs, tables, strict=True)]
+        keep = [i for i in range(len(specs))
+                if not (a.holdout and i >= len(TEMPLATES) and i % a.holdout == 0)]
+        fitted = fit([data[i] for i in keep])
+        fitted["spec_ranges"] = spec_ranges([specs[i] for i in keep])
+        points = sum(tables[i].far_field_mm_per_N.size for i in keep)
+        fitted["data_set"] = (f"bench_springs.py: {len(keep)} specs (the templates and seeded "
+                              f"random specs, seed {a.seed}), {points} load points")
+        if a.fit and not a.holdout:
+            path = ROOT / "src" / "gearcoupling" / "loading" / "fitted.json"
+            path.write_text(json.dumps(fitted, indent=1) + "\n")
+            print(f"wrote {path}")
+    rows, worst, held = [], [], []
+    for i, (spec, table) in enumerate(zip(specs, tables, strict=True)):
+        t0 = time.perf_counter()
+        springs = FittedCompliance(spec, fit=fitted)
+        Z, R = np.meshgrid(table.z_mm, table.r_mm, indexing="ij")
+        model = springs.pair_compliance_mm_per_N(Z, R)
+        dt = time.perf_counter() - t0
+        err = model / table.far_field_mm_per_N - 1.0
+        near = table.near_field_mm_per_N.sum(axis=0)
+        whole = (model + near) / (table.far_field_mm_per_N + near) - 1.0
+        out = bool(a.holdout and i >= len(TEMPLATES) and i % a.holdout == 0)
+        c_ratio = springs.mesh_stiffness_N_per_mm / table.mesh_stiffness_N_per_mm
+        rows.append((spec.name + (" (held out)" if out else ""), describe(spec), err, whole,
+                     dt, c_ratio))
+        (held if out else worst).append((err.ravel(), whole.ravel()))
+    print("\n| spec | teeth, module, pressure angle, face / module | far field: largest error "
+          "| mean | whole compliance: largest error | C fit / FE | springs ms |")
+    print("|---|---|---|---|---|---|---|")
+    for name, what, err, whole, dt, c_ratio in rows:
+        j, k = np.argmax(np.abs(err)), np.argmax(np.abs(whole))
+        print(f"| {name} | {what} | {100 * err.ravel()[j]:+.1f} % | {100 * err.mean():+.1f} % "
+              f"| {100 * whole.ravel()[k]:+.1f} % | {c_ratio:.3f} | {1e3 * dt:.0f} |")
+    for label, pairs in (("fitted on", worst), ("held out", held)):
+        if pairs:
+            for what, e in (("far field", np.concatenate([p[0] for p in pairs])),
+                            ("whole compliance", np.concatenate([p[1] for p in pairs]))):
+                print(f"\n{label}: {len(pairs)} specs, {e.size} load points, {what}: error "
+                      f"{100 * e.min():+.1f} … {100 * e.max():+.1f} %, rms "
+                      f"{100 * np.sqrt(np.mean(e**2)):.1f} %; within 10 %: "
+                      f"{np.mean(np.abs(e) <= 0.1) * 100:.0f} % of the points")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,202 @@
+"""The default tooth springs: the FE tooth table's far field, by a fit shipped with the package.
+
+The FE tooth-spring table (:func:`gearcoupling.fea.tooth_compliance_table`, ``[load]
+stiffness = "fe"``) is what the load models were validated with against the CalculiX contact
+reference, but it needs gmsh, CalculiX and minutes per spec. This is its fit, with no
+solver at run time (``stiffness = "fe-fit"``, the default): for each part (hub, sleeve) the
+far field at a load point ``(z, r)`` of the hub flank is
+
+    c_part(z, r) = c_bend(r) / y_F · exp(sum_i a_i f_i(z, r)) - b c_patch exp(-y_F / (l m))
+
+with ``c_bend`` the bending of the tapered tooth of the real thickness per unit width (the
+bending term of :meth:`.cantilever.CantileverCompliance.components`; its shear, compression
+and foundation terms are local deformation that the far field leaves to the contact's half-
+space), spread over a width of the order of the load height ``y_F`` above the part's root
+circle, and ``f_i`` dimensionless features of the load point and the part
+(:func:`features`): how high the load sits on the tooth against its root thickness, how
+near it is to a face end and to the tooth's free edge along the depth (where a plate's free
+edge makes it softer), and how much thinner the crown makes the hub tooth there (the hob's
+infeed ``delta(z)`` along the face takes ``delta tan(phi)`` off each flank; the
+cantilever's bending is that of mid-face). The tooth's shape, pressure angle and tooth
+count enter through ``c_bend``; the rim, the fillets and the tooth count were tried as
+features too and made the fit worse on specs left out of it (``benchmarks/bench_springs.py
+--holdout``), so the ranges of the data set in them are checked instead
+(:attr:`FittedCompliance.outside`). The last term is the root's confinement: near its root
+circle a tooth is stiffer under a patch than the half-space the far field was split from
+(an internal tooth's concave root most), so the far field there is below zero; ``c_patch``
+is the half-space work of the table's load patch (a square of side module / 2), ``b`` and
+``l`` fitted per part. The coefficients ``a_i`` per part are fitted to FE tables of the
+bundled templates and of seeded random specs over the supported range and shipped as
+``fitted.json`` (``benchmarks/bench_springs.py --fit`` regenerates the data set, fits and
+prints the error at every load point of every table; docs/load.md has the table). The
+pair's far field is the sum of the two parts', turned to Renzo's measure (circumferential
+at the pitch point per tangential load there) by ``1 / cos² phi`` like the cantilever's.
+
+Where a spec lies outside the ranges the fit was made on (``FittedCompliance.outside``), the
+fit is still evaluated (held at the nearest edge of each feature's fitted range) and the
+result and the report name what lies outside.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from functools import cached_property
+from importlib import resources
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from ..fea import rectangle_halfspace_work_mm_per_N
+from ..geometry import hub_model
+from ..spec import CouplingSpec
+from .cantilever import CantileverCompliance
+
+PARTS = ("hub", "sleeve")
+FEATURES = ("one", "height", "height_squared", "face_end", "face_end_height", "other_end",
+            "tip_edge", "crown_thinning")
+
+
+def features(y_F: ArrayLike, to_face_ends: tuple[ArrayLike, ArrayLike], to_tip: ArrayLike,
+             thinning: ArrayLike, *, module: float,
+             root_thickness: float) -> NDArray[np.float64]:
+    """Features ``(..., len(FEATURES))`` of load points of one part (:data:`FEATURES`):
+    ``1``, ``ln(y_F / S_f)`` and its square, ``exp(-d1 / m)``, ``exp(-d1 / y_F)``,
+    ``exp(-d2 / m)``, ``exp(-d_t / m)``, ``ln(1 - t_c / S_f)``.
+
+    Parameters
+    ----------
+    y_F : (...) float
+        Load height above the part's root circle (mm).
+    to_face_ends : ((...) float, (...) float)
+        Distances ``d1 <= d2`` from the load point to the part's nearer and farther face
+        end (mm).
+    to_tip : (...) float
+        Distance ``d_t`` from the load point to the tooth's free edge along the depth (the
+        hub tip, the sleeve minor circle), mm.
+    thinning : (...) float
+        ``t_c``: how much thinner the crown makes the tooth at the load's face position,
+        ``2 delta(z) tan(phi)`` for the hub's crown drop ``delta``, 0 for the straight
+        sleeve (mm); held below 0.9 ``S_f``.
+    module : float
+    root_thickness : float
+        The tooth's thickness ``S_f`` at its root circle (mm).
+    """
+    m = module
+    y = np.maximum(np.asarray(y_F, dtype=float), 1e-3 * m)
+    d1, d2, dt = (np.maximum(np.asarray(v, dtype=float), 0.0) for v in (*to_face_ends, to_tip))
+    thin = np.clip(np.asarray(thinning, dtype=float) / root_thickness, 0.0, 0.9)
+    y, d1, d2, dt, thin = np.broadcast_arrays(y, d1, d2, dt, thin)
+    h = np.log(y / root_thickness)
+    return np.stack([np.ones(y.shape), h, h * h, np.exp(-d1 / m), np.exp(-d1 / y),
+                     np.exp(-d2 / m), np.exp(-dt / m), np.log1p(-thin)], axis=-1)
+
+
+def load_fit() -> dict[str, Any]:
+    """The shipped coefficients and fitted ranges (``fitted.json`` beside this module)."""
+    text = resources.files("gearcoupling.loading").joinpath("fitted.json").read_text()
+    return json.loads(text)
+
+
+class FittedCompliance(CantileverCompliance):
+    """Far-field tooth-pair compliance of a spec from the shipped fit (module docstring);
+    the same protocol as the cantilever and the FE table:
+    :meth:`pair_compliance_mm_per_N`."""
+
+    def __init__(self, spec: CouplingSpec, *, fit: dict[str, Any] | None = None,
+                 n_radii: int = 64, n_quad: int = 201):
+        super().__init__(spec, n_radii=n_radii, n_quad=n_quad)
+        self.fit = load_fit() if fit is None else fit
+        t = spec.tooth
+        self.module, self.teeth = t.module, t.teeth
+        bore = 0.5 * spec.hub.body.bore_diameter
+        self.rim = {"hub": self.r_root_hub - bore,
+                    "sleeve": 0.5 * spec.sleeve.outer_diameter - self.r_root_sleeve}
+        self.root_thickness = {p: 2.0 * float(self.half_thickness(p, self._heights(p, 0.0)[0]))
+                               for p in PARTS}
+        self.fillet = {"hub": spec.hub.root.fillet_radius,
+                       "sleeve": spec.sleeve.root_fillet_radius}
+        #: the tooth's free edge along the depth: hub tip and sleeve minor radius
+        self.tip_radius = {"hub": 0.5 * spec.hub.tip.diameter,
+                           "sleeve": 0.5 * spec.sleeve.minor_diameter}
+        self.bend = {p: self.terms[p][0] for p in PARTS}
+        self.crown = hub_model(spec).path  # the hub's crown drop along the face
+
+    def part_features(self, part: str, z_mm: ArrayLike, r_mm: ArrayLike) -> NDArray:
+        """:func:`features` of ``part`` at hub flank points ``(z, r)``."""
+        r = np.clip(np.asarray(r_mm, dtype=float), self.r_table[0], self.r_table[-1])
+        root, _ = self._heights(part, 0.0)
+        half = self.half_face_hub if part == "hub" else self.half_face_sleeve
+        z = np.abs(np.asarray(z_mm, dtype=float))
+        thinning = (2.0 * math.tan(self.phi) * self.crown.drop(np.minimum(z, half))
+                    if part == "hub" else np.zeros_like(z))
+        return features(np.abs(r - root), (half - z, half + z),
+                        np.abs(self.tip_radius[part] - r), thinning, module=self.module,
+                        root_thickness=self.root_thickness[part])
+
+    def bending(self, part: str, z_mm: ArrayLike, r_mm: ArrayLike) -> NDArray:
+        """``c_bend / y_F`` of ``part`` at hub flank points ``(z, r)`` (mm/N; module
+        docstring)."""
+        r, y_F = self._height(part, r_mm)
+        return np.broadcast_to(np.interp(r, self.r_table, self.bend[part]) / y_F,
+                               np.broadcast_shapes(np.shape(z_mm), np.shape(r)))
+
+    def confinement(self, part: str, r_mm: ArrayLike, length: float) -> NDArray:
+        """``c_patch exp(-y_F / (length m))`` of ``part`` (mm/N; module docstring)."""
+        _, y_F = self._height(part, r_mm)
+        mat = getattr(self.materials, part)
+        side = 0.5 * self.module
+        patch = rectangle_halfspace_work_mm_per_N(1.0, side, side, mat.youngs_modulus_MPa,
+                                                  mat.poisson_ratio)
+        return patch * np.exp(-y_F / (length * self.module))
+
+    def _height(self, part: str, r_mm: ArrayLike):
+        r = np.clip(np.asarray(r_mm, dtype=float), self.r_table[0], self.r_table[-1])
+        root, _ = self._heights(part, 0.0)
+        return r, np.maximum(np.abs(r - root), 1e-3 * self.module)
+
+    def part_compliance_mm_per_N(self, part: str, z_mm: ArrayLike, r_mm: ArrayLike) -> NDArray:
+        """Normal far-field compliance of one part at hub flank points ``(z, r)`` (mm/N)."""
+        f = self.part_features(part, z_mm, r_mm)
+        c = self.fit["parts"][part]
+        lo, hi = (np.asarray(c[k], dtype=float) for k in ("low", "high"))
+        return (self.bending(part, z_mm, r_mm) * np.exp(np.clip(f, lo, hi) @ np.asarray(
+            c["coefficients"], dtype=float))
+                - c["confinement"] * self.confinement(part, r_mm, c["confinement_length"]))
+
+    def normal_compliance_mm_per_N(self, z_mm: ArrayLike, r_mm: ArrayLike):
+        """Hub and sleeve normal far-field compliances at the load (mm/N), broadcast."""
+        return tuple(self.part_compliance_mm_per_N(p, z_mm, r_mm) for p in PARTS)
+
+    @property
+    def mesh_stiffness_N_per_mm(self) -> float:
+        """Renzo's C of one tooth pair, as the FE table defines it (the linear model's
+        default): 1 / (the far field at mid-face and the pitch radius + the local
+        deformation under the table's load patch, a uniform pressure on a square of side
+        module / 2 of an elastic half-space, each part, under the normal force of a unit
+        tangential load)."""
+        side, force = 0.5 * self.module, 1.0 / math.cos(self.phi)
+        near = sum(rectangle_halfspace_work_mm_per_N(force, side, side, m.youngs_modulus_MPa,
+                                                     m.poisson_ratio)
+                   for m in (self.materials.hub, self.materials.sleeve))
+        return 1.0 / (float(self.pair_compliance_mm_per_N(0.0, self.R)) + near)
+
+    @cached_property
+    def outside(self) -> list[str]:
+        """What of this spec lies outside the fitted ranges (empty: inside)."""
+        notes = []
+        spec_ranges = self.fit.get("spec_ranges", {})
+        values = {"teeth": self.teeth, "module_mm": self.module,
+                  "pressure_angle_deg": math.degrees(self.phi),
+                  "face_over_module": 2.0 * self.half_face_hub / self.module,
+                  "hub_rim_over_module": self.rim["hub"] / self.module,
+                  "sleeve_ring_over_module": self.rim["sleeve"] / self.module,
+                  "hub_fillet_over_module": self.fillet["hub"] / self.module,
+                  "sleeve_fillet_over_module": self.fillet["sleeve"] / self.module}
+        for key, v in values.items():
+            if key in spec_ranges:
+                lo, hi = spec_ranges[key]
+                if not lo <= v <= hi:
+                    notes.append(f"{key} = {v:.3g} outside the fitted {lo:.3g}-{hi:.3g}")
+        return notes
