@@ -3,7 +3,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Sequence, Set
 from dataclasses import dataclass
 
 import numpy as np
@@ -117,7 +117,7 @@ def _shared_dofs(cases: Sequence[LoadCase]) -> set[tuple[int, int]]:
 
 
 def _work_terms(case: LoadCase, dependent: set[tuple[int, int]],
-                shared: set[tuple[int, int]] = frozenset()) -> list[tuple[int, int, float]]:
+                shared: Set[tuple[int, int]] = frozenset()) -> list[tuple[int, int, float]]:
     """``(node, dof, f)`` terms of ``sum f_i . u_i``, led by the largest term whose degree of
     freedom no earlier equation made dependent (ccx eliminates the first term), preferring
     one no other case loads: ccx's cascade fails ("zero coefficient on the dependent side")

@@ -124,7 +124,8 @@ class CantileverCompliance:
         alpha = np.arccos(np.clip(self.r_b / rr, -1.0, 1.0))
         return np.abs(alpha - self.half_thickness(part, rr) / rr)
 
-    def _heights(self, part: str, r_F: float):
+    def _heights(self, part: str, r_F: float | NDArray[np.float64]):
+        """Root radius of ``part`` and the load height above it at radii ``r_F``."""
         if part == "hub":
             return self.r_root_hub, r_F - self.r_root_hub
         return self.r_root_sleeve, self.r_root_sleeve - r_F

@@ -366,8 +366,7 @@ def _surface_capacity(limits: _SurfaceLimits, name: str, guess_Nmm: NDArray, fir
     low = np.min(guess_Nmm[finite]) if np.any(finite) else math.inf
     near = ~finite | (guess_Nmm <= (1.0 + SCREEN_RANGE) * low)
     estimate: dict[int, float] = {}
-    for j in np.flatnonzero(near):
-        j = int(j)
+    for j in map(int, np.flatnonzero(near)):
         if j == first or limits.ratio(name, j, best) <= 1.0:
             continue
         if name == "face_end":
