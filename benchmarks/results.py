@@ -33,7 +33,12 @@ QUICK = [
 ]
 FULL = [
     ("bench_fea.py", [], "FE: cantilever check, convergence, FE vs cantilever vs ISO"),
-    ("bench_fea_contact.py", [], "FE contact reference: convergence and model errors"),
+    ("bench_springs.py", ["--random", "44", "--no-compute"],
+     "the default tooth springs (fe-fit) against every cached FE tooth table"),
+    ("bench_default.py", ["--random", "44", "--no-compute"],
+     "the default model and springs against surface with FE springs: capacity, tooth load"),
+    ("bench_fea_contact.py", ["--from-golden"],
+     "the load models against the stored CalculiX contact references (aligned)"),
     ("bench_fea_sector.py", [], "misaligned FE sector: the models at equal wind-up"),
     ("bench_study.py", [], "studies on dask.distributed"),
     ("bench_random_specs.py", [], "1000 seeded random specs: accepted, finite, closed parts"),
@@ -50,8 +55,7 @@ def stamp() -> list[str]:
         except metadata.PackageNotFoundError:
             return "absent"
 
-    commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT,
-                            capture_output=True, text=True).stdout.strip() or "unknown"
+    commit = _commit()
     ccx = subprocess.run(["sh", "-c", "ccx -v 2>&1 | head -3"], capture_output=True,
                          text=True).stdout.split("Version")[-1].strip().split("\n")[0]
     return [
@@ -65,6 +69,24 @@ def stamp() -> list[str]:
     ]
 
 
+def _commit() -> str:
+    return subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT,
+                          capture_output=True, text=True).stdout.strip() or "unknown"
+
+
+def _sections(text: str) -> dict[str, list[str]]:
+    """The sections of an existing RESULTS.md by benchmark file name (after the stamp)."""
+    out: dict[str, list[str]] = {}
+    name = None
+    for line in text.splitlines():
+        if line.startswith("## `"):
+            name = line[4:].split()[0].rstrip("`")
+            out[name] = []
+        if name is not None:
+            out[name].append(line)
+    return out
+
+
 def run(name: str, args: list[str]) -> tuple[str, float, int]:
     t0 = time.perf_counter()
     out = subprocess.run([sys.executable, str(HERE / name), *args], cwd=ROOT,
@@ -76,7 +98,9 @@ def run(name: str, args: list[str]) -> tuple[str, float, int]:
 def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--full", action="store_true", help="also the slow benchmarks")
-    p.add_argument("--only", nargs="*", default=None, help="benchmark file names")
+    p.add_argument("--only", nargs="*", default=None,
+                   help="benchmark file names: these are run again, the other sections of "
+                        "RESULTS.md are kept")
     a = p.parse_args(argv)
     chosen = QUICK + (FULL if a.full else [])
     if a.only:
@@ -84,15 +108,28 @@ def main(argv: list[str] | None = None) -> int:
     lines = ["# Benchmark results", "",
              "Written by `python benchmarks/results.py` (do not edit by hand). Each section is "
              "the output of one benchmark, run as its own process.", "", *stamp(), ""]
+    target = HERE / "RESULTS.md"
+    kept = {}
+    if a.only and target.exists():  # the stamp stays that of the kept sections
+        old = target.read_text()
+        head = old.split("\n## `", 1)[0].rstrip("\n").splitlines()
+        lines = [*head, "", "Sections measured later say so under their title.", ""]
+        kept = _sections(old)
     for name, args, what in chosen:
         if not (HERE / name).is_file():
             continue
         print(f"running {name} {' '.join(args)}", file=sys.stderr)
         text, seconds, rc = run(name, args)
         status = "" if rc == 0 else f" — exited {rc}"
-        lines += [f"## `{' '.join([name, *args])}`", "",
-                  f"{what} ({seconds:.0f} s{status})", "", "```", text, "```", ""]
-    target = HERE / "RESULTS.md"
+        kept[name] = [f"## `{' '.join([name, *args])}`", "",
+                      f"{what} ({seconds:.0f} s{status})", "", "```", text, "```", ""]
+        if a.only:
+            kept[name].insert(3, f"(measured {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}"
+                                 f" on `{_commit()}`, load average {os.getloadavg()[0]:.2f})")
+            kept[name].insert(4, "")
+    order = [c[0] for c in QUICK + FULL]
+    for name in sorted(kept, key=lambda n: order.index(n) if n in order else len(order)):
+        lines += kept[name]
     tmp = target.with_suffix(".md.tmp")
     tmp.write_text("\n".join(lines))
     tmp.replace(target)
