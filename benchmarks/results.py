@@ -113,7 +113,8 @@ def main(argv: list[str] | None = None) -> int:
     if a.only and target.exists():  # the stamp stays that of the kept sections
         old = target.read_text()
         head = old.split("\n## `", 1)[0].rstrip("\n").splitlines()
-        lines = [*head, "", "Sections measured later say so under their title.", ""]
+        note = "Sections measured later say so under their title."
+        lines = [*head, *([] if note in head else ["", note]), ""]
         kept = _sections(old)
     for name, args, what in chosen:
         if not (HERE / name).is_file():
