@@ -31,6 +31,7 @@ from ..inspection import compare_part, plot_deviation_map, plot_inspection
 from ..interference import check_interference, plot_interference
 from ..io import write_csv_records, write_csv_rows, write_text
 from ..loading import (
+    ROTATIONS,
     capacity,
     capacity_from_sweep,
     default_angles,
@@ -383,7 +384,8 @@ def capacity_section(ctx: Context) -> Section:
         "capacity", "Capacity per criterion against misalignment, design point starred",
         plot_capacity(comp.curves, critical_deg=critical),
         f"{at.model} model, {s.capacity_count} misalignments 0–{mis[-1]:.3g}° (to the critical "
-        "misalignment), 25 rotations over one tooth pitch each, loaded flank ccw.",
+        f"misalignment), {ROTATIONS[at.model]} rotations over one tooth pitch each, loaded "
+        "flank ccw.",
         "capacity.csv"))
     return sec
 

@@ -38,7 +38,8 @@ class ReportSettings:
     surface_angles : int
         Rotations over one tooth pitch of the surface model (costly: about a second each).
     capacity_count : int
-        Misalignments of the capacity curve (0 to the critical misalignment).
+        Misalignments of the capacity curve (0 to the critical misalignment; a surface-model
+        capacity takes about 2 s each).
     check_angles : int
         Poses of the mesh interference check over a turn.
     patch_teeth : int
@@ -62,7 +63,7 @@ class ReportSettings:
     angles: int = 180
     tolerance_mm: float = 1e-7
     surface_angles: int = 6
-    capacity_count: int = 13
+    capacity_count: int = 7
     check_angles: int = 36
     patch_teeth: int = 6
     hob_diameter_mm: float | None = None
