@@ -23,6 +23,7 @@ from .common import (
 )
 
 MAX_COUNT = MAXIMA["misalignments"]  # of a curve (each one is a sweep over a tooth pitch)
+DEFAULT_COUNT = 13
 
 
 def register(sub) -> None:
@@ -38,7 +39,8 @@ def register(sub) -> None:
                    "largest critical misalignment of the specs, at least their design angles "
                    "and 0.5)")
     p.add_argument("--count", type=count(2, MAX_COUNT), default=None, metavar="N",
-                   help=f"misalignments from 0 to --max, 2-{MAX_COUNT} (default 25)")
+                   help=f"misalignments from 0 to --max, 2-{MAX_COUNT} (default {DEFAULT_COUNT}: "
+                        "about 2 s each with the surface model)")
     p.add_argument("--misalignments", type=degree_list, default=None, metavar="DEG,DEG,...",
                    help="the misalignments themselves, comma-separated degrees 0-6 "
                         "(instead of --max and --count)")
@@ -93,7 +95,7 @@ def run(args) -> int:
                             "each compared spec needs its own name")
     mis = args.misalignments
     if mis is None:
-        mis, _ = comparison_range(specs, args.count or 25, args.max)
+        mis, _ = comparison_range(specs, args.count or DEFAULT_COUNT, args.max)
     out = output_dir(args, spec)
     with progress("capacity", len(specs) * len(mis)) as update:
         comparison = compare_capacity(specs, mis, model=args.model, progress=update)
