@@ -77,6 +77,7 @@ FUNCTIONS = {
     "compare_capacity": (True, {"specs": "specs", "misalignments_deg": "angles",
                                 "model": "model", "count": "count"}),
     "body_windup_rad": (False, {"spec": "spec", "torque_Nm": "torque"}),
+    "coupling_data": (True, {"spec": "spec", "misalignment_deg": "mis", "torque_Nm": "torque"}),
     "critical_misalignment_deg": (False, {"spec": "spec", "tolerance_deg": "tol_deg"}),
     "binding_angle_deg": (True, {"spec": "spec", "tolerance_deg": "tol_deg",
                                  "steps": "count"}),

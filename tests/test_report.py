@@ -85,8 +85,11 @@ def test_report_numbers_are_the_librarys(made, renzo):
     pd = pytest.importorskip("pandas")
     res, text = made
     text = html.unescape(text)
-    # the load data file is the load the report drew: the same sweep and model
-    sw = gc.sweep(renzo, 1.0, np.arange(180) * 2.0, tolerance_mm=1e-7)
+    # the load data file is the load the report drew: the same sweep and model (the
+    # default surface model over ReportSettings.surface_angles rotations of one pitch)
+    n = ReportSettings().surface_angles
+    pitch = np.arange(n) * 360.0 / (renzo.tooth.teeth * n)
+    sw = gc.sweep(renzo, 1.0, pitch, tolerance_mm=1e-7)
     ref = gc.load_from_sweep(sw).to_dataframe()
     disk = pd.read_csv(res.html.parent / "report-data" / "load.csv")
     pd.testing.assert_frame_equal(ref, disk, check_exact=False, rtol=1e-8, check_dtype=False)
@@ -153,11 +156,12 @@ def test_overall_verdict_names_failures_and_counts_what_was_not_judged():
 def test_cli_report_exit_status_follows_the_verdict(tmp_path, capsys):
     quick = ["--no-viewer", "--angles", "36", "--capacity-count", "3", "--check-angles", "4",
              "-o", str(tmp_path)]
-    assert main(["report", "renzo-1967", *quick]) == 0
+    assert main(["report", "renzo-1967", "--torque", "1500", *quick]) == 0
     out = capsys.readouterr().out
     assert "PASS on all" in out and str(tmp_path / "report.html") in out
-    # 100 kN·m is far above the capacity at 1°: the report fails and says on what
-    assert main(["report", "renzo-1967", "--torque", "1e5", *quick]) == 1
+    # the template's own 2260 N·m is above the validated capacity at 1° (2054 N·m with the
+    # default surface model and fe-fit springs): the report fails and says on what
+    assert main(["report", "renzo-1967", *quick]) == 1
     out = capsys.readouterr().out
     assert "FAIL" in out and "torque ≤ capacity" in out
 
