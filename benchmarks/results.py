@@ -39,7 +39,8 @@ FULL = [
      "the default model and springs against surface with FE springs: capacity, tooth load"),
     ("bench_fea_contact.py", ["--from-golden"],
      "the load models against the stored CalculiX contact references (aligned)"),
-    ("bench_fea_sector.py", [], "misaligned FE sector: the models at equal wind-up"),
+    ("bench_fea_sector.py", ["--stored", "--sectors", "5"],
+     "misaligned FE sector: the models at equal wind-up (the stored FE runs)"),
     ("bench_study.py", [], "studies on dask.distributed"),
     ("bench_random_specs.py", [], "1000 seeded random specs: accepted, finite, closed parts"),
 ]

@@ -216,16 +216,16 @@ def test_fe_far_field_springs_reproduce_the_reference_windup(fe_table_industrial
 @pytest.mark.needs_fea
 def test_misaligned_sector_carries_what_the_fe_spring_model_predicts(fe_table_industrial,
                                                                      monkeypatch, tmp_path):
-    """industrial-m2 at 1°, 400 N·m: a five-tooth sector (1 mm, cyclic cuts) turned by the
-    surface model's wind-up plus the bodies'. Its middle tooth, two pitches from either cut,
+    """industrial-m2 at 1°, 400 N·m: a five-tooth sector (1 mm, cyclic cuts) turned by the surface
+    model's wind-up plus the bodies'. Its middle tooth, two pitches from either cut,
     carries 0.80-1.05 of the model's load: the accuracy ladder's band for the surface model
-    with FE springs, 0.84-1.00 (docs/load.md; benchmarks/bench_fea_sector.py), with 0.04 to
-    spare (0.84 here with the FE table of version 4, on a mesh that at 0° is 9 % stiffer
-    than the converged one; the bodies' torsion counted per tooth instead of for the whole
-    coupling would move the model about 20 % the other way). The cantilever-spring model at
-    the same wind-up carries less than 1/1.4 of it (too soft, as at 0°: 1.8 measured), the
-    default model and springs no less than the sector's load less 5 % (the unsafe side),
-    and the rigid body's reaction balances the contact loads."""
+    with FE springs is 0.80-0.87 (docs/load.md; benchmarks/bench_fea_sector.py; 0.84 at
+    this pose, on a mesh that at 0° is 9 % stiffer than the converged one; the bodies'
+    torsion counted per tooth instead of for the whole coupling would move the model about
+    20 % the other way). The cantilever-spring model at the same wind-up carries less than
+    1/1.4 of it (too soft, as at 0°: 1.8 measured), the default model and springs no less
+    than the sector's load less 5 % (the unsafe side), and the rigid body's reaction
+    balances the contact loads."""
     from gearcoupling.loading.sector_check import loads_at_windup
 
     base, _ = fe_table_industrial

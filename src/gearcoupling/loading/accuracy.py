@@ -28,12 +28,14 @@ WINDUP_ERROR_PCT: dict[tuple[str, str], tuple[float, float]] = {
 #: (model, springs) -> (lowest, highest) CalculiX-sector / model load on the most loaded
 #: teeth at 1° and 2° (below 1: the model carries more than the sector)
 TOOTH_LOAD_RATIO: dict[tuple[str, str], tuple[float, float]] = {
-    ("linear", "template C"): (0.17, 0.28),
-    ("linear", "cantilever"): (1.11, 1.31),
-    ("compliance", "cantilever"): (1.36, 1.63),
-    ("surface", "cantilever"): (1.65, 1.84),
-    ("compliance", "fe"): (0.72, 0.92),
-    ("surface", "fe"): (0.84, 1.00),
+    ("linear", "template C"): (0.18, 0.27),
+    ("linear", "cantilever"): (1.23, 1.24),
+    ("compliance", "cantilever"): (1.53, 1.57),
+    ("surface", "cantilever"): (1.69, 1.78),
+    ("compliance", "fe"): (0.68, 0.83),
+    ("surface", "fe"): (0.80, 0.87),
+    ("compliance", "fe-fit"): (0.69, 0.80),
+    ("surface", "fe-fit"): (0.78, 0.83),
 }
 
 
