@@ -20,7 +20,7 @@ from ..clearance import sweep
 from ..errors import ArgumentError
 from ..io import write_csv_rows, write_json
 from ..loading import capacity, resolve_torque_Nm, springs_name, tooth_load_error, windup_error
-from ..spec import CouplingSpec, check_misalignment_deg
+from ..spec import CouplingSpec, as_spec, check_misalignment_deg
 from ..tables import dataframe
 from .allowable import DEFAULT_TURN_ANGLES, AllowableLoads, allowable_loads
 from .mass import MassProperties, mass_properties
@@ -287,6 +287,7 @@ def coupling_data(spec: CouplingSpec, misalignment_deg: float | None = None,
     (6, 6)
     """
     t0 = time.perf_counter()
+    spec = as_spec(spec)
     mis = (spec.design_misalignment_deg if misalignment_deg is None else
            check_misalignment_deg(misalignment_deg, "misalignment_deg", ArgumentError))
     T = check_inputs(spec, torque_Nm)

@@ -27,7 +27,7 @@ from numpy.typing import NDArray
 from ..clearance import SweepResult, sweep
 from ..errors import ArgumentError
 from ..loading import body_windup_rad, load_from_sweep, resolve_torque_Nm, springs_name
-from ..spec import MISALIGNMENT_RANGE_DEG
+from ..spec import MISALIGNMENT_RANGE_DEG, as_spec
 from .pose import generalized_forces, translation_gap_offsets
 from .wrench import hub_wrench
 
@@ -340,6 +340,7 @@ def stiffness_matrix(spec, misalignment_deg: float, torque_Nm: float | None = No
     tolerance_mm : float, optional
         Sweep accuracy of every gap (default the sweep's).
     """
+    spec = as_spec(spec)
     T = resolve_torque_Nm(spec, torque_Nm)
     angles = pitch_rotations(spec, rotations)
     sw = (sweep(spec, misalignment_deg, angles) if tolerance_mm is None else
