@@ -170,7 +170,7 @@ def main() -> None:
     ap.add_argument("--fit", action="store_true")
     ap.add_argument("--holdout", type=int, default=0)
     a = ap.parse_args()
-    from gearcoupling.loading.fitted import FittedCompliance
+    from gearcoupling.loading.fitted import FittedCompliance, load_fit
 
     specs, tables = [], []
     for spec in dataset_specs(a.random, a.seed):
@@ -192,10 +192,12 @@ def main() -> None:
         points = sum(tables[i].far_field_mm_per_N.size for i in keep)
         fitted["data_set"] = (f"bench_springs.py: {len(keep)} specs (the templates and seeded "
                               f"random specs, seed {a.seed}), {points} load points")
+        fitted["specs"] = [specs[i].name for i in keep]
         if a.fit and not a.holdout:
             path = ROOT / "src" / "gearcoupling" / "loading" / "fitted.json"
             path.write_text(json.dumps(fitted, indent=1) + "\n")
             print(f"wrote {path}")
+    in_fit = set((fitted or load_fit()).get("specs", [s.name for s in specs]))
     rows, worst, held = [], [], []
     for i, (spec, table) in enumerate(zip(specs, tables, strict=True)):
         t0 = time.perf_counter()
@@ -206,9 +208,10 @@ def main() -> None:
         err = model / table.far_field_mm_per_N - 1.0
         near = table.near_field_mm_per_N.sum(axis=0)
         whole = (model + near) / (table.far_field_mm_per_N + near) - 1.0
-        out = bool(a.holdout and i >= len(TEMPLATES) and i % a.holdout == 0)
+        out = bool(a.holdout and i >= len(TEMPLATES) and i % a.holdout == 0) or (
+            not a.fit and not a.holdout and spec.name not in in_fit)
         c_ratio = springs.mesh_stiffness_N_per_mm / table.mesh_stiffness_N_per_mm
-        rows.append((spec.name + (" (held out)" if out else ""), describe(spec), err, whole,
+        rows.append((spec.name + (" (not in the fit)" if out else ""), describe(spec), err, whole,
                      dt, c_ratio))
         (held if out else worst).append((err.ravel(), whole.ravel()))
     print("\n| spec | teeth, module, pressure angle, face / module | far field: largest error "
@@ -218,7 +221,7 @@ def main() -> None:
         j, k = np.argmax(np.abs(err)), np.argmax(np.abs(whole))
         print(f"| {name} | {what} | {100 * err.ravel()[j]:+.1f} % | {100 * err.mean():+.1f} % "
               f"| {100 * whole.ravel()[k]:+.1f} % | {c_ratio:.3f} | {1e3 * dt:.0f} |")
-    for label, pairs in (("fitted on", worst), ("held out", held)):
+    for label, pairs in (("fitted on", worst), ("held out of the fit", held)):
         if pairs:
             for what, e in (("far field", np.concatenate([p[0] for p in pairs])),
                             ("whole compliance", np.concatenate([p[1] for p in pairs]))):
