@@ -263,6 +263,11 @@ def test_margin_says_whether_the_models_error_band_crosses_the_limit():
     assert margin(100.0, 105.0, (0.9, 1.1), scales_with_load=False)[1]
     assert not margin(100.0, 130.0, (0.9, 1.1), scales_with_load=False)[1]
     assert not margin(95.0, 100.0, None)[1]
+    # a conservative model's failing capacity: renzo-1967 at 1°, 2260 N·m against 2054 N·m,
+    # the sector putting the capacity at 1/0.83-1/0.78 of it: the check could pass
+    text, crosses = margin(2260.0, 2054.0, (0.78, 0.83), scales_with_load=False)
+    assert crosses and "2475–2633" in text and "-10.0 %" in text
+    assert not margin(2260.0, 1500.0, (0.78, 0.83), scales_with_load=False)[1]
     row = judged("torque ≤ capacity", 100.0, 105.0, ("100", "105", "x"), (0.9, 1.1),
                  scales_with_load=False)
     assert row.verdict == PASS and row.band_crosses

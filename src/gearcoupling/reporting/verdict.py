@@ -64,17 +64,27 @@ def judged(check: str, value: float, limit: float, shown: tuple[str, str, str],
 def margin(value: float, limit: float, band: tuple[float, float] | None, *,
            scales_with_load: bool = True) -> tuple[str, bool]:
     """The margin of ``value`` to ``limit`` as text, and whether the model's error band
-    crosses the limit (arguments as :func:`judged`)."""
+    reaches the other side of the limit from the verdict's (arguments as :func:`judged`).
+    With ``scales_with_load`` the model made ``value`` (a load, a stress: in truth ``value
+    x band``); else it made ``limit`` (a capacity, which scales inversely: in truth
+    ``limit / band``)."""
     text = f"margin {100.0 * (limit - value) / limit:+.1f} %"
     if band is None:
         return text + "; no measured error band for this model and springs", False
-    lo, hi = band if scales_with_load else (1.0 / band[1], 1.0 / band[0])
-    low, high = value * lo, value * hi
-    crosses = low <= limit < high if scales_with_load else low < limit <= high
-    where = "crosses" if crosses else ("stays below" if high < limit else "stays above")
-    what = "the load" if scales_with_load else "the capacity"
-    return (f"{text}; the model's measured error band ({lo:.2f}–{hi:.2f} × {what}, "
-            f"docs/load.md) {where} the limit"), crosses
+    passes = value <= limit
+    if scales_with_load:
+        lo, hi = band
+        low, high = value * lo, value * hi
+        crosses = high > limit if passes else low <= limit
+        what = f"{lo:.2f}–{hi:.2f} × the value: {low:.4g}–{high:.4g}"
+    else:
+        lo, hi = 1.0 / band[1], 1.0 / band[0]
+        low, high = limit * lo, limit * hi
+        crosses = low < value if passes else high >= value
+        what = f"{lo:.2f}–{hi:.2f} × the capacity: {low:.4g}–{high:.4g}"
+    where = ("crosses the limit: the check could go the other way" if crosses else
+             "stays on the same side of the limit")
+    return f"{text}; the model's measured error band ({what}, docs/load.md) {where}", crosses
 
 
 def geometry_verdicts(design_deg: float, min_backlash_mm: float, critical_deg: float | None,
