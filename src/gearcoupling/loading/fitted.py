@@ -54,6 +54,7 @@ from ..spec import CouplingSpec
 from .cantilever import CantileverCompliance
 
 PARTS = ("hub", "sleeve")
+FLOOR = 0.05  # the pair's far field, at least this share of its pitch-point value
 FEATURES = ("one", "height", "height_squared", "face_end", "face_end_height", "other_end",
             "tip_edge", "crown_thinning")
 
@@ -168,6 +169,18 @@ class FittedCompliance(CantileverCompliance):
     def normal_compliance_mm_per_N(self, z_mm: ArrayLike, r_mm: ArrayLike):
         """Hub and sleeve normal far-field compliances at the load (mm/N), broadcast."""
         return tuple(self.part_compliance_mm_per_N(p, z_mm, r_mm) for p in PARTS)
+
+    def pair_compliance_mm_per_N(self, z_mm: ArrayLike, r_mm: ArrayLike) -> NDArray:
+        """The pair's far field (Renzo's measure, mm/N), at least :data:`FLOOR` of its value
+        at mid-face and the pitch radius: near a root circle, beyond the load points the
+        fit was made on, its confinement term could take it below zero (the FE table's
+        pair far field is positive)."""
+        pair = super().pair_compliance_mm_per_N(z_mm, r_mm)
+        return np.maximum(pair, FLOOR * self._pitch_point)
+
+    @cached_property
+    def _pitch_point(self) -> float:
+        return float(super().pair_compliance_mm_per_N(0.0, self.R))
 
     @property
     def mesh_stiffness_N_per_mm(self) -> float:

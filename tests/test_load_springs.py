@@ -1,0 +1,57 @@
+"""The tooth springs by name (``[load] stiffness``): the registry, the default fit's range
+checks and its robustness over the supported range. Its accuracy against FE tables is in
+``tests/test_fea_stiffness.py`` (``test_default_springs_reproduce_the_fe_table``, real
+gmsh and CalculiX)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import gearcoupling as gc
+from gearcoupling.loading import FittedCompliance
+from gearcoupling.loading.springs import SPRINGS
+from gearcoupling.loadspec import STIFFNESS_SOURCES
+from random_specs import proportions_spec
+
+TEMPLATES = ("renzo-1967", "renzo-1967-vari-crown", "renzo-1967-end-round", "industrial-m2",
+             "mill-spindle")
+
+
+def test_the_spec_allows_exactly_the_registered_springs_and_defaults_to_the_fit():
+    assert set(STIFFNESS_SOURCES) == set(SPRINGS)
+    spec = gc.load_spec("industrial-m2")
+    assert spec.load.stiffness == "fe-fit" and spec.load.model == "surface"
+
+
+@pytest.mark.parametrize("name", TEMPLATES)
+def test_the_templates_lie_inside_the_fitted_range(name):
+    assert FittedCompliance(gc.load_spec(name)).outside == []
+
+
+def test_a_spec_outside_the_fitted_range_is_named_in_the_load_summary():
+    """Ten teeth (the FE tables refuse so few: their far field is held by the sector's
+    cuts) and the default sleeve fillet of module / 50: both named, with the range."""
+    spec = gc.spec_from_dict({"tooth": {"teeth": 10, "module": 3.0},
+                              "hub": {"face_width": 15.0, "crowning": {"radius": 60.0}},
+                              "load": {"torque_Nm": 50.0}}, name="ten")
+    outside = FittedCompliance(spec).outside
+    assert any(o.startswith("teeth = 10 outside the fitted 14-") for o in outside), outside
+    accuracy = gc.load(spec, 0.5, [0.0]).summary()["accuracy"]
+    assert accuracy["springs"] == "fe-fit" and accuracy["outside_fitted_range"] == outside
+
+
+def test_the_fit_is_finite_and_positive_over_random_specs():
+    """Seeded random specs over the supported range (6-300 teeth, module 0.2-60 mm, the
+    proportions drawn): the pair's far field at a 5 x 5 grid over the flank and its C are
+    finite and positive, inside the fitted range or not."""
+    rng = np.random.default_rng(24)
+    for _ in range(12):
+        spec = proportions_spec(rng)
+        springs = FittedCompliance(spec)
+        half = 0.5 * spec.hub.face_width
+        lo, hi = springs.r_table[0], springs.r_table[-1]
+        Z, R = np.meshgrid(np.linspace(0.0, half, 5), np.linspace(lo, hi, 5), indexing="ij")
+        c = springs.pair_compliance_mm_per_N(Z, R)
+        assert np.all(np.isfinite(c)) and np.all(c > 0), (spec.name, c)
+        assert 0 < springs.mesh_stiffness_N_per_mm < np.inf
