@@ -77,8 +77,7 @@ def _signals_raise() -> Iterator[None]:
     def handler(signum: int, _frame: object) -> None:
         for s in SIGNALS:
             signal.signal(s, signal.SIG_IGN)
-        _stop_solvers()
-        raise Interrupted(signum)
+        raise Interrupted(signum)  # the solvers went already (_kill_solvers_at_signal)
 
     try:
         old = {s: signal.signal(s, handler) for s in SIGNALS}

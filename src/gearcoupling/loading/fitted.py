@@ -123,6 +123,15 @@ class FittedCompliance(CantileverCompliance):
                            "sleeve": 0.5 * spec.sleeve.minor_diameter}
         self.bend = {p: self.terms[p][0] for p in PARTS}
         self.crown = hub_model(spec).path  # the hub's crown drop along the face
+        side = 0.5 * self.module  # the table's load patch, a square (module docstring)
+        self.patch = {p: rectangle_halfspace_work_mm_per_N(
+            1.0, side, side, getattr(self.materials, p).youngs_modulus_MPa,
+            getattr(self.materials, p).poisson_ratio) for p in PARTS}
+        #: per part: coefficients (F,), the features' fitted low and high ends (F,),
+        #: the confinement's factor and length (modules)
+        self.coefficients = {p: tuple(np.asarray(self.fit["parts"][p][k], dtype=float)
+                                      for k in ("coefficients", "low", "high"))
+                             for p in PARTS}
 
     def part_features(self, part: str, z_mm: ArrayLike, r_mm: ArrayLike) -> NDArray:
         """:func:`features` of ``part`` at hub flank points ``(z, r)``."""
@@ -146,11 +155,7 @@ class FittedCompliance(CantileverCompliance):
     def confinement(self, part: str, r_mm: ArrayLike, length: float) -> NDArray:
         """``c_patch exp(-y_F / (length m))`` of ``part`` (mm/N; module docstring)."""
         _, y_F = self._height(part, r_mm)
-        mat = getattr(self.materials, part)
-        side = 0.5 * self.module
-        patch = rectangle_halfspace_work_mm_per_N(1.0, side, side, mat.youngs_modulus_MPa,
-                                                  mat.poisson_ratio)
-        return patch * np.exp(-y_F / (length * self.module))
+        return self.patch[part] * np.exp(-y_F / (length * self.module))
 
     def _height(self, part: str, r_mm: ArrayLike):
         r = np.clip(np.asarray(r_mm, dtype=float), self.r_table[0], self.r_table[-1])
@@ -160,10 +165,9 @@ class FittedCompliance(CantileverCompliance):
     def part_compliance_mm_per_N(self, part: str, z_mm: ArrayLike, r_mm: ArrayLike) -> NDArray:
         """Normal far-field compliance of one part at hub flank points ``(z, r)`` (mm/N)."""
         f = self.part_features(part, z_mm, r_mm)
+        a, lo, hi = self.coefficients[part]
         c = self.fit["parts"][part]
-        lo, hi = (np.asarray(c[k], dtype=float) for k in ("low", "high"))
-        return (self.bending(part, z_mm, r_mm) * np.exp(np.clip(f, lo, hi) @ np.asarray(
-            c["coefficients"], dtype=float))
+        return (self.bending(part, z_mm, r_mm) * np.exp(np.clip(f, lo, hi) @ a)
                 - c["confinement"] * self.confinement(part, r_mm, c["confinement_length"]))
 
     def normal_compliance_mm_per_N(self, z_mm: ArrayLike, r_mm: ArrayLike):
