@@ -9,7 +9,7 @@ import gearcoupling as gc
 from gearcoupling.clearance import sweep
 from gearcoupling.loading import load_from_sweep
 from gearcoupling.loading.capacity import _root_torque, capacity, capacity_from_sweep
-from gearcoupling.loading.linear import solve_windup
+from gearcoupling.loading.kernels.windup import solve_windup
 
 IN = 25.4
 

@@ -11,7 +11,6 @@ from .accuracy import (
 )
 from .api import load, load_from_sweep
 from .body import body_windup_rad
-from .cantilever import CantileverCompliance
 from .capacity import (
     LOAD_GRID,
     PHASES,
@@ -25,10 +24,11 @@ from .capacity import (
     turn_phases,
     write_capacity_csv,
 )
-from .fitted import FittedCompliance
 from .inputs import resolve_model, resolve_torque_Nm
-from .linear import solve_windup
-from .linear_model import mesh_stiffness_N_per_mm
+from .kernels.cantilever import CantileverCompliance
+from .kernels.fitted import FittedCompliance
+from .kernels.windup import solve_windup
+from .models.linear import mesh_stiffness_N_per_mm
 from .patchmap import PatchMap, patch_maps
 from .plots import (
     plot_capacity,

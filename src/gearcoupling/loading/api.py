@@ -12,7 +12,7 @@ from ..clearance import SweepResult, sweep
 from ..errors import ArgumentError
 from ..spec import CouplingSpec, as_spec
 from .inputs import LoadProblem, load_problem, resolve_model, resolve_torque_Nm
-from .models import ModelOutput, Progress, solve
+from .models.registry import ModelOutput, Progress, solve
 from .result import LoadResult
 
 #: the keywords a call passes on to :func:`gearcoupling.sweep`

@@ -37,11 +37,11 @@ from ..loadspec import LOAD_MODELS
 from ..spec import MISALIGNMENT_RANGE_DEG, CouplingSpec, as_spec
 from ..tables import dataframe
 from .api import SWEEP_ACCURACY, load_from_sweep
-from .compliance import first_limit_torque_Nmm
 from .contact import contact_model
 from .inputs import LoadProblem, load_problem, nominal_root_stress_MPa, resolve_model
-from .linear_model import mesh_stiffness_N_per_mm
-from .surface import DEFAULT_GRID, BendingSprings, SurfaceSolver, flank_offsets
+from .models.compliance import first_limit_torque_Nmm
+from .models.linear import mesh_stiffness_N_per_mm
+from .models.surface import DEFAULT_GRID, BendingSprings, SurfaceSolver, flank_offsets
 
 CRITERIA = ("tooth_load", "contact_stress", "bending_stress")
 RTOL = 1e-7  # relative accuracy of a root-found torque (the closed forms are exact)

@@ -21,8 +21,8 @@ from ..clearance import sweep
 from ..errors import ArgumentError
 from ..geometry import developed_arc
 from .contact import REGIMES, contact_model
+from .models.surface import solve_surface
 from .springs import tooth_compliance
-from .surface import solve_surface
 
 
 @dataclass(frozen=True)

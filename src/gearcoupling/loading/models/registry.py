@@ -1,7 +1,7 @@
 """The load models by name (like the exporters' registry): each solver takes a
 :class:`~.inputs.LoadProblem` and returns one typed :class:`ModelOutput`.
 
-- ``linear``: Renzo's constant mesh stiffness ``C`` (:mod:`.linear_model`);
+- ``linear``: Renzo's constant mesh stiffness ``C`` (:mod:`.linear`);
 - ``compliance``: tooth-pair cantilever plus non-linear contact compliance (:mod:`.compliance`);
 - ``surface``: contact pressure on the exact gap field (:mod:`.surface`).
 """
@@ -15,9 +15,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from ..inputs import LoadProblem, nominal_root_stress_MPa
 from .compliance import solve_compliance
-from .inputs import LoadProblem, nominal_root_stress_MPa
-from .linear_model import solve_linear
+from .linear import solve_linear
 from .surface import DEFAULT_GRID, solve_surface
 
 #: per-tooth arrays ``(N, M)`` every model reports, with the value where a model has none

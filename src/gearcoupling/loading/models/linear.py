@@ -7,10 +7,10 @@ import math
 import numpy as np
 from numpy.typing import NDArray
 
-from ..spec import CouplingSpec
-from .contact import contact_estimates
-from .linear import solve_windup
-from .springs import tooth_compliance
+from ...spec import CouplingSpec
+from ..contact import contact_estimates
+from ..kernels.windup import solve_windup
+from ..springs import tooth_compliance
 
 
 def mesh_stiffness_N_per_mm(spec: CouplingSpec) -> float:
