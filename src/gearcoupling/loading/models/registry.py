@@ -1,24 +1,33 @@
-"""The load models by name (like the exporters' registry): each solver takes a
-:class:`~.inputs.LoadProblem` and returns one typed :class:`ModelOutput`.
+"""The load models by name: each one :class:`LoadModel` in :data:`MODELS`, the one place
+that knows them (what a model solves, what it costs, what it reports, how capacity
+searches with it). Every solver takes a :class:`~..inputs.LoadProblem` and returns one
+typed :class:`ModelOutput`.
 
 - ``linear``: Renzo's constant mesh stiffness ``C`` (:mod:`.linear`);
 - ``compliance``: tooth-pair cantilever plus non-linear contact compliance (:mod:`.compliance`);
 - ``surface``: contact pressure on the exact gap field (:mod:`.surface`).
+
+Adding a model is adding one entry to :data:`MODELS` (docs/api.md, "Adding a load model");
+the spec's ``[load] model`` accepts the names of :data:`gearcoupling.loadspec.LOAD_MODELS`
+(a test holds them equal to the built-in entries here).
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Protocol
 
 import numpy as np
 from numpy.typing import NDArray
 
+from ...arguments import choice
+from ...spec import CouplingSpec
 from ..inputs import LoadProblem, nominal_root_stress_MPa
-from .compliance import solve_compliance
-from .linear import solve_linear
+from .compliance import first_limit_torque_Nmm, solve_compliance
+from .linear import linear_capacity_Nmm, solve_linear
 from .surface import DEFAULT_GRID, solve_surface
+from .surface_capacity import surface_torques
 
 #: per-tooth arrays ``(N, M)`` every model reports, with the value where a model has none
 TOOTH_ARRAYS: dict[str, Any] = {
@@ -115,12 +124,112 @@ def _surface(problem: LoadProblem, progress: Progress = None) -> ModelOutput:
     return ModelOutput.from_solver(problem, out)
 
 
-MODELS: dict[str, Callable[[LoadProblem, Progress], ModelOutput]] = {
-    "linear": _linear, "compliance": _compliance, "surface": _surface}
+class PoseSearch(Protocol):
+    """A capacity search that solved single poses (the surface model's): the solves it
+    made and the largest tooth load at a torque from them."""
+
+    @property
+    def solves(self) -> int: ...
+
+    def peak_load_N(self, T_Nmm: float) -> float: ...
+
+
+#: ``capacity(problem, limits)`` -> (each criterion's torque in N·m, the pose searches that
+#: found them: empty where q then comes from a load solve of every rotation); ``limits``
+#: are the per-tooth limit loads of :func:`~..limits.limit_loads`
+CapacitySearch = Callable[[LoadProblem, dict[str, NDArray]],
+                          tuple[dict[str, float], Sequence[PoseSearch]]]
+
+COSTS = ("fast", "slow")  # the cost classes of :attr:`LoadModel.cost`
+
+
+@dataclass(frozen=True)
+class LoadModel:
+    """One load model.
+
+    Attributes
+    ----------
+    name : str
+        The ``model=`` / ``--model`` / ``[load] model`` value.
+    solve : callable
+        ``solve(problem, progress)`` -> :class:`ModelOutput` (every rotation of the problem).
+    capacity : callable
+        ``capacity(problem, limits)``: how capacity searches with the model
+        (:data:`CapacitySearch`).
+    cost : {"fast", "slow"}
+        ``fast``: every rotation at once in well under a second (studies sample it freely);
+        ``slow``: about a second per distinct pose (callers solve one tooth pitch, few
+        rotations, on a coarser grid where they can).
+    rotations : int
+        Rotations per tooth pitch a capacity search takes by default (the largest tooth
+        load varies by about 2 % over a pitch: ``benchmarks/bench_surface.py``).
+    pressure_grid : bool
+        The model solves the contact pressure on a grid over each loaded flank (its patch
+        maps re-solve the pose on that grid; its capacity and studies take
+        ``pressure_grid``), else its patch maps draw the contact laws' patch.
+    takes_mesh_stiffness : bool
+        The model takes ``[load] mesh_stiffness_N_per_mm`` where the spec sets it
+        (Renzo's ``C``, "template C" on the accuracy ladder) instead of the tooth springs.
+    what : str
+        One line for help texts and settings tables.
+    """
+
+    name: str
+    solve: Callable[[LoadProblem, Progress], ModelOutput]
+    capacity: CapacitySearch
+    cost: str
+    rotations: int
+    pressure_grid: bool
+    takes_mesh_stiffness: bool
+    what: str
+
+    def __post_init__(self):
+        choice(self.cost, "cost", COSTS)
+
+
+def _per_criterion(torque_Nmm: Callable[[LoadProblem, NDArray], float]) -> CapacitySearch:
+    """A capacity search that finds each criterion's torque by ``torque_Nmm(problem,
+    W_lim)`` (closed form or one root per criterion)."""
+    def search(problem: LoadProblem, limits: dict[str, NDArray]
+               ) -> tuple[dict[str, float], Sequence[PoseSearch]]:
+        return {name: torque_Nmm(problem, W) * 1e-3 for name, W in limits.items()}, ()
+    return search
+
+
+MODELS: dict[str, LoadModel] = {m.name: m for m in (
+    LoadModel("linear", _linear, _per_criterion(
+        lambda p, W: linear_capacity_Nmm(p.spec, p.gap_rad, W)),
+        cost="fast", rotations=25, pressure_grid=False, takes_mesh_stiffness=True,
+        what="Renzo's constant mesh stiffness C per tooth pair (exact, closed form)"),
+    LoadModel("compliance", _compliance, _per_criterion(
+        lambda p, W: first_limit_torque_Nmm(p.spec, p.gap_rad, p.z_mm, p.r_mm, W,
+                                            p.compliance)),
+        cost="fast", rotations=25, pressure_grid=False, takes_mesh_stiffness=False,
+        what="tooth-pair springs plus non-linear contact compliance (a fast estimate)"),
+    LoadModel("surface", _surface, surface_torques,
+              cost="slow", rotations=8, pressure_grid=True, takes_mesh_stiffness=False,
+              what="contact pressure on the exact gap field (the validated one)"),
+)}
+"""Model name -> :class:`LoadModel`: the one table of load models."""
+
+
+def model_names() -> tuple[str, ...]:
+    """The names of :data:`MODELS` (the CLI's ``--model`` choices)."""
+    return tuple(MODELS)
+
+
+def load_model(name: str) -> LoadModel:
+    """The :class:`LoadModel` named ``name``; :class:`ArgumentError` naming the others."""
+    return MODELS[choice(name, "model", model_names())]
+
+
+def resolve_model(spec: CouplingSpec, model: str | None) -> str:
+    """The model name: the argument, else ``[load] model``; a key of :data:`MODELS`."""
+    return spec.load.model if model is None else load_model(model).name
 
 
 def solve(problem: LoadProblem, model: str, progress: Progress = None) -> ModelOutput:
     """Solve ``problem`` with the model named ``model`` (a key of :data:`MODELS`);
     ``progress(done, total)`` as the model advances (models that take under a second
     may not call it)."""
-    return MODELS[model](problem, progress)
+    return load_model(model).solve(problem, progress)
