@@ -290,7 +290,7 @@ def test_fe_springs_keep_the_nominal_root_stress_criterion(table):
                                                          np.full((N, 1), R))
     np.testing.assert_allclose(out["root_stress_MPa"], nominal, rtol=1e-12)
     assert np.all(nominal > 0)
-    from gearcoupling.loading.capacity import limit_loads
+    from gearcoupling.loading.limits import limit_loads
 
     limits = limit_loads(spec, zeros, np.full((N, 1), R), t)
     assert np.all(np.isfinite(limits["bending_stress"]) & (limits["bending_stress"] > 0))
