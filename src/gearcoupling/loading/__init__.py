@@ -27,7 +27,14 @@ from .kernels.cantilever import CantileverCompliance
 from .kernels.fitted import FittedCompliance
 from .kernels.windup import solve_windup
 from .models.linear import mesh_stiffness_N_per_mm
-from .models.registry import MODELS, LoadModel, load_model, model_names, resolve_model
+from .models.registry import (
+    MODELS,
+    LoadModel,
+    load_model,
+    model_names,
+    models_help,
+    resolve_model,
+)
 from .models.surface_capacity import LOAD_GRID
 from .patchmap import PatchMap, patch_maps
 from .plots import (
@@ -69,6 +76,7 @@ __all__ = [
     "machine_loads",
     "mesh_stiffness_N_per_mm",
     "model_names",
+    "models_help",
     "patch_maps",
     "plot_capacity",
     "plot_loads_over_turn",

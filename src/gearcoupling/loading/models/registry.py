@@ -200,15 +200,15 @@ MODELS: dict[str, LoadModel] = {m.name: m for m in (
     LoadModel("linear", _linear, _per_criterion(
         lambda p, W: linear_capacity_Nmm(p.spec, p.gap_rad, W)),
         cost="fast", rotations=25, pressure_grid=False, takes_mesh_stiffness=True,
-        what="Renzo's constant mesh stiffness C per tooth pair (exact, closed form)"),
+        what="Renzo's constant mesh stiffness C per tooth pair, exact in closed form"),
     LoadModel("compliance", _compliance, _per_criterion(
         lambda p, W: first_limit_torque_Nmm(p.spec, p.gap_rad, p.z_mm, p.r_mm, W,
                                             p.compliance)),
         cost="fast", rotations=25, pressure_grid=False, takes_mesh_stiffness=False,
-        what="tooth-pair springs plus non-linear contact compliance (a fast estimate)"),
+        what="tooth-pair springs plus non-linear contact compliance, a fast estimate"),
     LoadModel("surface", _surface, surface_torques,
               cost="slow", rotations=8, pressure_grid=True, takes_mesh_stiffness=False,
-              what="contact pressure on the exact gap field (the validated one)"),
+              what="contact pressure on the exact gap field, the validated one"),
 )}
 """Model name -> :class:`LoadModel`: the one table of load models."""
 
@@ -216,6 +216,11 @@ MODELS: dict[str, LoadModel] = {m.name: m for m in (
 def model_names() -> tuple[str, ...]:
     """The names of :data:`MODELS` (the CLI's ``--model`` choices)."""
     return tuple(MODELS)
+
+
+def models_help() -> str:
+    """Each model's name and line, for help texts."""
+    return "; ".join(f"{m.name}: {m.what}" for m in MODELS.values())
 
 
 def load_model(name: str) -> LoadModel:
