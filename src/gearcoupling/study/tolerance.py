@@ -64,14 +64,14 @@ from ..loading import (
 from ..spec import CouplingSpec
 
 PATHS = ("fast", "interpolated", "exact")
+CROWN_NODES = 5
+CROWN_SPAN_SD = 4.0
 
 
 def capacity_models() -> tuple[str, ...]:
     """The capacity models of a tolerance study: ``renzo`` (the closed form) and the load
     models of cost class ``fast`` (every draw solves its own map)."""
     return ("renzo", *(n for n in model_names() if load_model(n).cost == "fast"))
-CROWN_NODES = 5
-CROWN_SPAN_SD = 4.0
 
 
 @dataclass(frozen=True)
