@@ -15,8 +15,9 @@ Run: ``python benchmarks/bench_fea.py [cantilever] [table] [convergence] [compar
   loaded flank, size / 1.4, size / 2) against the finest, every grid point; kept in
   ``outputs/bench_fea_convergence.json``.
 - ``compare``: renzo-1967 and industrial-m2 at the default size: FE pair compliance and C
-  at the pitch point against the tapered cantilever (``gearcoupling.loading.cantilever``) and
-  ISO 6336's c' (single-pair stiffness 14 N/(mm µm) of face width).
+  at the pitch point against the tapered cantilever
+  (``gearcoupling.loading.kernels.cantilever``) and ISO 6336's c' (single-pair stiffness
+  14 N/(mm µm) of face width).
 
 Markdown tables on stdout. The machine is shared: times are single runs, noisy.
 """
@@ -159,7 +160,7 @@ def convergence(names=("renzo-1967",), store: Path | None = None) -> None:
 
 def _cantilever_pair(spec):
     try:
-        from gearcoupling.loading.cantilever import CantileverCompliance
+        from gearcoupling.loading.kernels.cantilever import CantileverCompliance
     except ImportError:
         return None
     return float(CantileverCompliance(spec).pair_compliance_mm_per_N(0.0,

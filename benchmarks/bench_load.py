@@ -18,8 +18,8 @@ import numpy as np
 
 from gearcoupling.clearance import sweep
 from gearcoupling.loading import capacity, capacity_curve, capacity_from_sweep, load_from_sweep
-from gearcoupling.loading.cantilever import CantileverCompliance
 from gearcoupling.loading.contact import ContactModel
+from gearcoupling.loading.kernels.cantilever import CantileverCompliance
 from gearcoupling.loading.plots import renzo_q
 from gearcoupling.spec import load_spec, template_names
 
@@ -82,7 +82,7 @@ def knobs(quick):
         cm = ContactModel(spec, n_z=nz, n_r=nr)
         old = contact.contact_model
         contact.contact_model = lambda s, cm=cm: cm
-        import gearcoupling.loading.compliance as comp
+        import gearcoupling.loading.models.compliance as comp
 
         comp.contact_model = contact.contact_model
         try:

@@ -14,8 +14,8 @@ at the same load points. Printed: per spec, the largest error of the pair far fi
 the grid, and of the whole compliance (far field + the table's half-space near field, what a
 load model adds up); the error over every spec and grid point; the springs' time per spec. With
 ``--no-compute`` specs without a cached table are left out. ``--fit`` fits the coefficients
-of :mod:`gearcoupling.loading.fitted` to the data set first and writes them to
-``src/gearcoupling/loading/fitted.json`` (the table then shows the new fit);
+of :mod:`gearcoupling.loading.kernels.fitted` to the data set first and writes them to
+``src/gearcoupling/loading/kernels/fitted.json`` (the table then shows the new fit);
 ``--holdout K`` fits on all but every K-th random spec and prints the error on those left out.
 """
 
@@ -78,7 +78,7 @@ def part_records(spec: gc.CouplingSpec, table: ComplianceTable, springs) -> dict
     """Per part at the table's ``P`` load points: features ``(P, F)``, the bending base
     ``(P,)`` (mm/N), the confinement shape ``(P,)`` per trial length (mm/N) and the FE far
     field ``(P,)`` (normal, mm/N); the pair's FE far field ``(P,)``."""
-    from gearcoupling.loading.fitted import PARTS
+    from gearcoupling.loading.kernels.fitted import PARTS
 
     Z, R = (a.ravel() for a in np.meshgrid(table.z_mm, table.r_mm, indexing="ij"))
     cos2 = math.cos(spec.tooth.pressure_angle) ** 2
@@ -101,7 +101,7 @@ def fit(data: list[dict], ridge: float = 0.1) -> dict:
     confinement length per part the best of :data:`LENGTHS`."""
     from scipy.optimize import least_squares
 
-    from gearcoupling.loading.fitted import FEATURES, PARTS
+    from gearcoupling.loading.kernels.fitted import FEATURES, PARTS
 
     nf = len(FEATURES)
 
@@ -140,7 +140,7 @@ def fit(data: list[dict], ridge: float = 0.1) -> dict:
 
 def spec_ranges(specs) -> dict:
     """The data set's range of what :attr:`FittedCompliance.outside` checks."""
-    from gearcoupling.loading.fitted import FittedCompliance
+    from gearcoupling.loading.kernels.fitted import FittedCompliance
 
     vals: dict[str, list[float]] = {}
     for spec in specs:
@@ -170,7 +170,7 @@ def main() -> None:
     ap.add_argument("--fit", action="store_true")
     ap.add_argument("--holdout", type=int, default=0)
     a = ap.parse_args()
-    from gearcoupling.loading.fitted import FittedCompliance, load_fit
+    from gearcoupling.loading.kernels.fitted import FittedCompliance, load_fit
 
     specs, tables = [], []
     for spec in dataset_specs(a.random, a.seed):
@@ -194,7 +194,7 @@ def main() -> None:
                               f"random specs, seed {a.seed}), {points} load points")
         fitted["specs"] = [specs[i].name for i in keep]
         if a.fit and not a.holdout:
-            path = ROOT / "src" / "gearcoupling" / "loading" / "fitted.json"
+            path = ROOT / "src" / "gearcoupling" / "loading" / "kernels" / "fitted.json"
             path.write_text(json.dumps(fitted, indent=1) + "\n")
             print(f"wrote {path}")
     in_fit = set((fitted or load_fit()).get("specs", [s.name for s in specs]))

@@ -34,7 +34,7 @@ import numpy as np
 
 from gearcoupling.clearance import sweep
 from gearcoupling.loading.inputs import tooth_compliance
-from gearcoupling.loading.surface import DEFAULT_GRID, solve_surface
+from gearcoupling.loading.models.surface import DEFAULT_GRID, solve_surface
 from gearcoupling.spec import load_spec
 
 LADDER = ((16, 12), (24, 16), (32, 24), (48, 32), (64, 48), (96, 64), (128, 96))
@@ -70,13 +70,13 @@ def theory():
 
     from gearcoupling.geometry.hub import hub_flank
     from gearcoupling.geometry.sleeve import sleeve_model
-    from gearcoupling.loading.halfspace import (
+    from gearcoupling.loading.kernels.halfspace import (
         composite_modulus,
         half_space,
         hertz_ellipse,
         solve_contact,
     )
-    from gearcoupling.loading.surface import contact_modulus
+    from gearcoupling.loading.models.surface import contact_modulus
 
     E = composite_modulus(206000.0, 0.3, 206000.0, 0.3)
     print("Hertz ellipse, W = 200 N, ry = 15 mm, grid over 2.5 semi-axes; errors of p0, a, b "
@@ -185,7 +185,7 @@ import numpy as np
 from gearcoupling.clearance import sweep
 from gearcoupling.loading import capacity, load_from_sweep
 from gearcoupling.loading.inputs import tooth_compliance
-from gearcoupling.loading.surface import solve_surface
+from gearcoupling.loading.models.surface import solve_surface
 from gearcoupling.spec import load_spec
 spec = load_spec("renzo-1967")
 comp = tooth_compliance(spec)

@@ -3,6 +3,7 @@ B-spline solids of the exact geometry whose read-back volume matches the part, C
 
 from __future__ import annotations
 
+import importlib
 import json
 import sys
 
@@ -13,7 +14,7 @@ import trimesh
 import gearcoupling as gc
 from gearcoupling.cli import main
 from gearcoupling.errors import ArgumentError, BackendError
-from gearcoupling.export import EXPORTERS, export_part, formats
+from gearcoupling.export import WRITERS, Writer, export_part, formats
 from gearcoupling.export.meshes import read_mesh
 from gearcoupling.parts import SURFACE_KINDS, build_part
 
@@ -32,7 +33,29 @@ def hub_sector():
 
 def test_every_format_is_registered():
     assert {*MESH_FORMATS, "step", "stp"} <= set(formats())
-    assert set(EXPORTERS) == set(formats())
+    assert formats("volume") == ["inp", "msh", "vtu"]
+    keys = [(w.kind, s) for w in WRITERS for s in w.suffixes]
+    assert len(keys) == len(set(keys))  # one writer per kind and extension
+    for w in WRITERS:  # each "module:function" imports (at the call) to a function
+        module, _, name = w.writer.partition(":")
+        assert callable(getattr(importlib.import_module(f"gearcoupling.export.{module}"), name))
+
+
+def test_a_format_registered_in_one_place_writes_and_is_a_cli_choice(tmp_path, hub_sector,
+                                                                     monkeypatch):
+    spec, mesh = hub_sector
+
+    def write_xyz(job, path):  # a toy format: one line per vertex
+        np.savetxt(path, job.mesh.vertices)
+
+    monkeypatch.setattr("gearcoupling.export.registry.WRITERS",
+                        (*WRITERS, Writer("xyz", ("xyz",), "surface", write_xyz)))
+    assert "xyz" in formats() and "xyz" not in formats("volume")
+    path = export_part(spec, "hub", tmp_path / "hub.xyz", mesh=mesh)
+    np.testing.assert_array_equal(np.loadtxt(path), mesh.vertices)
+    rc = main(["generate", "renzo-1967", "--parts", "hub", "--format", "xyz", "--teeth", "0",
+               "-o", str(tmp_path / "cli")])
+    assert rc == 0 and len(list((tmp_path / "cli").rglob("*.xyz"))) == 1
 
 
 @pytest.mark.parametrize("ext", MESH_FORMATS)
@@ -85,7 +108,8 @@ def test_a_failing_writer_leaves_no_file(tmp_path, hub_sector, monkeypatch):
         path.write_bytes(b"half")
         raise RuntimeError("disk full")
 
-    monkeypatch.setitem(EXPORTERS, "stl", broken)
+    monkeypatch.setattr("gearcoupling.export.registry.WRITERS",
+                        (Writer("stl", ("stl",), "surface", broken), *WRITERS))
     with pytest.raises(RuntimeError):
         export_part(spec, "hub", target, mesh=mesh)
     assert target.read_bytes() == b"old"

@@ -186,8 +186,8 @@ def test_fe_far_field_springs_reproduce_the_reference_windup(fe_table_industrial
     with the tapered cantilever more than 50 %."""
     import dataclasses
 
+    from gearcoupling.loading.models.surface import solve_surface
     from gearcoupling.loading.springs import cantilever
-    from gearcoupling.loading.surface import solve_surface
 
     base, table = fe_table_industrial
     monkeypatch.setenv("GEARCOUPLING_CACHE", str(base))

@@ -234,11 +234,11 @@ def test_fe_table_drives_the_compliance_load_model(table):
     """The compliance load model takes the FE table through the protocol: at misalignment 0
     every tooth carries T / (N R), and the wind-up differs from the cantilever model's by
     exactly P (c_fe - c_cantilever) / R at the load centre (same gaps and contact law)."""
-    pytest.importorskip("gearcoupling.loading.compliance")
+    pytest.importorskip("gearcoupling.loading.models.compliance")
     from gearcoupling.clearance import sweep
-    from gearcoupling.loading.cantilever import CantileverCompliance
-    from gearcoupling.loading.compliance import solve_compliance
     from gearcoupling.loading.contact import contact_model, patch_centre_radius
+    from gearcoupling.loading.kernels.cantilever import CantileverCompliance
+    from gearcoupling.loading.models.compliance import solve_compliance
 
     t, _ = table
     spec = load_spec("industrial-m2")
@@ -278,8 +278,8 @@ def test_fe_springs_keep_the_nominal_root_stress_criterion(table):
     stress the allowable is meant for: it was silently dropped (root stress 0, no bending
     criterion in the capacity). The table's fillet stresses hold the fillet's stress
     concentration; they are reported, not judged."""
-    from gearcoupling.loading.cantilever import CantileverCompliance
-    from gearcoupling.loading.compliance import solve_compliance
+    from gearcoupling.loading.kernels.cantilever import CantileverCompliance
+    from gearcoupling.loading.models.compliance import solve_compliance
 
     t, _ = table
     spec = load_spec("industrial-m2")
@@ -290,7 +290,7 @@ def test_fe_springs_keep_the_nominal_root_stress_criterion(table):
                                                          np.full((N, 1), R))
     np.testing.assert_allclose(out["root_stress_MPa"], nominal, rtol=1e-12)
     assert np.all(nominal > 0)
-    from gearcoupling.loading.capacity import limit_loads
+    from gearcoupling.loading.limits import limit_loads
 
     limits = limit_loads(spec, zeros, np.full((N, 1), R), t)
     assert np.all(np.isfinite(limits["bending_stress"]) & (limits["bending_stress"] > 0))

@@ -9,7 +9,7 @@ import gearcoupling as gc
 from gearcoupling.clearance import sweep
 from gearcoupling.loading import load_from_sweep
 from gearcoupling.loading.capacity import _root_torque, capacity, capacity_from_sweep
-from gearcoupling.loading.linear import solve_windup
+from gearcoupling.loading.kernels.windup import solve_windup
 
 IN = 25.4
 
@@ -120,7 +120,7 @@ def test_surface_capacity_brings_the_worst_tooth_to_its_limit(renzo):
     the compliance model reaches a face end first, not screened over the others (that
     would double the search): edge contact above it by FACE_END_RTOL, none 10 % below it
     (the other rotations reach the face end up to 6 % lower here)."""
-    from gearcoupling.loading.capacity import (
+    from gearcoupling.loading.models.surface_capacity import (
         FACE_END_RTOL,
         INFO_RTOL,
         LOAD_GRID,

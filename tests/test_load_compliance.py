@@ -9,7 +9,7 @@ import gearcoupling as gc
 from gearcoupling.clearance import sweep
 from gearcoupling.errors import BackendError, SpecError
 from gearcoupling.loading import load_from_sweep
-from gearcoupling.loading.cantilever import CantileverCompliance, beam_compliance
+from gearcoupling.loading.kernels.cantilever import CantileverCompliance, beam_compliance
 
 
 @pytest.mark.parametrize("slender", [1.0, 3.0, 10.0])
@@ -239,7 +239,7 @@ def test_a_tooth_started_unloaded_still_finds_its_load(renzo):
     """A Newton start at W = 0 (a tooth an overshooting wind-up step had unloaded) stays
     there with a contact law of infinite slope at 0; the solve starts such teeth above
     the root instead, so c W + delta(W) = d holds for every tooth whatever the start."""
-    from gearcoupling.loading.compliance import _solve_load, pair_laws
+    from gearcoupling.loading.models.compliance import _solve_load, pair_laws
 
     spec, _ = renzo
     z = np.array([[0.0], [2.0]])

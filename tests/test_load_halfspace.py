@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from gearcoupling.errors import ArgumentError, SpecError
-from gearcoupling.loading.halfspace import (
+from gearcoupling.loading.kernels.halfspace import (
     composite_modulus,
     half_space,
     hertz_ellipse,

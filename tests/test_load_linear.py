@@ -9,7 +9,7 @@ import gearcoupling as gc
 from gearcoupling.clearance import sweep
 from gearcoupling.errors import SpecError
 from gearcoupling.loading import load_from_sweep
-from gearcoupling.loading.linear import solve_windup
+from gearcoupling.loading.kernels.windup import solve_windup
 
 
 def brute_windup(g, K, T):

@@ -11,7 +11,7 @@ from gearcoupling.errors import ArgumentError
 from gearcoupling.geometry.hub import hub_flank
 from gearcoupling.geometry.sleeve import sleeve_model
 from gearcoupling.loading import CantileverCompliance
-from gearcoupling.loading.gapfield import (
+from gearcoupling.loading.kernels.gapfield import (
     face_range,
     gap_field,
     lattice_windows,
@@ -19,8 +19,8 @@ from gearcoupling.loading.gapfield import (
     window_level,
     windows,
 )
-from gearcoupling.loading.halfspace import half_space, solve_contact
-from gearcoupling.loading.surface import contact_modulus, patch_measures, solve_surface
+from gearcoupling.loading.kernels.halfspace import half_space, solve_contact
+from gearcoupling.loading.models.surface import contact_modulus, patch_measures, solve_surface
 from gearcoupling.spec import load_spec
 
 
@@ -133,7 +133,7 @@ def test_crowned_patch_length_matches_line_contact_from_lead_curvature(renzo):
 
 def gap_width(spec):
     from gearcoupling.geometry import developed_arc
-    from gearcoupling.loading.gapfield import depth_range
+    from gearcoupling.loading.kernels.gapfield import depth_range
 
     lo, hi = depth_range(spec, 0.0)
     r_b = spec.tooth.base_radius

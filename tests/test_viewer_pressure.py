@@ -7,7 +7,7 @@ import pytest
 from gearcoupling.clearance import sweep
 from gearcoupling.errors import ArgumentError
 from gearcoupling.loading.inputs import tooth_compliance
-from gearcoupling.loading.surface import solve_surface
+from gearcoupling.loading.models.surface import solve_surface
 from gearcoupling.viewer import scene as vs
 from gearcoupling.viewer.nodes import pose_loads
 

@@ -26,6 +26,8 @@ N_PER_MM_PER_LBF_PER_IN = N_PER_LBF / 25.4
 MPA_PER_PSI = N_PER_LBF / 25.4**2
 KG_PER_M3_PER_LB_PER_IN3 = 0.45359237 / 0.0254**3
 
+# the load models a spec file may name (gearcoupling.loading.MODELS holds what each is;
+# tests/test_load_models.py holds the two equal)
 LOAD_MODELS = ("linear", "compliance", "surface")
 # the tooth springs (gearcoupling.loading.springs.SPRINGS holds what each is)
 STIFFNESS_SOURCES = ("fe-fit", "fe", "cantilever")

@@ -8,8 +8,7 @@ from pathlib import Path
 from ..arguments import MAXIMA
 from ..errors import ArgumentError, SpecError, brief
 from ..io import parse_override
-from ..loading import plot_capacity, write_capacity_csv
-from ..loadspec import LOAD_MODELS
+from ..loading import model_names, models_help, plot_capacity, write_capacity_csv
 from ..plots import save_figure
 from ..reporting import CapacityComparison, compare_capacity, comparison_range
 from ..spec import load_spec
@@ -32,8 +31,8 @@ def register(sub) -> None:
     add_spec_arguments(p)
     p.add_argument("--compare", nargs="+", default=[], metavar="SPEC",
                    help="more specs (templates or files) to overlay, same --set applied")
-    p.add_argument("--model", choices=LOAD_MODELS, default=None,
-                   help="load model (default: each spec's [load] model)")
+    p.add_argument("--model", choices=model_names(), default=None,
+                   help=f"load model ({models_help()}; default: each spec's [load] model)")
     p.add_argument("--max", type=number_in(0.0, 6.0, "degrees", open_lo=True), default=None,
                    metavar="DEG", help="largest misalignment, in (0, 6] degrees (default: the "
                    "largest critical misalignment of the specs, at least their design angles "

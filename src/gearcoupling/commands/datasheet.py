@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from ..loadspec import LOAD_MODELS
+from ..loading import model_names
 from ..rotordynamics import (
     MAX_TORQUE_NM,
     ROSS_SUFFIXES,
@@ -37,7 +37,7 @@ def register(sub) -> None:
                    default=None, metavar="NM",
                    help=f"operating torque in N·m, 0 < |T| <= {MAX_TORQUE_NM:g}; the sign picks "
                         "the loaded flank (default: the spec's)")
-    p.add_argument("--model", choices=LOAD_MODELS, default=None,
+    p.add_argument("--model", choices=model_names(), default=None,
                    help="load model (default: compliance, a few hundred load solves in under a "
                         "second; surface takes about a minute)")
     p.add_argument("--rotations", type=count(1, 64), default=8, metavar="N",

@@ -11,7 +11,8 @@ import sys
 from collections.abc import Callable
 from pathlib import Path
 
-from ..fea import FORMATS, check_size, fillet_notes, mesh_part, region_ids, sector_teeth, write_mesh
+from ..export import formats as volume_formats
+from ..fea import check_size, fillet_notes, mesh_part, region_ids, sector_teeth, write_mesh
 from ..io import write_json
 from ..spec import CouplingSpec
 from .common import (
@@ -36,8 +37,9 @@ def register(sub) -> None:
     p.add_argument("--whole", action="store_true", help="mesh the whole parts")
     p.add_argument("--size", type=positive_length, default=None, metavar="MM",
                    help="element size on the teeth in mm, > 0 (default module / 4)")
-    p.add_argument("--format", dest="formats", default="inp,msh,vtu", metavar="LIST",
-                   help="comma-separated: inp, msh, vtu (default: all three)")
+    p.add_argument("--format", dest="formats", default=",".join(volume_formats("volume")),
+                   metavar="LIST", help="comma-separated: "
+                   f"{', '.join(volume_formats('volume'))} (default: all)")
     p.set_defaults(func=run)
 
 
@@ -66,7 +68,7 @@ def fea_meshes(spec: CouplingSpec, out: Path, parts, formats, *, sector=3, size_
 def run(args) -> int:
     spec = spec_from_args(args)
     parts = parse_list(args.parts, PART_NAMES, "--parts")
-    fmts = parse_list(args.formats, FORMATS, "--format")
+    fmts = parse_list(args.formats, volume_formats("volume"), "--format")
     sector = None if args.whole else args.sector
 
     sector_teeth(spec, sector)

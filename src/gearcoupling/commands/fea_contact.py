@@ -16,8 +16,7 @@ from ..arguments import TORQUE_RANGE_NM
 from ..errors import ArgumentError
 from ..fea import ccx_path, check_size, fe_contact, fillet_notes, gmsh_module
 from ..io import write_json
-from ..loading import sector_check
-from ..loadspec import LOAD_MODELS
+from ..loading import model_names, sector_check
 from .common import (
     add_spec_arguments,
     count,
@@ -41,7 +40,7 @@ def register(sub) -> None:
                    metavar="DEG", help="turning angle of a misaligned pose (default 0)")
     p.add_argument("--sector", type=count(5, 299), default=5, metavar="K",
                    help="teeth in a misaligned pose's sector (default 5; docs/fea.md)")
-    p.add_argument("--model", choices=LOAD_MODELS, default=None,
+    p.add_argument("--model", choices=model_names(), default=None,
                    help="load model a misaligned pose is compared with (default: the spec's)")
     p.add_argument("--size", type=positive_length, default=None, metavar="MM",
                    help="element size on the teeth in mm (default module / 4)")

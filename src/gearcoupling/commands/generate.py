@@ -24,8 +24,8 @@ def register(sub) -> None:
     p.add_argument("--tolerance", type=positive_length, default=None, metavar="MM",
                    help="chordal tolerance in mm, > 0 (default: module / 200)")
     p.add_argument("--format", dest="formats", default="stl", metavar="LIST",
-                   help="comma-separated file formats: stl, ply, obj, glb, 3mf, vtu, vtk, "
-                        "msh, inp, step (default: stl)")
+                   help=f"comma-separated file formats: {', '.join(registered())} "
+                        "(default: stl)")
     p.add_argument("--teeth", default=None, metavar="LIST",
                    help="only these teeth, e.g. 0,1,2,49 or 0-2,49 (a sector; default all)")
     p.set_defaults(func=run)

@@ -3,8 +3,7 @@
 from __future__ import annotations
 
 from ..arguments import TORQUE_RANGE_NM
-from ..loading import PHASES
-from ..loadspec import LOAD_MODELS
+from ..loading import PHASES, model_names, models_help
 from ..outputs import write_load
 from .common import (
     MAX_ANGLES,
@@ -25,8 +24,8 @@ def register(sub) -> None:
                        "over a turn under torque (load.csv, load_summary.json, plots)")
     add_spec_arguments(p)
     add_misalignment_argument(p)
-    p.add_argument("--model", choices=LOAD_MODELS, default=None,
-                   help="load model (default: the spec's [load] model)")
+    p.add_argument("--model", choices=model_names(), default=None,
+                   help=f"load model ({models_help()}; default: the spec's [load] model)")
     p.add_argument("--torque", type=torque(), default=None, metavar="NM",
                    help=f"torque in N·m, |T| from {TORQUE_RANGE_NM[0]:g} to "
                         f"{TORQUE_RANGE_NM[1]:g} or 0; the sign picks the loaded flank; write a "

@@ -11,7 +11,7 @@ from ..errors import ArgumentError
 from ..hob import check_hob_diameter
 from ..inspection import GRADES, LIMITS, grade_limits
 from ..io import require_file
-from ..loadspec import LOAD_MODELS
+from ..loading import model_names, models_help
 from ..reporting import KNOB_RANGES, ReportSettings, report
 from .common import (
     add_misalignment_argument,
@@ -35,8 +35,8 @@ def register(sub) -> None:
     p.add_argument("--torque", type=torque(), default=None, metavar="NM",
                    help="signed torque in N·m, |T| from 1e-9 to 1e9 or 0 (default: the "
                         "spec's [load] torque)")
-    p.add_argument("--model", choices=LOAD_MODELS, default=None,
-                   help="load model (default: the spec's [load] model)")
+    p.add_argument("--model", choices=model_names(), default=None,
+                   help=f"load model ({models_help()}; default: the spec's [load] model)")
     p.add_argument("--scan", default=None, metavar="FILE",
                    help="a measured hub (mesh or point cloud) to inspect against the nominal")
     p.add_argument("--units", default="mm", choices=("mm", "in", "m"),

@@ -8,14 +8,20 @@ writers, STEP files of the parts' OpenCASCADE solids (see ``docs/export.md``).
 """
 
 from .job import PartJob
-from .registry import EXPORTERS, export_part, formats
+from .registry import WRITERS, Writer, export_part, formats, writer_for
 from .step import read_step_volume, write_step
+from .volume import inp_mesh_lines, region_ids, write_inp_text
 
 __all__ = [
-    "EXPORTERS",
+    "WRITERS",
     "PartJob",
+    "Writer",
     "export_part",
     "formats",
+    "inp_mesh_lines",
     "read_step_volume",
+    "region_ids",
+    "write_inp_text",
     "write_step",
+    "writer_for",
 ]

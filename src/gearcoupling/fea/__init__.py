@@ -24,11 +24,10 @@ from .stiffness import (
     tooth_compliance_table,
 )
 from .volume import VolumeMesh
-from .write import FORMATS, region_ids, write_inp, write_mesh
+from .write import region_ids, write_inp, write_mesh
 
 __all__ = [
     "DEFAULT_SECTOR_TEETH",
-    "FORMATS",
     "ComplianceTable",
     "FEContactResult",
     "FESectorResult",

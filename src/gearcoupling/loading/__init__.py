@@ -11,11 +11,8 @@ from .accuracy import (
 )
 from .api import load, load_from_sweep
 from .body import body_windup_rad
-from .cantilever import CantileverCompliance
 from .capacity import (
-    LOAD_GRID,
     PHASES,
-    ROTATIONS,
     Capacity,
     CapacityCurve,
     capacity,
@@ -25,10 +22,20 @@ from .capacity import (
     turn_phases,
     write_capacity_csv,
 )
-from .fitted import FittedCompliance
-from .inputs import resolve_model, resolve_torque_Nm
-from .linear import solve_windup
-from .linear_model import mesh_stiffness_N_per_mm
+from .inputs import resolve_torque_Nm
+from .kernels.cantilever import CantileverCompliance
+from .kernels.fitted import FittedCompliance
+from .kernels.windup import solve_windup
+from .models.linear import mesh_stiffness_N_per_mm
+from .models.registry import (
+    MODELS,
+    LoadModel,
+    load_model,
+    model_names,
+    models_help,
+    resolve_model,
+)
+from .models.surface_capacity import LOAD_GRID
 from .patchmap import PatchMap, patch_maps
 from .plots import (
     plot_capacity,
@@ -46,14 +53,15 @@ from .summary import machine_loads, rotation_table
 __all__ = [
     "CSV_COLUMNS",
     "LOAD_GRID",
+    "MODELS",
     "PHASES",
-    "ROTATIONS",
     "TOOTH_LOAD_RATIO",
     "WINDUP_ERROR_PCT",
     "CantileverCompliance",
     "Capacity",
     "CapacityCurve",
     "FittedCompliance",
+    "LoadModel",
     "LoadResult",
     "PatchMap",
     "SectorCheck",
@@ -64,8 +72,11 @@ __all__ = [
     "default_angles",
     "load",
     "load_from_sweep",
+    "load_model",
     "machine_loads",
     "mesh_stiffness_N_per_mm",
+    "model_names",
+    "models_help",
     "patch_maps",
     "plot_capacity",
     "plot_loads_over_turn",

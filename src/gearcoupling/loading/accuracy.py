@@ -10,6 +10,8 @@ A model and spring not on the ladder are named as such, never given a borrowed f
 
 from __future__ import annotations
 
+from .models.registry import load_model
+
 #: (model, springs) -> (lowest, highest) wind-up error in % against the CalculiX contact
 #: reference (positive: the model is more compliant); springs ``template C`` is the
 #: linear model with the spec's own ``mesh_stiffness``
@@ -40,9 +42,9 @@ TOOTH_LOAD_RATIO: dict[tuple[str, str], tuple[float, float]] = {
 
 
 def springs_name(spec, model: str) -> str:
-    """The tooth springs a model used: ``template C`` for the linear model with the spec's
-    ``mesh_stiffness``, else the spec's ``[load] stiffness``."""
-    if model == "linear" and spec.load.mesh_stiffness_N_per_mm is not None:
+    """The tooth springs a model used: ``template C`` for a model that takes the spec's
+    ``mesh_stiffness`` where it is set (the linear model), else the spec's ``[load] stiffness``."""
+    if load_model(model).takes_mesh_stiffness and spec.load.mesh_stiffness_N_per_mm is not None:
         return "template C"
     return str(spec.load.stiffness)
 

@@ -11,8 +11,8 @@ from ..arguments import keywords
 from ..clearance import SweepResult, sweep
 from ..errors import ArgumentError
 from ..spec import CouplingSpec, as_spec
-from .inputs import LoadProblem, load_problem, resolve_model, resolve_torque_Nm
-from .models import ModelOutput, Progress, solve
+from .inputs import LoadProblem, load_problem, resolve_torque_Nm
+from .models.registry import ModelOutput, Progress, resolve_model, solve
 from .result import LoadResult
 
 #: the keywords a call passes on to :func:`gearcoupling.sweep`
@@ -34,8 +34,9 @@ def load(spec: CouplingSpec, misalignment_deg: float, angles_deg: ArrayLike, *,
         Coupling rotations ``psi`` (degrees).
     torque_Nm : float, optional
         Signed torque (positive loads the ccw flanks); default ``spec.load.torque_Nm``.
-    model : {"linear", "compliance", "surface"}, optional
-        Default ``spec.load.model``.
+    model : str, optional
+        A load model's name (:data:`~gearcoupling.loading.MODELS`: ``linear``,
+        ``compliance``, ``surface``); default ``spec.load.model``.
     gap_offset_rad : (N,) or (2, N) float, optional
         Per-tooth additions to the gap angles (index errors, docs/conventions.md).
     progress : callable, optional

@@ -44,8 +44,8 @@ from numpy.typing import NDArray
 
 from ..geometry import developed_arc, form_radius, hub_flank_model, hub_model, tip_radius
 from ..spec import CouplingSpec
-from .cantilever import CantileverCompliance
 from .inputs import nominal_root_stress_MPa
+from .kernels.cantilever import CantileverCompliance
 from .springs import springs_of
 
 LN_FLOOR = 1.0

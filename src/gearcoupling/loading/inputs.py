@@ -12,12 +12,10 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..arguments import choice
 from ..arguments import torque_Nm as check_torque_Nm
 from ..clearance import SweepResult
 from ..errors import ArgumentError, SpecError
 from ..geometry import FLANKS
-from ..loadspec import LOAD_MODELS
 from ..spec import CouplingSpec
 from .springs import cantilever, tooth_compliance
 
@@ -30,11 +28,6 @@ def resolve_torque_Nm(spec: CouplingSpec, torque_Nm: float | None) -> float:
         raise SpecError("load.torque_Nm", None, "no torque: give [load] torque_Nm (or "
                         "torque_lbf_in) in the spec or torque_Nm= / --torque")
     return spec.load.torque_Nm  # checked by LoadSpec against the same range
-
-
-def resolve_model(spec: CouplingSpec, model: str | None) -> str:
-    """The model name: the argument, else ``[load] model``; one of :data:`LOAD_MODELS`."""
-    return spec.load.model if model is None else choice(model, "model", LOAD_MODELS)
 
 
 def loaded_gaps(sweep_result: SweepResult, flank: int,

@@ -21,8 +21,9 @@ from ..clearance import sweep
 from ..errors import ArgumentError
 from ..geometry import developed_arc
 from .contact import REGIMES, contact_model
+from .models.registry import load_model
+from .models.surface import solve_surface
 from .springs import tooth_compliance
-from .surface import solve_surface
 
 
 @dataclass(frozen=True)
@@ -31,6 +32,9 @@ class PatchMap:
 
     Attributes
     ----------
+    regime : str
+        ``hertz``, ``line`` or ``none`` (the contact laws' patch), ``grid`` (the pressure
+        grid of a model that solves one).
     z_mm : (nz,) float
         Axial cell centres across the face.
     s_mm : (ns,) float
@@ -95,7 +99,7 @@ def patch_maps(res, rotation: int = 0, teeth=None, *, count: int = 6,
     chosen = most_loaded(res, rotation, count) if teeth is None else np.asarray(teeth, int)
     if chosen.size == 0 or np.any((chosen < 0) | (chosen >= res.teeth)):
         raise ArgumentError(f"teeth = {teeth!r}: must be tooth numbers 0-{res.teeth - 1}")
-    if res.model == "surface" and abs(res.torque_Nm) > 0:
+    if load_model(res.model).pressure_grid and abs(res.torque_Nm) > 0:
         return _surface_maps(res, rotation, chosen)
     return _analytic_maps(res, rotation, chosen, grid)
 
@@ -159,7 +163,7 @@ def _surface_maps(res, j: int, teeth: NDArray) -> list[PatchMap]:
         else:
             z, p = np.linspace(-hf, hf, 2), np.zeros((2, gf.s_mm.size))
         maps.append(PatchMap(int(k), float(res.theta_deg[k, j]),
-                             float(out["normal_force_N"][k, 0]), "surface",
+                             float(out["normal_force_N"][k, 0]), "grid",
                              bool(out["edge_contact"][k, 0]), hf, np.asarray(z, float),
                              np.asarray(gf.s_mm, float), p, face, s_lo, s_hi,
                              float(out["interior_pressure_MPa"][k, 0])))

@@ -14,6 +14,7 @@ import numpy as np
 
 from ..errors import ArgumentError
 from ..plots import new_figure
+from .models.registry import load_model
 from .patchmap import patch_extent, patch_maps
 from .summary import rotation_table
 
@@ -217,7 +218,7 @@ def plot_capacity(curves: Mapping[str, Sequence], ax=None, *,
     return fig
 
 
-REGIME_NAMES = {"hertz": "Hertz ellipse", "line": "line contact", "surface": "pressure grid",
+REGIME_NAMES = {"hertz": "Hertz ellipse", "line": "line contact", "grid": "pressure grid",
                 "none": "no load"}
 
 
@@ -288,7 +289,7 @@ def plot_patches(res, rotation: int = 0, ax=None, *, count: int = 6):
                  label="contact pressure (MPa)", shrink=0.8,
                  extend="max" if peak > top else "neither")
     how = ("its pressure grid; p: interior pressure, peak: at a profile or face end"
-           if res.model == "surface" else
+           if load_model(res.model).pressure_grid else
            "its contact laws' patch: Hertz ellipse, or strip over the active profile")
     fig.suptitle(f"{res.spec.name}: contact pressure on the loaded {res.loaded_flank} flanks at "
                  f"ψ = {res.angles_deg[j]:.3g}°, i = {res.misalignment_deg:.3g}°, "

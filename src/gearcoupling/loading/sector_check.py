@@ -17,15 +17,15 @@ from dataclasses import asdict, dataclass
 import numpy as np
 from scipy.optimize import brentq
 
-from ..arguments import TORQUE_RANGE_NM, choice, real
+from ..arguments import TORQUE_RANGE_NM, real
 from ..clearance import sweep
 from ..errors import ArgumentError
 from ..fea import FESectorResult, fe_contact_sector
-from ..loadspec import LOAD_MODELS
 from ..spec import CouplingSpec, as_spec, check_misalignment_deg
 from .api import load, load_from_sweep
 from .body import body_windup_rad
 from .inputs import resolve_torque_Nm
+from .models.registry import resolve_model
 
 CUT_DISTANCE_PITCHES = 2  # compared teeth stand at least this far from a cut
 
@@ -82,8 +82,7 @@ def sector_check(spec: CouplingSpec, misalignment_deg: float, *, rotation_deg: f
     T = resolve_torque_Nm(spec, torque_Nm)
     check_misalignment_deg(misalignment_deg, error=ArgumentError)
     real(rotation_deg, "rotation_deg", unit="degrees")
-    if model is not None:
-        choice(model, "model", LOAD_MODELS)
+    resolve_model(spec, model)
     if not T > 0:
         raise ArgumentError("torque_Nm", T, "a torque above 0 N·m: unloaded, nothing touches")
     res = load(spec, misalignment_deg, [rotation_deg], torque_Nm=T, model=model)

@@ -12,8 +12,8 @@ from typing import Any
 
 from ..fea import tooth_compliance_table
 from ..spec import CouplingSpec
-from .cantilever import CantileverCompliance
-from .fitted import FittedCompliance
+from .kernels.cantilever import CantileverCompliance
+from .kernels.fitted import FittedCompliance
 
 
 @dataclass(frozen=True)

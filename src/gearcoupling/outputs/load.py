@@ -14,10 +14,10 @@ from ..geometry import renzo_z0_mm
 from ..io import write_json
 from ..loading import (
     LOAD_GRID,
-    ROTATIONS,
     capacity_from_sweep,
     default_angles,
     load_from_sweep,
+    load_model,
     plot_patches,
     plot_q_graph,
     plot_tooth_load,
@@ -49,10 +49,10 @@ def load_studies(spec: CouplingSpec, torque_Nm: float, model: str | None, out: P
     moment: dict[str, list[float]] = {k: [] for k in labels}
     q_pts: list[tuple[float, float]] = []
     ld = spec.load
-    m = resolve_model(spec, model)
-    grid = LOAD_GRID if m == "surface" else None  # the load criteria's grid of capacity
+    m = load_model(resolve_model(spec, model))
+    grid = LOAD_GRID if m.pressure_grid else None  # the load criteria's grid of capacity
     for n, i in enumerate(mis):
-        sw = sweep(spec, float(i), default_angles(spec, None, ROTATIONS[m]))
+        sw = sweep(spec, float(i), default_angles(spec, None, m.rotations))
         for t, key in zip(torques, peak, strict=True):
             res = load_from_sweep(sw, torque_Nm=t, model=model, pressure_grid=grid)
             peak[key].append(float(np.max(res.tangential_force_N)))

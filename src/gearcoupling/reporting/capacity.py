@@ -13,8 +13,7 @@ from ..arguments import MAXIMA, angle_list, choice
 from ..arguments import count as check_count
 from ..clearance import critical_misalignment_deg
 from ..errors import ArgumentError
-from ..loading import CapacityCurve, capacity_curve
-from ..loadspec import LOAD_MODELS
+from ..loading import CapacityCurve, capacity_curve, model_names
 from ..spec import MISALIGNMENT_RANGE_DEG, CouplingSpec, as_spec
 
 DEFAULT_COUNT = 25
@@ -64,7 +63,7 @@ def compare_capacity(specs: Sequence[CouplingSpec], misalignments_deg: ArrayLike
                             "compared with itself is the same curve)")
     check_count(count, "count", 2, MAXIMA["misalignments"])
     if model is not None:
-        choice(model, "model", LOAD_MODELS)
+        choice(model, "model", model_names())
     lo, hi = MISALIGNMENT_RANGE_DEG
     given = None if misalignments_deg is None else np.unique(angle_list(
         misalignments_deg, "misalignments_deg", lo=lo, hi=hi, most=MAXIMA["misalignments"]))

@@ -31,11 +31,11 @@ from ..inspection import compare_part, plot_deviation_map, plot_inspection
 from ..interference import check_interference, plot_interference
 from ..io import write_csv_records, write_csv_rows, write_text
 from ..loading import (
-    ROTATIONS,
     capacity,
     capacity_from_sweep,
     default_angles,
     load_from_sweep,
+    load_model,
     patch_maps,
     plot_capacity,
     plot_loads_over_turn,
@@ -260,7 +260,7 @@ def loads(ctx: Context) -> Section:
         ctx.found["load"] = None
         return sec
     sw = ctx.found["sweep"]
-    if ctx.model == "surface":  # about a second per rotation: one tooth pitch covers all θ
+    if load_model(ctx.model).cost == "slow":  # one tooth pitch covers all θ
         pitch = np.arange(s.surface_angles) * 360.0 / (spec.tooth.teeth * s.surface_angles)
         sw = sweep(spec, ctx.misalignment_deg, pitch, tolerance_mm=s.tolerance_mm)
     res = load_from_sweep(sw, torque_Nm=ctx.torque_Nm, model=ctx.model)
@@ -319,7 +319,7 @@ def loads(ctx: Context) -> Section:
         "patches", "Contact pressure on the developed flanks, the most loaded teeth and every "
         "tooth", plot_patches(res, j, count=s.patch_teeth),
         how + f" Rotation ψ = {res.angles_deg[j]:.3g}° (the largest tooth load); analytic "
-        "maps on a 481 × 61 grid" if ctx.model != "surface" else
+        "maps on a 481 × 61 grid" if not load_model(ctx.model).pressure_grid else
         how + f" Rotation ψ = {res.angles_deg[j]:.3g}°, re-solved with its pressure grid.",
         name))
     q_graph(ctx, sec)
@@ -384,8 +384,8 @@ def capacity_section(ctx: Context) -> Section:
         "capacity", "Capacity per criterion against misalignment, design point starred",
         plot_capacity(comp.curves, critical_deg=critical),
         f"{at.model} model, {s.capacity_count} misalignments 0–{mis[-1]:.3g}° (to the critical "
-        f"misalignment), {ROTATIONS[at.model]} rotations over one tooth pitch each, loaded "
-        "flank ccw.",
+        f"misalignment), {load_model(at.model).rotations} rotations over one tooth pitch each, "
+        "loaded flank ccw.",
         "capacity.csv"))
     return sec
 

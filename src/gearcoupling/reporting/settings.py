@@ -10,7 +10,7 @@ from typing import Any
 from ..arguments import choice, count, flag, positive, real, torque_Nm
 from ..errors import ArgumentError
 from ..io import as_path
-from ..loadspec import LOAD_MODELS
+from ..loading import model_names
 from ..spec import check_misalignment_deg
 
 # (smallest, largest) of each count: enough to draw, small enough to stay interactive
@@ -82,7 +82,7 @@ class ReportSettings:
         if self.misalignment_deg is not None:
             check_misalignment_deg(self.misalignment_deg, "misalignment_deg", ArgumentError)
         if self.model is not None:
-            choice(self.model, "model", LOAD_MODELS)
+            choice(self.model, "model", model_names())
         if self.torque_Nm is not None:
             torque_Nm(self.torque_Nm)
         if self.hob_diameter_mm is not None:

@@ -58,6 +58,7 @@ from ..arguments import (
 )
 from ..errors import SpecError
 from ..io import Table, as_path, bundled_names, line_of, resolve_bundled, set_dotted
+from ..loading import model_names
 from ..loadspec import UNIT_SIBLINGS
 from ..spec import (
     MISALIGNMENT_RANGE_DEG,
@@ -66,7 +67,7 @@ from ..spec import (
     resolve_spec_path,
     spec_from_dict,
 )
-from .tolerance import MODELS, PATHS, Tolerances
+from .tolerance import PATHS, Tolerances, capacity_models
 
 METHODS = ("grid", "random", "lhs")
 CONDITIONS = ("misalignment_deg", "torque_Nm")
@@ -372,8 +373,8 @@ def _tolerances(r: Table) -> dict[str, Any]:
     r.done()
     if path not in PATHS:
         r.fail("tolerances.path", path, f"one of {PATHS}")
-    if model not in MODELS:
-        r.fail("tolerances.model", model, f"one of {MODELS}")
+    if model not in capacity_models():
+        r.fail("tolerances.model", model, f"one of {capacity_models()}")
     if not 1 <= draws <= MAX_SAMPLES or not precision > 0:
         r.fail("tolerances.draws", (draws, precision), f"draws from 1 to {MAX_SAMPLES} and "
                "precision > 0")
@@ -453,9 +454,9 @@ def optimise_options(study: Study) -> dict[str, Any]:
     if not (isinstance(compare, list) and all(isinstance(c, str) for c in compare)):
         raise SpecError(f"{study.source} optimise.compare", compare, "a list of spec names")
     model = opt.get("model")
-    if model not in (None, "renzo", "linear", "compliance", "surface"):
+    if model is not None and model not in ("renzo", *model_names()):
         raise SpecError(f"{study.source} optimise.model", model,
-                        "renzo, linear, compliance or surface (default: the spec's)")
+                        f"renzo or {', '.join(model_names())} (default: the spec's)")
     unknown = set(opt) - {"angles_deg", "objective", "max_evaluations", "compare", "model"}
     if unknown:
         raise SpecError(f"{study.source} optimise", sorted(unknown)[0], "unknown key")

@@ -53,13 +53,25 @@ from numpy.typing import NDArray
 
 from ..clearance import check_misalignment, flank_minima, sweep
 from ..errors import SpecError
-from ..loading import capacity_from_sweep, load_from_sweep, mesh_stiffness_N_per_mm, solve_windup
+from ..loading import (
+    capacity_from_sweep,
+    load_from_sweep,
+    load_model,
+    mesh_stiffness_N_per_mm,
+    model_names,
+    solve_windup,
+)
 from ..spec import CouplingSpec
 
 PATHS = ("fast", "interpolated", "exact")
-MODELS = ("renzo", "linear", "compliance")
 CROWN_NODES = 5
 CROWN_SPAN_SD = 4.0
+
+
+def capacity_models() -> tuple[str, ...]:
+    """The capacity models of a tolerance study: ``renzo`` (the closed form) and the load
+    models of cost class ``fast`` (every draw solves its own map)."""
+    return ("renzo", *(n for n in model_names() if load_model(n).cost == "fast"))
 
 
 @dataclass(frozen=True)
@@ -326,8 +338,8 @@ def tolerance_sample(spec: CouplingSpec,
     the same rows): the outputs with errors, the nominal capacity and ``K``."""
     if path not in PATHS:
         raise SpecError("path", path, f"one of {PATHS}")
-    if model not in MODELS:
-        raise SpecError("tolerances.model", model, f"one of {MODELS}")
+    if model not in capacity_models():
+        raise SpecError("tolerances.model", model, f"one of {capacity_models()}")
 
     check_misalignment(misalignment_deg)
     T = spec.load.torque_Nm if torque_Nm is None else torque_Nm

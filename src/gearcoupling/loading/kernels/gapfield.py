@@ -30,9 +30,9 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..clearance import flank_table
-from ..errors import ArgumentError
-from ..geometry import (
+from ...clearance import flank_table
+from ...errors import ArgumentError
+from ...geometry import (
     FLANKS,
     developed_arc,
     hub_model,
@@ -40,7 +40,7 @@ from ..geometry import (
     sleeve_model,
     tip_radius,
 )
-from ..spec import CouplingSpec
+from ...spec import CouplingSpec
 
 FIXED_POINT_STEPS = 3
 FLANK_TABLE_TOLERANCE_MM = 1e-7  # the sweep's certified table of the exact flank

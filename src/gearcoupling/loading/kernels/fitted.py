@@ -48,9 +48,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..fea import rectangle_halfspace_work_mm_per_N
-from ..geometry import hub_model
-from ..spec import CouplingSpec
+from ...fea import rectangle_halfspace_work_mm_per_N
+from ...geometry import hub_model
+from ...spec import CouplingSpec
 from .cantilever import CantileverCompliance
 
 PARTS = ("hub", "sleeve")
@@ -96,7 +96,7 @@ def features(y_F: ArrayLike, to_face_ends: tuple[ArrayLike, ArrayLike], to_tip: 
 
 def load_fit() -> dict[str, Any]:
     """The shipped coefficients and fitted ranges (``fitted.json`` beside this module)."""
-    text = resources.files("gearcoupling.loading").joinpath("fitted.json").read_text()
+    text = resources.files("gearcoupling.loading.kernels").joinpath("fitted.json").read_text()
     return json.loads(text)
 
 

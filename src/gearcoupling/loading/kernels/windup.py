@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import ArgumentError, SpecError
+from ...errors import ArgumentError, SpecError
 
 
 def solve_windup(gap_rad: NDArray[np.float64],

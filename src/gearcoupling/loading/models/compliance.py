@@ -20,10 +20,10 @@ import math
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import ArgumentError, SpecError
-from ..spec import CouplingSpec
-from .contact import contact_model, patch_centre_radius
-from .inputs import nominal_root_stress_MPa
+from ...errors import ArgumentError, SpecError
+from ...spec import CouplingSpec
+from ..contact import contact_model, patch_centre_radius
+from ..inputs import nominal_root_stress_MPa
 
 INNER_ITER, OUTER_ITER = 60, 100
 
@@ -92,7 +92,7 @@ def first_limit_torque_Nmm(spec: CouplingSpec, gap_rad: NDArray, z_mm: NDArray, 
 def solve_compliance(spec: CouplingSpec,
                      gap_rad: NDArray, z_mm: NDArray, r_mm: NDArray, torque_Nmm: float,
                      compliance) -> dict[str, NDArray]:
-    """Wind-up and tooth loads of every rotation; dict as :func:`.linear_model.solve_linear`.
+    """Wind-up and tooth loads of every rotation; dict as :func:`.linear.solve_linear`.
 
     Parameters
     ----------

@@ -7,10 +7,10 @@ import math
 import numpy as np
 from numpy.typing import NDArray
 
-from ..spec import CouplingSpec
-from .contact import contact_estimates
-from .linear import solve_windup
-from .springs import tooth_compliance
+from ...spec import CouplingSpec
+from ..contact import contact_estimates
+from ..kernels.windup import solve_windup
+from ..springs import tooth_compliance
 
 
 def mesh_stiffness_N_per_mm(spec: CouplingSpec) -> float:
@@ -44,3 +44,21 @@ def solve_linear(spec: CouplingSpec, gap_rad: NDArray, z_mm: NDArray, r_mm: NDAr
            "mesh_stiffness_Nm_per_rad": K * 1e-3 * np.maximum(np.sum(active, axis=0), 1)}
     out.update(contact_estimates(spec, Fn, z_mm, r_mm))
     return out
+
+
+def linear_capacity_Nmm(spec: CouplingSpec, g: NDArray, W_lim: NDArray) -> float:
+    """Closed form: smallest torque (N·mm) at which a tooth of the linear model reaches
+    ``W_lim`` (normal load)."""
+    R = spec.tooth.pitch_radius
+    C = mesh_stiffness_N_per_mm(spec)
+    P_lim = W_lim * math.cos(spec.tooth.pressure_angle)
+    touch = np.isfinite(g)
+    with np.errstate(invalid="ignore"):
+        dpsi = np.where(touch & np.isfinite(P_lim), g + P_lim / (C * R), np.inf)  # (N, M)
+    # T(dpsi) increases, so at each rotation the first tooth to reach its limit is the one
+    # with the smallest dpsi_k; the torque there is sum_j C R² (dpsi - g_j)+
+    first = np.min(dpsi, axis=0)  # (M,)
+    closure = np.where(touch, np.maximum(first[None, :] - np.where(touch, g, 0.0), 0.0), 0.0)
+    with np.errstate(invalid="ignore"):
+        T = np.where(np.isfinite(first), C * R * R * np.sum(closure, axis=0), np.inf)
+    return float(np.min(T))

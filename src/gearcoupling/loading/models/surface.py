@@ -69,10 +69,11 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy import ndimage
 
-from ..errors import ArgumentError, GearCouplingError
-from ..geometry import FLANKS, developed_arc
-from ..spec import CouplingSpec
-from .gapfield import (
+from ...errors import ArgumentError, GearCouplingError
+from ...geometry import FLANKS, developed_arc
+from ...spec import CouplingSpec
+from ..inputs import loaded_gaps
+from ..kernels.gapfield import (
     GapField,
     depth_range,
     gap_field,
@@ -81,7 +82,7 @@ from .gapfield import (
     window_level,
     windows,
 )
-from .halfspace import (
+from ..kernels.halfspace import (
     GridCompliance,
     RigidSprings,
     composite_modulus,
@@ -89,7 +90,6 @@ from .halfspace import (
     load_split,
     solve_contact,
 )
-from .inputs import loaded_gaps
 
 DEFAULT_GRID = (48, 32)  # cells (along the face, across the depth); see bench_surface.py
 COARSE_GRID = (32, 12)

@@ -25,8 +25,8 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..geometry import inv
-from ..spec import CouplingSpec
+from ...geometry import inv
+from ...spec import CouplingSpec
 
 FOUNDATION_L, FOUNDATION_P, FOUNDATION_Q = 5.306, 1.534, 0.4167
 SHEAR_FACTOR = 1.2  # 1 / kappa for a rectangular section
