@@ -12,8 +12,9 @@ def brief(text: str, most: int) -> str:
     return text if len(text) <= most else f"{text[:most]}... ({len(text)} characters)"
 
 
-def _message(field: object, value: object, allowed: object) -> str:
-    return (f"{brief(str(field), FIELD_CHARS)} = {brief(repr(value), VALUE_CHARS)}: "
+def _message(field: object, value: object, allowed: object, shown: str | None = None) -> str:
+    quoted = repr(value) if shown is None else shown
+    return (f"{brief(str(field), FIELD_CHARS)} = {brief(quoted, VALUE_CHARS)}: "
             f"{brief(str(allowed), ALLOWED_CHARS)}")
 
 
@@ -22,16 +23,19 @@ class GearCouplingError(Exception):
 
 
 class SpecError(GearCouplingError, ValueError):
-    """An invalid spec value or combination; the message names field, value and what is allowed."""
+    """An invalid spec value or combination; the message names field, value and what is
+    allowed. ``shown`` quotes the value as the file gave it where that differs from
+    ``repr(value)`` (``0.1 in (2.54 mm)`` for a length of an inch file)."""
 
-    def __init__(self, field: str, value: object, allowed: str):
+    def __init__(self, field: str, value: object, allowed: str, shown: str | None = None):
         self.field = field
         self.value = value
         self.allowed = allowed
-        super().__init__(_message(field, value, allowed))
+        self.shown = shown
+        super().__init__(_message(field, value, allowed, shown))
 
     def __reduce__(self):  # pickled to and from worker processes with its fields
-        return type(self), (self.field, self.value, self.allowed)
+        return type(self), (self.field, self.value, self.allowed, self.shown)
 
 
 class GeometryError(GearCouplingError, ValueError):
