@@ -46,6 +46,10 @@ TORQUE_RANGE_NM = (1e-9, 1e9)
 #: the bottom the rounding of the coordinates dominates
 SWEEP_TOLERANCE_RANGE_MM = (1e-12, 0.1)
 
+#: the default accuracy of every clearance minimum and of the flank table in mm (sweep,
+#: design angles, load, studies, report, command line): one value everywhere
+GAP_TOLERANCE_MM = 1e-7
+
 #: tolerances of the design-angle searches in degrees (bisection and Brent's method);
 #: below the bottom they cost more than the geometry is worth, above the top they are
 #: no answer

@@ -12,11 +12,18 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..arguments import angle_tolerance_deg, count, keywords, real, sweep_tolerance_mm
+from ..arguments import (
+    GAP_TOLERANCE_MM,
+    angle_tolerance_deg,
+    count,
+    keywords,
+    real,
+    sweep_tolerance_mm,
+)
 from ..errors import ArgumentError
 from ..geometry import sleeve_model
 from ..spec import MISALIGNMENT_RANGE_DEG, CouplingSpec, as_spec
-from .kernel import DEFAULT_TOLERANCE_MM, FACE_END, minimise
+from .kernel import FACE_END, minimise
 from .result import SweepResult
 from .tooth_map import check_misalignment, flank_minima, sweep
 
@@ -32,7 +39,7 @@ def pitch_turning_angles(teeth: int, steps: int = DEFAULT_STEPS) -> np.ndarray:
 
 
 def contact_travel(spec: CouplingSpec,
-                   misalignment_deg: float, *, tolerance_mm: float = DEFAULT_TOLERANCE_MM
+                   misalignment_deg: float, *, tolerance_mm: float = GAP_TOLERANCE_MM
                    ) -> dict[str, float]:
     """Axial position of the contact on the pivot teeth (theta = 0 and 180°), in mm.
 
@@ -57,7 +64,7 @@ def contact_travel(spec: CouplingSpec,
 
 
 def min_backlash_rad(spec: CouplingSpec, misalignment_deg: float, *, steps: int = DEFAULT_STEPS,
-                     tolerance_mm: float = DEFAULT_TOLERANCE_MM) -> float:
+                     tolerance_mm: float = GAP_TOLERANCE_MM) -> float:
     """Smallest backlash (rad) over a full turn at ``misalignment_deg`` (0-6°); negative
     where the teeth bind. ``steps`` rotations per tooth pitch are searched (1-1000)."""
     spec = as_spec(spec)
@@ -66,7 +73,7 @@ def min_backlash_rad(spec: CouplingSpec, misalignment_deg: float, *, steps: int 
 
 
 def _min_backlash(spec: CouplingSpec, misalignment_rad: float, steps: int = DEFAULT_STEPS,
-                  tolerance_mm: float = DEFAULT_TOLERANCE_MM) -> float:
+                  tolerance_mm: float = GAP_TOLERANCE_MM) -> float:
     theta = pitch_turning_angles(spec.tooth.teeth, steps)
     both = np.stack([theta, np.pi - theta])
     mins, _ = flank_minima(spec, misalignment_rad, both, tolerance_mm=tolerance_mm,
@@ -78,7 +85,7 @@ def _min_backlash(spec: CouplingSpec, misalignment_rad: float, steps: int = DEFA
 def pivot_on_face_end(spec: CouplingSpec, misalignment_rad: float) -> bool:
     """Whether the pivot teeth (theta = 0 and 180°) touch first at a face end."""
     mins, _ = flank_minima(spec, misalignment_rad, np.array([0.0, np.pi]),
-                           tolerance_mm=DEFAULT_TOLERANCE_MM, measures=("normal",))
+                           tolerance_mm=GAP_TOLERANCE_MM, measures=("normal",))
     return bool(np.any(mins["kind"] == FACE_END))
 
 

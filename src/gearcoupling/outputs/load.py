@@ -9,6 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..arguments import GAP_TOLERANCE_MM
 from ..clearance import SweepResult, sweep
 from ..geometry import renzo_z0_mm
 from ..io import write_json
@@ -87,7 +88,8 @@ def load_studies(spec: CouplingSpec, torque_Nm: float, model: str | None, out: P
 def write_load(spec: CouplingSpec, out: Path, misalignment_deg: float,
                angles: int | None = None, *,
                torque_Nm: float | None = None, model: str | None = None,
-               tolerance_mm: float = 1e-7, plots: bool = True, with_studies: bool = True,
+               tolerance_mm: float = GAP_TOLERANCE_MM, plots: bool = True,
+               with_studies: bool = True,
                swept: SweepResult | None = None,
                progress: Callable[[int, int], None] | None = None) -> list[Path]:
     """The loaded analysis over ``angles`` rotations of a turn (default

@@ -6,6 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..arguments import GAP_TOLERANCE_MM
 from ..clearance import SweepResult, design_quantities, plot_all, sweep
 from ..errors import ArgumentError
 from ..io import plain, write_json
@@ -20,7 +21,7 @@ def turn_angles(angles: int) -> np.ndarray:
 
 
 def write_sweep(spec: CouplingSpec, out: Path, misalignment_deg: float, angles: int = 360, *,
-                tolerance_mm: float = 1e-7, design: bool = True, plots: bool = True,
+                tolerance_mm: float = GAP_TOLERANCE_MM, design: bool = True, plots: bool = True,
                 studies: bool = True) -> tuple[SweepResult, list[Path]]:
     """Sweep ``angles`` rotations over a turn and write ``sweep.csv``,
     ``sweep_summary.json`` (with the design quantities) and the plots; returns the sweep

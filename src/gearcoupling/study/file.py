@@ -50,6 +50,7 @@ from typing import Any
 
 from ..arguments import (
     ANGLE_TOLERANCE_RANGE_DEG,
+    GAP_TOLERANCE_MM,
     MAXIMA,
     count,
     real,
@@ -79,7 +80,8 @@ TOLERANCE_OUTPUTS = ("backlash_mm", "teeth_in_contact_min", "teeth_in_contact_me
 TOLERANCE_KEYS = ("index_sd_mm", "pitch_sd_mm", "hub_runout_mm", "sleeve_runout_mm",
                   "thickness_sd_mm", "crown_sd_mm")
 LIMIT_KEYS = ("index_mm", "pitch_mm", "thickness_mm", "crown_mm")
-ACCURACY = {"tolerance_mm": 1e-7, "angle_tolerance_deg": 1e-4, "steps": 16, "load_angles": 72}
+ACCURACY = {"tolerance_mm": GAP_TOLERANCE_MM, "angle_tolerance_deg": 1e-4, "steps": 16,
+            "load_angles": 72}
 MAX_SAMPLES = MAXIMA["samples"]
 OBJECTIVES = ("mean", "min")  # of a crown optimisation
 

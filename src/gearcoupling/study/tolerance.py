@@ -51,6 +51,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from ..arguments import GAP_TOLERANCE_MM
 from ..clearance import check_misalignment, flank_minima, sweep
 from ..errors import SpecError
 from ..loading import capacity_from_sweep, load_from_sweep, mesh_stiffness_N_per_mm, solve_windup
@@ -321,7 +322,8 @@ def _maps(spec: CouplingSpec,
 def tolerance_sample(spec: CouplingSpec,
                      misalignment_deg: float, tol: Tolerances, seed: int, sample: int, *,
                      path: str = "fast", torque_Nm: float | None = None, steps: int = 4,
-                     tolerance_mm: float = 1e-7, model: str = "renzo") -> dict[str, float]:
+                     tolerance_mm: float = GAP_TOLERANCE_MM,
+                     model: str = "renzo") -> dict[str, float]:
     """One Monte Carlo sample (errors seeded by ``(seed, sample)``, so any chunking gives
     the same rows): the outputs with errors, the nominal capacity and ``K``."""
     if path not in PATHS:
