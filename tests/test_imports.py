@@ -46,6 +46,7 @@ def test_import_gearcoupling_loads_no_scipy():
 LAYERS = {
     "errors": set(),
     "arguments": {"errors"},
+    "numeric": set(),
     "io": {"errors"},
     "browser": {"errors"},
     "tables": {"errors"},
@@ -71,9 +72,10 @@ LAYERS = {
     "rotordynamics": {"io", "errors", "geometry", "spec", "loadspec", "plots", "parts",
                       "clearance", "loading", "tables"},
 }
-# the argument checks (numbers, counts, torques, documented maxima) sit beside the errors
-LAYERS = {k: v | {"arguments"} if k not in ("errors", "arguments") else v
-          for k, v in LAYERS.items()}
+# the argument checks (numbers, counts, torques, documented maxima) sit beside the errors,
+# the numeric guards (numpy only) below everything
+LAYERS = {k: v | {"arguments", "numeric"} if k not in ("errors", "arguments", "numeric")
+          else v for k, v in LAYERS.items()}
 
 
 def _type_checking_nodes(tree) -> set[int]:

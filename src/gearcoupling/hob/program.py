@@ -26,6 +26,7 @@ from numpy.typing import NDArray
 from ..arguments import MAXIMA, count, is_real, real
 from ..errors import ArgumentError
 from ..geometry import HubModel, hub_model, plane_rack, tip_radius
+from ..numeric import TINY
 from ..spec import CouplingSpec, as_spec
 
 _DENSE = 65  # exact-curve samples per move when its chordal deviation is measured
@@ -196,7 +197,7 @@ def chord_deviation(curve: NDArray[np.float64], a: NDArray[np.float64],
         Largest distance of the ``k`` points to the segment.
     """
     d = b - a
-    L2 = np.maximum(np.einsum("...i,...i->...", d, d), 1e-300)
+    L2 = np.maximum(np.einsum("...i,...i->...", d, d), TINY)
     t = np.einsum("...ki,...i->...k", curve - a[..., None, :], d) / L2[..., None]
     foot = a[..., None, :] + np.clip(t, 0.0, 1.0)[..., None] * d[..., None, :]
     return np.max(np.linalg.norm(curve - foot, axis=-1), axis=-1)

@@ -25,6 +25,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import ArgumentError, GearCouplingError, SpecError
+from ..numeric import TINY, divide
 from .surface import FlankTable, deviation
 
 
@@ -57,7 +58,7 @@ class RegistrationError(GearCouplingError):
 
 def _rodrigues(w: NDArray[np.float64]) -> NDArray[np.float64]:
     a = float(np.linalg.norm(w))
-    if a < 1e-300:
+    if a < TINY:
         return np.eye(3)
     k = w / a
     K = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
@@ -220,7 +221,7 @@ def fine_register(points, table: FlankTable, Rm, t, *, fit_points: int = 20_000,
         res = d + J @ x_all
         k = max(1.345 * 1.4826 * float(np.median(np.abs(res))), 1e-7)
         weight[:] = 1.0
-        weight[dev.index[ok]] = np.minimum(1.0, k / np.maximum(np.abs(res), 1e-300))
+        weight[dev.index[ok]] = np.minimum(1.0, divide(k, np.abs(res)))
         dR = _rodrigues(x[:3])
         Rm, t = dR @ Rm, dR @ t + x[3:]
         if np.linalg.norm(x[:3]) * m.R + np.linalg.norm(x[3:]) < 1e-9 * m.R:

@@ -34,6 +34,7 @@ from ..errors import ArgumentError, GearCouplingError
 from ..geometry import FLANKS
 from ..io import write_csv_rows
 from ..loadspec import LOAD_MODELS
+from ..numeric import TINY
 from ..spec import MISALIGNMENT_RANGE_DEG, CouplingSpec, as_spec
 from ..tables import dataframe
 from .api import SWEEP_ACCURACY, load_from_sweep
@@ -101,7 +102,7 @@ def _root_torque(ratio, T0: float, *, step: float = 8.0, rtol: float = RTOL) -> 
         if lo < 1e-12:
             return 0.0
         r_lo = ratio(lo)
-    f = lambda x: math.log(max(ratio(math.exp(x)), 1e-300))  # noqa: E731
+    f = lambda x: math.log(max(ratio(math.exp(x)), TINY))  # noqa: E731
     # on log T an absolute tolerance is a relative one on T (brentq's rtol would scale by ln T)
     return math.exp(brentq(f, math.log(lo), math.log(hi), xtol=rtol, rtol=1e-15))
 
@@ -399,7 +400,7 @@ def _secant_root(ratio, T0: float, slope: float, rtol: float = SURFACE_RTOL) -> 
     ``ln T`` (nearly straight: the first step takes the slope ``slope``), kept inside the
     bracket once one is found (bisection where a step leaves it, doubling steps outward
     before); stops when the step is below ``rtol`` (relative)."""
-    x0, f0 = math.log(T0), math.log(max(ratio(T0), 1e-300))
+    x0, f0 = math.log(T0), math.log(max(ratio(T0), TINY))
     lo, hi = (-math.inf, x0) if f0 >= 0 else (x0, math.inf)
     x1 = x0 - f0 / slope
     for _ in range(100):
@@ -407,7 +408,7 @@ def _secant_root(ratio, T0: float, slope: float, rtol: float = SURFACE_RTOL) -> 
             return math.inf
         if x1 < LOG_T_MIN:  # over the limit at a vanishing torque (binding teeth)
             return 0.0
-        f1 = math.log(max(ratio(math.exp(x1)), 1e-300))
+        f1 = math.log(max(ratio(math.exp(x1)), TINY))
         if f1 >= 0:
             hi = min(hi, x1)
         else:

@@ -42,6 +42,7 @@ from numpy.typing import ArrayLike, NDArray
 from scipy import fft
 
 from ..errors import ArgumentError, GearCouplingError, SpecError
+from ..numeric import TINY, divide
 
 DEFAULT_TOLERANCE = 1e-8  # relative: |dp| summed / |p| summed and gap residual / gap scale
 MAX_ITER = 4000
@@ -267,7 +268,7 @@ class RigidSprings:
             return False
         c_new = np.broadcast_to(_springs(self._update(p)), self.c.shape)
         tol = max(tolerance, self.tolerance)
-        if np.any(np.abs(c_new - self.c) > tol * np.maximum(self.c, 1e-300)):
+        if np.any(np.abs(c_new - self.c) > tol * np.maximum(self.c, TINY)):
             self.c = c_new
             return True
         return False
@@ -620,7 +621,7 @@ def _shared_approach(grids: _Grids, W: float, p0
         # each loaded grid's law through this solve
         defl = np.asarray(grids.compliance.deflection_mm(p), float).reshape(B)
         c = np.where(loaded, np.maximum(defl, 0.0) / np.where(loaded, Wb, 1.0), c)
-        a = np.where(loaded, np.maximum(alpha - grids.gmin - c * Wb, 1e-300), np.nan)
+        a = np.where(loaded, np.maximum(alpha - grids.gmin - c * Wb, TINY), np.nan)
         moved = loaded & (last_W > 0) & (np.abs(Wb / np.where(last_W > 0, last_W, 1.0) - 1)
                                          > 1e-6)
         with np.errstate(invalid="ignore", divide="ignore"):
@@ -653,7 +654,7 @@ def load_split(first_touch_mm: ArrayLike, law: ArrayLike, load_N: float
         raise ArgumentError("load_split: no grid has a known law")
     lo_e, hi_e, _ = CONTACT_EXPONENT
     fill = [np.where(known, v, np.median(v[known])) for v in (k, e, c)]
-    return _model_split(g, np.maximum(fill[0], 1e-300), np.clip(fill[1], lo_e, hi_e),
+    return _model_split(g, np.maximum(fill[0], TINY), np.clip(fill[1], lo_e, hi_e),
                         np.maximum(fill[2], 0.0), float(load_N))
 
 
@@ -715,7 +716,7 @@ def _given_approach(grids: _Grids, approach: float, p0) -> tuple[NDArray, int, f
     # scale a first guess so the gap at the start cells roughly closes
     u1 = grids.operator(p, every)
     on = p > 0
-    p *= max(approach - gmin, 0.0) / max(float(np.max(u1[on])), 1e-300)
+    p *= divide(max(approach - gmin, 0.0), float(np.max(u1[on])))
     scale_len = float(np.max(grids.scale))
     delta, G_old = 0.0, 1.0
     t = np.zeros_like(p)
@@ -744,7 +745,7 @@ def _given_approach(grids: _Grids, approach: float, p0) -> tuple[NDArray, int, f
             delta = 1.0
         p = np.where(m, p, 0.0)
         u = grids.operator(p, every)
-        res = float(np.sum(np.abs(p - p_old))) / max(float(np.sum(p)), 1e-300)
+        res = divide(float(np.sum(np.abs(p - p_old))), float(np.sum(p)))
         gap_err = math.sqrt(G / max(int(np.count_nonzero(on)), 1)) / scale_len
         converged = res <= grids.tolerance and gap_err <= grids.tolerance and not np.any(over)
         if (converged or it % SPRING_EVERY == 0) and grids.update(p, grids.tolerance):

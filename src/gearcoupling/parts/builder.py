@@ -18,6 +18,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import ArgumentError, GeometryError
+from ..numeric import TINY
 
 SURFACE_KINDS = ("flank_cw", "flank_ccw", "fillet_cw", "fillet_ccw", "root", "tip",
                  "chamfer_cw", "chamfer_ccw", "end", "body", "bore", "side")
@@ -106,12 +107,12 @@ def _shape_cost(p: NDArray, q: NDArray, r: NDArray) -> NDArray:
     for a, b, c in ((p, q, r), (q, r, p), (r, p, q)):
         u, w = b - a, c - a
         cos = np.sum(u * w, -1) / np.maximum(np.linalg.norm(u, axis=-1)
-                                             * np.linalg.norm(w, axis=-1), 1e-300)
+                                             * np.linalg.norm(w, axis=-1), TINY)
         worst = np.maximum(worst, -cos)
     scale = np.maximum(np.sum((q - p) ** 2, -1), np.sum((r - p) ** 2, -1))
     good = area2 > 1e-12 * scale
     with np.errstate(divide="ignore"):
-        cost = 1.0 / np.maximum(1.0 - worst, 1e-300) ** 2
+        cost = 1.0 / np.maximum(1.0 - worst, TINY) ** 2
     return np.where(good, cost, np.inf)
 
 
