@@ -18,6 +18,7 @@ from ..fea import ccx_path, check_size, fe_contact, fillet_notes, gmsh_module
 from ..io import write_json
 from ..loading import sector_check
 from ..loadspec import LOAD_MODELS
+from ..spec import MISALIGNMENT_RANGE_DEG
 from .common import (
     add_spec_arguments,
     count,
@@ -35,7 +36,7 @@ def register(sub) -> None:
     p.add_argument("--torque", type=number_in(*TORQUE_RANGE_NM, "N·m"), default=None,
                    metavar="NM", help=f"torque in N·m, {TORQUE_RANGE_NM[0]:g} to "
                    f"{TORQUE_RANGE_NM[1]:g} (default: the spec's)")
-    p.add_argument("--misalignment", type=number_in(0.0, 6.0, "°"), default=0.0,
+    p.add_argument("--misalignment", type=number_in(*MISALIGNMENT_RANGE_DEG, "°"), default=0.0,
                    metavar="DEG", help="misalignment in degrees, 0 to 6 (default 0)")
     p.add_argument("--rotation", type=number_in(-360.0, 360.0, "°"), default=0.0,
                    metavar="DEG", help="turning angle of a misaligned pose (default 0)")

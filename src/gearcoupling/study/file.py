@@ -211,10 +211,7 @@ def _check_values(p: Parameter, study_path: str, base_name: str, base_text: str,
         probes = [round(v) for v in probes]
     for value in probes:
         if p.key == "misalignment_deg":
-            lo, hi = MISALIGNMENT_RANGE_DEG
-            if not (isinstance(value, int | float) and lo <= value <= hi):
-                raise SpecError(f"{study_path}:{p.line} vary '{p.key}'", value,
-                                f"misalignment must be {lo}-{hi} degrees")
+            check_misalignment_deg(value, f"{study_path}:{p.line} vary '{p.key}'")
             continue
         if p.key == "torque_Nm":  # the range of every entry point
             torque_Nm(value, f"{study_path}:{p.line} vary '{p.key}'", error=SpecError)
@@ -441,10 +438,11 @@ def spec_hash(spec: CouplingSpec) -> str:
 def optimise_options(study: Study) -> dict[str, Any]:
     opt = dict(study.optimise or {})
     angles = opt.get("angles_deg")
+    lo, hi = MISALIGNMENT_RANGE_DEG
     if not (isinstance(angles, list) and angles
-            and all(isinstance(a, int | float) and 0 < a <= 6 for a in angles)):
+            and all(isinstance(a, int | float) and lo < a <= hi for a in angles)):
         raise SpecError(f"{study.source} optimise.angles_deg", angles,
-                        "a non-empty list of design angles in (0, 6] degrees")
+                        f"a non-empty list of design angles in ({lo:g}, {hi:g}] degrees")
     objective = opt.get("objective", "mean")
     if objective not in OBJECTIVES:
         raise SpecError(f"{study.source} optimise.objective", objective, f"one of {OBJECTIVES}")
