@@ -175,6 +175,20 @@ def torque_Nm(value: Any, field: str = "torque_Nm", *, zero: bool = True,
                 + (", or 0 (unloaded)" if zero else "") + "; the sign picks the loaded flank")
 
 
+def resolve_torque_Nm(spec: Any, torque: Any, field: str = "torque_Nm", *,
+                      zero: bool = True) -> float:
+    """The torque in N·m a call applies, by one rule for every entry point: the argument
+    ``torque`` (checked by :func:`torque_Nm`, an :class:`ArgumentError` naming
+    ``field``), else the spec's ``[load] torque_Nm`` (checked by the spec against the same
+    range), else a :class:`SpecError`. ``zero=False`` refuses 0 from either."""
+    if torque is not None:
+        return torque_Nm(torque, field, zero=zero)
+    if spec.load.torque_Nm is None:
+        raise SpecError("load.torque_Nm", None, "no torque: give [load] torque_Nm (or "
+                        "torque_lbf_in) in the spec or torque_Nm= / --torque")
+    return torque_Nm(spec.load.torque_Nm, "load.torque_Nm", zero=zero, error=SpecError)
+
+
 def angle_tolerance_deg(value: Any, field: str = "tolerance_deg") -> float:
     """A design-angle search tolerance in :data:`ANGLE_TOLERANCE_RANGE_DEG` degrees."""
     lo, hi = ANGLE_TOLERANCE_RANGE_DEG

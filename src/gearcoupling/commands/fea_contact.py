@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import sys
 
-from ..arguments import TORQUE_RANGE_NM
+from ..arguments import TORQUE_RANGE_NM, resolve_torque_Nm
 from ..errors import ArgumentError
 from ..fea import ccx_path, check_size, fe_contact, fillet_notes, gmsh_module
 from ..io import write_json
@@ -60,7 +60,7 @@ def run(args) -> int:
     for part in ("hub", "sleeve"):
         check_size(spec, part, args.size, "--size")
         check_size(spec, part, args.contact_size, "--contact-size")
-    if args.torque is None and not (spec.load.torque_Nm or 0.0) > 0:
+    if not resolve_torque_Nm(spec, args.torque, "--torque", zero=False) > 0:  # before any work
         raise ArgumentError("load.torque_Nm", spec.load.torque_Nm, "a torque above 0 N·m: FE "
                             "contact needs a load (set it, or give --torque)")
     for note in fillet_notes(spec, args.size):

@@ -12,24 +12,13 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..arguments import choice
-from ..arguments import torque_Nm as check_torque_Nm
+from ..arguments import choice, resolve_torque_Nm
 from ..clearance import SweepResult
-from ..errors import ArgumentError, SpecError
+from ..errors import ArgumentError
 from ..geometry import FLANKS
 from ..loadspec import LOAD_MODELS
 from ..spec import CouplingSpec
 from .springs import cantilever, tooth_compliance
-
-
-def resolve_torque_Nm(spec: CouplingSpec, torque_Nm: float | None) -> float:
-    """The torque to apply: the argument, else ``[load] torque_Nm``; finite or SpecError."""
-    if torque_Nm is not None:
-        return check_torque_Nm(torque_Nm)  # one range for every entry point
-    if spec.load.torque_Nm is None:
-        raise SpecError("load.torque_Nm", None, "no torque: give [load] torque_Nm (or "
-                        "torque_lbf_in) in the spec or torque_Nm= / --torque")
-    return spec.load.torque_Nm  # checked by LoadSpec against the same range
 
 
 def resolve_model(spec: CouplingSpec, model: str | None) -> str:

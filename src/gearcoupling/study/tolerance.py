@@ -51,7 +51,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..arguments import GAP_TOLERANCE_MM
+from ..arguments import GAP_TOLERANCE_MM, resolve_torque_Nm
 from ..clearance import check_misalignment, flank_minima, sweep
 from ..errors import SpecError
 from ..loading import capacity_from_sweep, load_from_sweep, mesh_stiffness_N_per_mm, solve_windup
@@ -332,9 +332,7 @@ def tolerance_sample(spec: CouplingSpec,
         raise SpecError("tolerances.model", model, f"one of {MODELS}")
 
     check_misalignment(misalignment_deg)
-    T = spec.load.torque_Nm if torque_Nm is None else torque_Nm
-    if T is None:
-        raise SpecError("load.torque_Nm", None, "give a torque ([load] or torque_Nm)")
+    T = resolve_torque_Nm(spec, torque_Nm)
     err = draw_errors(tol, spec.tooth.teeth, np.random.default_rng([seed, sample]))
     maps = _maps(spec, misalignment_deg, steps, tol.crown_sd_mm if path == "interpolated"
                  else 0.0, tolerance_mm)
