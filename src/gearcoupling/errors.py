@@ -48,18 +48,14 @@ class BackendError(GearCouplingError, RuntimeError):
 
 class ArgumentError(GearCouplingError, ValueError):
     """An invalid argument of a library call or command line (not a value of a spec or
-    study file): the message names the argument, its value and what is allowed. Raised as
-    ``ArgumentError(message)`` or ``ArgumentError(name, value, allowed)``; the CLI maps it
-    to exit status 2."""
+    study file), raised as ``ArgumentError(field, value, allowed)``: the message names the
+    argument, its value and what is allowed. The CLI maps it to exit status 2."""
 
-    def __init__(self, *args: object):
-        if len(args) == 3:
-            self.field, self.value, self.allowed = args
-            super().__init__(_message(*args))
-        else:
-            super().__init__(*args)
+    def __init__(self, field: str, value: object, allowed: str):
+        self.field = field
+        self.value = value
+        self.allowed = allowed
+        super().__init__(_message(field, value, allowed))
 
     def __reduce__(self):
-        if hasattr(self, "allowed"):
-            return type(self), (self.field, self.value, self.allowed)
-        return type(self), self.args
+        return type(self), (self.field, self.value, self.allowed)

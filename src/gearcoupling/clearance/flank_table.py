@@ -315,7 +315,7 @@ def build_flank_table(m: HubModel, nodes: tuple[int, int] = DEFAULT_NODES) -> Fl
     (pieces from :func:`kink_edges`)."""
     nz, nt = nodes
     if nz < 4 or nt < 3:
-        raise ArgumentError(f"flank table nodes must be at least (4, 3), got {nodes}")
+        raise ArgumentError("nodes", nodes, "flank table nodes (nz, nt) of at least (4, 3)")
     edges = kink_edges(m)
     fits = [_fit_piece(m, lo, hi, nz, nt) for lo, hi in pairwise(edges)]
     coef = np.stack([f[0] for f in fits])
@@ -341,7 +341,7 @@ def adaptive_flank_table(m: HubModel, tolerance_mm: float = GAP_TOLERANCE_MM
     error; read ``max_error_mm``.
     """
     if not (tolerance_mm > 0):
-        raise ArgumentError(f"table tolerance must be > 0 mm, got {tolerance_mm!r}")
+        raise ArgumentError("tolerance_mm", tolerance_mm, "a table tolerance > 0 mm")
     table = build_flank_table(m, NODE_LADDER[0])
     for nodes in NODE_LADDER[1:]:
         if table.max_error_mm <= tolerance_mm:

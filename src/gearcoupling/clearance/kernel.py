@@ -798,12 +798,12 @@ def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
         For each of ``measures``.
     """
     if grid < 3:
-        raise ArgumentError(f"grid must be at least 3 planes, got {grid}")
+        raise ArgumentError("grid", grid, "at least 3 planes")
     if not tolerance_mm > 0:
-        raise ArgumentError(f"tolerance_mm must be > 0, got {tolerance_mm!r}")
+        raise ArgumentError("tolerance_mm", tolerance_mm, "must be > 0 mm")
     unknown = set(measures) - set(MEASURES)
     if unknown or not measures:
-        raise ArgumentError(f"measures must be among {MEASURES}, got {measures!r}")
+        raise ArgumentError("measures", measures, f"must be among {MEASURES}")
     theta = np.asarray(theta, dtype=float).ravel()
     n = theta.size
     # the virtual measures (rows of _plane_minima) the requested measures fold from

@@ -156,7 +156,7 @@ class HobProgram:
                 lines.append(f"G1 X{x:.5f} Z{z:.5f}")
             else:
                 if m.centre is None:
-                    raise ArgumentError(f"arc move {m} has no centre")
+                    raise ArgumentError("moves", m, "an arc move with a centre")
                 cz, cx = m.centre
                 code = "G2" if m.clockwise else "G3"
                 lines.append(f"{code} X{x:.5f} Z{z:.5f} I{cx - m.start[1]:.5f} "

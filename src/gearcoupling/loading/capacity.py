@@ -168,8 +168,8 @@ def _flank_problem(sweep_result: SweepResult, loaded_flank: str,
                    pressure_grid: tuple[int, int] | None = None) -> LoadProblem:
     """The load problem of ``loaded_flank`` (a unit torque of that sign picks the flank)."""
     if loaded_flank not in FLANKS:
-        raise ArgumentError(f"loaded_flank = {loaded_flank!r}: must be 'ccw' (positive torque) "
-                            "or 'cw' (negative torque)")
+        raise ArgumentError("loaded_flank", loaded_flank, "'ccw' (positive torque) or 'cw' "
+                            "(negative torque)")
     return load_problem(sweep_result, 1.0 if loaded_flank == "ccw" else -1.0, gap_offset_rad,
                         pressure_grid)
 

@@ -651,7 +651,7 @@ def load_split(first_touch_mm: ArrayLike, law: ArrayLike, load_N: float
     k, e, c = np.asarray(law, dtype=float)
     known = np.isfinite(k) & np.isfinite(e) & np.isfinite(c)
     if not np.any(known):
-        raise ArgumentError("load_split: no grid has a known law")
+        raise ArgumentError("law", "no known law", "load_split needs a grid with a known law")
     lo_e, hi_e, _ = CONTACT_EXPONENT
     fill = [np.where(known, v, np.median(v[known])) for v in (k, e, c)]
     return _model_split(g, np.maximum(fill[0], TINY), np.clip(fill[1], lo_e, hi_e),

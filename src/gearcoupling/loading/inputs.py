@@ -37,8 +37,8 @@ def loaded_gaps(sweep_result: SweepResult, flank: int,
     if off.shape == (2, N):
         off = off[flank]
     if off.shape != (N,) or not np.all(np.isfinite(off)):
-        raise ArgumentError(f"gap_offset_rad has shape {off.shape}: must be finite, shaped "
-                            f"({N},) or (2, {N})")
+        raise ArgumentError("gap_offset_rad", f"shape {off.shape}", f"finite, shaped ({N},) "
+                            f"or (2, {N})")
     return g + off[:, None]
 
 
@@ -114,8 +114,8 @@ def load_problem(sweep_result: SweepResult, torque_Nm: float | None = None,
                  pressure_grid: tuple[int, int] | None = None) -> LoadProblem:
     """The :class:`LoadProblem` of a sweep at a torque (default the spec's ``[load]`` torque)."""
     if not isinstance(sweep_result, SweepResult):
-        raise ArgumentError(f"sweep_result is a {type(sweep_result).__name__}: must be the "
-                            "SweepResult of gearcoupling.sweep")
+        raise ArgumentError("sweep_result", type(sweep_result).__name__, "the SweepResult "
+                            "of gearcoupling.sweep")
     spec = sweep_result.spec
     T = resolve_torque_Nm(spec, torque_Nm)
     flank = 1 if T >= 0 else 0

@@ -16,7 +16,7 @@ from ..spec import CouplingSpec
 def turn_angles(angles: int) -> np.ndarray:
     """``angles`` rotations evenly over a turn (degrees); at least one."""
     if angles < 1:
-        raise ArgumentError(f"angles = {angles}: must be at least 1")
+        raise ArgumentError("angles", angles, "at least 1")
     return np.arange(angles) * 360.0 / angles
 
 

@@ -56,8 +56,8 @@ def tooth_runs(teeth: int, selection) -> list[Run]:
         raise ArgumentError("teeth", str(picked)[:60], allowed)
     sel = sorted({int(k) for k in picked})
     if not sel or sel[0] < 0 or sel[-1] >= teeth:
-        raise ArgumentError(f"teeth = {list(selection)!r}: must be a non-empty selection of tooth "
-                         f"indices from 0 to {teeth - 1}")
+        raise ArgumentError("teeth", list(selection), "a non-empty selection of tooth "
+                            f"indices from 0 to {teeth - 1}")
     if len(sel) == teeth:
         return [Run(0, teeth, teeth)]
     present = set(sel)

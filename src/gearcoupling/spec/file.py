@@ -114,25 +114,26 @@ def spec_from_dict(data: dict[str, Any], name: str = "custom") -> CouplingSpec:
                             f"as {DEFAULT_RULES.get(err.field, 'a default')}; set "
                             f"{err.field} explicitly]") from None
         if err.field in root.given and root.scale != 1.0:
-            raise _as_typed(err, *root.given[err.field], root.scale) from None
+            typed, scale = root.given[err.field]
+            raise _as_typed(err, typed, scale, root.scale) from None
         raise
 
 
 def _as_typed(err: SpecError, typed: Any, scale: float, unit_mm: float) -> SpecError:
     """``err`` quoting the value as the file gave it (``typed``, read times ``scale`` into
-    mm or 1/mm) with the converted value beside it; ``err`` itself where its value is not
-    the converted one (a count or a derived value of that key)."""
-    values = typed if isinstance(typed, tuple) else (typed,)
-    got = err.value if isinstance(err.value, tuple) else (err.value,)
-    if len(got) != len(values) or not all(
+    mm or 1/mm; ``unit_mm`` is the file's unit) with the converted value beside it; ``err``
+    itself where its value is not the converted one (a count or a derived value)."""
+    given = list(typed) if isinstance(typed, tuple) else [typed]
+    got = list(err.value) if isinstance(err.value, tuple) else [err.value]
+    if len(got) != len(given) or not all(
             isinstance(g, int | float) and math.isclose(g, v * scale, rel_tol=1e-12)
-            for g, v in zip(got, values, strict=True)):
+            for g, v in zip(got, given, strict=True)):
         return err
     unit = next(u for u, f in UNITS.items() if f == unit_mm)
     unit, mm = (unit, "mm") if scale == unit_mm else (f"1/{unit}", "1/mm")
-    shown = (f"{typed!r} {unit} ({err.value!r} {mm})" if not isinstance(typed, tuple) else
-             f"{list(typed)!r} {unit} ({list(err.value)!r} {mm})")
-    return SpecError(err.field, typed, err.allowed, shown)
+    if isinstance(typed, tuple):
+        return SpecError(err.field, typed, err.allowed, f"{given!r} {unit} ({got!r} {mm})")
+    return SpecError(err.field, typed, err.allowed, f"{typed!r} {unit} ({err.value!r} {mm})")
 
 
 def default_fillet_radius(tooth: ToothSystem, thickness: float, dedendum: float) -> float:

@@ -30,7 +30,7 @@ def flank_values(state: PoseState, mode: str = "clearance") -> NDArray[np.float6
     or the separation ``clearance - max(0, smallest clearance of the flank)``;
     interfering flanks stay negative (red) and unfaced ones infinite (grey) in both."""
     if mode not in COLOR_MODES:
-        raise ArgumentError(f"color mode = {mode!r}: must be one of {COLOR_MODES}")
+        raise ArgumentError("color mode", mode, f"one of {COLOR_MODES}")
     c = state.clearance_mm
     if mode == "clearance":
         return c
@@ -47,7 +47,7 @@ def flank_colors(state: PoseState, mode: str, scale_mm: float,
     if mode != "pressure":
         return clearance_colors(flank_values(state, mode), scale_mm)
     if state.pressure_MPa is None:
-        raise ArgumentError(f"mode = {mode!r}: needs a state from pose_state(..., loads=...)")
+        raise ArgumentError("mode", mode, "needs a state from pose_state(..., loads=...)")
     return pressure_colors(state.pressure_MPa,
                            spec.material.hub.allowable_contact_stress_MPa)
 
