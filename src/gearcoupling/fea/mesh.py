@@ -21,7 +21,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..arguments import choice, flag, is_real
-from ..errors import ArgumentError, GeometryError, SpecError
+from ..errors import ArgumentError, GeometryError
 from ..export import write_step
 from ..parts import SURFACE_KINDS, build_part, check_tolerance, part_solid
 from ..spec import CouplingSpec, as_spec
@@ -176,7 +176,7 @@ def mesh_part(spec: CouplingSpec, part: str, *, sector: int | None = DEFAULT_SEC
     size = check_size(spec, part, size_mm)
     body = max(3.0 * size, spec.tooth.module) if body_size_mm is None else float(body_size_mm)
     if not (math.isfinite(body) and body >= size):
-        raise SpecError("body_size_mm", body_size_mm, f"a size (mm) of at least {size:.3g}")
+        raise ArgumentError("body_size_mm", body_size_mm, f"a size (mm) of at least {size:.3g}")
     if loaded is not None and not (0 < loaded.flank_size_mm <= size <= loaded.far_size_mm
                                    <= body):
         raise ArgumentError("loaded", loaded, f"flank size <= {size:.3g} mm <= far size <= "

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import ArgumentError, SpecError
+from ..errors import ArgumentError
 from ..io import atomic_path, inp_element_lines, inp_id_lines, inp_node_lines, writable_file
 from .volume import VolumeMesh
 
@@ -69,7 +69,7 @@ def write_mesh(vm: VolumeMesh, path, fmt: str | None = None) -> Path:
     path = writable_file(path, "path")
     fmt = fmt or path.suffix.lstrip(".").lower()
     if fmt not in FORMATS:
-        raise SpecError("format", fmt, f"one of {', '.join(FORMATS)}")
+        raise ArgumentError("format", fmt, f"one of {', '.join(FORMATS)}")
     if fmt == "inp":
         return write_inp(vm, path)
     with atomic_path(path) as tmp:

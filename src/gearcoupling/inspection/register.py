@@ -24,7 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import ArgumentError, GearCouplingError, SpecError
+from ..errors import ArgumentError, GearCouplingError
 from ..numeric import TINY, divide
 from .surface import FlankTable, deviation
 
@@ -145,7 +145,7 @@ def coarse_place(points, table: FlankTable, mode: str = "auto", sample: int = 10
             raise RegistrationError("no candidate axis for the scan's tooth pattern")
         Rm, t = best[1], -best[1] @ c
     else:
-        raise SpecError("coarse", mode, "'auto' (find axis and teeth) or 'none' (keep frame)")
+        raise ArgumentError("coarse", mode, "'auto' (find axis and teeth) or 'none' (keep frame)")
     check_scale(points @ Rm.T + t, tip)
     p = sub @ Rm.T + t
     r = np.hypot(p[:, 0], p[:, 1])
@@ -242,7 +242,7 @@ def register(points, table: FlankTable, *, coarse: str = "auto", fit_points: int
     scan of a few teeth) and the file's frame fits; otherwise the first error is raised.
     """
     if not (isinstance(fit_points, int) and fit_points >= 100):
-        raise SpecError("fit_points", fit_points, "an integer >= 100")
+        raise ArgumentError("fit_points", fit_points, "an integer >= 100")
     try:
         used = coarse
         Rm, t, strength = coarse_place(points, table, coarse)

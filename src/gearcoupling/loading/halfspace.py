@@ -41,7 +41,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy import fft
 
-from ..errors import ArgumentError, GearCouplingError, SpecError
+from ..errors import ArgumentError, GearCouplingError
 from ..numeric import TINY, divide
 
 DEFAULT_TOLERANCE = 1e-8  # relative: |dp| summed / |p| summed and gap residual / gap scale
@@ -61,7 +61,8 @@ def composite_modulus(e1_MPa: float, nu1: float, e2_MPa: float, nu2: float) -> f
         if not (math.isfinite(e) and e > 0):
             raise ArgumentError(name, e, "must be a finite modulus > 0 MPa")
         if not (math.isfinite(nu) and -1.0 < nu < 0.5):
-            raise SpecError("poisson_ratio", nu, "must be in (-1, 0.5)")
+            raise ArgumentError(name.replace("youngs_modulus_MPa", "poisson_ratio"), nu,
+                                "must be in (-1, 0.5)")
     return 1.0 / ((1.0 - nu1 * nu1) / e1_MPa + (1.0 - nu2 * nu2) / e2_MPa)
 
 
@@ -348,7 +349,7 @@ def solve_contact(hs: HalfSpace, gap0_mm: ArrayLike, *, load_N: float | None = N
             raise ArgumentError("load_N", load_N, "must be finite and > 0 N")
     elif approach_mm is not None:
         if not math.isfinite(approach_mm):
-            raise SpecError("approach_mm", approach_mm, "must be finite")
+            raise ArgumentError("approach_mm", approach_mm, "must be finite")
         if approach_mm <= gmin or not np.any(m):
             z = np.zeros(g0.shape)
             return ContactSolution(z, np.where(m, g0 - approach_mm, 0.0), approach_mm,

@@ -53,7 +53,7 @@ from numpy.typing import NDArray
 
 from ..arguments import GAP_TOLERANCE_MM, resolve_torque_Nm
 from ..clearance import check_misalignment, flank_minima, sweep
-from ..errors import SpecError
+from ..errors import ArgumentError, SpecError
 from ..loading import capacity_from_sweep, load_from_sweep, mesh_stiffness_N_per_mm, solve_windup
 from ..spec import CouplingSpec
 
@@ -327,7 +327,7 @@ def tolerance_sample(spec: CouplingSpec,
     """One Monte Carlo sample (errors seeded by ``(seed, sample)``, so any chunking gives
     the same rows): the outputs with errors, the nominal capacity and ``K``."""
     if path not in PATHS:
-        raise SpecError("path", path, f"one of {PATHS}")
+        raise ArgumentError("path", path, f"one of {PATHS}")
     if model not in MODELS:
         raise SpecError("tolerances.model", model, f"one of {MODELS}")
 

@@ -7,7 +7,7 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ...errors import ArgumentError, SpecError
+from ...errors import ArgumentError
 from ...spec import CouplingSpec
 from .pose import PoseState
 
@@ -74,7 +74,7 @@ def clearance_colors(clearance_mm: ArrayLike, scale_mm: float) -> NDArray[np.uin
     (touching) through green and cyan to blue at ``scale_mm`` and above, grey where
     infinite (no sleeve flank faces the hub flank)."""
     if not (math.isfinite(scale_mm) and scale_mm > 0):
-        raise SpecError("color_scale_mm", scale_mm, "must be a positive finite length (mm)")
+        raise ArgumentError("color_scale_mm", scale_mm, "must be a positive finite length (mm)")
     c = np.asarray(clearance_mm, dtype=float)
     t = np.clip(np.where(np.isfinite(c), c, 0.0) / scale_mm, 0.0, 1.0)
     rgb = np.stack([np.interp(t, _STOPS[:, 0], _STOPS[:, j]) for j in (1, 2, 3)], axis=-1)
