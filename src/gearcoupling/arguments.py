@@ -50,6 +50,9 @@ SWEEP_TOLERANCE_RANGE_MM = (1e-12, 0.1)
 #: design angles, load, studies, report, command line): one value everywhere
 GAP_TOLERANCE_MM = 1e-7
 
+#: the default coarse planes over the face width of the sweep kernel
+SWEEP_GRID = 17
+
 #: tolerances of the design-angle searches in degrees (bisection and Brent's method);
 #: below the bottom they cost more than the geometry is worth, above the top they are
 #: no answer

@@ -11,12 +11,13 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..arguments import (
     GAP_TOLERANCE_MM,
+    SWEEP_GRID,
     angle_tolerance_deg,
     count,
-    keywords,
     real,
     sweep_tolerance_mm,
 )
@@ -205,26 +206,27 @@ def mesh_angles(offset_mm: float, angle_deg: float, span_mm: float, *,
 
 
 def double_engagement(spec: CouplingSpec, offset_mm: float, angle_deg: float, span_mm: float,
-                      angles_deg, **kwargs) -> tuple[MeshAngles, SweepResult, SweepResult]:
+                      angles_deg: ArrayLike, *, offset_azimuth_deg: float = 0.0,
+                      angle_azimuth_deg: float = 0.0, tolerance_mm: float = GAP_TOLERANCE_MM,
+                      grid: int = SWEEP_GRID, periodic: bool = True
+                      ) -> tuple[MeshAngles, SweepResult, SweepResult]:
     """Sweeps of both gear meshes: ``(MeshAngles, result_a, result_b)``.
 
     Raises :class:`ArgumentError` if a mesh angle exceeds the 6° the sweeps cover.
-    ``kwargs``: ``offset_azimuth_deg``, ``angle_azimuth_deg`` (:func:`mesh_angles`) and
-    those of :func:`~.tooth_map.sweep`.
+    ``offset_azimuth_deg``, ``angle_azimuth_deg`` as :func:`mesh_angles`; ``tolerance_mm``,
+    ``grid``, ``periodic`` as :func:`~.tooth_map.sweep`.
     """
     spec = as_spec(spec)
-    keywords(kwargs, ("offset_azimuth_deg", "angle_azimuth_deg", "tolerance_mm", "grid",
-                      "periodic"), "double_engagement")
-    mesh = mesh_angles(offset_mm, angle_deg, span_mm,
-                       offset_azimuth_deg=kwargs.pop("offset_azimuth_deg", 0.0),
-                       angle_azimuth_deg=kwargs.pop("angle_azimuth_deg", 0.0))
+    mesh = mesh_angles(offset_mm, angle_deg, span_mm, offset_azimuth_deg=offset_azimuth_deg,
+                       angle_azimuth_deg=angle_azimuth_deg)
     for name, value in (("mesh A angle", mesh.a_deg), ("mesh B angle", mesh.b_deg)):
         if value > MISALIGNMENT_RANGE_DEG[1]:
             raise ArgumentError(name, round(value, 6), f"must be at most "
                             f"{MISALIGNMENT_RANGE_DEG[1]}°: reduce the offset or angle, or "
                             "lengthen the span")
-    return mesh, sweep(spec, mesh.a_deg, angles_deg, **kwargs), sweep(spec, mesh.b_deg,
-                                                                        angles_deg, **kwargs)
+    a, b = (sweep(spec, deg, angles_deg, tolerance_mm=tolerance_mm, grid=grid, periodic=periodic)
+            for deg in (mesh.a_deg, mesh.b_deg))
+    return mesh, a, b
 
 
 def design_quantities(spec: CouplingSpec, misalignment_deg: float, *,

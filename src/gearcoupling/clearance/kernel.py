@@ -31,7 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from ..arguments import GAP_TOLERANCE_MM
+from ..arguments import GAP_TOLERANCE_MM, SWEEP_GRID
 from ..errors import ArgumentError
 from ..geometry import SleeveModel, inv, map_polar
 from .fast import kernels
@@ -42,7 +42,6 @@ KINDS = ("interior", "face end", "tip edge", "form edge", "sleeve tip edge",
 INTERIOR, FACE_END, TIP_EDGE, FORM_EDGE, SLEEVE_TIP, SLEEVE_FILLET, SLEEVE_FACE, NONE = range(8)
 MEASURES = ("circumferential", "normal", "pitch_circumferential", "pitch_normal")
 CIRC, NORMAL, PITCH_CIRC, PITCH_NORMAL = range(4)
-DEFAULT_GRID = 17  # coarse planes over the face width
 
 
 @dataclass(frozen=True)
@@ -762,7 +761,7 @@ class ZSearch:
 
 def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
              pitch_radius: float, tolerance_mm: float = GAP_TOLERANCE_MM,
-             grid: int = DEFAULT_GRID, max_levels: int = 40,
+             grid: int = SWEEP_GRID, max_levels: int = 40,
              measures: tuple[str, ...] = MEASURES) -> dict[str, Minimum]:
     """Minimum gaps of tooth 0's cw flank to space 0 at turning angles ``theta``.
 

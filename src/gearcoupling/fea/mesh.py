@@ -183,7 +183,7 @@ def mesh_part(spec: CouplingSpec, part: str, *, sector: int | None = DEFAULT_SEC
                             f"body size {body:.3g} mm")
     tol = check_tolerance(spec, tolerance_mm)
     t0 = time.perf_counter()
-    labelled = build_part(spec, part, tol, teeth)
+    labelled = build_part(spec, part, tolerance_mm=tol, teeth=teeth)
     shape = part_solid(spec, part, tol, teeth)
     with tempfile.TemporaryDirectory(prefix="gearcoupling-fea-") as tmp:
         step = write_step(shape, Path(tmp) / f"{part}.step", name=f"{spec.name}-{part}")

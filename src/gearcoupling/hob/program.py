@@ -263,8 +263,8 @@ def _path_moves(m: HubModel, r_h: float, s_gen: float, tol: float):
     return moves, worst
 
 
-def hob_program(spec: CouplingSpec, hob_diameter_mm: float, tolerance_mm: float | None = None,
-                table_points: int = 201) -> HobProgram:
+def hob_program(spec: CouplingSpec, hob_diameter_mm: float, *,
+                tolerance_mm: float | None = None, table_points: int = 201) -> HobProgram:
     """The hob centre path and a two-axis (X infeed, Z feed) program for a spec's hub.
 
     Parameters

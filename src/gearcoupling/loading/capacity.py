@@ -28,7 +28,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import brentq
 
-from ..arguments import MAXIMA, angle_list, choice, keywords
+from ..arguments import GAP_TOLERANCE_MM, MAXIMA, SWEEP_GRID, angle_list, choice
 from ..clearance import SweepResult, sweep
 from ..errors import ArgumentError, GearCouplingError
 from ..geometry import FLANKS
@@ -37,7 +37,7 @@ from ..loadspec import LOAD_MODELS
 from ..numeric import TINY
 from ..spec import MISALIGNMENT_RANGE_DEG, CouplingSpec, as_spec
 from ..tables import dataframe
-from .api import SWEEP_ACCURACY, load_from_sweep
+from .api import load_from_sweep
 from .compliance import first_limit_torque_Nmm
 from .contact import contact_model
 from .inputs import LoadProblem, load_problem, nominal_root_stress_MPa, resolve_model
@@ -511,7 +511,9 @@ def default_angles(spec: CouplingSpec, gap_offset_rad, n: int = 25) -> NDArray:
 def capacity(spec: CouplingSpec, misalignment_deg: float, *, model: str | None = None,
              loaded_flank: str = "ccw", angles_deg: ArrayLike | None = None,
              gap_offset_rad: ArrayLike | None = None,
-             pressure_grid: tuple[int, int] | None = None, **accuracy: Any) -> Capacity:
+             pressure_grid: tuple[int, int] | None = None,
+             tolerance_mm: float = GAP_TOLERANCE_MM, grid: int = SWEEP_GRID,
+             periodic: bool = True) -> Capacity:
     """Torque capacity at a misalignment, per criterion, with the governing one and q.
 
     Parameters
@@ -530,21 +532,21 @@ def capacity(spec: CouplingSpec, misalignment_deg: float, *, model: str | None =
         The surface model's cells per loaded tooth; default 24 x 16 for the load and
         bending criteria and 48 x 32 for the contact pressure (:data:`LOAD_GRID`,
         :data:`PRESSURE_GRID`).
-    **accuracy
-        Passed to the sweep (``tolerance_mm``, ``grid``).
+    tolerance_mm, grid, periodic
+        The sweep's accuracy (:func:`gearcoupling.sweep`).
 
     Returns
     -------
     Capacity
     """
     spec = as_spec(spec)
-    keywords(accuracy, SWEEP_ACCURACY, "capacity")
     choice(loaded_flank, "loaded_flank", FLANKS)
     if model is not None:
         choice(model, "model", LOAD_MODELS)
     if angles_deg is None:
         angles_deg = default_angles(spec, gap_offset_rad, ROTATIONS[resolve_model(spec, model)])
-    sw = sweep(spec, misalignment_deg, angles_deg, **accuracy)
+    sw = sweep(spec, misalignment_deg, angles_deg, tolerance_mm=tolerance_mm, grid=grid,
+               periodic=periodic)
     return capacity_from_sweep(sw, model=model, gap_offset_rad=gap_offset_rad,
                                loaded_flank=loaded_flank, pressure_grid=pressure_grid)
 
@@ -552,12 +554,12 @@ def capacity(spec: CouplingSpec, misalignment_deg: float, *, model: str | None =
 def capacity_curve(spec: CouplingSpec, misalignments_deg: ArrayLike | None = None, *,
                    model: str | None = None, loaded_flank: str = "ccw",
                    angles_deg: ArrayLike | None = None, gap_offset_rad: ArrayLike | None = None,
-                   progress=None, **accuracy: Any) -> CapacityCurve:
+                   progress=None, tolerance_mm: float = GAP_TOLERANCE_MM,
+                   grid: int = SWEEP_GRID, periodic: bool = True) -> CapacityCurve:
     """:func:`capacity` at each misalignment (default 25 from 0 to the design angle, at
     least 0.5°; at most ``MAXIMA["misalignments"]``); ``progress(done, total)`` is called
-    after each."""
+    after each; the other arguments as :func:`capacity`."""
     spec = as_spec(spec)
-    keywords(accuracy, SWEEP_ACCURACY, "capacity_curve")
     if misalignments_deg is None:
         top = max(math.degrees(spec.design_misalignment), 0.5)
         misalignments_deg = np.linspace(0.0, top, 25)
@@ -567,7 +569,8 @@ def capacity_curve(spec: CouplingSpec, misalignments_deg: ArrayLike | None = Non
     out = CapacityCurve()
     for i, m in enumerate(mis):
         out.append(capacity(spec, float(m), model=model, loaded_flank=loaded_flank,
-                            angles_deg=angles_deg, gap_offset_rad=gap_offset_rad, **accuracy))
+                            angles_deg=angles_deg, gap_offset_rad=gap_offset_rad,
+                            tolerance_mm=tolerance_mm, grid=grid, periodic=periodic))
         if progress is not None:
             progress(i + 1, mis.size)
     return out
