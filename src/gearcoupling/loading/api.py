@@ -62,11 +62,11 @@ def load(spec: CouplingSpec, misalignment_deg: float, angles_deg: ArrayLike, *,
     True
     """
     spec = as_spec(spec)
-    resolve_torque_Nm(spec, torque_Nm)
+    torque = resolve_torque_Nm(spec, torque_Nm)  # once, before the sweep
     resolve_model(spec, model)
     sw = sweep(spec, misalignment_deg, angles_deg, tolerance_mm=tolerance_mm, grid=grid,
                periodic=periodic)
-    return load_from_sweep(sw, torque_Nm=torque_Nm, model=model, gap_offset_rad=gap_offset_rad,
+    return load_from_sweep(sw, torque_Nm=torque, model=model, gap_offset_rad=gap_offset_rad,
                            progress=progress, pressure_grid=pressure_grid)
 
 

@@ -97,16 +97,17 @@ def write_load(spec: CouplingSpec, out: Path, misalignment_deg: float,
     ``load.csv``, ``load_summary.json`` and plots. ``swept``: a sweep of this spec at these
     rotations and misalignment to reuse (else one is made); ``progress(done, total)`` as
     the surface model and the studies go."""
+    torque = resolve_torque_Nm(spec, torque_Nm)  # once, before any work
     if swept is None:
         a = turn_phases(spec) if angles is None else turn_angles(angles)
         swept = sweep(spec, misalignment_deg, a, tolerance_mm=tolerance_mm)
-    res = load_from_sweep(swept, torque_Nm=torque_Nm, model=model, progress=progress)
+    res = load_from_sweep(swept, torque_Nm=torque, model=model, progress=progress)
     summary = res.summary()
     paths = [res.write_csv(out / "load.csv"), write_json(out / "load_summary.json", summary)]
     if plots:
         paths.append(save_figure(plot_tooth_load(res), out / "load_tooth_load.png"))
         paths.append(save_figure(plot_patches(res), out / "load_patches.png"))
         if with_studies:
-            paths += load_studies(spec, resolve_torque_Nm(spec, torque_Nm), model, out,
+            paths += load_studies(spec, torque, model, out,
                                   progress=progress)
     return paths
