@@ -1,8 +1,8 @@
-"""Coupling specs: the frozen dataclasses (:mod:`.model`, mm and radians, validated on
-construction) and their files (:mod:`.file`: TOML in mm or inches, defaults, templates,
-dotted overrides). Every name is importable from here."""
+"""Coupling specs: the frozen dataclasses (:mod:`.specmodel`, mm and radians, validated on
+construction) and their files (:mod:`.specfile`: TOML in mm or inches, defaults,
+templates, dotted overrides). The rest of the package imports them from here."""
 
-from .file import (
+from .specfile import (
     DEFAULT_RULES,
     SPEC_KEYS,
     as_spec,
@@ -14,7 +14,7 @@ from .file import (
     spec_from_dict,
     template_names,
 )
-from .model import (
+from .specmodel import (
     CROWNING_KINDS,
     GENERATIONS,
     INSPECTION_LIMITS,

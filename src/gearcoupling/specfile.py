@@ -19,11 +19,11 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import ArgumentError, GeometryError, SpecError, brief
-from ..geometry import HubModel, feed_path, inv_inverse, radius_squared, use_spec_loader
-from ..io import Table, as_path, bundled_names, read_toml, resolve_bundled, set_dotted, unknown_key
-from ..loadspec import UNIT_SIBLINGS, parse_load, parse_material
-from .model import (
+from .errors import ArgumentError, GeometryError, SpecError, brief
+from .geometry import HubModel, feed_path, inv_inverse, radius_squared, use_spec_loader
+from .io import Table, as_path, bundled_names, read_toml, resolve_bundled, set_dotted, unknown_key
+from .loadspec import UNIT_SIBLINGS, parse_load, parse_material
+from .specmodel import (
     INSPECTION_LIMITS,
     MAX_NAME_CHARS,
     MM_PER_INCH,

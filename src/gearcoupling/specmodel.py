@@ -1,7 +1,7 @@
 """Coupling specs: frozen dataclasses in mm and radians, validated on construction.
 
 The dataclasses and their ranges; reading them from TOML (units, defaults, overrides) is
-:mod:`gearcoupling.spec.file`. Every invalid value or combination raises
+:mod:`gearcoupling.specfile`. Every invalid value or combination raises
 :class:`~gearcoupling.errors.SpecError` naming the field, the value and what is allowed.
 Units, frames and signs: ``docs/conventions.md``.
 """
@@ -16,10 +16,10 @@ from functools import cached_property
 from itertools import pairwise
 from typing import Any, ClassVar
 
-from ..errors import ArgumentError, SpecError
-from ..geometry import MAX_END_TANGENT_DEG, check_spec, derived_values
-from ..io import set_dotted
-from ..loadspec import UNIT_SIBLINGS, LoadSpec, Materials
+from .errors import ArgumentError, SpecError
+from .geometry import MAX_END_TANGENT_DEG, check_spec, derived_values
+from .io import set_dotted
+from .loadspec import UNIT_SIBLINGS, LoadSpec, Materials
 
 MM_PER_INCH = 25.4
 UNITS = {"mm": 1.0, "in": MM_PER_INCH}
@@ -399,10 +399,10 @@ class CouplingSpec:
 
 
 def _unset_reader(data: dict[str, Any], name: str) -> CouplingSpec:
-    raise RuntimeError("gearcoupling.spec.file is not imported")
+    raise RuntimeError("gearcoupling.specfile is not imported")
 
 
-#: builds a spec from file data (``spec_from_dict``): set by :mod:`gearcoupling.spec.file`,
+#: builds a spec from file data (``spec_from_dict``): set by :mod:`gearcoupling.specfile`,
 #: which comes after the dataclasses (one-way imports)
 _read_spec: Callable[[dict[str, Any], str], CouplingSpec] = _unset_reader
 
