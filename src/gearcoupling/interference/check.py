@@ -406,7 +406,8 @@ def check_interference(spec: CouplingSpec, misalignment_deg: float, angles_deg: 
         model = build_model(spec, tol, k)
     elif model.half_window != k or abs(model.hub.tolerance_mm - tol) > 1e-12 * tol:
         raise ArgumentError("model", f"{model.label}, tolerance {model.hub.tolerance_mm} mm",
-                            f"a model of teeth = {teeth!r}, tolerance_mm = {tol}")
+                            f"does not match teeth = {teeth!r}, tolerance_mm = {tol}: give "
+                            "a model built for them")
     if k is None:  # model.full
         every = frozenset(range(N))
         sides = (every, every) if backlash else (frozenset(), frozenset())
