@@ -22,10 +22,9 @@ class GearCouplingError(Exception):
     """Base class of every error gearcoupling raises on purpose."""
 
 
-class SpecError(GearCouplingError, ValueError):
-    """An invalid spec value or combination; the message names field, value and what is
-    allowed. ``shown`` quotes the value as the file gave it where that differs from
-    ``repr(value)`` (``0.1 in (2.54 mm)`` for a length of an inch file)."""
+class _Refusal(GearCouplingError, ValueError):
+    """A refused value: the message names the field, the value and what is allowed;
+    ``shown`` quotes the value where ``repr(value)`` is not what the user gave."""
 
     def __init__(self, field: str, value: object, allowed: str, shown: str | None = None):
         self.field = field
@@ -38,6 +37,12 @@ class SpecError(GearCouplingError, ValueError):
         return type(self), (self.field, self.value, self.allowed, self.shown)
 
 
+class SpecError(_Refusal):
+    """An invalid spec or study file value or combination, raised as ``SpecError(field,
+    value, allowed)``; a length of an inch file is shown as given with its mm value beside
+    it (``0.1 in (2.54 mm)``)."""
+
+
 class GeometryError(GearCouplingError, ValueError):
     """A geometric query outside the domain where the surface exists (e.g. off the flank)."""
 
@@ -46,16 +51,7 @@ class BackendError(GearCouplingError, RuntimeError):
     """An optional back-end is missing or failed; the message says what to install or change."""
 
 
-class ArgumentError(GearCouplingError, ValueError):
+class ArgumentError(_Refusal):
     """An invalid argument of a library call or command line (not a value of a spec or
-    study file), raised as ``ArgumentError(field, value, allowed)``: the message names the
-    argument, its value and what is allowed. The CLI maps it to exit status 2."""
-
-    def __init__(self, field: str, value: object, allowed: str):
-        self.field = field
-        self.value = value
-        self.allowed = allowed
-        super().__init__(_message(field, value, allowed))
-
-    def __reduce__(self):
-        return type(self), (self.field, self.value, self.allowed)
+    study file), raised as ``ArgumentError(field, value, allowed)`` like :class:`SpecError`.
+    The CLI maps it to exit status 2."""
