@@ -33,7 +33,7 @@ def main():
             times = []
             for _ in range(3):
                 t0 = time.perf_counter()
-                prog = hob_program(spec, 40 * m, tol)
+                prog = hob_program(spec, 40 * m, tolerance_mm=tol)
                 times.append(time.perf_counter() - t0)
             s = prog.summary()
             print(f"| {name} | {s['crowning']} | {tol:.2e} | {s['arc_moves']} | "

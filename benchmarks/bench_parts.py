@@ -35,7 +35,7 @@ def cold_build(spec, part, tol, repeat=3):
         hub_layout.cache_clear()
         sleeve_layout.cache_clear()
         t0 = time.perf_counter()
-        mesh = build_part(spec, part, tol)
+        mesh = build_part(spec, part, tolerance_mm=tol)
         times.append(time.perf_counter() - t0)
     return mesh, float(np.median(times))
 

@@ -62,7 +62,7 @@ def run_parts(spec) -> str:
 
     tol = spec.tooth.module / 20
     for part in ("hub", "sleeve"):
-        mesh = build_part(spec, part, tol, teeth=[0])
+        mesh = build_part(spec, part, tolerance_mm=tol, teeth=[0])
         if not (mesh.is_watertight and np.all(np.isfinite(mesh.vertices))):
             return "open"
     return "ok"

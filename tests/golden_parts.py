@@ -31,7 +31,7 @@ def golden_parts(name: str) -> dict:
     out = {}
     with tempfile.TemporaryDirectory() as tmp:
         for part in ("hub", "sleeve"):
-            mesh = build_part(spec, part, tol)
+            mesh = build_part(spec, part, tolerance_mm=tol)
             step = export_part(spec, part, Path(tmp) / f"{part}.step", tolerance_mm=tol / 10)
             out[part] = {"tolerance_mm": tol, "triangles": len(mesh.faces),
                          "volume_mm3": float(mesh.volume), "area_mm2": float(mesh.area),

@@ -50,7 +50,7 @@ def test_run_only_and_skip_choose_steps(tmp_path):
 
 
 @pytest.mark.parametrize("argv, words", [
-    (["spec", "renzo-1967", "--set", "hub.face_width=-1"], "hub.face_width = -25.4"),
+    (["spec", "renzo-1967", "--set", "hub.face_width=-1"], "hub.face_width = -1.0 in (-25.4 mm)"),
     (["spec", "renzo-1967", "--set", "hub.crowning.radius=0.01"], "hub.crowning.radius"),
     (["spec", "nope"], "templates"),
     (["spec", "renzo-1967", "--set", "oops"], "KEY=VALUE"),

@@ -28,7 +28,7 @@ TOL = 0.05
 @pytest.fixture(scope="module")
 def hub_sector():
     spec = gc.load_spec("renzo-1967")
-    return spec, build_part(spec, "hub", TOL, teeth=[49, 0, 1])
+    return spec, build_part(spec, "hub", tolerance_mm=TOL, teeth=[49, 0, 1])
 
 
 def test_every_format_is_registered():
@@ -181,7 +181,7 @@ def test_step_solid_is_exact_geometry_and_round_trips(tmp_path, name, part):
     pts = np.concatenate(list(samples.values()))
     assert _step_distance(shape, pts).max() <= tol
     path = export_part(spec, part, tmp_path / f"{part}.step", tolerance_mm=tol)
-    mesh = build_part(spec, part, tol)
+    mesh = build_part(spec, part, tolerance_mm=tol)
     v_back = read_step_volume(path)
     assert v_back == pytest.approx(shape_volume(shape), rel=1e-9)
     # the mesh is within tol of the exact surface, so volumes differ by at most tol x area
@@ -198,7 +198,7 @@ def test_step_sector_matches_the_mesh_sector(tmp_path):
     teeth = [49, 0, 1]
     for part in ("sleeve", "hub"):
         path = export_part(spec, part, tmp_path / f"{part}.stp", tolerance_mm=TOL, teeth=teeth)
-        mesh = build_part(spec, part, TOL, teeth=teeth)
+        mesh = build_part(spec, part, tolerance_mm=TOL, teeth=teeth)
         assert abs(read_step_volume(path) - mesh.volume) <= TOL * mesh.area
 
 
@@ -268,7 +268,7 @@ def test_step_of_unusual_specs_matches_the_mesh(data):
     spec = gc.spec_from_dict(data)
     tol = spec.tooth.module / 50
     for part in ("hub", "sleeve"):
-        mesh = build_part(spec, part, tol)
+        mesh = build_part(spec, part, tolerance_mm=tol)
         assert abs(shape_volume(part_solid(spec, part, tol)) - mesh.volume) <= tol * mesh.area
 
 

@@ -32,7 +32,7 @@ SPEC = "industrial-m2"
 def hub(tmp_path_factory):
     """industrial-m2 hub at the default tolerance, written in every mesh format."""
     spec = gc.load_spec(SPEC)
-    mesh = build_part(spec, "hub", None)
+    mesh = build_part(spec, "hub", tolerance_mm=None)
     out = tmp_path_factory.mktemp("hub")
     files = {ext: export_part(spec, "hub", out / f"hub.{ext}", mesh=mesh)
              for ext in ("msh", "inp", "vtk", "vtu", "3mf", "glb")}
@@ -105,7 +105,7 @@ def test_gmsh_reads_the_step_volume_and_exact_points(tmp_path, gmsh, name, part)
     gmsh.model.occ.synchronize()
     volumes = gmsh.model.getEntities(3)
     assert len(volumes) == 1
-    mesh = build_part(spec, part, tol)
+    mesh = build_part(spec, part, tolerance_mm=tol)
     volume = gmsh.model.occ.getMass(*volumes[0])
     assert abs(volume - mesh.volume) <= tol * mesh.area
     pts = np.concatenate(list(exact_samples(spec, part, 200, seed=7).values()))
@@ -148,7 +148,7 @@ def test_calculix_runs_the_inp(tmp_path):
     ccx = clients.ccx()
     spec = gc.load_spec(SPEC)
     teeth = [0, 1]
-    mesh = build_part(spec, "hub", 0.05, teeth=teeth)
+    mesh = build_part(spec, "hub", tolerance_mm=0.05, teeth=teeth)
     export_part(spec, "hub", tmp_path / "hub.inp", mesh=mesh, teeth=teeth, tolerance_mm=0.05)
     kind = mesh.face_attributes["kind"]
     tooth = mesh.face_attributes["tooth"]

@@ -80,7 +80,7 @@ def test_mesh_volume_matches_the_solid_and_no_element_is_inverted(spec, hub2):
     from gearcoupling.fea.volume import tet_volumes
     from gearcoupling.parts import build_part
 
-    solid = build_part(spec, "hub", spec.tooth.module / 200, teeth=[0, 1]).volume
+    solid = build_part(spec, "hub", tolerance_mm=spec.tooth.module / 200, teeth=[0, 1]).volume
     vol = tet_volumes(hub2.nodes, hub2.tets)
     assert np.all(vol > 0)
     assert hub2.quality["inverted"] == 0 and hub2.quality["min_scaled_jacobian"] > 0

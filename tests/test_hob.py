@@ -95,7 +95,7 @@ def test_program_follows_exact_path_within_tolerance(kind, tol_module):
     spec = spec_of(kind)
     D = 40.0 * spec.tooth.module
     tol = tol_module * spec.tooth.module
-    prog = hob_program(spec, D, tol)
+    prog = hob_program(spec, D, tolerance_mm=tol)
     poly = exact_centre_polyline(spec, prog.hob_pitch_radius_mm, prog.s_generate_mm)
     ends = np.array([m.start for m in prog.moves[1:-1]] + [prog.moves[-2].end])
     assert np.max(distance_to_polyline(ends, poly)) < 1e-7  # vertices on the path

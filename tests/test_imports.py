@@ -46,12 +46,15 @@ def test_import_gearcoupling_loads_no_scipy():
 LAYERS = {
     "errors": set(),
     "arguments": {"errors"},
+    "numeric": set(),
     "io": {"errors"},
     "browser": {"errors"},
     "tables": {"errors"},
     "loadspec": {"errors", "io"},
     "geometry": {"errors"},
-    "spec": {"errors", "io", "geometry", "loadspec"},
+    "specmodel": {"errors", "io", "geometry", "loadspec"},
+    "specfile": {"errors", "io", "geometry", "loadspec", "specmodel"},
+    "spec": {"errors", "io", "geometry", "loadspec", "specmodel", "specfile"},
     "plots": {"io", "errors", "geometry", "spec"},
     "parts": {"io", "errors", "geometry", "spec"},
     "export": {"io", "errors", "geometry", "spec", "parts"},
@@ -71,9 +74,10 @@ LAYERS = {
     "rotordynamics": {"io", "errors", "geometry", "spec", "loadspec", "plots", "parts",
                       "clearance", "loading", "tables"},
 }
-# the argument checks (numbers, counts, torques, documented maxima) sit beside the errors
-LAYERS = {k: v | {"arguments"} if k not in ("errors", "arguments") else v
-          for k, v in LAYERS.items()}
+# the argument checks (numbers, counts, torques, documented maxima) sit beside the errors,
+# the numeric guards (numpy only) below everything
+LAYERS = {k: v | {"arguments", "numeric"} if k not in ("errors", "arguments", "numeric")
+          else v for k, v in LAYERS.items()}
 
 
 def _type_checking_nodes(tree) -> set[int]:

@@ -143,7 +143,7 @@ def test_unreadable_files_give_clear_errors(renzo, tmp_path, capsys):
 
 def test_generated_mesh_matches_its_nominal(tmp_path):
     spec = gc.load_spec("industrial-m2")
-    mesh = gc.build_part(spec, "hub", 0.01)
+    mesh = gc.build_part(spec, "hub", tolerance_mm=0.01)
     path = tmp_path / "hub.stl"
     mesh.export(path)
     rep = compare_part(spec, path)

@@ -4,11 +4,12 @@ import math
 
 import numpy as np
 import pytest
+from scipy.optimize import brentq
 
 import gearcoupling as gc
 from gearcoupling.clearance import sweep
 from gearcoupling.loading import load_from_sweep
-from gearcoupling.loading.capacity import _root_torque, capacity, capacity_from_sweep
+from gearcoupling.loading.capacity import capacity, capacity_from_sweep
 from gearcoupling.loading.kernels.windup import solve_windup
 
 IN = 25.4
@@ -155,6 +156,27 @@ def test_surface_capacity_brings_the_worst_tooth_to_its_limit(renzo):
     assert not np.any(below.edge_contact) and np.any(above.edge_contact)
     assert c.governing == min(c.criteria_Nm, key=c.criteria_Nm.get)
     assert 0 < c.solves < 200
+
+
+def _root_torque(ratio, T0: float, *, step: float = 8.0, rtol: float = 1e-7) -> float:
+    """Smallest torque (N·mm) with ``ratio(T) = 1`` for increasing ``ratio``, bracketed from
+    ``T0`` by factors ``step``; inf if none."""
+    lo, hi = T0, T0
+    r_hi = ratio(hi)
+    while r_hi < 1.0:
+        lo, hi = hi, hi * step
+        if hi > 1e18:
+            return math.inf
+        r_hi = ratio(hi)
+    r_lo = ratio(lo)
+    while r_lo >= 1.0:
+        hi, lo = lo, lo / step
+        if lo < 1e-12:
+            return 0.0
+        r_lo = ratio(lo)
+    f = lambda x: math.log(max(ratio(math.exp(x)), 1e-300))  # noqa: E731
+    # on log T an absolute tolerance is a relative one on T (brentq's rtol would scale by ln T)
+    return math.exp(brentq(f, math.log(lo), math.log(hi), xtol=rtol, rtol=1e-15))
 
 
 def test_closed_form_capacity_matches_a_root_find_on_full_solves(renzo):

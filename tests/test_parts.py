@@ -28,7 +28,7 @@ def _tol(spec, per_module):
 @pytest.mark.parametrize("part", ["hub", "sleeve"])
 def test_every_template_builds_a_valid_solid_within_tolerance(template, part):
     tol = _tol(template, 1 / 100)
-    mesh = build_part(template, part, tol)
+    mesh = build_part(template, part, tolerance_mm=tol)
     check = check_part(mesh)
     assert check.ok, check.problems()
     assert check.genus == (1 if part == "sleeve" or template.hub.body.bore_diameter > 0 else 0)
@@ -42,10 +42,10 @@ def test_every_template_builds_a_valid_solid_within_tolerance(template, part):
 @pytest.mark.parametrize("part", ["hub", "sleeve"])
 def test_finer_tolerance_holds_and_volume_converges(renzo, part):
     tols = [0.1, 0.02, 0.004]
-    meshes = [build_part(renzo, part, t) for t in tols]
+    meshes = [build_part(renzo, part, tolerance_mm=t) for t in tols]
     for t, m in zip(tols, meshes, strict=True):
         assert measure_deviation(renzo, m, samples=800)["max"] <= t
-    ref = build_part(renzo, part, 0.0008)
+    ref = build_part(renzo, part, tolerance_mm=0.0008)
     errs = [abs(m.volume - ref.volume) for m in meshes]
     # the volume error is bounded by tolerance x area and shrinks with the tolerance
     for t, m, e in zip(tols, meshes, errs, strict=True):
@@ -59,14 +59,15 @@ def test_triangles_go_where_the_surface_curves(renzo):
     straight = renzo.replace(**{"hub.crowning.kind": "none", "hub.tip.kind": "cylinder",
                                 "hub.tip.diameter": 2 * 64.0})
     tol = 0.01
-    n_crowned = len(build_part(renzo, "hub", tol).faces)
-    n_straight = len(build_part(straight, "hub", tol).faces)
+    n_crowned = len(build_part(renzo, "hub", tolerance_mm=tol).faces)
+    n_straight = len(build_part(straight, "hub", tolerance_mm=tol).faces)
     assert n_straight < 0.5 * n_crowned
-    assert measure_deviation(straight, build_part(straight, "hub", tol), samples=500)["max"] <= tol
+    mesh = build_part(straight, "hub", tolerance_mm=tol)
+    assert measure_deviation(straight, mesh, samples=500)["max"] <= tol
 
 
 def test_band_vertices_lie_on_the_exact_flank(renzo):
-    mesh = build_part(renzo, "hub", 0.02, teeth=[0])
+    mesh = build_part(renzo, "hub", tolerance_mm=0.02, teeth=[0])
     m = hub_model(renzo)
     faces = mesh.faces[mesh.face_attributes["kind"] == KIND["flank_cw"]]
     v = mesh.vertices[np.unique(faces)]
@@ -77,7 +78,7 @@ def test_band_vertices_lie_on_the_exact_flank(renzo):
 
 
 def test_sleeve_flank_vertices_are_exact_involute_points(renzo):
-    mesh = build_part(renzo, "sleeve", 0.02, teeth=[0])
+    mesh = build_part(renzo, "sleeve", tolerance_mm=0.02, teeth=[0])
     sm = sleeve_model(renzo)
     v = mesh.vertices[np.unique(mesh.faces[mesh.face_attributes["kind"] == KIND["flank_cw"]])]
     r = np.hypot(v[:, 0], v[:, 1])
@@ -87,7 +88,7 @@ def test_sleeve_flank_vertices_are_exact_involute_points(renzo):
 
 @pytest.mark.parametrize("part", ["hub", "sleeve"])
 def test_labels_and_orientation(renzo, part):
-    mesh = build_part(renzo, part, 0.02)
+    mesh = build_part(renzo, part, tolerance_mm=0.02)
     kind, tooth = mesh.face_attributes["kind"], mesh.face_attributes["tooth"]
     c = mesh.triangles_center
     beta = np.stack([-c[:, 1], c[:, 0]], axis=1) / np.hypot(c[:, 0], c[:, 1])[:, None]
@@ -112,9 +113,9 @@ def test_labels_and_orientation(renzo, part):
 @pytest.mark.parametrize("part", ["hub", "sleeve"])
 def test_sectors_are_exact_fractions_of_the_part(renzo, part):
     n = renzo.tooth.teeth
-    full = build_part(renzo, part, 0.05)
+    full = build_part(renzo, part, tolerance_mm=0.05)
     for teeth in ([0, 1, 2, n - 1], [5], [3, 7, 8]):
-        sector = build_part(renzo, part, 0.05, teeth=teeth)
+        sector = build_part(renzo, part, tolerance_mm=0.05, teeth=teeth)
         check = check_part(sector)
         assert check.ok, check.problems()
         runs = 1 if teeth[0] == 0 else len({k - i for i, k in enumerate(teeth)})
@@ -128,10 +129,11 @@ def test_sectors_are_exact_fractions_of_the_part(renzo, part):
 
 def test_selecting_every_tooth_is_the_whole_part(renzo):
     n = renzo.tooth.teeth
-    whole = build_part(renzo, "hub", 0.05, teeth=range(n))
+    whole = build_part(renzo, "hub", tolerance_mm=0.05, teeth=range(n))
     check = check_part(whole)
     assert check.ok and check.genus == 1
-    assert whole.volume == pytest.approx(build_part(renzo, "hub", 0.05).volume, rel=1e-12)
+    full = build_part(renzo, "hub", tolerance_mm=0.05)
+    assert whole.volume == pytest.approx(full.volume, rel=1e-12)
 
 
 def test_solid_hub_and_body_as_long_as_the_face(renzo):
@@ -141,19 +143,20 @@ def test_solid_hub_and_body_as_long_as_the_face(renzo):
                              "hub.body.length": renzo.hub.face_width}, 0)):
         spec = renzo.replace(**changes)
         for teeth in (None, [0, 1]):
-            mesh = build_part(spec, "hub", 0.03, teeth=teeth)
+            mesh = build_part(spec, "hub", tolerance_mm=0.03, teeth=teeth)
             check = check_part(mesh)
             assert check.ok, (changes, teeth, check.problems())
             assert check.genus == (genus if teeth is None else 0)
-        assert measure_deviation(spec, build_part(spec, "hub", 0.03), samples=300)["max"] <= 0.03
+        mesh = build_part(spec, "hub", tolerance_mm=0.03)
+        assert measure_deviation(spec, mesh, samples=300)["max"] <= 0.03
 
 
 def test_bore_and_outer_diameter_volumes_match_theory(renzo):
     """Solid minus bored hub is the bore cylinder; the sleeve ring outside the major circle
     is an annulus: both exact up to the circle chords (tolerance x area)."""
     tol = 0.002
-    bored = build_part(renzo, "hub", tol)
-    solid = build_part(renzo.replace(**{"hub.body.bore_diameter": 0.0}), "hub", tol)
+    bored = build_part(renzo, "hub", tolerance_mm=tol)
+    solid = build_part(renzo.replace(**{"hub.body.bore_diameter": 0.0}), "hub", tolerance_mm=tol)
     r, L = 0.5 * renzo.hub.body.bore_diameter, renzo.hub.body.length
     bore = math.pi * r * r * L
     assert solid.volume - bored.volume == pytest.approx(bore, abs=tol * 2 * math.pi * r * L)
@@ -164,10 +167,10 @@ def test_bad_input_is_refused_with_a_clear_message(renzo):
         build_part(renzo, "shaft")
     for tol in (0.0, -1.0, float("nan"), float("inf"), 10.0, "fine"):
         with pytest.raises(ValueError, match="tolerance_mm"):
-            build_part(renzo, "hub", tol)
+            build_part(renzo, "hub", tolerance_mm=tol)
     for teeth in ([50], [-1], [], ["a"]):
         with pytest.raises(ValueError, match="teeth"):
-            build_part(renzo, "hub", 0.05, teeth=teeth)
+            build_part(renzo, "hub", tolerance_mm=0.05, teeth=teeth)
 
 
 def test_distance_to_mesh_against_a_known_surface():
@@ -195,11 +198,11 @@ def test_random_specs_build_valid_parts_within_tolerance(stratum):
     tol = _tol(spec, 0.05)
     for part in ("hub", "sleeve"):
         for teeth in (None, [0, 1, spec.tooth.teeth - 1]):
-            mesh = build_part(spec, part, tol, teeth=teeth)
+            mesh = build_part(spec, part, tolerance_mm=tol, teeth=teeth)
             check = check_part(mesh)
             assert check.ok, (part, teeth, check.problems())
             assert np.all(np.isfinite(mesh.vertices))
-        sector = build_part(spec, part, tol, teeth=[0])
+        sector = build_part(spec, part, tolerance_mm=tol, teeth=[0])
         assert measure_deviation(spec, sector, samples=200)["max"] <= tol
 
 
@@ -217,7 +220,7 @@ def test_the_extremes_of_the_range_build_valid_parts(tooth, hub):
     spec = gc.spec_from_dict(data)
     tol = _tol(spec, 0.02)
     for part in ("hub", "sleeve"):
-        mesh = build_part(spec, part, tol)
+        mesh = build_part(spec, part, tolerance_mm=tol)
         check = check_part(mesh)
         assert check.ok, (part, check.problems())
         assert measure_deviation(spec, mesh, samples=300)["max"] <= tol
@@ -234,7 +237,7 @@ def test_mesh_volume_is_pinned_per_template(name, part):
     against the STEP solid of the exact geometry (within tolerance x area)."""
     gold = GOLDEN_PARTS[name][part]
     spec = gc.load_spec(name)
-    mesh = build_part(spec, part, None)
+    mesh = build_part(spec, part, tolerance_mm=None)
     assert len(mesh.faces) == gold["triangles"]
     assert mesh.volume == pytest.approx(gold["volume_mm3"], rel=1e-9)
     assert abs(gold["volume_mm3"] - gold["step_volume_mm3"]) <= \

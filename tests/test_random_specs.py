@@ -67,7 +67,7 @@ def test_one_spec_per_stratum_builds_closed_parts(stratum):
 
     spec = next(s for s in map(_try, _draw(stratum)) if s is not None)
     for part in ("hub", "sleeve"):
-        mesh = build_part(spec, part, spec.tooth.module / 20, teeth=[0])
+        mesh = build_part(spec, part, tolerance_mm=spec.tooth.module / 20, teeth=[0])
         assert mesh.is_watertight and mesh.volume > 0
         assert np.all(np.isfinite(mesh.vertices))
 

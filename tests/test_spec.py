@@ -283,3 +283,43 @@ def test_a_table_crown_is_checked_along_its_spline_not_only_at_its_samples():
         build(hub__face_width=16.0, hub__crowning={"kind": "table", "z": [0, 3, 6],
                                                    "drop": [0, 0.05, 0.2]})
     assert info.value.field == "hub.crowning.z"
+
+
+@pytest.mark.parametrize("key, typed, mm, words", [
+    ("hub.crowning.radius", 0.1, 2.54, "at least twice the hub dedendum"),
+    ("hub.crowning.radius", -1.0, -25.4, "must be positive"),
+    ("sleeve.outer_diameter", 1.0, 25.4, "must exceed the major diameter"),
+    ("hub.backlash", 1.0, 25.4, "below the sleeve space width"),
+])
+def test_an_inch_file_error_quotes_the_value_as_typed_with_mm_beside(key, typed, mm, words):
+    # renzo-1967 is an inch template: the user reads the value they typed, in inches
+    with pytest.raises(gc.SpecError) as err:
+        gc.load_spec("renzo-1967", **{key: typed})
+    assert err.value.field == key and err.value.value == typed
+    assert str(err.value).startswith(f"{key} = {typed!r} in ({mm!r} mm): ")
+    assert words in str(err.value)
+
+
+def test_a_millimetre_file_error_quotes_the_value_once():
+    with pytest.raises(gc.SpecError) as err:
+        gc.load_spec("industrial-m2", **{"hub.crowning.radius": -1.0})
+    assert str(err.value).startswith("hub.crowning.radius = -1.0: must be positive")
+
+
+def test_an_inch_table_crown_error_quotes_its_samples_as_typed():
+    data = {**BASE, "units": "in", "tooth": {"teeth": 38, "diametral_pitch": 12.7},
+            "hub": {"face_width": 0.63, "backlash": 0.01,
+                    "crowning": {"kind": "table", "z": [0, 0.1, 0.3], "drop": [0, -0.01, 0]}}}
+    with pytest.raises(gc.SpecError) as err:
+        spec_from_dict(data)
+    assert err.value.field == "hub.crowning.drop" and err.value.value == (0.0, -0.01, 0.0)
+    assert "[0.0, -0.01, 0.0] in ([0.0, -0.254, 0.0] mm)" in str(err.value)
+
+
+def test_a_spec_error_with_its_typed_value_survives_pickling():
+    import pickle
+
+    with pytest.raises(gc.SpecError) as err:
+        gc.load_spec("renzo-1967", **{"hub.crowning.radius": 0.1})
+    again = pickle.loads(pickle.dumps(err.value))
+    assert str(again) == str(err.value) and again.value == 0.1

@@ -58,7 +58,7 @@ def test_range_outside_spec_limits(tmp_path):
                  "refused by the spec")
     assert "14.5" in msg  # the spec's own limit is quoted
     refuse(tmp_path, HEAD + '[[vary]]\nkey = "misalignment_deg"\nvalues = [1.0, 7.0]\n',
-           "s.toml:5", "misalignment must be 0.0-6.0")
+           "s.toml:5", "must be a finite angle from 0.0 to 6.0 degrees")
 
 
 def test_grid_is_the_cartesian_product_in_order(tmp_path):

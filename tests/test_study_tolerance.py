@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import gearcoupling as gc
-from gearcoupling.errors import SpecError
+from gearcoupling.errors import ArgumentError, SpecError
 from gearcoupling.study.tolerance import (
     CrownMaps,
     Tolerances,
@@ -126,7 +126,7 @@ def test_bad_tolerances_refused(spec):
         Tolerances(index_sd_mm=-1.0)
     with pytest.raises(SpecError, match="unknown limit"):
         Tolerances.from_limits(runout=0.1)
-    with pytest.raises(SpecError, match="path"):
+    with pytest.raises(ArgumentError, match="path"):
         tolerance_sample(spec, 1.0, Tolerances(), 0, 0, path="slow")
 
 

@@ -11,8 +11,9 @@ import numpy as np
 import pytest
 
 import gearcoupling as gc
+from gearcoupling.arguments import GAP_TOLERANCE_MM
 from gearcoupling.clearance import KINDS, sweep
-from gearcoupling.clearance.flank_table import DEFAULT_TABLE_TOLERANCE_MM, flank_table
+from gearcoupling.clearance.flank_table import flank_table
 from gearcoupling.clearance.kernel import _Planes, _Sleeve
 from gearcoupling.clearance.reference import brute_force
 from gearcoupling.errors import GeometryError
@@ -104,7 +105,7 @@ def test_active_interval_wholly_above_the_sleeve_fillet_start():
 def test_aligned_clearance_within_the_table_promise(name):
     spec = gc.spec_from_dict(STALLED[name])
     table = flank_table(spec)
-    assert table.max_error_mm <= DEFAULT_TABLE_TOLERANCE_MM  # was 1e-5 .. 4.4e-4 mm
+    assert table.max_error_mm <= GAP_TOLERANCE_MM  # was 1e-5 .. 4.4e-4 mm
     assert len(table.edges) > 2  # cut at the end_round start
     res = sweep(spec, 0.0, [0.0, 7.0])
     err = res.normal_clearance_mm.min(axis=(1, 2)) - _aligned_normal_clearance(spec)

@@ -10,7 +10,7 @@ import pytest
 
 import gearcoupling as gc
 from gearcoupling.cli import main
-from gearcoupling.errors import ArgumentError, BackendError, SpecError
+from gearcoupling.errors import ArgumentError, BackendError
 from gearcoupling.geometry.sleeve import sleeve_flank, sleeve_model
 from gearcoupling.viewer import scene as vs
 
@@ -83,7 +83,7 @@ def test_clearance_colors_and_legend():
     for (label, rgb), value in zip(vs.legend(s)[1:-1], np.linspace(0, s, 5), strict=True):
         assert f"{value:.4f}" in label
         assert rgb == tuple(int(v) for v in vs.clearance_colors(value, s))
-    with pytest.raises(SpecError, match="color_scale_mm"):
+    with pytest.raises(ArgumentError, match="color_scale_mm"):
         vs.clearance_colors([0.0], 0.0)
 
 

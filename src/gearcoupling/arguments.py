@@ -46,6 +46,13 @@ TORQUE_RANGE_NM = (1e-9, 1e9)
 #: the bottom the rounding of the coordinates dominates
 SWEEP_TOLERANCE_RANGE_MM = (1e-12, 0.1)
 
+#: the default accuracy of every clearance minimum and of the flank table in mm (sweep,
+#: design angles, load, studies, report, command line): one value everywhere
+GAP_TOLERANCE_MM = 1e-7
+
+#: the default coarse planes over the face width of the sweep kernel
+SWEEP_GRID = 17
+
 #: tolerances of the design-angle searches in degrees (bisection and Brent's method);
 #: below the bottom they cost more than the geometry is worth, above the top they are
 #: no answer
@@ -169,6 +176,20 @@ def torque_Nm(value: Any, field: str = "torque_Nm", *, zero: bool = True,
         return float(value)
     raise error(field, value, f"must be a torque in N·m of magnitude {lo:g} to {hi:g}"
                 + (", or 0 (unloaded)" if zero else "") + "; the sign picks the loaded flank")
+
+
+def resolve_torque_Nm(spec: Any, torque: Any, field: str = "torque_Nm", *,
+                      zero: bool = True) -> float:
+    """The torque in N·m a call applies, by one rule for every entry point: the argument
+    ``torque`` (checked by :func:`torque_Nm`, an :class:`ArgumentError` naming
+    ``field``), else the spec's ``[load] torque_Nm`` (checked by the spec against the same
+    range), else a :class:`SpecError`. ``zero=False`` refuses 0 from either."""
+    if torque is not None:
+        return torque_Nm(torque, field, zero=zero)
+    if spec.load.torque_Nm is None:
+        raise SpecError("load.torque_Nm", None, "no torque: give [load] torque_Nm (or "
+                        "torque_lbf_in) in the spec or torque_Nm= / --torque")
+    return torque_Nm(spec.load.torque_Nm, "load.torque_Nm", zero=zero, error=SpecError)
 
 
 def angle_tolerance_deg(value: Any, field: str = "tolerance_deg") -> float:

@@ -12,8 +12,9 @@ def brief(text: str, most: int) -> str:
     return text if len(text) <= most else f"{text[:most]}... ({len(text)} characters)"
 
 
-def _message(field: object, value: object, allowed: object) -> str:
-    return (f"{brief(str(field), FIELD_CHARS)} = {brief(repr(value), VALUE_CHARS)}: "
+def _message(field: object, value: object, allowed: object, shown: str | None = None) -> str:
+    quoted = repr(value) if shown is None else shown
+    return (f"{brief(str(field), FIELD_CHARS)} = {brief(quoted, VALUE_CHARS)}: "
             f"{brief(str(allowed), ALLOWED_CHARS)}")
 
 
@@ -21,17 +22,25 @@ class GearCouplingError(Exception):
     """Base class of every error gearcoupling raises on purpose."""
 
 
-class SpecError(GearCouplingError, ValueError):
-    """An invalid spec value or combination; the message names field, value and what is allowed."""
+class _Refusal(GearCouplingError, ValueError):
+    """A refused value: the message names the field, the value and what is allowed;
+    ``shown`` quotes the value where ``repr(value)`` is not what the user gave."""
 
-    def __init__(self, field: str, value: object, allowed: str):
+    def __init__(self, field: str, value: object, allowed: str, shown: str | None = None):
         self.field = field
         self.value = value
         self.allowed = allowed
-        super().__init__(_message(field, value, allowed))
+        self.shown = shown
+        super().__init__(_message(field, value, allowed, shown))
 
     def __reduce__(self):  # pickled to and from worker processes with its fields
-        return type(self), (self.field, self.value, self.allowed)
+        return type(self), (self.field, self.value, self.allowed, self.shown)
+
+
+class SpecError(_Refusal):
+    """An invalid spec or study file value or combination, raised as ``SpecError(field,
+    value, allowed)``; a length of an inch file is shown as given with its mm value beside
+    it (``0.1 in (2.54 mm)``)."""
 
 
 class GeometryError(GearCouplingError, ValueError):
@@ -42,20 +51,7 @@ class BackendError(GearCouplingError, RuntimeError):
     """An optional back-end is missing or failed; the message says what to install or change."""
 
 
-class ArgumentError(GearCouplingError, ValueError):
+class ArgumentError(_Refusal):
     """An invalid argument of a library call or command line (not a value of a spec or
-    study file): the message names the argument, its value and what is allowed. Raised as
-    ``ArgumentError(message)`` or ``ArgumentError(name, value, allowed)``; the CLI maps it
-    to exit status 2."""
-
-    def __init__(self, *args: object):
-        if len(args) == 3:
-            self.field, self.value, self.allowed = args
-            super().__init__(_message(*args))
-        else:
-            super().__init__(*args)
-
-    def __reduce__(self):
-        if hasattr(self, "allowed"):
-            return type(self), (self.field, self.value, self.allowed)
-        return type(self), self.args
+    study file), raised as ``ArgumentError(field, value, allowed)`` like :class:`SpecError`.
+    The CLI maps it to exit status 2."""

@@ -127,8 +127,7 @@ def sections_figure(spec: CouplingSpec, tolerance_mm: float | None = None, *,
     else:
         axes = list(ax)
         if len(axes) != 3:
-            raise ArgumentError(f"ax = {ax!r}: must be 3 axes (sections, thickness, "
-                                "pressure angle)")
+            raise ArgumentError("ax", ax, "3 axes (sections, thickness, pressure angle)")
         fig = axes[0].figure
     ax0 = axes[0]
     planes = section_planes(spec)

@@ -30,6 +30,8 @@ import numba
 import numpy as np
 from numba.extending import intrinsic
 
+from ..numeric import TINY
+
 _jit = numba.njit(cache=True, nogil=True, error_model="numpy", fastmath={"contract"})
 
 # tab: constants (kernel._compiled_arrays), then the edges and the plane matrices
@@ -191,7 +193,7 @@ def fillet(tab, p):
     cosb = min(max((rq2 + cn * cn - rho * rho) / (2.0 * rq * cn), -1.0), 1.0)
     a_b = math.atan2(qy, qx) - (tab[GC] - math.acos(cosb))
     dbeta = ((1.0 - (cn * cn - rho * rho) / rq2) / (2.0 * cn)
-             / math.sqrt(max(1.0 - cosb * cosb, 1e-300)) * drq)
+             / math.sqrt(max(1.0 - cosb * cosb, TINY)) * drq)
     ex, ey = qx - tab[CX], qy - tab[CY]
     dist = math.hypot(ex, ey)
     return (rq * a_b, rho - dist, drq * a_b + rq * ((qx * dqy - qy * dqx) / rq2 - dbeta),

@@ -11,12 +11,20 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
-from ..arguments import angle_tolerance_deg, count, keywords, real, sweep_tolerance_mm
+from ..arguments import (
+    GAP_TOLERANCE_MM,
+    SWEEP_GRID,
+    angle_tolerance_deg,
+    count,
+    real,
+    sweep_tolerance_mm,
+)
 from ..errors import ArgumentError
 from ..geometry import sleeve_model
 from ..spec import MISALIGNMENT_RANGE_DEG, CouplingSpec, as_spec
-from .kernel import DEFAULT_TOLERANCE_MM, FACE_END, minimise
+from .kernel import FACE_END, minimise
 from .result import SweepResult
 from .tooth_map import check_misalignment, flank_minima, sweep
 
@@ -32,7 +40,7 @@ def pitch_turning_angles(teeth: int, steps: int = DEFAULT_STEPS) -> np.ndarray:
 
 
 def contact_travel(spec: CouplingSpec,
-                   misalignment_deg: float, *, tolerance_mm: float = DEFAULT_TOLERANCE_MM
+                   misalignment_deg: float, *, tolerance_mm: float = GAP_TOLERANCE_MM
                    ) -> dict[str, float]:
     """Axial position of the contact on the pivot teeth (theta = 0 and 180°), in mm.
 
@@ -57,7 +65,7 @@ def contact_travel(spec: CouplingSpec,
 
 
 def min_backlash_rad(spec: CouplingSpec, misalignment_deg: float, *, steps: int = DEFAULT_STEPS,
-                     tolerance_mm: float = DEFAULT_TOLERANCE_MM) -> float:
+                     tolerance_mm: float = GAP_TOLERANCE_MM) -> float:
     """Smallest backlash (rad) over a full turn at ``misalignment_deg`` (0-6°); negative
     where the teeth bind. ``steps`` rotations per tooth pitch are searched (1-1000)."""
     spec = as_spec(spec)
@@ -66,7 +74,7 @@ def min_backlash_rad(spec: CouplingSpec, misalignment_deg: float, *, steps: int 
 
 
 def _min_backlash(spec: CouplingSpec, misalignment_rad: float, steps: int = DEFAULT_STEPS,
-                  tolerance_mm: float = DEFAULT_TOLERANCE_MM) -> float:
+                  tolerance_mm: float = GAP_TOLERANCE_MM) -> float:
     theta = pitch_turning_angles(spec.tooth.teeth, steps)
     both = np.stack([theta, np.pi - theta])
     mins, _ = flank_minima(spec, misalignment_rad, both, tolerance_mm=tolerance_mm,
@@ -78,7 +86,7 @@ def _min_backlash(spec: CouplingSpec, misalignment_rad: float, steps: int = DEFA
 def pivot_on_face_end(spec: CouplingSpec, misalignment_rad: float) -> bool:
     """Whether the pivot teeth (theta = 0 and 180°) touch first at a face end."""
     mins, _ = flank_minima(spec, misalignment_rad, np.array([0.0, np.pi]),
-                           tolerance_mm=DEFAULT_TOLERANCE_MM, measures=("normal",))
+                           tolerance_mm=GAP_TOLERANCE_MM, measures=("normal",))
     return bool(np.any(mins["kind"] == FACE_END))
 
 
@@ -198,26 +206,27 @@ def mesh_angles(offset_mm: float, angle_deg: float, span_mm: float, *,
 
 
 def double_engagement(spec: CouplingSpec, offset_mm: float, angle_deg: float, span_mm: float,
-                      angles_deg, **kwargs) -> tuple[MeshAngles, SweepResult, SweepResult]:
+                      angles_deg: ArrayLike, *, offset_azimuth_deg: float = 0.0,
+                      angle_azimuth_deg: float = 0.0, tolerance_mm: float = GAP_TOLERANCE_MM,
+                      grid: int = SWEEP_GRID, periodic: bool = True
+                      ) -> tuple[MeshAngles, SweepResult, SweepResult]:
     """Sweeps of both gear meshes: ``(MeshAngles, result_a, result_b)``.
 
     Raises :class:`ArgumentError` if a mesh angle exceeds the 6° the sweeps cover.
-    ``kwargs``: ``offset_azimuth_deg``, ``angle_azimuth_deg`` (:func:`mesh_angles`) and
-    those of :func:`~.tooth_map.sweep`.
+    ``offset_azimuth_deg``, ``angle_azimuth_deg`` as :func:`mesh_angles`; ``tolerance_mm``,
+    ``grid``, ``periodic`` as :func:`~.tooth_map.sweep`.
     """
     spec = as_spec(spec)
-    keywords(kwargs, ("offset_azimuth_deg", "angle_azimuth_deg", "tolerance_mm", "grid",
-                      "periodic"), "double_engagement")
-    mesh = mesh_angles(offset_mm, angle_deg, span_mm,
-                       offset_azimuth_deg=kwargs.pop("offset_azimuth_deg", 0.0),
-                       angle_azimuth_deg=kwargs.pop("angle_azimuth_deg", 0.0))
+    mesh = mesh_angles(offset_mm, angle_deg, span_mm, offset_azimuth_deg=offset_azimuth_deg,
+                       angle_azimuth_deg=angle_azimuth_deg)
     for name, value in (("mesh A angle", mesh.a_deg), ("mesh B angle", mesh.b_deg)):
         if value > MISALIGNMENT_RANGE_DEG[1]:
             raise ArgumentError(name, round(value, 6), f"must be at most "
                             f"{MISALIGNMENT_RANGE_DEG[1]}°: reduce the offset or angle, or "
                             "lengthen the span")
-    return mesh, sweep(spec, mesh.a_deg, angles_deg, **kwargs), sweep(spec, mesh.b_deg,
-                                                                        angles_deg, **kwargs)
+    a, b = (sweep(spec, deg, angles_deg, tolerance_mm=tolerance_mm, grid=grid, periodic=periodic)
+            for deg in (mesh.a_deg, mesh.b_deg))
+    return mesh, a, b
 
 
 def design_quantities(spec: CouplingSpec, misalignment_deg: float, *,

@@ -22,13 +22,13 @@ import numpy as np
 from numpy.polynomial import chebyshev as C
 from numpy.typing import NDArray
 
+from ..arguments import GAP_TOLERANCE_MM
 from ..errors import ArgumentError, GeometryError
 from ..geometry import HubModel, form_radius, hub_flank_model, hub_model, tip_radius
 from ..spec import CouplingSpec
 
 DEFAULT_NODES = (24, 12)  # (nz, nt): interpolation error ~1e-8 mm on renzo-1967
 NODE_LADDER = ((16, 8), (24, 12), (32, 16), (32, 32), (48, 48), (64, 64))
-DEFAULT_TABLE_TOLERANCE_MM = 1e-7
 
 
 @dataclass(frozen=True, eq=False)
@@ -315,7 +315,7 @@ def build_flank_table(m: HubModel, nodes: tuple[int, int] = DEFAULT_NODES) -> Fl
     (pieces from :func:`kink_edges`)."""
     nz, nt = nodes
     if nz < 4 or nt < 3:
-        raise ArgumentError(f"flank table nodes must be at least (4, 3), got {nodes}")
+        raise ArgumentError("nodes", nodes, "flank table nodes (nz, nt) of at least (4, 3)")
     edges = kink_edges(m)
     fits = [_fit_piece(m, lo, hi, nz, nt) for lo, hi in pairwise(edges)]
     coef = np.stack([f[0] for f in fits])
@@ -330,7 +330,7 @@ def build_flank_table(m: HubModel, nodes: tuple[int, int] = DEFAULT_NODES) -> Fl
     return FlankTable(m.half_face, coef, form, m.tip_kind, m.tip_radius, err, edges)
 
 
-def adaptive_flank_table(m: HubModel, tolerance_mm: float = DEFAULT_TABLE_TOLERANCE_MM
+def adaptive_flank_table(m: HubModel, tolerance_mm: float = GAP_TOLERANCE_MM
                          ) -> FlankTable:
     """The smallest table of :data:`NODE_LADDER` whose measured error is within tolerance.
 
@@ -341,7 +341,7 @@ def adaptive_flank_table(m: HubModel, tolerance_mm: float = DEFAULT_TABLE_TOLERA
     error; read ``max_error_mm``.
     """
     if not (tolerance_mm > 0):
-        raise ArgumentError(f"table tolerance must be > 0 mm, got {tolerance_mm!r}")
+        raise ArgumentError("tolerance_mm", tolerance_mm, "a table tolerance > 0 mm")
     table = build_flank_table(m, NODE_LADDER[0])
     for nodes in NODE_LADDER[1:]:
         if table.max_error_mm <= tolerance_mm:
@@ -354,6 +354,6 @@ def adaptive_flank_table(m: HubModel, tolerance_mm: float = DEFAULT_TABLE_TOLERA
 
 
 @lru_cache(maxsize=64)
-def flank_table(spec: CouplingSpec, tolerance_mm: float = DEFAULT_TABLE_TOLERANCE_MM) -> FlankTable:
+def flank_table(spec: CouplingSpec, tolerance_mm: float = GAP_TOLERANCE_MM) -> FlankTable:
     """The cached adaptive :class:`FlankTable` of a spec's hub flank."""
     return adaptive_flank_table(hub_model(spec), tolerance_mm)

@@ -31,6 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from ..arguments import GAP_TOLERANCE_MM, SWEEP_GRID
 from ..errors import ArgumentError
 from ..geometry import SleeveModel, inv, map_polar
 from .fast import kernels
@@ -41,8 +42,6 @@ KINDS = ("interior", "face end", "tip edge", "form edge", "sleeve tip edge",
 INTERIOR, FACE_END, TIP_EDGE, FORM_EDGE, SLEEVE_TIP, SLEEVE_FILLET, SLEEVE_FACE, NONE = range(8)
 MEASURES = ("circumferential", "normal", "pitch_circumferential", "pitch_normal")
 CIRC, NORMAL, PITCH_CIRC, PITCH_NORMAL = range(4)
-DEFAULT_TOLERANCE_MM = 1e-7
-DEFAULT_GRID = 17  # coarse planes over the face width
 
 
 @dataclass(frozen=True)
@@ -761,8 +760,8 @@ class ZSearch:
 
 
 def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
-             pitch_radius: float, tolerance_mm: float = DEFAULT_TOLERANCE_MM,
-             grid: int = DEFAULT_GRID, max_levels: int = 40,
+             pitch_radius: float, tolerance_mm: float = GAP_TOLERANCE_MM,
+             grid: int = SWEEP_GRID, max_levels: int = 40,
              measures: tuple[str, ...] = MEASURES) -> dict[str, Minimum]:
     """Minimum gaps of tooth 0's cw flank to space 0 at turning angles ``theta``.
 
@@ -798,12 +797,12 @@ def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
         For each of ``measures``.
     """
     if grid < 3:
-        raise ArgumentError(f"grid must be at least 3 planes, got {grid}")
+        raise ArgumentError("grid", grid, "at least 3 planes")
     if not tolerance_mm > 0:
-        raise ArgumentError(f"tolerance_mm must be > 0, got {tolerance_mm!r}")
+        raise ArgumentError("tolerance_mm", tolerance_mm, "must be > 0 mm")
     unknown = set(measures) - set(MEASURES)
     if unknown or not measures:
-        raise ArgumentError(f"measures must be among {MEASURES}, got {measures!r}")
+        raise ArgumentError("measures", measures, f"must be among {MEASURES}")
     theta = np.asarray(theta, dtype=float).ravel()
     n = theta.size
     # the virtual measures (rows of _plane_minima) the requested measures fold from

@@ -22,6 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..arguments import GAP_TOLERANCE_MM
 from ..geometry import map_polar, sleeve_model
 from ..io import atomic_path
 from ..plots import figure_axes
@@ -239,7 +240,7 @@ def plot_generation(spec: CouplingSpec, misalignment_deg: float, *, count: int =
     curves = {}
     for gen in ("enveloped", "revolved"):
         s = spec.replace(**{"hub.crowning.generation": gen})
-        mins, _ = flank_minima(s, i, theta, tolerance_mm=1e-7)
+        mins, _ = flank_minima(s, i, theta, tolerance_mm=GAP_TOLERANCE_MM)
         curves[gen] = mins
         axes[0].plot(np.degrees(theta), mins["pitch"] * 1e3, label=f"{gen}, pitch line")
         axes[0].plot(np.degrees(theta), mins["clearance"] * 1e3, ls="--",

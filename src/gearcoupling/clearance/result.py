@@ -107,7 +107,7 @@ class SweepResult:
         table = {"clearance": self.clearance_mm, "normal": self.normal_clearance_mm,
                  "pitch": self.pitch_clearance_mm, "pitch_normal": self.pitch_normal_clearance_mm}
         if which not in table:
-            raise ArgumentError(f"measure must be one of {sorted(table)}, got {which!r}")
+            raise ArgumentError("measure", which, f"one of {sorted(table)}")
         return table[which]
 
     def peak_to_peak(self, which: str) -> NDArray[np.float64]:

@@ -8,12 +8,12 @@ from dataclasses import fields
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..arguments import angle_list, count, flag, sweep_tolerance_mm
+from ..arguments import GAP_TOLERANCE_MM, SWEEP_GRID, angle_list, count, flag, sweep_tolerance_mm
 from ..errors import ArgumentError
 from ..geometry import sleeve_model, turning_angles
 from ..spec import CouplingSpec, as_spec, check_misalignment_deg
-from .flank_table import DEFAULT_TABLE_TOLERANCE_MM, flank_table
-from .kernel import DEFAULT_GRID, DEFAULT_TOLERANCE_MM, MEASURES, Minimum, minimise
+from .flank_table import flank_table
+from .kernel import MEASURES, Minimum, minimise
 from .result import SweepResult
 
 CHUNK_ANGLES = 1024  # turning angles per kernel call: bounds its memory (~30 kB per angle)
@@ -34,7 +34,7 @@ def check_angles(angles_deg: ArrayLike) -> np.ndarray:
 
 
 def flank_minima(spec: CouplingSpec, misalignment_rad: float, theta, *, tolerance_mm: float,
-                 grid: int = DEFAULT_GRID, periodic: bool = True,
+                 grid: int = SWEEP_GRID, periodic: bool = True,
                  measures: tuple[str, ...] = MEASURES):
     """Minima of tooth 0's cw flank at turning angles ``theta`` (any shape), all measures.
 
@@ -54,7 +54,7 @@ def flank_minima(spec: CouplingSpec, misalignment_rad: float, theta, *, toleranc
         ``kind`` and ``rate`` of the normal minimum (the point of first touch); only those
         of the ``measures`` found (``z``, ``r``, ``kind``, ``rate`` with ``normal``).
     """
-    table = flank_table(spec, min(DEFAULT_TABLE_TOLERANCE_MM, tolerance_mm))
+    table = flank_table(spec, min(GAP_TOLERANCE_MM, tolerance_mm))
     sm = sleeve_model(spec)
     theta = np.asarray(theta, dtype=float)
     flat = np.mod(theta.ravel(), 2.0 * np.pi)
@@ -86,7 +86,7 @@ def flank_minima(spec: CouplingSpec, misalignment_rad: float, theta, *, toleranc
 
 
 def sweep(spec: CouplingSpec, misalignment_deg: float, angles_deg: ArrayLike, *,
-          tolerance_mm: float = DEFAULT_TOLERANCE_MM, grid: int = DEFAULT_GRID,
+          tolerance_mm: float = GAP_TOLERANCE_MM, grid: int = SWEEP_GRID,
           periodic: bool = True) -> SweepResult:
     """Clearance of every hub tooth and flank at misalignment ``i`` over rotations ``psi``.
 

@@ -11,7 +11,7 @@ from ..io import parse_override
 from ..loading import model_names, models_help, plot_capacity, write_capacity_csv
 from ..plots import save_figure
 from ..reporting import CapacityComparison, compare_capacity, comparison_range
-from ..spec import load_spec
+from ..spec import MISALIGNMENT_RANGE_DEG, load_spec
 from .common import (
     add_spec_arguments,
     count,
@@ -33,7 +33,8 @@ def register(sub) -> None:
                    help="more specs (templates or files) to overlay, same --set applied")
     p.add_argument("--model", choices=model_names(), default=None,
                    help=f"load model ({models_help()}; default: each spec's [load] model)")
-    p.add_argument("--max", type=number_in(0.0, 6.0, "degrees", open_lo=True), default=None,
+    p.add_argument("--max", type=number_in(*MISALIGNMENT_RANGE_DEG, "degrees", open_lo=True),
+                   default=None,
                    metavar="DEG", help="largest misalignment, in (0, 6] degrees (default: the "
                    "largest critical misalignment of the specs, at least their design angles "
                    "and 0.5)")
@@ -54,7 +55,7 @@ def degree_list(text: str) -> list[float]:
     items = [item.strip() for item in text.split(",") if item.strip()]
     if not 2 <= len(items) <= MAX_COUNT:  # before reading them: 5000 values are refused
         raise argparse.ArgumentTypeError(f"{len(items)} values: {rule}")
-    parse = number_in(0.0, 6.0, "degrees")
+    parse = number_in(*MISALIGNMENT_RANGE_DEG, "degrees")
     values = [parse(item) for item in items]
     if len(set(values)) < 2:
         raise argparse.ArgumentTypeError(f"{brief(repr(text), 60)}: {rule}")

@@ -12,11 +12,12 @@ from __future__ import annotations
 
 import sys
 
-from ..arguments import TORQUE_RANGE_NM
+from ..arguments import TORQUE_RANGE_NM, resolve_torque_Nm
 from ..errors import ArgumentError
 from ..fea import ccx_path, check_size, fe_contact, fillet_notes, gmsh_module
 from ..io import write_json
 from ..loading import model_names, sector_check
+from ..spec import MISALIGNMENT_RANGE_DEG
 from .common import (
     add_spec_arguments,
     count,
@@ -34,7 +35,7 @@ def register(sub) -> None:
     p.add_argument("--torque", type=number_in(*TORQUE_RANGE_NM, "N·m"), default=None,
                    metavar="NM", help=f"torque in N·m, {TORQUE_RANGE_NM[0]:g} to "
                    f"{TORQUE_RANGE_NM[1]:g} (default: the spec's)")
-    p.add_argument("--misalignment", type=number_in(0.0, 6.0, "°"), default=0.0,
+    p.add_argument("--misalignment", type=number_in(*MISALIGNMENT_RANGE_DEG, "°"), default=0.0,
                    metavar="DEG", help="misalignment in degrees, 0 to 6 (default 0)")
     p.add_argument("--rotation", type=number_in(-360.0, 360.0, "°"), default=0.0,
                    metavar="DEG", help="turning angle of a misaligned pose (default 0)")
@@ -58,7 +59,7 @@ def run(args) -> int:
     for part in ("hub", "sleeve"):
         check_size(spec, part, args.size, "--size")
         check_size(spec, part, args.contact_size, "--contact-size")
-    if args.torque is None and not (spec.load.torque_Nm or 0.0) > 0:
+    if not resolve_torque_Nm(spec, args.torque, "--torque", zero=False) > 0:  # before any work
         raise ArgumentError("load.torque_Nm", spec.load.torque_Nm, "a torque above 0 N·m: FE "
                             "contact needs a load (set it, or give --torque)")
     for note in fillet_notes(spec, args.size):

@@ -30,7 +30,7 @@ def register(sub) -> None:
 def run(args) -> int:
     spec = spec_from_args(args)
     check_hob_diameter(spec, args.hob_diameter, "--hob-diameter")
-    prog = hob_program(spec, args.hob_diameter, args.tolerance)
+    prog = hob_program(spec, args.hob_diameter, tolerance_mm=args.tolerance)
     out = output_dir(args, spec)
     files = [
         write_csv_records(out / "hob_path.csv", prog.rows(),

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from ..arguments import TORQUE_RANGE_NM
+from ..arguments import GAP_TOLERANCE_MM, TORQUE_RANGE_NM
 from ..loading import PHASES, model_names, models_help
 from ..outputs import write_load
 from .common import (
@@ -33,8 +33,8 @@ def register(sub) -> None:
     p.add_argument("--angles", type=count(1, MAX_ANGLES), default=None, metavar="N",
                    help=f"rotations evenly over one turn, 1-{MAX_ANGLES} (default "
                         f"{PHASES} per tooth pitch: a turn of {PHASES} distinct poses)")
-    p.add_argument("--tolerance", type=positive_length, default=1e-7, metavar="MM",
-                   help="sweep accuracy of every gap in mm, > 0 (default 1e-7)")
+    p.add_argument("--tolerance", type=positive_length, default=GAP_TOLERANCE_MM, metavar="MM",
+                   help="sweep accuracy of every gap in mm, > 0 (default %(default)g)")
     p.add_argument("--no-plots", action="store_true", help="write only the CSV and JSON")
     p.add_argument("--quick-plots", action="store_true",
                    help="only the tooth-load and patch plots (skip the misalignment studies)")

@@ -26,7 +26,7 @@ def _keys(option: str, text: str | None) -> list[str]:
     keys = [k.strip() for k in (text or "").split(",") if k.strip()]
     unknown = sorted(set(keys) - set(STEPS))
     if unknown:
-        raise ArgumentError(f"{option} = {','.join(unknown)!r}: steps are {','.join(STEPS)}")
+        raise ArgumentError(option, ",".join(unknown), f"steps are {','.join(STEPS)}")
     return keys
 
 

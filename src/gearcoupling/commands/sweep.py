@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from ..arguments import GAP_TOLERANCE_MM
 from ..outputs import write_sweep
 from .common import (
     MAX_ANGLES,
@@ -22,8 +23,8 @@ def register(sub) -> None:
     add_misalignment_argument(p)
     p.add_argument("--angles", type=count(1, MAX_ANGLES), default=360, metavar="N",
                    help=f"rotations over one turn, 1-{MAX_ANGLES} (default 360)")
-    p.add_argument("--tolerance", type=positive_length, default=1e-7, metavar="MM",
-                   help="accuracy of every minimum in mm (default 1e-7)")
+    p.add_argument("--tolerance", type=positive_length, default=GAP_TOLERANCE_MM, metavar="MM",
+                   help="accuracy of every minimum in mm (default %(default)g)")
     p.add_argument("--no-design", action="store_true",
                    help="skip the critical and binding angles (root finding, a few seconds)")
     p.add_argument("--no-plots", action="store_true", help="write only the CSV and JSON")

@@ -24,7 +24,8 @@ class PartJob:
     @property
     def mesh(self):
         if self._mesh is None:
-            self._mesh = build_part(self.spec, self.part, self.tolerance_mm, self.teeth)
+            self._mesh = build_part(self.spec, self.part, tolerance_mm=self.tolerance_mm,
+                                    teeth=self.teeth)
         return self._mesh
 
     @property

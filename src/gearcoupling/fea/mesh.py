@@ -21,7 +21,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..arguments import choice, flag, is_real
-from ..errors import ArgumentError, GeometryError, SpecError
+from ..errors import ArgumentError, GeometryError
 from ..export import write_step
 from ..parts import SURFACE_KINDS, build_part, check_tolerance, part_solid
 from ..spec import CouplingSpec, as_spec
@@ -176,14 +176,14 @@ def mesh_part(spec: CouplingSpec, part: str, *, sector: int | None = DEFAULT_SEC
     size = check_size(spec, part, size_mm)
     body = max(3.0 * size, spec.tooth.module) if body_size_mm is None else float(body_size_mm)
     if not (math.isfinite(body) and body >= size):
-        raise SpecError("body_size_mm", body_size_mm, f"a size (mm) of at least {size:.3g}")
+        raise ArgumentError("body_size_mm", body_size_mm, f"a size (mm) of at least {size:.3g}")
     if loaded is not None and not (0 < loaded.flank_size_mm <= size <= loaded.far_size_mm
                                    <= body):
         raise ArgumentError("loaded", loaded, f"flank size <= {size:.3g} mm <= far size <= "
                             f"body size {body:.3g} mm")
     tol = check_tolerance(spec, tolerance_mm)
     t0 = time.perf_counter()
-    labelled = build_part(spec, part, tol, teeth)
+    labelled = build_part(spec, part, tolerance_mm=tol, teeth=teeth)
     shape = part_solid(spec, part, tol, teeth)
     with tempfile.TemporaryDirectory(prefix="gearcoupling-fea-") as tmp:
         step = write_step(shape, Path(tmp) / f"{part}.step", name=f"{spec.name}-{part}")

@@ -30,8 +30,7 @@ from dataclasses import asdict, dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
-from ..arguments import is_real
-from ..arguments import torque_Nm as check_torque_Nm
+from ..arguments import is_real, resolve_torque_Nm
 from ..clearance import min_backlash_rad
 from ..errors import ArgumentError, GeometryError
 from ..geometry import developed_arc, rot_z
@@ -110,11 +109,10 @@ def fe_contact(spec: CouplingSpec, *, torque_Nm: float | None = None,
         raise ArgumentError("misalignment_deg", misalignment_deg,
                             "0 only: the one-pitch cyclic reference holds for aligned shafts; "
                             "a misaligned pose is a sector (fe_contact_sector, sector_check)")
-    T = spec.load.torque_Nm if torque_Nm is None else torque_Nm
-    field = "torque_Nm" if torque_Nm is not None else "load.torque_Nm"
-    if not (is_real(T) and T > 0):  # type: ignore[operator]
-        raise ArgumentError(field, T, "a torque above 0 N·m: FE contact needs a load")
-    T = check_torque_Nm(T, field, zero=False)
+    T = resolve_torque_Nm(spec, torque_Nm, zero=False)
+    if T < 0:
+        raise ArgumentError("torque_Nm" if torque_Nm is not None else "load.torque_Nm", T,
+                            "a torque above 0 N·m: the reference loads the ccw flanks")
     size = min(check_size(spec, "hub", size_mm), check_size(spec, "sleeve", size_mm))
     c = size if contact_size_mm is None else check_size(spec, "hub", contact_size_mm)
     tol = TOLERANCE_MODULES * spec.tooth.module if tolerance_mm is None else tolerance_mm

@@ -416,7 +416,7 @@ def compute_compliance_table(spec: CouplingSpec, *, size_mm: float | None = None
                             info)
     if not np.all(table.far_field_mm_per_N > 0):
         raise ArgumentError(
-            f"size_mm = {meshes['hub'].size_mm:g}, sector = {sector}: the FE compliance is "
+            "size_mm, sector", (meshes["hub"].size_mm, sector), "the FE compliance is "
             f"below its half-space part under the {patch:g} mm load patch (a mesh too coarse "
             f"for the patch, or a sector so small that its fixed cuts hold the loaded "
             f"tooth); use size_mm at most module / 4 = {spec.tooth.module / 4:g} mm and "

@@ -120,5 +120,6 @@ def match_faces(tets: NDArray, tris: NDArray) -> NDArray[np.int64]:
     pos = np.minimum(pos, len(key) - 1)
     hit = order[pos]
     if not np.all(key[hit] == want):
-        raise ArgumentError("tris: boundary triangles do not match element faces of tets")
+        raise ArgumentError("tris", f"{len(tris)} triangles", "boundary triangles that are "
+                            "element faces of tets")
     return np.stack([hit // 4, hit % 4 + 1], axis=1)

@@ -80,8 +80,8 @@ class FeedPath:
         if not np.all(arc):
             smooth = self.smooth
             if smooth is None:
-                raise ArgumentError("FeedPath segments with kappa None need `smooth`: "
-                                    "none was given")
+                raise ArgumentError("smooth", None, "a smooth curvature: FeedPath segments "
+                                    "with kappa None need it")
             sm = ~arc
             s0 = self.breaks[k][sm]
             a = s0 + ds[sm]
@@ -227,4 +227,4 @@ def feed_path(crowning, pitch_radius: float, face_width: float) -> FeedPath:
             return _spline_path(R, np.array(crowning.table_s), np.array(crowning.table_kappa), kind)
         s, kap = drop_table_to_curvature(np.array(crowning.table_z), np.array(crowning.table_drop))
         return _spline_path(R, s, kap, kind)
-    raise ArgumentError(f"unknown crowning kind {kind!r}")
+    raise ArgumentError("kind", kind, "a known crowning kind")

@@ -9,6 +9,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import ArgumentError
+from ..numeric import TINY
 
 _SERIES_LIMIT = 1e-2  # below this |a| the series avoids the cancellation in tan(a) - a
 
@@ -57,7 +58,7 @@ def inv_inverse(y: ArrayLike, *, rtol: float = 1e-15,
         f = inv(a) - ay
         step = np.divide(f, t * t, out=np.zeros_like(a), where=t != 0)
         a = a - step
-        if np.all(np.abs(step) <= rtol * np.maximum(np.abs(a), 1e-300)):
+        if np.all(np.abs(step) <= rtol * np.maximum(np.abs(a), TINY)):
             break
     return sign * a
 

@@ -16,6 +16,7 @@ from numpy.typing import NDArray
 
 from ..arguments import real
 from ..errors import ArgumentError, GeometryError
+from ..numeric import TINY
 from .hub import HubModel, envelope, flank_depth, flank_u, hub_model, root_radius, round_point
 from .hub import tip_radius as hub_tip_radius
 from .sleeve import SleeveModel, flank_point, sleeve_model
@@ -28,7 +29,7 @@ _MAX_POINTS = 2_000_000
 def _chord_distance(p: NDArray, a: NDArray, b: NDArray) -> NDArray:
     ab = b - a
     t = np.clip(np.einsum("ij,ij->i", p - a, ab) / np.maximum(np.einsum("ij,ij->i", ab, ab),
-                                                              1e-300), 0.0, 1.0)
+                                                              TINY), 0.0, 1.0)
     return np.hypot(*(p - a - t[:, None] * ab).T)
 
 

@@ -26,6 +26,7 @@ from numpy.typing import NDArray
 from ..arguments import MAXIMA, count, is_real, real
 from ..errors import ArgumentError
 from ..geometry import HubModel, hub_model, plane_rack, tip_radius
+from ..numeric import TINY
 from ..spec import CouplingSpec, as_spec
 
 _DENSE = 65  # exact-curve samples per move when its chordal deviation is measured
@@ -155,7 +156,7 @@ class HobProgram:
                 lines.append(f"G1 X{x:.5f} Z{z:.5f}")
             else:
                 if m.centre is None:
-                    raise ArgumentError(f"arc move {m} has no centre")
+                    raise ArgumentError("moves", m, "an arc move with a centre")
                 cz, cx = m.centre
                 code = "G2" if m.clockwise else "G3"
                 lines.append(f"{code} X{x:.5f} Z{z:.5f} I{cx - m.start[1]:.5f} "
@@ -196,7 +197,7 @@ def chord_deviation(curve: NDArray[np.float64], a: NDArray[np.float64],
         Largest distance of the ``k`` points to the segment.
     """
     d = b - a
-    L2 = np.maximum(np.einsum("...i,...i->...", d, d), 1e-300)
+    L2 = np.maximum(np.einsum("...i,...i->...", d, d), TINY)
     t = np.einsum("...ki,...i->...k", curve - a[..., None, :], d) / L2[..., None]
     foot = a[..., None, :] + np.clip(t, 0.0, 1.0)[..., None] * d[..., None, :]
     return np.max(np.linalg.norm(curve - foot, axis=-1), axis=-1)
@@ -262,8 +263,8 @@ def _path_moves(m: HubModel, r_h: float, s_gen: float, tol: float):
     return moves, worst
 
 
-def hob_program(spec: CouplingSpec, hob_diameter_mm: float, tolerance_mm: float | None = None,
-                table_points: int = 201) -> HobProgram:
+def hob_program(spec: CouplingSpec, hob_diameter_mm: float, *,
+                tolerance_mm: float | None = None, table_points: int = 201) -> HobProgram:
     """The hob centre path and a two-axis (X infeed, Z feed) program for a spec's hub.
 
     Parameters

@@ -12,6 +12,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..io import atomic_path
+from ..numeric import divide
 from .report import InspectionReport
 
 # diverging blue - white - red (ColorBrewer RdBu end points), minus material blue
@@ -33,7 +34,7 @@ def deviation_colours(d_mm: NDArray[np.float64], limit_mm: float) -> NDArray[np.
     -------
     (n, 3) uint8
     """
-    t = np.clip(np.asarray(d_mm, dtype=float) / max(float(limit_mm), 1e-300), -1.0, 1.0)
+    t = np.clip(divide(np.asarray(d_mm, dtype=float), float(limit_mm)), -1.0, 1.0)
     a = np.abs(t)[:, None]
     end = np.where(t[:, None] < 0, _LOW, _HIGH)
     return np.rint(_MID + a * (end - _MID)).astype(np.uint8)

@@ -24,7 +24,8 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import ArgumentError, GearCouplingError, SpecError
+from ..errors import ArgumentError, GearCouplingError
+from ..numeric import TINY, divide
 from .surface import FlankTable, deviation
 
 
@@ -57,7 +58,7 @@ class RegistrationError(GearCouplingError):
 
 def _rodrigues(w: NDArray[np.float64]) -> NDArray[np.float64]:
     a = float(np.linalg.norm(w))
-    if a < 1e-300:
+    if a < TINY:
         return np.eye(3)
     k = w / a
     K = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
@@ -144,7 +145,7 @@ def coarse_place(points, table: FlankTable, mode: str = "auto", sample: int = 10
             raise RegistrationError("no candidate axis for the scan's tooth pattern")
         Rm, t = best[1], -best[1] @ c
     else:
-        raise SpecError("coarse", mode, "'auto' (find axis and teeth) or 'none' (keep frame)")
+        raise ArgumentError("coarse", mode, "'auto' (find axis and teeth) or 'none' (keep frame)")
     check_scale(points @ Rm.T + t, tip)
     p = sub @ Rm.T + t
     r = np.hypot(p[:, 0], p[:, 1])
@@ -220,7 +221,7 @@ def fine_register(points, table: FlankTable, Rm, t, *, fit_points: int = 20_000,
         res = d + J @ x_all
         k = max(1.345 * 1.4826 * float(np.median(np.abs(res))), 1e-7)
         weight[:] = 1.0
-        weight[dev.index[ok]] = np.minimum(1.0, k / np.maximum(np.abs(res), 1e-300))
+        weight[dev.index[ok]] = np.minimum(1.0, divide(k, np.abs(res)))
         dR = _rodrigues(x[:3])
         Rm, t = dR @ Rm, dR @ t + x[3:]
         if np.linalg.norm(x[:3]) * m.R + np.linalg.norm(x[3:]) < 1e-9 * m.R:
@@ -241,7 +242,7 @@ def register(points, table: FlankTable, *, coarse: str = "auto", fit_points: int
     scan of a few teeth) and the file's frame fits; otherwise the first error is raised.
     """
     if not (isinstance(fit_points, int) and fit_points >= 100):
-        raise SpecError("fit_points", fit_points, "an integer >= 100")
+        raise ArgumentError("fit_points", fit_points, "an integer >= 100")
     try:
         used = coarse
         Rm, t, strength = coarse_place(points, table, coarse)

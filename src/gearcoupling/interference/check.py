@@ -228,7 +228,7 @@ class InterferenceResult:
 
 def _check_method(method: str) -> str:
     if method not in METHODS:
-        raise ArgumentError(f"method = {method!r}: must be one of {METHODS}")
+        raise ArgumentError("method", method, f"one of {METHODS}")
     return method
 
 
@@ -241,8 +241,8 @@ def _check_teeth(teeth, N: int) -> int | None:
     if isinstance(teeth, int | np.integer) and not isinstance(teeth, bool) \
             and 0 <= teeth and 2 * teeth + 1 < N:
         return int(teeth)
-    raise ArgumentError(f"teeth = {teeth!r}: must be 'sweep', 'all' or a half window k from 0 "
-                     f"to {(N - 2) // 2} (sectors of 2k + 1 teeth)")
+    raise ArgumentError("teeth", teeth, f"'sweep', 'all' or a half window k from 0 to "
+                        f"{(N - 2) // 2} (sectors of 2k + 1 teeth)")
 
 
 @dataclass
@@ -405,8 +405,9 @@ def check_interference(spec: CouplingSpec, misalignment_deg: float, angles_deg: 
     if model is None:
         model = build_model(spec, tol, k)
     elif model.half_window != k or abs(model.hub.tolerance_mm - tol) > 1e-12 * tol:
-        raise ArgumentError(f"the given model ({model.label}, tolerance {model.hub.tolerance_mm}"
-                         f" mm) does not match teeth = {teeth!r}, tolerance_mm = {tol}")
+        raise ArgumentError("model", f"{model.label}, tolerance {model.hub.tolerance_mm} mm",
+                            f"does not match teeth = {teeth!r}, tolerance_mm = {tol}: give "
+                            "a model built for them")
     if k is None:  # model.full
         every = frozenset(range(N))
         sides = (every, every) if backlash else (frozenset(), frozenset())
@@ -567,7 +568,8 @@ def posed_meshes(result: InterferenceResult, index: int) -> dict[str, Any]:
 
     model = result.prepared
     if model is None:
-        raise ArgumentError("the result holds no prepared model to pose")
+        raise ArgumentError("result", "no prepared model", "a result of check_interference "
+                            "that holds its prepared model to pose")
     N = result.teeth
     mis = math.radians(result.misalignment_deg)
     p = math.radians(float(result.angles_deg[index]))

@@ -81,8 +81,8 @@ def build_model(spec: CouplingSpec, tolerance_mm: float, half_window: int | None
     if half_window is not None:
         k = int(half_window)
         if k != half_window or k < 0 or 2 * k + 1 >= N:
-            raise ArgumentError(f"half_window = {half_window!r}: must be a whole number from 0 "
-                             f"to {(N - 2) // 2} for {N} teeth (or None for the full parts)")
+            raise ArgumentError("half_window", half_window, f"a whole number from 0 to "
+                                f"{(N - 2) // 2} for {N} teeth (or None for the full parts)")
         teeth = [t % N for t in range(-k, k + 1)]
     else:
         k, teeth = None, None

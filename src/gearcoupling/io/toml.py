@@ -97,15 +97,17 @@ class Table:
     Each read pops its key; :meth:`done` refuses what is left. Lengths are multiplied by
     ``scale`` (the file's unit in mm). With the file's ``source`` and ``text`` an error is
     named ``file:line key``, else by the dotted key alone. ``defaulted`` collects the
-    lengths that took their default (shared with sub-tables).
+    lengths that took their default and ``given`` the lengths and arrays as the file gave
+    them with their scale, ``{key: (value, scale)}`` (both shared with sub-tables).
     """
 
     def __init__(self, data: Any, where: str = "", *, scale: float = 1.0,
                  source: str | None = None, text: str | None = None, line: int = 0,
-                 defaulted: set[str] | None = None):
+                 defaulted: set[str] | None = None, given: dict[str, Any] | None = None):
         self.where, self.scale, self.source, self.text, self.line = (where, scale, source,
                                                                      text, line)
         self.defaulted = set() if defaulted is None else defaulted
+        self.given = {} if given is None else given
         if not isinstance(data, dict):
             self.fail(where or "file", data, "must be a TOML table")
         self.data = dict(data)
@@ -131,7 +133,7 @@ class Table:
         data = self.data.pop(key, {} if default is None else default)
         line = line_of(self.text, f"[{self.name(key)}]", self.line) if self.text else 0
         return Table(data, self.name(key), scale=self.scale, source=self.source,
-                     text=self.text, line=line, defaulted=self.defaulted)
+                     text=self.text, line=line, defaulted=self.defaulted, given=self.given)
 
     def has(self, key: str) -> bool:
         return key in self.data
@@ -178,7 +180,9 @@ class Table:
                 self.fail(self.name(key), None, "is required (a length)")
             self.defaulted.add(self.name(key))
             return float(default)  # type: ignore[arg-type]
-        return self._number(key, self.data.pop(key)) * self.scale
+        value = self._number(key, self.data.pop(key))
+        self.given[self.name(key)] = (value, self.scale)
+        return value * self.scale
 
     def angle(self, key: str, default_deg: float | None = None) -> float:
         """An angle given in degrees, in radians."""
@@ -203,7 +207,9 @@ class Table:
         value = self.data.pop(key, [])
         if not isinstance(value, list | tuple):
             self.fail(self.name(key), value, "must be an array of numbers")
-        return tuple(self._number(key, v) * scale for v in value)
+        given = tuple(self._number(key, v) for v in value)
+        self.given[self.name(key)] = (given, scale)
+        return tuple(v * scale for v in given)
 
     def pair(self, si: str, other: str, factor: float) -> float | None:
         """The value of a pair of keys that say the same in SI and in other units (``other``

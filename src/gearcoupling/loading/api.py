@@ -2,12 +2,10 @@
 
 from __future__ import annotations
 
-from typing import Any
-
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..arguments import keywords
+from ..arguments import GAP_TOLERANCE_MM, SWEEP_GRID
 from ..clearance import SweepResult, sweep
 from ..errors import ArgumentError
 from ..spec import CouplingSpec, as_spec
@@ -15,14 +13,13 @@ from .inputs import LoadProblem, load_problem, resolve_torque_Nm
 from .models.registry import ModelOutput, Progress, resolve_model, solve
 from .result import LoadResult
 
-#: the keywords a call passes on to :func:`gearcoupling.sweep`
-SWEEP_ACCURACY = ("tolerance_mm", "grid", "periodic")
-
 
 def load(spec: CouplingSpec, misalignment_deg: float, angles_deg: ArrayLike, *,
          torque_Nm: float | None = None, model: str | None = None,
          gap_offset_rad: ArrayLike | None = None, progress: Progress = None,
-         pressure_grid: tuple[int, int] | None = None, **accuracy: Any) -> LoadResult:
+         pressure_grid: tuple[int, int] | None = None,
+         tolerance_mm: float = GAP_TOLERANCE_MM, grid: int = SWEEP_GRID,
+         periodic: bool = True) -> LoadResult:
     """Load sharing of every tooth over rotations ``angles_deg`` at a misalignment.
 
     Parameters
@@ -46,8 +43,8 @@ def load(spec: CouplingSpec, misalignment_deg: float, angles_deg: ArrayLike, *,
         The surface model's cells along the face and across the depth of each loaded
         tooth (default 48 x 32; ``benchmarks/bench_surface.py`` gives what a grid costs
         and buys).
-    **accuracy
-        Passed to :func:`gearcoupling.sweep` (``tolerance_mm``, ``grid``).
+    tolerance_mm, grid, periodic
+        The sweep's accuracy (:func:`gearcoupling.sweep`).
 
     Examples
     --------
@@ -66,11 +63,11 @@ def load(spec: CouplingSpec, misalignment_deg: float, angles_deg: ArrayLike, *,
     True
     """
     spec = as_spec(spec)
-    keywords(accuracy, SWEEP_ACCURACY, "load")
-    resolve_torque_Nm(spec, torque_Nm)
+    torque = resolve_torque_Nm(spec, torque_Nm)  # once, before the sweep
     resolve_model(spec, model)
-    sw = sweep(spec, misalignment_deg, angles_deg, **accuracy)
-    return load_from_sweep(sw, torque_Nm=torque_Nm, model=model, gap_offset_rad=gap_offset_rad,
+    sw = sweep(spec, misalignment_deg, angles_deg, tolerance_mm=tolerance_mm, grid=grid,
+               periodic=periodic)
+    return load_from_sweep(sw, torque_Nm=torque, model=model, gap_offset_rad=gap_offset_rad,
                            progress=progress, pressure_grid=pressure_grid)
 
 

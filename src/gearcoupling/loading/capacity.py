@@ -26,42 +26,20 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.optimize import brentq
 
-from ..arguments import MAXIMA, angle_list, choice, keywords
+from ..arguments import GAP_TOLERANCE_MM, MAXIMA, SWEEP_GRID, angle_list, choice
 from ..clearance import SweepResult, sweep
 from ..errors import ArgumentError
 from ..geometry import FLANKS
 from ..io import write_csv_rows
 from ..spec import MISALIGNMENT_RANGE_DEG, CouplingSpec, as_spec
 from ..tables import dataframe
-from .api import SWEEP_ACCURACY, load_from_sweep
+from .api import load_from_sweep
 from .inputs import LoadProblem, load_problem
 from .limits import CRITERIA, limit_loads
 from .models.registry import PoseSearch, load_model, resolve_model
 
-RTOL = 1e-7  # relative accuracy of a root-found torque (the closed forms are exact)
 
-
-def _root_torque(ratio, T0: float, *, step: float = 8.0, rtol: float = RTOL) -> float:
-    """Smallest torque (N·mm) with ``ratio(T) = 1`` for increasing ``ratio``, bracketed from
-    ``T0`` by factors ``step``; inf if none."""
-    lo, hi = T0, T0
-    r_hi = ratio(hi)
-    while r_hi < 1.0:
-        lo, hi = hi, hi * step
-        if hi > 1e18:
-            return math.inf
-        r_hi = ratio(hi)
-    r_lo = ratio(lo)
-    while r_lo >= 1.0:
-        hi, lo = lo, lo / step
-        if lo < 1e-12:
-            return 0.0
-        r_lo = ratio(lo)
-    f = lambda x: math.log(max(ratio(math.exp(x)), 1e-300))  # noqa: E731
-    # on log T an absolute tolerance is a relative one on T (brentq's rtol would scale by ln T)
-    return math.exp(brentq(f, math.log(lo), math.log(hi), xtol=rtol, rtol=1e-15))
 
 
 @dataclass(frozen=True, eq=False)
@@ -125,8 +103,8 @@ def _flank_problem(sweep_result: SweepResult, loaded_flank: str,
                    pressure_grid: tuple[int, int] | None = None) -> LoadProblem:
     """The load problem of ``loaded_flank`` (a unit torque of that sign picks the flank)."""
     if loaded_flank not in FLANKS:
-        raise ArgumentError(f"loaded_flank = {loaded_flank!r}: must be 'ccw' (positive torque) "
-                            "or 'cw' (negative torque)")
+        raise ArgumentError("loaded_flank", loaded_flank, "'ccw' (positive torque) or 'cw' "
+                            "(negative torque)")
     return load_problem(sweep_result, 1.0 if loaded_flank == "ccw" else -1.0, gap_offset_rad,
                         pressure_grid)
 
@@ -207,7 +185,9 @@ def default_angles(spec: CouplingSpec, gap_offset_rad, n: int = 25) -> NDArray:
 def capacity(spec: CouplingSpec, misalignment_deg: float, *, model: str | None = None,
              loaded_flank: str = "ccw", angles_deg: ArrayLike | None = None,
              gap_offset_rad: ArrayLike | None = None,
-             pressure_grid: tuple[int, int] | None = None, **accuracy: Any) -> Capacity:
+             pressure_grid: tuple[int, int] | None = None,
+             tolerance_mm: float = GAP_TOLERANCE_MM, grid: int = SWEEP_GRID,
+             periodic: bool = True) -> Capacity:
     """Torque capacity at a misalignment, per criterion, with the governing one and q.
 
     Parameters
@@ -228,20 +208,20 @@ def capacity(spec: CouplingSpec, misalignment_deg: float, *, model: str | None =
         The surface model's cells per loaded tooth; default 24 x 16 for the load and
         bending criteria and 48 x 32 for the contact pressure (:data:`LOAD_GRID`,
         :data:`PRESSURE_GRID`).
-    **accuracy
-        Passed to the sweep (``tolerance_mm``, ``grid``).
+    tolerance_mm, grid, periodic
+        The sweep's accuracy (:func:`gearcoupling.sweep`).
 
     Returns
     -------
     Capacity
     """
     spec = as_spec(spec)
-    keywords(accuracy, SWEEP_ACCURACY, "capacity")
     choice(loaded_flank, "loaded_flank", FLANKS)
     m = load_model(resolve_model(spec, model))
     if angles_deg is None:
         angles_deg = default_angles(spec, gap_offset_rad, m.rotations)
-    sw = sweep(spec, misalignment_deg, angles_deg, **accuracy)
+    sw = sweep(spec, misalignment_deg, angles_deg, tolerance_mm=tolerance_mm, grid=grid,
+               periodic=periodic)
     return capacity_from_sweep(sw, model=model, gap_offset_rad=gap_offset_rad,
                                loaded_flank=loaded_flank, pressure_grid=pressure_grid)
 
@@ -249,12 +229,12 @@ def capacity(spec: CouplingSpec, misalignment_deg: float, *, model: str | None =
 def capacity_curve(spec: CouplingSpec, misalignments_deg: ArrayLike | None = None, *,
                    model: str | None = None, loaded_flank: str = "ccw",
                    angles_deg: ArrayLike | None = None, gap_offset_rad: ArrayLike | None = None,
-                   progress=None, **accuracy: Any) -> CapacityCurve:
+                   progress=None, tolerance_mm: float = GAP_TOLERANCE_MM,
+                   grid: int = SWEEP_GRID, periodic: bool = True) -> CapacityCurve:
     """:func:`capacity` at each misalignment (default 25 from 0 to the design angle, at
     least 0.5°; at most ``MAXIMA["misalignments"]``); ``progress(done, total)`` is called
-    after each."""
+    after each; the other arguments as :func:`capacity`."""
     spec = as_spec(spec)
-    keywords(accuracy, SWEEP_ACCURACY, "capacity_curve")
     if misalignments_deg is None:
         top = max(math.degrees(spec.design_misalignment), 0.5)
         misalignments_deg = np.linspace(0.0, top, 25)
@@ -264,7 +244,8 @@ def capacity_curve(spec: CouplingSpec, misalignments_deg: ArrayLike | None = Non
     out = CapacityCurve()
     for i, m in enumerate(mis):
         out.append(capacity(spec, float(m), model=model, loaded_flank=loaded_flank,
-                            angles_deg=angles_deg, gap_offset_rad=gap_offset_rad, **accuracy))
+                            angles_deg=angles_deg, gap_offset_rad=gap_offset_rad,
+                            tolerance_mm=tolerance_mm, grid=grid, periodic=periodic))
         if progress is not None:
             progress(i + 1, mis.size)
     return out

@@ -43,6 +43,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..geometry import developed_arc, form_radius, hub_flank_model, hub_model, tip_radius
+from ..numeric import TINY, divide
 from ..spec import CouplingSpec
 from .inputs import nominal_root_stress_MPa
 from .kernels.cantilever import CantileverCompliance
@@ -143,7 +144,7 @@ class ContactModel:
         A_f = np.maximum(A_f, 1e-9)
         A_p = np.minimum(A_p, A_f)  # A_p <= A_f: profile is the long axis
         L = np.maximum(developed_arc(hi, self.r_b) - developed_arc(lo, self.r_b), 1e-6)
-        ratio = np.where(A_p > 0, A_f / np.maximum(A_p, 1e-300), np.inf)  # R_y / R_x >= 1
+        ratio = np.where(A_p > 0, divide(A_f, A_p), np.inf)  # R_y / R_x >= 1
         with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
             k = ratio ** (2 / math.pi)
             eps = 1 + (math.pi / 2 - 1) / ratio
@@ -172,7 +173,7 @@ class ContactModel:
         L = g["L"]
         b = np.sqrt(4 * W / (g["A_f"] * math.pi * L * self.E_star))
         with np.errstate(divide="ignore", invalid="ignore"):
-            p0 = np.where(W > 0, 2 * W / (math.pi * np.maximum(b, 1e-300) * L), 0.0)
+            p0 = np.where(W > 0, 2 * W / (math.pi * np.maximum(b, TINY) * L), 0.0)
         return b, p0
 
     def _half_thickness(self, r):
@@ -205,7 +206,7 @@ class ContactModel:
     @staticmethod
     def _line_approach(W, law):
         with np.errstate(divide="ignore"):
-            half_ln = 0.5 * np.log(np.maximum(W, 1e-300))
+            half_ln = 0.5 * np.log(np.maximum(W, TINY))
         d = np.zeros_like(W)
         s = np.zeros_like(W)
         for kap, lam in zip(law["kap"], law["lam"], strict=True):
@@ -222,7 +223,7 @@ class ContactModel:
         hertz = W < law["w_star"]
         with np.errstate(divide="ignore"):
             dh = law["a_h"] * np.cbrt(W) ** 2  # not cbrt(W * W): no overflow at huge loads
-            sh = np.where(W > 0, (2 / 3) * law["a_h"] / np.cbrt(np.maximum(W, 1e-300)), np.inf)
+            sh = np.where(W > 0, (2 / 3) * law["a_h"] / np.cbrt(np.maximum(W, TINY)), np.inf)
         dl, sl = self._line_approach(W, law)
         delta = np.where(hertz, dh, law["d_star"] + dl - law["l_star"])
         slope = np.where(hertz, sh, sl)
@@ -240,7 +241,7 @@ class ContactModel:
 
     def pressure_limit_load(self, p_MPa: float, g: dict) -> NDArray:
         """Normal load (N) at which the interior pressure first reaches ``p_MPa``."""
-        ws = np.maximum(g["w_star"], 1e-300)
+        ws = np.maximum(g["w_star"], TINY)
         _, _, p_h = self._hertz(ws, g)
         beta = np.sqrt(4 / (g["A_f"] * math.pi * g["L"] * self.E_star))
         line = 2 / (math.pi * beta * g["L"])  # p0 = line sqrt(W)
@@ -248,7 +249,7 @@ class ContactModel:
 
     def half_length_limit_load(self, half_mm: NDArray, g: dict) -> NDArray:
         """Normal load (N) at which the patch half-length along the face reaches ``half_mm``."""
-        ws = np.maximum(g["w_star"], 1e-300)
+        ws = np.maximum(g["w_star"], TINY)
         _, b_h, _ = self._hertz(ws, g)
         beta = np.sqrt(4 / (g["A_f"] * math.pi * g["L"] * self.E_star))
         return self._first_load(np.asarray(half_mm, dtype=float), g, b_h, beta, 0.5)

@@ -12,22 +12,12 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..arguments import torque_Nm as check_torque_Nm
+from ..arguments import resolve_torque_Nm
 from ..clearance import SweepResult
-from ..errors import ArgumentError, SpecError
+from ..errors import ArgumentError
 from ..geometry import FLANKS
 from ..spec import CouplingSpec
 from .springs import cantilever, tooth_compliance
-
-
-def resolve_torque_Nm(spec: CouplingSpec, torque_Nm: float | None) -> float:
-    """The torque to apply: the argument, else ``[load] torque_Nm``; finite or SpecError."""
-    if torque_Nm is not None:
-        return check_torque_Nm(torque_Nm)  # one range for every entry point
-    if spec.load.torque_Nm is None:
-        raise SpecError("load.torque_Nm", None, "no torque: give [load] torque_Nm (or "
-                        "torque_lbf_in) in the spec or torque_Nm= / --torque")
-    return spec.load.torque_Nm  # checked by LoadSpec against the same range
 
 
 def loaded_gaps(sweep_result: SweepResult, flank: int,
@@ -41,8 +31,8 @@ def loaded_gaps(sweep_result: SweepResult, flank: int,
     if off.shape == (2, N):
         off = off[flank]
     if off.shape != (N,) or not np.all(np.isfinite(off)):
-        raise ArgumentError(f"gap_offset_rad has shape {off.shape}: must be finite, shaped "
-                            f"({N},) or (2, {N})")
+        raise ArgumentError("gap_offset_rad", f"shape {off.shape}", f"finite, shaped ({N},) "
+                            f"or (2, {N})")
     return g + off[:, None]
 
 
@@ -118,8 +108,8 @@ def load_problem(sweep_result: SweepResult, torque_Nm: float | None = None,
                  pressure_grid: tuple[int, int] | None = None) -> LoadProblem:
     """The :class:`LoadProblem` of a sweep at a torque (default the spec's ``[load]`` torque)."""
     if not isinstance(sweep_result, SweepResult):
-        raise ArgumentError(f"sweep_result is a {type(sweep_result).__name__}: must be the "
-                            "SweepResult of gearcoupling.sweep")
+        raise ArgumentError("sweep_result", type(sweep_result).__name__, "the SweepResult "
+                            "of gearcoupling.sweep")
     spec = sweep_result.spec
     T = resolve_torque_Nm(spec, torque_Nm)
     flank = 1 if T >= 0 else 0

@@ -95,10 +95,10 @@ def patch_maps(res, rotation: int = 0, teeth=None, *, count: int = 6,
     """
     M = res.angles_deg.size
     if not (isinstance(rotation, int | np.integer) and 0 <= rotation < M):
-        raise ArgumentError(f"rotation = {rotation!r}: must index the {M} rotations")
+        raise ArgumentError("rotation", rotation, f"an index of the {M} rotations")
     chosen = most_loaded(res, rotation, count) if teeth is None else np.asarray(teeth, int)
     if chosen.size == 0 or np.any((chosen < 0) | (chosen >= res.teeth)):
-        raise ArgumentError(f"teeth = {teeth!r}: must be tooth numbers 0-{res.teeth - 1}")
+        raise ArgumentError("teeth", teeth, f"tooth numbers 0-{res.teeth - 1}")
     if load_model(res.model).pressure_grid and abs(res.torque_Nm) > 0:
         return _surface_maps(res, rotation, chosen)
     return _analytic_maps(res, rotation, chosen, grid)
@@ -182,6 +182,6 @@ def patch_extent(res, rotation: int = 0) -> tuple[NDArray, NDArray]:
     lo = np.where(loaded, np.clip(zc - half, -hf, hf), zc)
     hi = np.where(loaded, np.clip(zc + half, -hf, hf), zc)
     if not np.all(np.isfinite(lo) & np.isfinite(hi)):  # pragma: no cover - LoadResult is finite
-        raise ArgumentError("patch extent is not finite")
+        raise ArgumentError("patch extent", "not finite", "a finite patch")
     return lo, hi
 

@@ -71,7 +71,7 @@ def plot_loads_over_turn(res, ax=None):
     else:
         axes = list(np.ravel(np.asarray(ax, dtype=object)))
         if len(axes) != 3:
-            raise ArgumentError(f"ax: {len(axes)} Axes given, 3 needed")
+            raise ArgumentError("ax", f"{len(axes)} Axes", "3 Axes")
         fig = axes[0].figure
     order = np.argsort(t["psi_deg"])
     psi = t["psi_deg"][order]
@@ -250,8 +250,8 @@ def plot_patches(res, rotation: int = 0, ax=None, *, count: int = 6):
     else:
         axes = list(np.ravel(np.asarray(ax, dtype=object)))
         if len(axes) != len(maps) + 1:
-            raise ArgumentError(f"ax: {len(axes)} Axes given, {len(maps) + 1} needed "
-                                "(one per map, then the overview)")
+            raise ArgumentError("ax", f"{len(axes)} Axes", f"{len(maps) + 1} Axes (one per "
+                                "map, then the overview)")
         panels, overview = axes[:-1], axes[-1]
         fig = overview.figure
     j = rotation

@@ -9,6 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..arguments import GAP_TOLERANCE_MM
 from ..clearance import SweepResult, sweep
 from ..geometry import renzo_z0_mm
 from ..io import write_json
@@ -87,7 +88,8 @@ def load_studies(spec: CouplingSpec, torque_Nm: float, model: str | None, out: P
 def write_load(spec: CouplingSpec, out: Path, misalignment_deg: float,
                angles: int | None = None, *,
                torque_Nm: float | None = None, model: str | None = None,
-               tolerance_mm: float = 1e-7, plots: bool = True, with_studies: bool = True,
+               tolerance_mm: float = GAP_TOLERANCE_MM, plots: bool = True,
+               with_studies: bool = True,
                swept: SweepResult | None = None,
                progress: Callable[[int, int], None] | None = None) -> list[Path]:
     """The loaded analysis over ``angles`` rotations of a turn (default
@@ -95,16 +97,17 @@ def write_load(spec: CouplingSpec, out: Path, misalignment_deg: float,
     ``load.csv``, ``load_summary.json`` and plots. ``swept``: a sweep of this spec at these
     rotations and misalignment to reuse (else one is made); ``progress(done, total)`` as
     the surface model and the studies go."""
+    torque = resolve_torque_Nm(spec, torque_Nm)  # once, before any work
     if swept is None:
         a = turn_phases(spec) if angles is None else turn_angles(angles)
         swept = sweep(spec, misalignment_deg, a, tolerance_mm=tolerance_mm)
-    res = load_from_sweep(swept, torque_Nm=torque_Nm, model=model, progress=progress)
+    res = load_from_sweep(swept, torque_Nm=torque, model=model, progress=progress)
     summary = res.summary()
     paths = [res.write_csv(out / "load.csv"), write_json(out / "load_summary.json", summary)]
     if plots:
         paths.append(save_figure(plot_tooth_load(res), out / "load_tooth_load.png"))
         paths.append(save_figure(plot_patches(res), out / "load_patches.png"))
         if with_studies:
-            paths += load_studies(spec, resolve_torque_Nm(spec, torque_Nm), model, out,
+            paths += load_studies(spec, torque, model, out,
                                   progress=progress)
     return paths

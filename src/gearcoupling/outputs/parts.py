@@ -36,7 +36,7 @@ def write_parts(spec: CouplingSpec, out: Path, parts: Sequence[str] = PART_NAMES
     report: dict[str, Any] = {"spec": spec.name, "tolerance_mm": tol,
                               "teeth": None if teeth is None else list(teeth), "parts": {}}
     for part in parts:
-        mesh = build_part(spec, part, tol, teeth)
+        mesh = build_part(spec, part, tolerance_mm=tol, teeth=teeth)
         check = check_part(mesh)
         done += 1
         if progress:

@@ -112,7 +112,7 @@ def _chosen(only: Iterable[str] | None, skip: Iterable[str]) -> list[str]:
     skip_set = _names(skip, "skip")
     unknown = (only_set | skip_set) - set(STEPS)
     if unknown:
-        raise ArgumentError(f"steps {', '.join(sorted(unknown))} unknown: the steps are "
+        raise ArgumentError("steps", ", ".join(sorted(unknown)), "unknown: the steps are "
                             f"{', '.join(STEPS)}")
     return [k for k in STEPS if k in only_set - skip_set]
 

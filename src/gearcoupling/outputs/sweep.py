@@ -6,6 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..arguments import GAP_TOLERANCE_MM
 from ..clearance import SweepResult, design_quantities, plot_all, sweep
 from ..errors import ArgumentError
 from ..io import plain, write_json
@@ -15,12 +16,12 @@ from ..spec import CouplingSpec
 def turn_angles(angles: int) -> np.ndarray:
     """``angles`` rotations evenly over a turn (degrees); at least one."""
     if angles < 1:
-        raise ArgumentError(f"angles = {angles}: must be at least 1")
+        raise ArgumentError("angles", angles, "at least 1")
     return np.arange(angles) * 360.0 / angles
 
 
 def write_sweep(spec: CouplingSpec, out: Path, misalignment_deg: float, angles: int = 360, *,
-                tolerance_mm: float = 1e-7, design: bool = True, plots: bool = True,
+                tolerance_mm: float = GAP_TOLERANCE_MM, design: bool = True, plots: bool = True,
                 studies: bool = True) -> tuple[SweepResult, list[Path]]:
     """Sweep ``angles`` rotations over a turn and write ``sweep.csv``,
     ``sweep_summary.json`` (with the design quantities) and the plots; returns the sweep

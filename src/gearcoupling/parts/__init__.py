@@ -54,7 +54,7 @@ def check_tolerance(spec: CouplingSpec, tolerance_mm) -> float:
     return tol
 
 
-def build_part(spec: CouplingSpec, part: str, tolerance_mm: float | None = None,
+def build_part(spec: CouplingSpec, part: str, *, tolerance_mm: float | None = None,
                teeth=None) -> trimesh.Trimesh:
     """Closed triangle mesh of the hub or the sleeve within a chordal tolerance.
 

@@ -18,6 +18,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import ArgumentError, GeometryError
+from ..numeric import TINY
 
 SURFACE_KINDS = ("flank_cw", "flank_ccw", "fillet_cw", "fillet_ccw", "root", "tip",
                  "chamfer_cw", "chamfer_ccw", "end", "body", "bore", "side")
@@ -55,8 +56,8 @@ def tooth_runs(teeth: int, selection) -> list[Run]:
         raise ArgumentError("teeth", str(picked)[:60], allowed)
     sel = sorted({int(k) for k in picked})
     if not sel or sel[0] < 0 or sel[-1] >= teeth:
-        raise ArgumentError(f"teeth = {list(selection)!r}: must be a non-empty selection of tooth "
-                         f"indices from 0 to {teeth - 1}")
+        raise ArgumentError("teeth", list(selection), "a non-empty selection of tooth "
+                            f"indices from 0 to {teeth - 1}")
     if len(sel) == teeth:
         return [Run(0, teeth, teeth)]
     present = set(sel)
@@ -106,12 +107,12 @@ def _shape_cost(p: NDArray, q: NDArray, r: NDArray) -> NDArray:
     for a, b, c in ((p, q, r), (q, r, p), (r, p, q)):
         u, w = b - a, c - a
         cos = np.sum(u * w, -1) / np.maximum(np.linalg.norm(u, axis=-1)
-                                             * np.linalg.norm(w, axis=-1), 1e-300)
+                                             * np.linalg.norm(w, axis=-1), TINY)
         worst = np.maximum(worst, -cos)
     scale = np.maximum(np.sum((q - p) ** 2, -1), np.sum((r - p) ** 2, -1))
     good = area2 > 1e-12 * scale
     with np.errstate(divide="ignore"):
-        cost = 1.0 / np.maximum(1.0 - worst, 1e-300) ** 2
+        cost = 1.0 / np.maximum(1.0 - worst, TINY) ** 2
     return np.where(good, cost, np.inf)
 
 

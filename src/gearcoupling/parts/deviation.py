@@ -27,6 +27,7 @@ from ..geometry import (
     sleeve_model,
     tip_radius,
 )
+from ..numeric import TINY, divide
 from ..spec import CouplingSpec
 from .grid import tip_corner
 
@@ -45,16 +46,16 @@ def point_triangle_distance(p: NDArray, a: NDArray, b: NDArray, c: NDArray) -> N
     # barycentric coordinates of the projection
     d00, d01, d11 = _dot(ab, ab), _dot(ab, ac), _dot(ac, ac)
     d20, d21 = _dot(ap, ab), _dot(ap, ac)
-    den = np.maximum(d00 * d11 - d01 * d01, 1e-300)
+    den = np.maximum(d00 * d11 - d01 * d01, TINY)
     v = (d11 * d20 - d01 * d21) / den
     w = (d00 * d21 - d01 * d20) / den
     inside = (v >= 0) & (w >= 0) & (v + w <= 1) & (nn > 0)
-    plane = np.abs(_dot(ap, n)) / np.sqrt(np.maximum(nn, 1e-300))
+    plane = np.abs(_dot(ap, n)) / np.sqrt(np.maximum(nn, TINY))
 
     def seg(p0, p1):
         d = p1 - p0
         q = p - p0
-        t = np.clip(_dot(q, d) / np.maximum(_dot(d, d), 1e-300), 0, 1)
+        t = np.clip(divide(_dot(q, d), _dot(d, d)), 0, 1)
         r = q - t[..., None] * d
         return np.sqrt(_dot(r, r))
 

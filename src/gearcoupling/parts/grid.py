@@ -34,6 +34,7 @@ from ..geometry import (
     sleeve_space_outline,
     tip_radius,
 )
+from ..numeric import TINY
 
 SPLIT = 0.45  # share of the tolerance given to each of the two grid directions
 MAX_PARAMS = 200_000  # parameter values per direction before giving up
@@ -55,7 +56,7 @@ def _chord_error(f0: NDArray, f1: NDArray, probe: NDArray) -> NDArray:
     """Distance of ``probe`` points from the chords ``f0 -> f1`` (all ``(..., d)``)."""
     ab = f1 - f0
     ap = probe - f0
-    ll = np.maximum(np.sum(ab * ab, axis=-1), 1e-300)
+    ll = np.maximum(np.sum(ab * ab, axis=-1), TINY)
     t = np.clip(np.sum(ap * ab, axis=-1) / ll, 0.0, 1.0)
     return np.linalg.norm(ap - t[..., None] * ab, axis=-1)
 

@@ -11,6 +11,7 @@ from itertools import pairwise
 import numpy as np
 from numpy.typing import NDArray
 
+from ..numeric import TINY
 from ..spec import CouplingSpec
 
 Z_SHARE = 0.45
@@ -66,7 +67,7 @@ def _polyline_distance(points: NDArray, line: NDArray) -> NDArray:
     """Distance ``(k,)`` from 2-D ``points (k, 2)`` to the polyline ``line (q, 2)``."""
     a, d = line[:-1], np.diff(line, axis=0)
     rel = points[:, None, :] - a[None]
-    dd = np.maximum(np.einsum("qi,qi->q", d, d), 1e-300)
+    dd = np.maximum(np.einsum("qi,qi->q", d, d), TINY)
     t = np.clip(np.einsum("kqi,qi->kq", rel, d) / dd, 0.0, 1.0)
     gap = rel - t[..., None] * d[None]
     return np.sqrt(np.einsum("kqi,kqi->kq", gap, gap).min(axis=1))

@@ -15,6 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ArgumentError
+from ..numeric import TINY
 
 MAX_ANGLE_DEG = 178.0
 
@@ -66,7 +67,7 @@ def triangle_angles(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
         a = p[:, (k + 1) % 3] - p[:, k]
         b = p[:, (k + 2) % 3] - p[:, k]
         cos = np.sum(a * b, 1) / np.maximum(np.linalg.norm(a, axis=1) * np.linalg.norm(b, axis=1),
-                                              1e-300)
+                                              TINY)
         out[:, k] = np.degrees(np.arccos(np.clip(cos, -1.0, 1.0)))
     return out
 

@@ -42,7 +42,7 @@ def comparison_range(specs: Sequence[CouplingSpec], count: int = DEFAULT_COUNT,
                 *(c for c in critical.values() if c is not None)]
         top_deg = min(max(tops), MISALIGNMENT_RANGE_DEG[1])
     if not (isinstance(count, int) and count >= 2):
-        raise ArgumentError(f"count = {count!r}: must be a whole number >= 2")
+        raise ArgumentError("count", count, "a whole number >= 2")
     return np.linspace(0.0, float(top_deg), count), critical
 
 

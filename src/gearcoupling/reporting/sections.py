@@ -51,7 +51,7 @@ from ..loading import (
     write_capacity_csv,
 )
 from ..plots import crown_profile, new_figure, sections_figure
-from ..spec import CouplingSpec
+from ..spec import MISALIGNMENT_RANGE_DEG, CouplingSpec, check_misalignment_deg
 from ..viewer import ViewSettings, write_html
 from .capacity import compare_capacity, comparison_range
 from .document import Figure, Note, Row, Section, Table, Viewer, png_bytes
@@ -237,7 +237,8 @@ def design_angles(ctx: Context) -> Section:
                             f"({dq['design_rotations_per_pitch']} rotations per tooth pitch); "
                             "– where the coupling does not reach it by 6° or the crown is "
                             "straight."))
-    mis = np.linspace(0.0, min(6.0, max(2.0 * (bind or 3.0), ctx.misalignment_deg * 1.5)), 25)
+    top = max(2.0 * (bind or 3.0), ctx.misalignment_deg * 1.5)
+    mis = np.linspace(0.0, min(MISALIGNMENT_RANGE_DEG[1], top), 25)
     curve = backlash_curve(spec, mis)
     name = ctx.table_file("backlash_vs_misalignment.csv",
                           ("misalignment_deg", "min_backlash_mm"), zip(mis, curve, strict=True))
@@ -516,8 +517,7 @@ def view3d(ctx: Context) -> Section:
 def resolve(spec: CouplingSpec, s: ReportSettings) -> tuple[float, float | None, str]:
     """The misalignment (deg), torque (N·m or None) and model a report uses."""
     mis = spec.design_misalignment_deg if s.misalignment_deg is None else s.misalignment_deg
-    if not (isinstance(mis, int | float) and math.isfinite(mis) and 0.0 <= mis <= 6.0):
-        raise ArgumentError("misalignment_deg", mis, "a misalignment from 0 to 6 degrees")
+    mis = check_misalignment_deg(mis, "misalignment_deg", ArgumentError)
     torque = None
     if s.torque_Nm is not None or spec.load.torque_Nm is not None:
         torque = resolve_torque_Nm(spec, s.torque_Nm)

@@ -7,7 +7,7 @@ import os
 from dataclasses import asdict, dataclass, field
 from typing import Any
 
-from ..arguments import choice, count, flag, positive, real, torque_Nm
+from ..arguments import GAP_TOLERANCE_MM, choice, count, flag, positive, real, torque_Nm
 from ..errors import ArgumentError
 from ..io import as_path
 from ..loading import model_names
@@ -61,7 +61,7 @@ class ReportSettings:
     torque_Nm: float | None = None
     model: str | None = None
     angles: int = 180
-    tolerance_mm: float = 1e-7
+    tolerance_mm: float = GAP_TOLERANCE_MM
     surface_angles: int = 6
     capacity_count: int = 7
     check_angles: int = 36

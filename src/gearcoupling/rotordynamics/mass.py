@@ -100,7 +100,7 @@ def mass_properties(spec: CouplingSpec, tolerance_mm: float | None = None
         A part whose material has no density (``[material] density_kg_per_m3``).
     """
     rho = {p: getattr(spec.material, p).mass_density_kg_per_m3() for p in ("hub", "sleeve")}
-    parts = [mesh_mass_properties(build_part(spec, p, tolerance_mm), rho[p], p)
+    parts = [mesh_mass_properties(build_part(spec, p, tolerance_mm=tolerance_mm), rho[p], p)
              for p in ("hub", "sleeve")]
     return {"hub": parts[0], "sleeve": parts[1], "coupling": combine(parts)}
 

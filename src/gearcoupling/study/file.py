@@ -50,6 +50,7 @@ from typing import Any
 
 from ..arguments import (
     ANGLE_TOLERANCE_RANGE_DEG,
+    GAP_TOLERANCE_MM,
     MAXIMA,
     count,
     real,
@@ -80,7 +81,8 @@ TOLERANCE_OUTPUTS = ("backlash_mm", "teeth_in_contact_min", "teeth_in_contact_me
 TOLERANCE_KEYS = ("index_sd_mm", "pitch_sd_mm", "hub_runout_mm", "sleeve_runout_mm",
                   "thickness_sd_mm", "crown_sd_mm")
 LIMIT_KEYS = ("index_mm", "pitch_mm", "thickness_mm", "crown_mm")
-ACCURACY = {"tolerance_mm": 1e-7, "angle_tolerance_deg": 1e-4, "steps": 16, "load_angles": 72}
+ACCURACY = {"tolerance_mm": GAP_TOLERANCE_MM, "angle_tolerance_deg": 1e-4, "steps": 16,
+            "load_angles": 72}
 MAX_SAMPLES = MAXIMA["samples"]
 OBJECTIVES = ("mean", "min")  # of a crown optimisation
 
@@ -210,10 +212,7 @@ def _check_values(p: Parameter, study_path: str, base_name: str, base_text: str,
         probes = [round(v) for v in probes]
     for value in probes:
         if p.key == "misalignment_deg":
-            lo, hi = MISALIGNMENT_RANGE_DEG
-            if not (isinstance(value, int | float) and lo <= value <= hi):
-                raise SpecError(f"{study_path}:{p.line} vary '{p.key}'", value,
-                                f"misalignment must be {lo}-{hi} degrees")
+            check_misalignment_deg(value, f"{study_path}:{p.line} vary '{p.key}'")
             continue
         if p.key == "torque_Nm":  # the range of every entry point
             torque_Nm(value, f"{study_path}:{p.line} vary '{p.key}'", error=SpecError)
@@ -440,10 +439,11 @@ def spec_hash(spec: CouplingSpec) -> str:
 def optimise_options(study: Study) -> dict[str, Any]:
     opt = dict(study.optimise or {})
     angles = opt.get("angles_deg")
+    lo, hi = MISALIGNMENT_RANGE_DEG
     if not (isinstance(angles, list) and angles
-            and all(isinstance(a, int | float) and 0 < a <= 6 for a in angles)):
+            and all(isinstance(a, int | float) and lo < a <= hi for a in angles)):
         raise SpecError(f"{study.source} optimise.angles_deg", angles,
-                        "a non-empty list of design angles in (0, 6] degrees")
+                        f"a non-empty list of design angles in ({lo:g}, {hi:g}] degrees")
     objective = opt.get("objective", "mean")
     if objective not in OBJECTIVES:
         raise SpecError(f"{study.source} optimise.objective", objective, f"one of {OBJECTIVES}")

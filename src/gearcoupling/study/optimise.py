@@ -26,6 +26,7 @@ from typing import Any
 
 import numpy as np
 
+from ..arguments import GAP_TOLERANCE_MM
 from ..clearance import critical_misalignment_deg, min_backlash_rad
 from ..errors import GearCouplingError, SpecError
 from ..io import atomic_path
@@ -48,7 +49,7 @@ class Optimum:
 
 
 def capacity_curve_Nm(spec: CouplingSpec, angles_deg, *, model: str | None = None, steps: int = 4,
-                      tolerance_mm: float = 1e-7) -> np.ndarray:
+                      tolerance_mm: float = GAP_TOLERANCE_MM) -> np.ndarray:
     """Capacity (N m) at each misalignment in ``angles_deg``: the load analysis' governing
     capacity (:func:`gearcoupling.loading.capacity.capacity`, ``model`` default the spec's,
     times the spec's accuracy factor), or with ``model = "renzo"`` Renzo's closed form

@@ -51,8 +51,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from ..arguments import GAP_TOLERANCE_MM, resolve_torque_Nm
 from ..clearance import check_misalignment, flank_minima, sweep
-from ..errors import SpecError
+from ..errors import ArgumentError, SpecError
 from ..loading import (
     capacity_from_sweep,
     load_from_sweep,
@@ -333,18 +334,17 @@ def _maps(spec: CouplingSpec,
 def tolerance_sample(spec: CouplingSpec,
                      misalignment_deg: float, tol: Tolerances, seed: int, sample: int, *,
                      path: str = "fast", torque_Nm: float | None = None, steps: int = 4,
-                     tolerance_mm: float = 1e-7, model: str = "renzo") -> dict[str, float]:
+                     tolerance_mm: float = GAP_TOLERANCE_MM,
+                     model: str = "renzo") -> dict[str, float]:
     """One Monte Carlo sample (errors seeded by ``(seed, sample)``, so any chunking gives
     the same rows): the outputs with errors, the nominal capacity and ``K``."""
     if path not in PATHS:
-        raise SpecError("path", path, f"one of {PATHS}")
+        raise ArgumentError("path", path, f"one of {PATHS}")
     if model not in capacity_models():
         raise SpecError("tolerances.model", model, f"one of {capacity_models()}")
 
     check_misalignment(misalignment_deg)
-    T = spec.load.torque_Nm if torque_Nm is None else torque_Nm
-    if T is None:
-        raise SpecError("load.torque_Nm", None, "give a torque ([load] or torque_Nm)")
+    T = resolve_torque_Nm(spec, torque_Nm)
     err = draw_errors(tol, spec.tooth.teeth, np.random.default_rng([seed, sample]))
     maps = _maps(spec, misalignment_deg, steps, tol.crown_sd_mm if path == "interpolated"
                  else 0.0, tolerance_mm)

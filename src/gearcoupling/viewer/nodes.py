@@ -85,16 +85,15 @@ class ViewSettings:
 
     def __post_init__(self):
         if self.cutaway not in CUTAWAYS:
-            raise ArgumentError(f"cutaway = {self.cutaway!r}: must be one of {CUTAWAYS}")
+            raise ArgumentError("cutaway", self.cutaway, f"one of {CUTAWAYS}")
         if self.frame not in FRAMES:
-            raise ArgumentError(f"frame = {self.frame!r}: must be one of {FRAMES}")
+            raise ArgumentError("frame", self.frame, f"one of {FRAMES}")
         if self.color_mode not in COLOR_MODES:
-            raise ArgumentError(f"color_mode = {self.color_mode!r}: must be one of "
-                             f"{COLOR_MODES}")
+            raise ArgumentError("color_mode", self.color_mode, f"one of {COLOR_MODES}")
         for name in ("hub_opacity", "sleeve_opacity"):
             v = getattr(self, name)
             if not 0.0 <= v <= 1.0:
-                raise ArgumentError(f"{name} = {v!r}: must be from 0 to 1")
+                raise ArgumentError(name, v, "from 0 to 1")
 
 
 def pose_loads(spec: CouplingSpec, misalignment_deg: float, psi_deg: float) -> LoadResult:
@@ -187,7 +186,7 @@ class CouplingScene:
     def set_cutaway(self, cutaway: str) -> None:
         """Show the sleeve with another cutaway (the cut meshes are cached)."""
         if cutaway not in CUTAWAYS:
-            raise ArgumentError(f"cutaway = {cutaway!r}: must be one of {CUTAWAYS}")
+            raise ArgumentError("cutaway", cutaway, f"one of {CUTAWAYS}")
         self.settings.cutaway = cutaway
         cut = self.meshes.sleeve_cut(cutaway)
         st = self.settings

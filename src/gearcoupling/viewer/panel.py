@@ -13,7 +13,7 @@ from collections.abc import Callable
 import numpy as np
 
 from ..errors import GearCouplingError
-from ..spec import CouplingSpec
+from ..spec import MISALIGNMENT_RANGE_DEG, CouplingSpec
 from .nodes import FRAMES, CouplingScene, ViewSettings
 from .scene import COLOR_MODES, CUTAWAYS, LOD_DIVISORS, legend_markdown, plot_range
 
@@ -48,7 +48,7 @@ class Panel:
         gui.add_markdown(f"**{spec.name}** — {spec.tooth.teeth} teeth, module "
                          f"{spec.tooth.module:.4g} mm")
         with gui.add_folder("Pose"):
-            self.misalignment = gui.add_slider("misalignment (°)", 0.0, 6.0, 0.05,
+            self.misalignment = gui.add_slider("misalignment (°)", *MISALIGNMENT_RANGE_DEG, 0.05,
                                                round(st.misalignment_deg, 2))
             self.rotation = gui.add_slider("rotation ψ (°)", 0.0, 360.0, 0.5,
                                            float(np.mod(st.psi_deg, 360.0)))

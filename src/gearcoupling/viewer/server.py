@@ -21,7 +21,7 @@ import threading
 import time
 from pathlib import Path
 
-from ..arguments import choice, count, keywords
+from ..arguments import choice, count
 from ..errors import ArgumentError, GearCouplingError
 from ..io import default_output_dir
 from ..spec import CouplingSpec, as_spec
@@ -244,14 +244,13 @@ class ViewerApp:
         self.server.stop()
 
 
-def serve(spec: CouplingSpec, **kwargs) -> ViewerApp:
-    """Start a :class:`ViewerApp` (returns at once; the server runs in threads);
-    ``kwargs``: ``host``, ``port`` (1-65535), ``settings``, ``lod``, ``tolerance_mm``,
-    ``html_path``."""
+def serve(spec: CouplingSpec, *, host: str = "127.0.0.1", port: int = 8080,
+          settings: ViewSettings | None = None, lod: str = "coarse",
+          tolerance_mm: float | None = None, html_path=None) -> ViewerApp:
+    """Start a :class:`ViewerApp` (returns at once; the server runs in threads); the
+    arguments as :class:`ViewerApp` (``port`` 1-65535)."""
     spec = as_spec(spec)
-    keywords(kwargs, ("host", "port", "settings", "lod", "tolerance_mm", "html_path"), "serve")
-    if "port" in kwargs:
-        count(kwargs["port"], "port", 1, 65535)
-    if "lod" in kwargs:
-        choice(kwargs["lod"], "lod", tuple(LOD_DIVISORS))
-    return ViewerApp(spec, **kwargs)
+    count(port, "port", 1, 65535)
+    choice(lod, "lod", tuple(LOD_DIVISORS))
+    return ViewerApp(spec, host=host, port=port, settings=settings, lod=lod,
+                     tolerance_mm=tolerance_mm, html_path=html_path)

@@ -16,6 +16,7 @@ import math
 import numpy as np
 from numpy.typing import NDArray
 
+from ..numeric import TINY
 from ..plots import import_matplotlib
 from .nodes import HUB_RGB, SLEEVE_RGB, CouplingScene
 from .scene import INTERFERENCE_RGB, Patch, flank_colors, hub_rotation, legend, legend_title
@@ -73,7 +74,7 @@ def still_png(scene: CouplingScene, size_px: tuple[int, int] = SIZE_PX) -> bytes
     to_eye = eye - tri.mean(axis=1)
     facing = np.einsum("ij,ij->i", normal, to_eye)
     cosine = facing / np.maximum(np.linalg.norm(normal, axis=1) * np.linalg.norm(to_eye, axis=1),
-                                 1e-300)
+                                 TINY)
     keep = facing > 0  # closed, outward-wound solids: the back faces are hidden
     cam = (tri[keep] - eye) @ frame.T  # (n, 3, 3): right, up, depth
     shade = rgb[keep] * (0.55 + 0.45 * cosine[keep, None])

@@ -30,6 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ...arguments import GAP_TOLERANCE_MM
 from ...clearance import flank_table
 from ...errors import ArgumentError
 from ...geometry import (
@@ -43,7 +44,6 @@ from ...geometry import (
 from ...spec import CouplingSpec
 
 FIXED_POINT_STEPS = 3
-FLANK_TABLE_TOLERANCE_MM = 1e-7  # the sweep's certified table of the exact flank
 
 
 @dataclass(frozen=True, eq=False)
@@ -220,7 +220,7 @@ def gap_field(spec: CouplingSpec,
     z = np.asarray(z_mm, dtype=float).reshape(theta.size, -1)
     dz = float(z[0, 1] - z[0, 0]) if z.shape[1] > 1 else 2.0 * face_range(spec, misalignment)
     hm, sm = hub_model(spec), sleeve_model(spec)
-    table = flank_table(spec, FLANK_TABLE_TOLERANCE_MM)
+    table = flank_table(spec, GAP_TOLERANCE_MM)
     r_b = sm.r_base
     r_lo, r_hi = depth_range(spec, misalignment)
     s_lo, s_hi = developed_arc(r_lo, r_b), developed_arc(r_hi, r_b)

@@ -41,7 +41,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy import fft
 
-from ...errors import ArgumentError, GearCouplingError, SpecError
+from ...errors import ArgumentError, GearCouplingError
+from ...numeric import TINY, divide
 
 DEFAULT_TOLERANCE = 1e-8  # relative: |dp| summed / |p| summed and gap residual / gap scale
 MAX_ITER = 4000
@@ -60,7 +61,8 @@ def composite_modulus(e1_MPa: float, nu1: float, e2_MPa: float, nu2: float) -> f
         if not (math.isfinite(e) and e > 0):
             raise ArgumentError(name, e, "must be a finite modulus > 0 MPa")
         if not (math.isfinite(nu) and -1.0 < nu < 0.5):
-            raise SpecError("poisson_ratio", nu, "must be in (-1, 0.5)")
+            raise ArgumentError(name.replace("youngs_modulus_MPa", "poisson_ratio"), nu,
+                                "must be in (-1, 0.5)")
     return 1.0 / ((1.0 - nu1 * nu1) / e1_MPa + (1.0 - nu2 * nu2) / e2_MPa)
 
 
@@ -267,7 +269,7 @@ class RigidSprings:
             return False
         c_new = np.broadcast_to(_springs(self._update(p)), self.c.shape)
         tol = max(tolerance, self.tolerance)
-        if np.any(np.abs(c_new - self.c) > tol * np.maximum(self.c, 1e-300)):
+        if np.any(np.abs(c_new - self.c) > tol * np.maximum(self.c, TINY)):
             self.c = c_new
             return True
         return False
@@ -347,7 +349,7 @@ def solve_contact(hs: HalfSpace, gap0_mm: ArrayLike, *, load_N: float | None = N
             raise ArgumentError("load_N", load_N, "must be finite and > 0 N")
     elif approach_mm is not None:
         if not math.isfinite(approach_mm):
-            raise SpecError("approach_mm", approach_mm, "must be finite")
+            raise ArgumentError("approach_mm", approach_mm, "must be finite")
         if approach_mm <= gmin or not np.any(m):
             z = np.zeros(g0.shape)
             return ContactSolution(z, np.where(m, g0 - approach_mm, 0.0), approach_mm,
@@ -620,7 +622,7 @@ def _shared_approach(grids: _Grids, W: float, p0
         # each loaded grid's law through this solve
         defl = np.asarray(grids.compliance.deflection_mm(p), float).reshape(B)
         c = np.where(loaded, np.maximum(defl, 0.0) / np.where(loaded, Wb, 1.0), c)
-        a = np.where(loaded, np.maximum(alpha - grids.gmin - c * Wb, 1e-300), np.nan)
+        a = np.where(loaded, np.maximum(alpha - grids.gmin - c * Wb, TINY), np.nan)
         moved = loaded & (last_W > 0) & (np.abs(Wb / np.where(last_W > 0, last_W, 1.0) - 1)
                                          > 1e-6)
         with np.errstate(invalid="ignore", divide="ignore"):
@@ -650,10 +652,10 @@ def load_split(first_touch_mm: ArrayLike, law: ArrayLike, load_N: float
     k, e, c = np.asarray(law, dtype=float)
     known = np.isfinite(k) & np.isfinite(e) & np.isfinite(c)
     if not np.any(known):
-        raise ArgumentError("load_split: no grid has a known law")
+        raise ArgumentError("law", "no known law", "load_split needs a grid with a known law")
     lo_e, hi_e, _ = CONTACT_EXPONENT
     fill = [np.where(known, v, np.median(v[known])) for v in (k, e, c)]
-    return _model_split(g, np.maximum(fill[0], 1e-300), np.clip(fill[1], lo_e, hi_e),
+    return _model_split(g, np.maximum(fill[0], TINY), np.clip(fill[1], lo_e, hi_e),
                         np.maximum(fill[2], 0.0), float(load_N))
 
 
@@ -715,7 +717,7 @@ def _given_approach(grids: _Grids, approach: float, p0) -> tuple[NDArray, int, f
     # scale a first guess so the gap at the start cells roughly closes
     u1 = grids.operator(p, every)
     on = p > 0
-    p *= max(approach - gmin, 0.0) / max(float(np.max(u1[on])), 1e-300)
+    p *= divide(max(approach - gmin, 0.0), float(np.max(u1[on])))
     scale_len = float(np.max(grids.scale))
     delta, G_old = 0.0, 1.0
     t = np.zeros_like(p)
@@ -744,7 +746,7 @@ def _given_approach(grids: _Grids, approach: float, p0) -> tuple[NDArray, int, f
             delta = 1.0
         p = np.where(m, p, 0.0)
         u = grids.operator(p, every)
-        res = float(np.sum(np.abs(p - p_old))) / max(float(np.sum(p)), 1e-300)
+        res = divide(float(np.sum(np.abs(p - p_old))), float(np.sum(p)))
         gap_err = math.sqrt(G / max(int(np.count_nonzero(on)), 1)) / scale_len
         converged = res <= grids.tolerance and gap_err <= grids.tolerance and not np.any(over)
         if (converged or it % SPRING_EVERY == 0) and grids.update(p, grids.tolerance):

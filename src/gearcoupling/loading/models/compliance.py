@@ -21,6 +21,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ...errors import ArgumentError, SpecError
+from ...numeric import TINY, divide
 from ...spec import CouplingSpec
 from ..contact import contact_model, patch_centre_radius
 from ..inputs import nominal_root_stress_MPa
@@ -39,7 +40,7 @@ def _solve_load(d: NDArray, c: NDArray, law, W0: NDArray | None = None,
         delta, s = law(W)
         step = (c * W + delta - d) / (c + s)
         W = np.maximum(W - step, 0.05 * W)  # an overshoot below 0 becomes a damped step
-        if np.all(np.abs(step) <= tol * np.maximum(W, 1e-300)):
+        if np.all(np.abs(step) <= tol * np.maximum(W, TINY)):
             break
     _, s = law(W)
     return W, np.where(d > 0, 1.0 / (c + s), 0.0)
@@ -126,7 +127,7 @@ def solve_compliance(spec: CouplingSpec,
             W, dW = _solve_load(d, c, law, W)
             resid = r_b * np.sum(W, axis=0) - T
             slope = r_b * r_b * np.sum(dW, axis=0)
-            x = np.maximum(x - resid / np.maximum(slope, 1e-300), 0.0)
+            x = np.maximum(x - divide(resid, slope), 0.0)
             if np.all(np.abs(resid) <= 1e-12 * T):
                 break
         d = np.where(touch, r_b * np.maximum(x[None, :] - gr, 0.0), 0.0)

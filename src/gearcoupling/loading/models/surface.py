@@ -71,6 +71,7 @@ from scipy import ndimage
 
 from ...errors import ArgumentError, GearCouplingError
 from ...geometry import FLANKS, developed_arc
+from ...numeric import TINY
 from ...spec import CouplingSpec
 from ..inputs import loaded_gaps
 from ..kernels.gapfield import (
@@ -230,7 +231,7 @@ def patch_measures(gf: GapField, p: NDArray[np.float64], interior_mm: float
     load = A * np.sum(p, axis=(1, 2))
     loaded = load > 0
     pmax = np.max(p, axis=(1, 2))
-    on = p > 1e-9 * np.maximum(pmax, 1e-300)[:, None, None]
+    on = p > 1e-9 * np.maximum(pmax, TINY)[:, None, None]
     # cut edges: masked cells, and the depth ends of the grid (the sleeve chamfer edge and
     # the hub tip bound the depth range); the window ends along the face are not
     pad = np.pad(np.pad(gf.mask, ((0, 0), (0, 0), (1, 1)), constant_values=False),

@@ -12,6 +12,7 @@ from numpy.typing import NDArray
 
 from ...errors import GearCouplingError
 from ...geometry import FLANKS
+from ...numeric import TINY
 from ..inputs import LoadProblem, nominal_root_stress_MPa
 from ..limits import CRITERIA
 from .compliance import first_limit_torque_Nmm
@@ -220,7 +221,7 @@ def _secant_root(ratio, T0: float, slope: float, rtol: float = SURFACE_RTOL) -> 
     ``ln T`` (nearly straight: the first step takes the slope ``slope``), kept inside the
     bracket once one is found (bisection where a step leaves it, doubling steps outward
     before); stops when the step is below ``rtol`` (relative)."""
-    x0, f0 = math.log(T0), math.log(max(ratio(T0), 1e-300))
+    x0, f0 = math.log(T0), math.log(max(ratio(T0), TINY))
     lo, hi = (-math.inf, x0) if f0 >= 0 else (x0, math.inf)
     x1 = x0 - f0 / slope
     for _ in range(100):
@@ -228,7 +229,7 @@ def _secant_root(ratio, T0: float, slope: float, rtol: float = SURFACE_RTOL) -> 
             return math.inf
         if x1 < LOG_T_MIN:  # over the limit at a vanishing torque (binding teeth)
             return 0.0
-        f1 = math.log(max(ratio(math.exp(x1)), 1e-300))
+        f1 = math.log(max(ratio(math.exp(x1)), TINY))
         if f1 >= 0:
             hi = min(hi, x1)
         else:

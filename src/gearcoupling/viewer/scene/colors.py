@@ -7,7 +7,7 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ...errors import ArgumentError, SpecError
+from ...errors import ArgumentError
 from ...spec import CouplingSpec
 from .pose import PoseState
 
@@ -30,7 +30,7 @@ def flank_values(state: PoseState, mode: str = "clearance") -> NDArray[np.float6
     or the separation ``clearance - max(0, smallest clearance of the flank)``;
     interfering flanks stay negative (red) and unfaced ones infinite (grey) in both."""
     if mode not in COLOR_MODES:
-        raise ArgumentError(f"color mode = {mode!r}: must be one of {COLOR_MODES}")
+        raise ArgumentError("color mode", mode, f"one of {COLOR_MODES}")
     c = state.clearance_mm
     if mode == "clearance":
         return c
@@ -47,7 +47,7 @@ def flank_colors(state: PoseState, mode: str, scale_mm: float,
     if mode != "pressure":
         return clearance_colors(flank_values(state, mode), scale_mm)
     if state.pressure_MPa is None:
-        raise ArgumentError(f"mode = {mode!r}: needs a state from pose_state(..., loads=...)")
+        raise ArgumentError("mode", mode, "needs a state from pose_state(..., loads=...)")
     return pressure_colors(state.pressure_MPa,
                            spec.material.hub.allowable_contact_stress_MPa)
 
@@ -74,7 +74,7 @@ def clearance_colors(clearance_mm: ArrayLike, scale_mm: float) -> NDArray[np.uin
     (touching) through green and cyan to blue at ``scale_mm`` and above, grey where
     infinite (no sleeve flank faces the hub flank)."""
     if not (math.isfinite(scale_mm) and scale_mm > 0):
-        raise SpecError("color_scale_mm", scale_mm, "must be a positive finite length (mm)")
+        raise ArgumentError("color_scale_mm", scale_mm, "must be a positive finite length (mm)")
     c = np.asarray(clearance_mm, dtype=float)
     t = np.clip(np.where(np.isfinite(c), c, 0.0) / scale_mm, 0.0, 1.0)
     rgb = np.stack([np.interp(t, _STOPS[:, 0], _STOPS[:, j]) for j in (1, 2, 3)], axis=-1)

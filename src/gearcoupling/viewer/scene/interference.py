@@ -6,6 +6,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ...interference import affine, flank_index, nearest_tooth
+from ...numeric import divide
 from .meshes import Patch, SceneMeshes, patch_from_manifold
 
 
@@ -42,7 +43,7 @@ def interference_mesh(meshes: SceneMeshes, rotation: ArrayLike,
             c = rot.T @ verts.mean(axis=0)  # hub frame
             k = int(nearest_tooth(c, teeth)) % teeth
             flank = int(flank_index(c, k, teeth))
-            thick = 2.0 * piece.volume() / max(piece.surface_area(), 1e-300)
+            thick = divide(2.0 * piece.volume(), piece.surface_area())
             if mask[flank, k] or thick > meshes.tolerance_mm:
                 keep.append(piece)
         overlap = type(overlap).compose(keep) if keep else type(overlap)()

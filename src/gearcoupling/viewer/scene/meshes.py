@@ -83,7 +83,7 @@ def split_hub(mesh) -> HubPieces:
 def lod_tolerance(spec: CouplingSpec, lod: str) -> float:
     """Chordal tolerance (mm) of a level of detail (:data:`LOD_DIVISORS`)."""
     if lod not in LOD_DIVISORS:
-        raise ArgumentError(f"lod = {lod!r}: must be one of {tuple(LOD_DIVISORS)}")
+        raise ArgumentError("lod", lod, f"one of {tuple(LOD_DIVISORS)}")
     return spec.tooth.module / LOD_DIVISORS[lod]
 
 
@@ -167,7 +167,7 @@ def cut_sleeve(sleeve_manifold, cutaway: str) -> Patch:
     cutaway : {"none", "quarter", "half", "midplane"}
     """
     if cutaway not in CUTAWAYS:
-        raise ArgumentError(f"cutaway = {cutaway!r}: must be one of {CUTAWAYS}")
+        raise ArgumentError("cutaway", cutaway, f"one of {CUTAWAYS}")
     man = sleeve_manifold
     planes = _CUT_PLANES[cutaway]
     if planes is None:  # quarter: keep x >= 0 or y >= 0

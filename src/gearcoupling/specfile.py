@@ -1,0 +1,365 @@
+"""Spec files: TOML in mm or inches, defaults, templates and dotted overrides.
+
+Spec files are TOML with ``units = "mm"`` (default) or ``"in"`` for lengths and angles in
+degrees (keys ending in ``_deg``). :func:`load_spec` reads a bundled template by name or a
+file by path and applies dotted overrides; every invalid value or combination raises
+:class:`~gearcoupling.errors.SpecError` naming the field, the value as the file gave it
+(with the mm value beside it in an inch file) and what is allowed. Keys left out get
+defaults (:data:`DEFAULT_RULES`) chosen to always validate. Defaults and errors:
+``docs/spec-and-cli.md``.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+import os
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .errors import ArgumentError, GeometryError, SpecError, brief
+from .geometry import HubModel, feed_path, inv_inverse, radius_squared, use_spec_loader
+from .io import Table, as_path, bundled_names, read_toml, resolve_bundled, set_dotted, unknown_key
+from .loadspec import UNIT_SIBLINGS, parse_load, parse_material
+from .specmodel import (
+    INSPECTION_LIMITS,
+    MAX_NAME_CHARS,
+    MM_PER_INCH,
+    UNITS,
+    CouplingSpec,
+    Crowning,
+    Hub,
+    HubBody,
+    HubRoot,
+    HubTip,
+    InspectionLimits,
+    Sleeve,
+    ToothSystem,
+    _check,
+    _positive,
+    check_misalignment_deg,
+    use_spec_reader,
+)
+
+# every key a spec file may hold, per table (unknown keys are reported before anything else)
+SPEC_KEYS: dict[str, tuple[str, ...]] = {
+    "": ("units", "name", "design_misalignment_deg", "tooth", "hub", "sleeve", "load",
+         "material", "inspection"),
+    "tooth": ("teeth", "module", "diametral_pitch", "pressure_angle_deg"),
+    "hub": ("face_width", "tooth_thickness", "backlash", "tip", "root", "crowning", "body"),
+    "hub.tip": ("kind", "diameter"),
+    "hub.root": ("dedendum", "fillet_radius"),
+    "hub.crowning": ("kind", "radius", "end_radius", "start_z", "s", "kappa", "z", "drop",
+                     "generation"),
+    "hub.body": ("bore_diameter", "length"),
+    "sleeve": ("face_width", "minor_diameter", "major_diameter", "space_width", "tip_chamfer",
+               "root_fillet_radius", "outer_diameter"),
+    "inspection": INSPECTION_LIMITS,
+}
+
+# how each derived default is chosen (quoted when a derived value is refused)
+DEFAULT_RULES: dict[str, str] = {
+    "hub.backlash": "0.04 m",
+    "hub.tip.diameter": "2 (R + m), lowered where the teeth would be pointed (few teeth, "
+                        "and at the face ends by the crown drop)",
+    "hub.root.dedendum": "1.25 m, reduced to 90 % of the deepest cut free of undercut in "
+                         "every plane of the face (few teeth, small pressure angles)",
+    "hub.root.fillet_radius": "0.3 m, reduced to 80 % of the largest hob tip round that fits "
+                              "in the tooth space, and to at most half the dedendum",
+    "hub.body.bore_diameter": "root diameter minus max(6 m, 0.3 R)",
+    "hub.body.length": "the face width",
+    "sleeve.space_width": "pi m / 2",
+    "sleeve.face_width": "hub face width + 4 m",
+    "sleeve.minor_diameter": "just above the hub form diameter",
+    "sleeve.major_diameter": "2 (R + 1.25 m), lowered for few teeth",
+    "sleeve.tip_chamfer": "0.1 m",
+    "sleeve.root_fillet_radius": "0.25 m, reduced to fit the space",
+    "sleeve.outer_diameter": "major diameter + 2 max(3 m, 0.1 R)",
+}
+
+
+def check_keys(data: Any, path: str = "") -> None:
+    """Refuse the first unknown key of a spec file (depth-first), before anything else is
+    read, so that a misspelt key is named rather than reported as a missing one."""
+    known = SPEC_KEYS.get(path)
+    if known is None or not isinstance(data, dict):
+        return
+    for key in sorted(data):
+        name = f"{path}.{key}" if path else key
+        if key not in known:
+            raise unknown_key(name, data[key], known)
+        check_keys(data[key], name)
+
+
+def spec_from_dict(data: dict[str, Any], name: str = "custom") -> CouplingSpec:
+    """Build a :class:`CouplingSpec` from parsed TOML data (file units, angles in degrees).
+
+    Keys left out get the defaults of :data:`DEFAULT_RULES`, chosen so that they always
+    fit; if a derived value is refused anyway, the error says so and names the key to set.
+    """
+    if not isinstance(data, dict):
+        raise ArgumentError("data", data, "a dict of spec tables, as read from a TOML "
+                            "spec file")
+    if not isinstance(name, str):
+        raise ArgumentError("name", name, "a str")
+    check_keys(data)
+    root = Table(copy.deepcopy(data))
+    try:
+        return _build(root, name)
+    except SpecError as err:
+        if err.field in root.defaulted:
+            raise SpecError(err.field, err.value, f"{err.allowed} [not in the spec: derived "
+                            f"as {DEFAULT_RULES.get(err.field, 'a default')}; set "
+                            f"{err.field} explicitly]") from None
+        if err.field in root.given and root.scale != 1.0:
+            typed, scale = root.given[err.field]
+            raise _as_typed(err, typed, scale, root.scale) from None
+        raise
+
+
+def _as_typed(err: SpecError, typed: Any, scale: float, unit_mm: float) -> SpecError:
+    """``err`` quoting the value as the file gave it (``typed``, read times ``scale`` into
+    mm or 1/mm; ``unit_mm`` is the file's unit) with the converted value beside it; ``err``
+    itself where its value is not the converted one (a count or a derived value)."""
+    given = list(typed) if isinstance(typed, tuple) else [typed]
+    got = list(err.value) if isinstance(err.value, tuple) else [err.value]
+    if len(got) != len(given) or not all(
+            isinstance(g, int | float) and math.isclose(g, v * scale, rel_tol=1e-12)
+            for g, v in zip(got, given, strict=True)):
+        return err
+    unit = next(u for u, f in UNITS.items() if f == unit_mm)
+    unit, mm = (unit, "mm") if scale == unit_mm else (f"1/{unit}", "1/mm")
+    if isinstance(typed, tuple):
+        return SpecError(err.field, typed, err.allowed, f"{given!r} {unit} ({got!r} {mm})")
+    return SpecError(err.field, typed, err.allowed, f"{typed!r} {unit} ({err.value!r} {mm})")
+
+
+def default_fillet_radius(tooth: ToothSystem, thickness: float, dedendum: float) -> float:
+    """Hob tip radius: 0.3 m, or 80 % of the largest that fits between adjacent flanks
+    (and at most half the dedendum).
+
+    The round centre ``u_c = t/2 + (d - f) tan phi + f / cos phi`` must stay within half a
+    circular pitch of the tooth centre (:class:`HubModel.round_centre`).
+    """
+    phi = tooth.pressure_angle
+    room = 0.5 * (tooth.circular_pitch - thickness) - dedendum * math.tan(phi)
+    largest = room / (1.0 / math.cos(phi) - math.tan(phi))
+    return max(0.0, min(0.3 * tooth.module, 0.8 * largest, 0.5 * dedendum))
+
+
+def default_dedendum(tooth: ToothSystem, thickness: float, crowning: Crowning,
+                     face_width: float) -> float:
+    """Hob addendum: 1.25 m, or 90 % of the deepest form depth free of undercut in every
+    plane of the face (few teeth, small pressure angles), found by bisection."""
+    m, phi, R = tooth.module, tooth.pressure_angle, tooth.pitch_radius
+    d = 1.25 * m
+    f = default_fillet_radius(tooth, thickness, d)
+    model = HubModel(R, phi, tooth.teeth, thickness, d, f, "cylinder", R, 0.5 * face_width,
+                     crowning.generation == "revolved", feed_path(crowning, R, face_width))
+    planes = np.linspace(0.0, 0.5 * face_width, 17)
+    z = planes
+
+    def undercut(h: float) -> bool:
+        try:
+            with np.errstate(all="ignore"):
+                d_r2 = radius_squared(model, z, h, phi)[1]
+        except GeometryError:
+            return True
+        return not bool(np.all(d_r2 < 0))
+
+    lift = 1.0 - math.sin(phi)  # form depth = dedendum - fillet * lift
+    if not undercut(d - f * lift):
+        return d
+
+    def deepest() -> float:
+        lo, hi = 0.0, d - f * lift
+        for _ in range(40):
+            mid = 0.5 * (lo + hi)
+            lo, hi = (mid, hi) if not undercut(mid) else (lo, mid)
+        return lo
+
+    lo = deepest()  # crowning is a negative profile shift at the face ends: fit them too
+    if lo < 0.1 * R * math.sin(phi) ** 2:  # no useful depth fits: the crown is to blame;
+        z = planes[:1]  # fit the midplane and let the checks name the crown
+        lo = deepest()
+    for _ in range(8):  # the default fillet depends on the dedendum: fixed point
+        d = 0.9 * lo + default_fillet_radius(tooth, thickness, d) * lift
+    return d
+
+
+def _build(root: Table, name: str) -> CouplingSpec:
+    units = root.string("units", "mm")
+    _check(units in UNITS, "units", units, f"one of {tuple(UNITS)}")
+    root.scale = UNITS[units]
+    name = root.string("name", name)
+    _check(len(name) <= MAX_NAME_CHARS, "name", brief(name, 40),
+           f"at most {MAX_NAME_CHARS} characters (it names files and reports)")
+    misalignment = math.radians(check_misalignment_deg(root.number("design_misalignment_deg",
+                                                                   0.0),
+                                                       "design_misalignment_deg"))
+
+    t = root.table("tooth")
+    teeth = t.integer("teeth")
+    if t.has("diametral_pitch"):
+        _check(not t.has("module"), "tooth.module", t.data.get("module"),
+               f"give module or diametral_pitch, not both (diametral_pitch = "
+               f"{t.data.get('diametral_pitch')!r} is set too)")
+        pd = t.number("diametral_pitch")
+        _check(pd > 0 and math.isfinite(pd), "tooth.diametral_pitch", pd,
+               "must be a positive number of teeth per inch of pitch diameter")
+        module = MM_PER_INCH / pd
+    else:
+        module = t.length("module")
+    tooth = ToothSystem(teeth, module, t.angle("pressure_angle_deg", 20.0))
+    t.done(SPEC_KEYS.get(t.where, ()))
+    m, R = module, tooth.pitch_radius
+
+    s = root.table("sleeve")
+    space_width = s.length("space_width", 0.5 * math.pi * m)
+    _positive("sleeve.space_width", space_width)
+    h = root.table("hub")
+    face = h.length("face_width")
+    _positive("hub.face_width", face)
+    if h.has("tooth_thickness"):
+        _check(not h.has("backlash"), "hub.backlash", None,
+               "give tooth_thickness or backlash, not both")
+        thickness = h.length("tooth_thickness")
+    else:
+        backlash = h.length("backlash", 0.04 * m)
+        _check(math.isfinite(backlash) and 0 <= backlash < space_width, "hub.backlash",
+               backlash, f"must be >= 0 and below the sleeve space width {space_width:.6g} mm")
+        thickness = space_width - backlash
+    _positive("hub.tooth_thickness", thickness)
+
+    # defaults: standard proportions, kept below where hub teeth or sleeve spaces turn
+    # pointed (which matters for few teeth)
+    c = h.table("crowning")
+    kind = c.string("kind", "circular")
+    needs_radius = kind in ("circular", "vari_crown", "end_round")
+    crowning = Crowning(
+        kind=kind,
+        radius=c.length("radius", None if needs_radius else math.inf),
+        end_radius=c.length("end_radius", math.inf),
+        start_z=c.length("start_z", 0.0),
+        table_s=c.array("s", root.scale),
+        table_kappa=c.array("kappa", 1.0 / root.scale),
+        table_z=c.array("z", root.scale),
+        table_drop=c.array("drop", root.scale),
+        generation=c.string("generation", "enveloped"),
+    )
+    c.done(SPEC_KEYS.get(c.where, ()))
+    # the crown drop thins the teeth toward the face ends: keep the tip below where they
+    # would be pointed there too (a sphere tip falls with z by itself)
+    r_hub_pointed = _pointed_radius(tooth, thickness)
+    tip_t = h.table("tip")
+    tip_kind = tip_t.string("kind", "sphere")
+    tip_default = min(R + m, R + 0.75 * (r_hub_pointed - R))
+    z_end = 0.5 * face
+    drop_end = _crown_drop(crowning, R, face, z_end)
+    if tip_kind == "sphere":
+        drop_end -= tip_default - math.sqrt(max(tip_default**2 - z_end**2, 0.0))
+    tip_default = min(tip_default, r_hub_pointed - max(drop_end, 0.0)
+                      - 0.25 * (r_hub_pointed - R))
+    tip = HubTip(tip_kind, tip_t.length("diameter", 2 * tip_default))
+    tip_t.done(SPEC_KEYS.get(tip_t.where, ()))
+    root_t = h.table("root")
+    dedendum = root_t.length("dedendum") if root_t.has("dedendum") else root_t.length(
+        "dedendum", default_dedendum(tooth, thickness, crowning, face))
+    _positive("hub.root.dedendum", dedendum)
+    hub_root = HubRoot(dedendum, root_t.length("fillet_radius",
+                                               default_fillet_radius(tooth, thickness, dedendum)))
+    root_t.done(SPEC_KEYS.get(root_t.where, ()))
+    root_dia = 2 * (R - hub_root.dedendum)
+    b = h.table("body")
+    body = HubBody(b.length("bore_diameter", max(0.0, root_dia - 2 * max(3 * m, 0.15 * R))),
+                   b.length("length", face))
+    b.done(SPEC_KEYS.get(b.where, ()))
+    hub = Hub(face, thickness, tip, hub_root, crowning, body)
+    h.done(SPEC_KEYS.get(h.where, ()))
+
+    r_space_pointed = _pointed_radius(tooth, space_width)
+    major = s.length("major_diameter", 2 * min(R + 1.25 * m,
+                                               tip_default + 0.5 * (r_space_pointed - tip_default)))
+    # the sleeve tips stay above the hub's form circle (all contact on the involutes)
+    h_form = hub_root.dedendum - hub_root.fillet_radius * (1 - math.sin(tooth.pressure_angle))
+    r_form_hub = math.hypot(R - h_form, h_form / math.tan(tooth.pressure_angle))
+    minor_default = max(r_form_hub + 0.05 * m, R - hub_root.dedendum + 0.25 * m,
+                        tooth.base_radius + 0.1 * m)
+    sleeve = Sleeve(
+        face_width=s.length("face_width", face + 4 * m),
+        minor_diameter=s.length("minor_diameter", 2 * minor_default),
+        major_diameter=major,
+        space_width=space_width,
+        tip_chamfer=s.length("tip_chamfer", 0.1 * m),
+        root_fillet_radius=s.length("root_fillet_radius", min(
+            0.25 * m, 0.3 * (r_space_pointed - 0.5 * major) * math.tan(tooth.pressure_angle))),
+        outer_diameter=s.length("outer_diameter", major + 2 * max(3 * m, 0.1 * R)),
+    )
+    s.done(SPEC_KEYS.get(s.where, ()))
+    load = parse_load(root.table("load"))
+    material = parse_material(root.table("material"))
+    ins = root.table("inspection")  # tolerance limits for compare
+    inspection = InspectionLimits(**{k: ins.length(k, math.inf) for k in INSPECTION_LIMITS})
+    ins.done(SPEC_KEYS.get(ins.where, ()))
+    root.done(SPEC_KEYS.get(root.where, ()))
+    return CouplingSpec(tooth, hub, sleeve, misalignment, name=name, units=units, load=load,
+                        material=material, inspection=inspection)
+
+
+def _crown_drop(crowning: Crowning, R: float, face: float, z: float) -> float:
+    """Feed-path crown drop at ``z`` for a default; 0 where the path does not reach ``z``
+    (the checks then refuse the crown itself, with a better reason)."""
+    try:
+        with np.errstate(all="ignore"):
+            drop = float(feed_path(crowning, R, face).drop(z))
+    except GeometryError:
+        return 0.0
+    return drop if math.isfinite(drop) else 0.0
+
+
+def _pointed_radius(tooth: ToothSystem, arc_width: float) -> float:
+    """Radius where a spur tooth (or space) of ``arc_width`` at the pitch circle is pointed."""
+    phi = tooth.pressure_angle
+    alpha = float(inv_inverse(0.5 * arc_width / tooth.pitch_radius + math.tan(phi) - phi))
+    return tooth.base_radius / math.cos(alpha)
+
+
+def template_names() -> list[str]:
+    """Names of the bundled templates."""
+    return bundled_names("templates")
+
+
+def resolve_spec_path(name_or_path: str | Path) -> Path:
+    """A template name or a file path, as a path to a TOML file."""
+    return resolve_bundled("templates", name_or_path)
+
+
+def load_spec(name_or_path: str | Path, **overrides: Any) -> CouplingSpec:
+    """Load a template (by name) or a TOML spec file, with dotted overrides in file units.
+
+    >>> spec = load_spec("renzo-1967", **{"hub.crowning.radius": 2.0})  # doctest: +SKIP
+    """
+    as_path(name_or_path, "name_or_path")
+    path = resolve_spec_path(name_or_path)
+    data, _ = read_toml(path)
+    for key, value in overrides.items():
+        set_dotted(data, key, value, UNIT_SIBLINGS)
+    return spec_from_dict(data, name=path.stem)
+
+
+def as_spec(spec: Any, field: str = "spec") -> CouplingSpec:
+    """``spec`` when it is a :class:`CouplingSpec`; a template name or the path of a TOML
+    spec is loaded (:func:`load_spec`); anything else is an :class:`ArgumentError` naming
+    ``field``. Every public function that takes a spec starts with this."""
+    if isinstance(spec, CouplingSpec):
+        return spec
+    if isinstance(spec, str | os.PathLike):
+        return load_spec(as_path(spec, field))
+    raise ArgumentError(field, spec, "a CouplingSpec (gearcoupling.load_spec), a "
+                        "template name or the path of a TOML spec")
+
+
+use_spec_loader(as_spec)  # the geometry's public functions take names too
+use_spec_reader(spec_from_dict)  # CouplingSpec.replace re-reads its file
