@@ -130,9 +130,11 @@ def _names(value: Any, name: str) -> set[str]:
 
 def _can_fork() -> bool:
     """Forking is safe only from a single-threaded process (no lock held by a thread that
-    the child would not have)."""
-    return ("fork" in multiprocessing.get_all_start_methods()
-            and threading.active_count() == 1)
+    the child would not have); a thread marked ``fork_safe`` (the CLI's signal watcher,
+    which only waits on a socket) does not count."""
+    others = [t for t in threading.enumerate()
+              if t is not threading.main_thread() and not getattr(t, "fork_safe", False)]
+    return "fork" in multiprocessing.get_all_start_methods() and not others
 
 
 def _chain_worker(keys: list[str], spec: CouplingSpec, out: Path, conn) -> None:
