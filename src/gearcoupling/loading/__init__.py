@@ -29,7 +29,7 @@ from .fitted import FittedCompliance
 from .inputs import resolve_model, resolve_torque_Nm
 from .linear import solve_windup
 from .linear_model import mesh_stiffness_N_per_mm
-from .patchmap import PatchMap, patch_maps
+from .patchmap import PatchMap, most_loaded, patch_maps
 from .plots import (
     plot_capacity,
     plot_loads_over_turn,
@@ -66,6 +66,7 @@ __all__ = [
     "load_from_sweep",
     "machine_loads",
     "mesh_stiffness_N_per_mm",
+    "most_loaded",
     "patch_maps",
     "plot_capacity",
     "plot_loads_over_turn",

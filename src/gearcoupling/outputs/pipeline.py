@@ -1,8 +1,9 @@
 """``gc.run``: every file the project can make for a spec, into one folder.
 
 The steps fall in two chains that share nothing but the folder; with two workers each chain
-runs in a forked process, so a two-core machine does both at once.
-The sweep step's result feeds the load step in the same process (one sweep, not two).
+runs in a forked process, so a two-core machine does both at once. The stages the steps
+compute (:mod:`~gearcoupling.outputs.stages`) are kept in this process, the workers'
+included, for a report made after the run (``gc.report``) to reuse.
 """
 
 from __future__ import annotations
@@ -28,6 +29,7 @@ from .interference import write_interference
 from .load import write_load
 from .parts import write_parts, write_step_files
 from .spec import write_spec
+from .stages import remember, take_new
 from .sweep import write_sweep
 
 #: the steps in the order they are listed, each with what it writes
@@ -72,7 +74,7 @@ class RunResult:
                 "skipped": self.skipped, "files": [p.name for p in self.files]}
 
 
-def _step(key: str, spec: CouplingSpec, out: Path, state: dict[str, Any]) -> list[Path]:
+def _step(key: str, spec: CouplingSpec, out: Path) -> list[Path]:
     mis = spec.design_misalignment_deg
     if key == "spec":
         return write_spec(spec, out)
@@ -83,8 +85,7 @@ def _step(key: str, spec: CouplingSpec, out: Path, state: dict[str, Any]) -> lis
     if key == "step":
         return write_step_files(spec, out)
     if key == "sweep":
-        state["sweep"], paths = write_sweep(spec, out, mis, RUN_ANGLES)
-        return paths
+        return write_sweep(spec, out, mis, RUN_ANGLES)[1]
     if key == "load":
         if spec.load.torque_Nm is None:
             raise SkipStep("no [load] torque_Nm in the spec")
@@ -95,12 +96,11 @@ def _step(key: str, spec: CouplingSpec, out: Path, state: dict[str, Any]) -> lis
     return [write_html(spec, out / "viewer.html")]
 
 
-def _timed(key: str, spec: CouplingSpec, out: Path, state: dict[str, Any] | None = None
-           ) -> tuple[str, list[Path], float, str | None]:
+def _timed(key: str, spec: CouplingSpec, out: Path) -> tuple[str, list[Path], float, str | None]:
     """Run one step: ``(key, files, seconds, reason skipped or None)``."""
     t0 = time.perf_counter()
     try:
-        files = _step(key, spec, out, {} if state is None else state)
+        files = _step(key, spec, out)
         reason = None
     except (BackendError, SkipStep) as err:  # an extra missing: the others stand
         files, reason = [], str(err)
@@ -144,10 +144,9 @@ def _chain_worker(keys: list[str], spec: CouplingSpec, out: Path, conn) -> None:
     _die_with_parent()
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C reaches the whole group
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
-    state: dict[str, Any] = {}
     try:
-        for k in keys:
-            conn.send(("done", _timed(k, spec, out, state)))
+        for k in keys:  # each step's results, and the stages it computed for the parent
+            conn.send(("done", _timed(k, spec, out), take_new()))
     except Exception as err:  # re-raised by the parent
         try:
             conn.send(("error", err))
@@ -189,7 +188,7 @@ def _run_forked(chains: list[list[str]], spec: CouplingSpec, out: Path,
             for ready in multiprocessing.connection.wait(list(waiting)):
                 conn = cast(multiprocessing.connection.Connection, ready)
                 try:
-                    kind, item = conn.recv()
+                    kind, item, *stages = conn.recv()
                 except EOFError:  # the chain is finished, or its process died
                     proc = waiting.pop(conn)
                     proc.join()
@@ -199,6 +198,7 @@ def _run_forked(chains: list[list[str]], spec: CouplingSpec, out: Path,
                     continue
                 if kind == "error":
                     raise item
+                remember(stages[0])
                 finished(item)
     finally:
         for proc, recv in workers:
@@ -263,9 +263,8 @@ def run(spec: CouplingSpec, out: str | os.PathLike, *, only: Iterable[str] | Non
     if parallel:
         _run_forked(chains, spec, folder, finished)
     else:
-        state: dict[str, Any] = {}
         for k in keys:
-            finished(_timed(k, spec, folder, state))
+            finished(_timed(k, spec, folder))
     files = [p for k in keys for p in done[k][1]]
     result = RunResult(spec.name, folder, tuple(files), {k: done[k][2] for k in keys},
                        {k: r for k in keys if (r := done[k][3]) is not None},

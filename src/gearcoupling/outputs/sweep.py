@@ -6,10 +6,11 @@ from pathlib import Path
 
 import numpy as np
 
-from ..clearance import SweepResult, design_quantities, plot_all, sweep
+from ..clearance import SweepResult, design_quantities, plot_all
 from ..errors import ArgumentError
 from ..io import plain, write_json
 from ..spec import CouplingSpec
+from .stages import backlash_grid, backlash_range_deg, turn_sweep
 
 
 def turn_angles(angles: int) -> np.ndarray:
@@ -25,8 +26,8 @@ def write_sweep(spec: CouplingSpec, out: Path, misalignment_deg: float, angles: 
     """Sweep ``angles`` rotations over a turn and write ``sweep.csv``,
     ``sweep_summary.json`` (with the design quantities) and the plots; returns the sweep
     and the paths."""
-    result = sweep(spec, misalignment_deg, turn_angles(angles),
-                   tolerance_mm=tolerance_mm).check_finite()
+    turn_angles(angles)  # checks the count
+    result = turn_sweep(spec, float(misalignment_deg), angles, tolerance_mm)
     summary = result.summary()
     extra = design_quantities(spec, misalignment_deg) if design else {}
     summary.update(extra)
@@ -34,5 +35,10 @@ def write_sweep(spec: CouplingSpec, out: Path, misalignment_deg: float, angles: 
     paths = [result.write_csv(out / "sweep.csv"),
              write_json(out / "sweep_summary.json", summary)]
     if plots:
-        paths += plot_all(result, spec, out, design=extra if design else None, studies=studies)
+        curve = None
+        if studies and design:
+            top = backlash_range_deg(spec, extra.get("binding_angle_deg"), misalignment_deg)
+            curve = backlash_grid(spec, top)
+        paths += plot_all(result, spec, out, design=extra if design else None,
+                          studies=studies, backlash=curve)
     return result, paths

@@ -16,7 +16,6 @@ from typing import Any
 import numpy as np
 
 from ..clearance import (
-    backlash_curve,
     design_quantities,
     plot_backlash,
     plot_backlash_over_turn,
@@ -33,16 +32,13 @@ from ..io import write_csv_records, write_csv_rows, write_text
 from ..loading import (
     ROTATIONS,
     capacity,
-    capacity_from_sweep,
-    default_angles,
     load_from_sweep,
-    patch_maps,
+    most_loaded,
     plot_capacity,
     plot_loads_over_turn,
     plot_patches,
     plot_q_graph,
     plot_tooth_load,
-    renzo_q,
     resolve_torque_Nm,
     rotation_table,
     springs_name,
@@ -50,6 +46,7 @@ from ..loading import (
     windup_error,
     write_capacity_csv,
 )
+from ..outputs import backlash_grid, backlash_range_deg, q_points, turn_sweep
 from ..plots import crown_profile, new_figure, sections_figure
 from ..spec import CouplingSpec
 from ..viewer import ViewSettings, write_html
@@ -167,8 +164,7 @@ def coupling(ctx: Context) -> Section:
 def clearance(ctx: Context) -> Section:
     spec, s = ctx.spec, ctx.settings
     sec = Section("clearance", "Clearance, backlash and contact over the turn")
-    angles = np.arange(s.angles) * 360.0 / s.angles
-    sw = sweep(spec, ctx.misalignment_deg, angles, tolerance_mm=s.tolerance_mm).check_finite()
+    sw = turn_sweep(spec, ctx.misalignment_deg, s.angles, s.tolerance_mm)
     ctx.found["sweep"] = sw
     summ = sw.summary()
     ctx.found["min_backlash_mm"] = summ["min_backlash_mm"]
@@ -237,13 +233,12 @@ def design_angles(ctx: Context) -> Section:
                             f"({dq['design_rotations_per_pitch']} rotations per tooth pitch); "
                             "– where the coupling does not reach it by 6° or the crown is "
                             "straight."))
-    mis = np.linspace(0.0, min(6.0, max(2.0 * (bind or 3.0), ctx.misalignment_deg * 1.5)), 25)
-    curve = backlash_curve(spec, mis)
+    mis, curve = backlash_grid(spec, backlash_range_deg(spec, bind, ctx.misalignment_deg))
     name = ctx.table_file("backlash_vs_misalignment.csv",
                           ("misalignment_deg", "min_backlash_mm"), zip(mis, curve, strict=True))
     sec.blocks.append(ctx.figure("backlash-vs-misalignment",
                                  "Smallest backlash over a turn against misalignment",
-                                 plot_backlash(spec, max_deg=float(mis[-1]), binding_deg=bind),
+                                 plot_backlash(spec, binding_deg=bind, curve=(mis, curve)),
                                  "25 misalignments, 8 rotations per tooth pitch each.", name))
     return sec
 
@@ -304,7 +299,7 @@ def loads(ctx: Context) -> Section:
                                  "loads over the rotations", plot_loads_over_turn(res), how,
                                  name))
     j = int(np.argmax(np.max(res.tangential_force_N, axis=0)))
-    maps = patch_maps(res, j, count=s.patch_teeth)
+    mapped = set(most_loaded(res, j, s.patch_teeth).tolist())  # the teeth plot_patches maps
     name = ctx.table_file(
         "contact_patches.csv", ("tooth", "theta_deg", "normal_force_N", "contact_z_mm",
                                 "contact_r_mm", "patch_length_mm", "patch_width_mm",
@@ -313,7 +308,7 @@ def loads(ctx: Context) -> Section:
         ((k, res.theta_deg[k, j], res.normal_force_N[k, j], res.contact_z_mm[k, j],
           res.contact_r_mm[k, j], res.patch_length_mm[k, j], res.patch_width_mm[k, j],
           res.interior_pressure_MPa[k, j], res.max_pressure_MPa[k, j],
-          bool(res.edge_contact[k, j]), k in {m.tooth for m in maps})
+          bool(res.edge_contact[k, j]), k in mapped)
          for k in range(res.teeth)))
     sec.blocks.append(ctx.figure(
         "patches", "Contact pressure on the developed flanks, the most loaded teeth and every "
@@ -341,19 +336,13 @@ def q_graph(ctx: Context, sec: Section) -> None:
                                "mesh_stiffness (Renzo's C); not drawn.", "skip"))
         return
     top = max(ctx.misalignment_deg, 0.5)
-    pts = []
-    for i in np.linspace(top / 7, top, 7):
-        c = capacity_from_sweep(sweep(spec, float(i), default_angles(spec, None)), model="linear")
-        z0 = renzo_z0_mm(spec.derived["crowning_radius_midplane_mm"], math.radians(i),
-                         spec.tooth.pressure_angle)
-        zc = ld.allowable_tooth_load_N / ld.mesh_stiffness_N_per_mm
-        T_tooth = c.criteria_Nm.get("tooth_load")
-        if 0 < z0 < math.inf and T_tooth and c.aligned_capacity_Nm:
-            q = T_tooth / c.aligned_capacity_Nm
-            pts.append((float(i), zc / z0, q, renzo_q(zc / z0)))
+    pts = q_points(spec, ctx.misalignment_deg)  # the stage gc.run's q graph draws
     name = ctx.table_file("q_graph.csv", ("misalignment_deg", "zc_over_z0", "q_linear_model",
-                                          "q_renzo_eq8"), pts)
-    fig = plot_q_graph({"linear model, exact geometry": [(p[1], p[2]) for p in pts]},
+                                          "q_renzo_eq8"),
+                          [(p.misalignment_deg, p.zc_over_z0, p.q_linear, p.q_renzo)
+                           for p in pts])
+    fig = plot_q_graph({"linear model, exact geometry": [(p.zc_over_z0, p.q_linear)
+                                                         for p in pts]},
                        title=f"{spec.name}: load proportion q against z_c / z0 (Renzo Fig. 12)")
     sec.blocks.append(ctx.figure("q-graph", "Renzo's load proportion q against z_c / z0", fig,
                                  f"Linear model (C = {ld.mesh_stiffness_N_per_mm:.4g} N/mm, "
@@ -404,7 +393,7 @@ def interference(ctx: Context) -> Section:
         sec.blocks.append(Note(f"Not run: {err}", "skip"))
         return sec
     ctx.found["interference"] = (result, "")
-    ref = sweep(spec, ctx.misalignment_deg, angles, tolerance_mm=s.tolerance_mm)
+    ref = turn_sweep(spec, ctx.misalignment_deg, s.check_angles, s.tolerance_mm)
     reference = np.min(ref.normal_clearance_mm, axis=(0, 1))
     summ = result.summary()
     rows = [("poses over the turn", summ["angles"], ""),
