@@ -79,6 +79,13 @@ def test_bad_input_exits_2_with_a_clear_message(argv, words, capsys):
     assert words in err and "Traceback" not in err
 
 
+def test_sections_shows_a_progress_bar(tmp_path, capsys):
+    assert main(["sections", "industrial-m2", "-o", str(tmp_path)]) == 0
+    got = capsys.readouterr()
+    assert "sections industrial-m2" in got.err and "1/1" in got.err
+    assert got.out.strip() == str(tmp_path / "sections.png")
+
+
 def test_templates_lists_every_template(capsys):
     import gearcoupling as gc
 

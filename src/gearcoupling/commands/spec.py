@@ -27,7 +27,7 @@ def run(args) -> int:
 
     console = Console()
     head = {k: v for k, v in data.items() if k != "derived"}
-    for path, rows in _sections(spec.name, head) + [("derived", data["derived"])]:
+    for path, rows in [*_sections(spec.name, head), ("derived", data["derived"])]:
         console.print(_table(path, rows))
     return 0
 

@@ -9,6 +9,7 @@ from pathlib import Path
 from ..clearance import SweepResult, sweep
 from ..io import write_json
 from ..loading import (
+    LoadResult,
     load_from_sweep,
     plot_patches,
     plot_q_graph,
@@ -24,7 +25,8 @@ from .sweep import turn_angles
 
 
 def load_studies(spec: CouplingSpec, torque_Nm: float, model: str | None, out: Path, *,
-                 progress: Callable[[int, int], None] | None = None) -> list[Path]:
+                 progress: Callable[[int, int], None] | None = None
+               ) -> tuple[LoadResult, list[Path]]:
     """Wei Figs. 12-13 and Renzo's q-graph (Fig. 12) for the spec, over one tooth pitch
     (the stages :func:`load_study` and :func:`q_points`); ``progress(done, total)`` after
     each misalignment."""
@@ -56,12 +58,13 @@ def write_load(spec: CouplingSpec, out: Path, misalignment_deg: float,
                torque_Nm: float | None = None, model: str | None = None,
                tolerance_mm: float = 1e-7, plots: bool = True, with_studies: bool = True,
                swept: SweepResult | None = None,
-               progress: Callable[[int, int], None] | None = None) -> list[Path]:
+               progress: Callable[[int, int], None] | None = None
+               ) -> tuple[LoadResult, list[Path]]:
     """The loaded analysis over ``angles`` rotations of a turn (default
     :data:`~gearcoupling.loading.PHASES` per tooth pitch, a turn of as many distinct poses):
     ``load.csv``, ``load_summary.json`` and plots. ``swept``: a sweep of this spec at these
     rotations and misalignment to reuse (else one is made); ``progress(done, total)`` as
-    the surface model and the studies go."""
+    the surface model and the studies go. Returns the loads and the paths."""
     if swept is None:
         a = turn_phases(spec) if angles is None else turn_angles(angles)
         swept = sweep(spec, misalignment_deg, a, tolerance_mm=tolerance_mm)
@@ -74,4 +77,4 @@ def write_load(spec: CouplingSpec, out: Path, misalignment_deg: float,
         if with_studies:
             paths += load_studies(spec, resolve_torque_Nm(spec, torque_Nm), model, out,
                                   progress=progress)
-    return paths
+    return res, paths

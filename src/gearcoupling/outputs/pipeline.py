@@ -89,7 +89,7 @@ def _step(key: str, spec: CouplingSpec, out: Path) -> list[Path]:
     if key == "load":
         if spec.load.torque_Nm is None:
             raise SkipStep("no [load] torque_Nm in the spec")
-        return write_load(spec, out, mis)  # a turn of PHASES poses per pitch
+        return write_load(spec, out, mis)[1]  # a turn of PHASES poses per pitch
     if key == "check":
         angles = [360.0 * j / CHECK_ANGLES for j in range(CHECK_ANGLES)]
         return write_interference(spec, check_interference(spec, mis, angles), out)

@@ -1,6 +1,7 @@
 """The stages that :func:`~gearcoupling.outputs.run` and the design report
-(:func:`gearcoupling.report`) share: the sweep over a turn, the misalignment grids, the
-backlash curve, Renzo's q points and the misalignment studies of the loads.
+(:func:`gearcoupling.report`) share: the sweep over a turn, the critical and binding
+angles, the misalignment grids, the backlash curve, Renzo's q points and the misalignment
+studies of the loads.
 
 Each stage is computed once per spec and arguments in a process and kept (:func:`stage`):
 a report made in the process of a run, or after it (``gc.run`` then ``gc.report``),
@@ -21,7 +22,7 @@ from typing import Any, TypeVar
 
 import numpy as np
 
-from ..clearance import SweepResult, backlash_curve, sweep
+from ..clearance import SweepResult, backlash_curve, design_quantities, sweep
 from ..errors import ArgumentError
 from ..geometry import renzo_z0_mm
 from ..loading import (
@@ -93,6 +94,13 @@ def turn_sweep(spec: CouplingSpec, misalignment_deg: float, angles: int,
         raise ArgumentError("angles", angles, "at least 1")
     a = np.arange(angles) * 360.0 / angles
     return sweep(spec, misalignment_deg, a, tolerance_mm=tolerance_mm).check_finite()
+
+
+@stage
+def design_point(spec: CouplingSpec, misalignment_deg: float) -> dict[str, Any]:
+    """:func:`~gearcoupling.clearance.design_quantities` at the misalignment: the critical
+    and binding angles and the contact travel (root finding, a few seconds)."""
+    return design_quantities(spec, misalignment_deg)
 
 
 def study_misalignments(spec: CouplingSpec, top_deg: float | None = None,

@@ -16,7 +16,6 @@ from typing import Any
 import numpy as np
 
 from ..clearance import (
-    design_quantities,
     plot_backlash,
     plot_backlash_over_turn,
     plot_clearance,
@@ -46,7 +45,7 @@ from ..loading import (
     windup_error,
     write_capacity_csv,
 )
-from ..outputs import backlash_grid, backlash_range_deg, q_points, turn_sweep
+from ..outputs import backlash_grid, backlash_range_deg, design_point, q_points, turn_sweep
 from ..plots import crown_profile, new_figure, sections_figure
 from ..spec import CouplingSpec
 from ..viewer import ViewSettings, write_html
@@ -197,7 +196,7 @@ def design_angles(ctx: Context) -> Section:
     """Critical and binding misalignment, contact travel and z0 with Renzo's estimates."""
     spec = ctx.spec
     sec = Section("design-angles", "Critical and binding angles")
-    dq = design_quantities(spec, ctx.misalignment_deg)
+    dq = design_point(spec, ctx.misalignment_deg)
     crit, bind = dq["critical_misalignment_deg"], dq["binding_angle_deg"]
     ctx.found.update(critical_deg=crit, binding_deg=bind)
     rc = spec.derived["crowning_radius_midplane_mm"]
