@@ -25,8 +25,7 @@ from .sweep import turn_angles
 
 
 def load_studies(spec: CouplingSpec, torque_Nm: float, model: str | None, out: Path, *,
-                 progress: Callable[[int, int], None] | None = None
-               ) -> tuple[LoadResult, list[Path]]:
+                 progress: Callable[[int, int], None] | None = None) -> list[Path]:
     """Wei Figs. 12-13 and Renzo's q-graph (Fig. 12) for the spec, over one tooth pitch
     (the stages :func:`load_study` and :func:`q_points`); ``progress(done, total)`` after
     each misalignment."""

@@ -353,7 +353,14 @@ def capacity_section(ctx: Context) -> Section:
     spec, s = ctx.spec, ctx.settings
     sec = Section("capacity", "Capacity per criterion against misalignment")
     flank = "cw" if (ctx.torque_Nm or 0.0) < 0 else "ccw"
-    at = capacity(spec, ctx.misalignment_deg, model=ctx.model, loaded_flank=flank)
+    grid, critical = comparison_range([spec], s.capacity_count)
+    # the curve (loaded flank ccw) passes through the design point: one search for both
+    mis = np.unique(np.append(grid, ctx.misalignment_deg)) if flank == "ccw" else grid
+    comp = compare_capacity([spec], mis, model=ctx.model)
+    if flank == "ccw":
+        at = comp.curves[spec.name][int(np.searchsorted(mis, ctx.misalignment_deg))]
+    else:
+        at = capacity(spec, ctx.misalignment_deg, model=ctx.model, loaded_flank=flank)
     ctx.found["capacity"] = at
     rows = [(f"{k.replace('_', ' ')}", v, "N·m") for k, v in at.criteria_Nm.items()]
     rows += [("governing capacity K·T", at.capacity_Nm, f"N·m ({at.governing.replace('_', ' ')})"),
@@ -365,15 +372,13 @@ def capacity_section(ctx: Context) -> Section:
                             f"At i = {ctx.misalignment_deg:g}° ({at.model} model, {flank} flanks,"
                             f" K = {at.accuracy_factor:g}); a criterion without its limit is "
                             "left out."))
-    mis, critical = comparison_range([spec], s.capacity_count)
-    comp = compare_capacity([spec], mis, model=ctx.model)
     write_capacity_csv(comp.curves, ctx.data_path("capacity.csv"))
     sec.blocks.append(ctx.figure(
         "capacity", "Capacity per criterion against misalignment, design point starred",
         plot_capacity(comp.curves, critical_deg=critical),
-        f"{at.model} model, {s.capacity_count} misalignments 0–{mis[-1]:.3g}° (to the critical "
-        f"misalignment), {ROTATIONS[at.model]} rotations over one tooth pitch each, loaded "
-        "flank ccw.",
+        f"{at.model} model, {s.capacity_count} misalignments 0–{grid[-1]:.3g}° (to the critical "
+        f"misalignment){' and the design point' if mis.size > grid.size else ''}, "
+        f"{ROTATIONS[at.model]} rotations over one tooth pitch each, loaded flank ccw.",
         "capacity.csv"))
     return sec
 
