@@ -10,7 +10,7 @@ import pytest
 
 import gearcoupling as gc
 
-STEPS = ["spec", "sections", "sweep"]  # one chain each way, quick
+STEPS = ["spec", "sweep", "viewer"]  # one chain each way, quick
 
 
 @pytest.mark.slow

@@ -43,10 +43,10 @@ STEPS: dict[str, str] = {
     "check": "interference check at the design angle",
     "viewer": "static viewer HTML",
 }
-# halves of the work as near equal as whole steps allow (renzo-1967, CPU seconds: sweep
-# 2.2, load 7.3 (its studies 3.8); spec 0, sections 0.7, parts 0.6, step 1.8, check 2.0,
-# viewer 0.7)
-CHAINS = (("sweep", "load"), ("spec", "sections", "parts", "step", "check", "viewer"))
+# halves of the work as near equal as whole steps allow (renzo-1967, CPU seconds on a
+# loaded machine: load 9.5 (its studies 5.1), viewer 0.7; spec 0, sections 0.7, sweep 2.7,
+# parts 0.6, step 1.8, check 2.0)
+CHAINS = (("load", "viewer"), ("spec", "sections", "sweep", "parts", "step", "check"))
 CHECK_ANGLES = 72
 RUN_ANGLES = 360
 
