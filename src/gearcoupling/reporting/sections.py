@@ -354,8 +354,7 @@ def capacity_section(ctx: Context) -> Section:
     sec = Section("capacity", "Capacity per criterion against misalignment")
     flank = "cw" if (ctx.torque_Nm or 0.0) < 0 else "ccw"
     grid, critical = comparison_range([spec], s.capacity_count)
-    # the curve (loaded flank ccw) passes through the design point: one search for both
-    mis = np.unique(np.append(grid, ctx.misalignment_deg)) if flank == "ccw" else grid
+    mis = _through(grid, ctx.misalignment_deg) if flank == "ccw" else grid
     comp = compare_capacity([spec], mis, model=ctx.model)
     if flank == "ccw":
         at = comp.curves[spec.name][int(np.searchsorted(mis, ctx.misalignment_deg))]
@@ -376,11 +375,24 @@ def capacity_section(ctx: Context) -> Section:
     sec.blocks.append(ctx.figure(
         "capacity", "Capacity per criterion against misalignment, design point starred",
         plot_capacity(comp.curves, critical_deg=critical),
-        f"{at.model} model, {s.capacity_count} misalignments 0–{grid[-1]:.3g}° (to the critical "
-        f"misalignment){' and the design point' if mis.size > grid.size else ''}, "
+        f"{at.model} model, {mis.size} misalignments 0–{grid[-1]:.3g}° (to the critical "
+        f"misalignment){', the design point among them' if flank == 'ccw' else ''}, "
         f"{ROTATIONS[at.model]} rotations over one tooth pitch each, loaded flank ccw.",
         "capacity.csv"))
     return sec
+
+
+def _through(grid: np.ndarray, design_deg: float) -> np.ndarray:
+    """The capacity curve's misalignments through the design point, so that one search
+    gives the verdict's capacity and the curve's point: it takes the place of the nearest
+    interior point of ``grid`` (0 and the critical misalignment stay), else it is added."""
+    inside = grid[1:-1]
+    out = grid.copy()
+    if inside.size and grid[0] < design_deg < grid[-1]:
+        out[1 + int(np.argmin(np.abs(inside - design_deg)))] = design_deg
+    else:
+        out = np.append(out, design_deg)
+    return np.unique(out)
 
 
 # --------------------------------------------------------------------------- checks
