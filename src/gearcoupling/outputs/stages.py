@@ -86,6 +86,8 @@ def stage(fn: F) -> F:
         value = fn(spec, *args, **kwargs)
         remember({key: value})
         _NEW[key] = value
+        if len(_NEW) > MEMO_SIZE:  # bounded where no one takes them (not a run's worker)
+            del _NEW[next(iter(_NEW))]
         return value
     return kept  # type: ignore[return-value]
 
