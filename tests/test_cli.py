@@ -25,6 +25,23 @@ def test_spec_table_output(capsys):
     assert "aligned_backlash_mm" in out and "renzo_z0_mm" in out
 
 
+def test_spec_tables_piped_keep_the_files_order_and_say_not_set(capsys):
+    """Piped (capsys: not a terminal, 80 columns): every heading on one line, the
+    sections in the spec's order (a table before its sub-tables), unset inspection limits
+    as "not set", never "inf"."""
+    assert main(["spec", "renzo-1967", "--set", "inspection.fpt=0.02"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    heads = [line for line in lines if line.startswith("[")]
+    assert heads == ["[renzo-1967]", "[tooth]", "[hub]", "[hub.tip]", "[hub.root]",
+                     "[hub.crowning]", "[hub.body]", "[sleeve]", "[inspection]", "[load]",
+                     "[material.hub]", "[material.sleeve]", "[derived]"]
+    start = lines.index("[inspection]")
+    block = lines[start:lines.index("[load]")]
+    assert any("fpt" in line and "0.508" in line for line in block)  # 0.02 in, in mm
+    assert sum("not set" in line for line in block) == 6
+    assert not any(" inf " in line for line in block)
+
+
 @pytest.mark.slow
 def test_sections_and_run_write_files(tmp_path, capsys):
     assert main(["sections", "industrial-m2", "-o", str(tmp_path / "s")]) == 0
@@ -60,6 +77,13 @@ def test_bad_input_exits_2_with_a_clear_message(argv, words, capsys):
     assert main(argv) == 2
     err = capsys.readouterr().err
     assert words in err and "Traceback" not in err
+
+
+def test_sections_shows_a_progress_bar(tmp_path, capsys):
+    assert main(["sections", "industrial-m2", "-o", str(tmp_path)]) == 0
+    got = capsys.readouterr()
+    assert "sections industrial-m2" in got.err and "1/1" in got.err
+    assert got.out.strip() == str(tmp_path / "sections.png")
 
 
 def test_templates_lists_every_template(capsys):

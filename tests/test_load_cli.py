@@ -41,6 +41,21 @@ def test_load_command_writes_csv_and_summary(tmp_path):
     assert (out / "load_tooth_load.png").stat().st_size > 0
 
 
+def test_load_prints_its_findings_and_exits_1_when_a_limit_is_exceeded(tmp_path, capsys):
+    """Each load limit printed with its verdict; a root bending stress over the allowable
+    (as load_summary.json's limits say) is a finding: exit status 1 (README)."""
+    argv = ["load", "renzo-1967", "--angles", "8", "--no-plots", "--model", "linear",
+            "-o", str(tmp_path)]
+    assert main([*argv, "--torque", "1000"]) == 0
+    printed = capsys.readouterr().out
+    assert "pass: root bending stress ≤ allowable" in printed and "FAIL" not in printed
+    assert main([*argv, "--torque", "6000"]) == 1
+    printed = capsys.readouterr().out
+    limits = json.loads((tmp_path / "load_summary.json").read_text())["limits"]
+    assert "root bending stress exceeds the allowable" in limits
+    assert "FAIL: root bending stress ≤ allowable" in printed
+
+
 def test_capacity_command_writes_the_curve(tmp_path):
     out = tmp_path / "c"
     assert main(["capacity", "renzo-1967", "--compare", "renzo-1967-vari-crown", "--max", "1",

@@ -273,3 +273,18 @@ def test_margin_says_whether_the_models_error_band_crosses_the_limit():
     assert row.verdict == PASS and row.band_crosses
     cls, sentence = overall([row])
     assert cls == "pass" and "crosses the limit of: torque ≤ capacity" in sentence
+
+
+def test_the_capacity_curve_passes_through_the_design_point():
+    """One search for the verdict's capacity and the curve: the design point takes the
+    place of the nearest interior point (the ends stay), or is added outside the grid."""
+    import numpy as np
+
+    from gearcoupling.reporting.sections import _through
+
+    grid = np.linspace(0.0, 2.064, 7)
+    mis = _through(grid, 1.0)
+    assert mis.size == 7 and 1.0 in mis and 1.032 not in mis
+    assert mis[0] == 0.0 and mis[-1] == 2.064
+    assert list(_through(grid, 3.0)) == [*grid, 3.0]
+    assert list(_through(grid, 0.0)) == list(grid)

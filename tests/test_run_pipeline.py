@@ -10,7 +10,7 @@ import pytest
 
 import gearcoupling as gc
 
-STEPS = ["spec", "sections", "sweep"]  # one chain each way, quick
+STEPS = ["spec", "sweep", "viewer"]  # one chain each way, quick
 
 
 @pytest.mark.slow
@@ -36,3 +36,14 @@ def test_steps_are_checked_before_anything_is_written(tmp_path):
     with pytest.raises(gc.ArgumentError, match="workers"):
         gc.run(gc.load_spec("industrial-m2"), tmp_path / "x", workers=3)
     assert not (tmp_path / "x").exists()
+
+
+def test_the_cli_forks_beside_its_signal_watcher(tmp_path):
+    """``gearcoupling run`` uses two workers on two cores: the CLI's signal-watching thread
+    (which only waits on a socket) does not stop the fork (it did: one worker)."""
+    code = ("import sys; "
+            "from gearcoupling.cli import main; "
+            f"sys.exit(main(['run', 'renzo-1967', '--only', 'spec,viewer', '--workers', '2', "
+            f"'-o', {str(tmp_path)!r}]))")
+    subprocess.run([sys.executable, "-c", code], check=True, capture_output=True)
+    assert json.loads((tmp_path / "run_summary.json").read_text())["workers"] == 2

@@ -60,3 +60,22 @@ def test_run_has_the_sweep_step():
     from gearcoupling.outputs import STEPS
 
     assert "sweep" in STEPS
+
+
+def test_sweep_prints_its_results_and_exits_1_on_a_finding(tmp_path, capsys):
+    """The critical angle, the binding angle and the smallest backlash are printed as in
+    sweep_summary.json, with a progress bar on stderr; past the binding angle the teeth
+    bind: a finding, exit status 1 (README)."""
+    out = tmp_path / "o"
+    assert main(["sweep", "renzo-1967", "--angles", "24", "--no-plots", "-o", str(out)]) == 0
+    got = capsys.readouterr()
+    summary = json.loads((out / "sweep_summary.json").read_text())
+    assert f"{summary['critical_misalignment_deg']:.4f}°" in got.out
+    assert f"{summary['binding_angle_deg']:.4f}°" in got.out
+    assert f"{summary['min_backlash_mm'] * 1e3:.2f} µm at least" in got.out
+    assert "FAIL" not in got.out and "3/3" in got.err  # the bar, finished
+    assert main(["sweep", "renzo-1967", "--angles", "24", "--no-plots", "--misalignment",
+                 "3", "-o", str(out)]) == 1
+    printed = capsys.readouterr().out
+    assert "FAIL: teeth do not bind" in printed and "FAIL: contact stays off" in printed
+    assert summary["binding_angle_deg"] < 3 and summary["critical_misalignment_deg"] < 3

@@ -246,7 +246,8 @@ def test_minimise_steps_alone():
 
 def test_sweep_command_at_6_deg_on_the_issue_example(tmp_path):
     """Was "All-NaN slice encountered" in the clearance map (the swing tooth faces no
-    sleeve flank at 6°): now exit 0, every file written, no NaN in them."""
+    sleeve flank at 6°): now every file written, no NaN in them, and exit 1: the teeth
+    bind there (smallest backlash below 0), a finding the command reports."""
     from gearcoupling.cli import main
 
     spec_file = tmp_path / "straight120.toml"
@@ -256,7 +257,7 @@ def test_sweep_command_at_6_deg_on_the_issue_example(tmp_path):
                          '[hub.crowning]\nkind = "none"\n')
     out = tmp_path / "o"
     assert main(["sweep", str(spec_file), "--misalignment", "6", "--angles", "3",
-                 "--no-design", "--quick-plots", "-o", str(out)]) == 0
+                 "--no-design", "--quick-plots", "-o", str(out)]) == 1
     assert "nan" not in (out / "sweep.csv").read_text().lower()
     summary = (out / "sweep_summary.json").read_text()
     assert "NaN" not in summary

@@ -114,7 +114,9 @@ def _kill_solvers_at_signal() -> Iterator[None]:
                 _stop_solvers()
 
     old_fd = signal.set_wakeup_fd(w.fileno(), warn_on_full_buffer=False)
-    threading.Thread(target=watch, name="gearcoupling-signals", daemon=True).start()
+    watcher = threading.Thread(target=watch, name="gearcoupling-signals", daemon=True)
+    watcher.fork_safe = True  # type: ignore[attr-defined]  # holds no lock: gc.run may fork
+    watcher.start()
     try:
         yield
     finally:

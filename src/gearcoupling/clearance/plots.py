@@ -182,10 +182,15 @@ def backlash_curve(spec: CouplingSpec, misalignment_deg, *, steps: int = 8):
 
 
 def plot_backlash(spec: CouplingSpec, *, max_deg: float = 6.0, count: int = 25,
-                  binding_deg: float | None = None, ax=None):
-    """Smallest backlash over a turn against misalignment, with the binding angle."""
-    a = np.linspace(0.0, max_deg, count)
-    b = backlash_curve(spec, a)
+                  binding_deg: float | None = None, ax=None, curve=None):
+    """Smallest backlash over a turn against misalignment, with the binding angle.
+    ``curve``: ``(misalignments_deg, backlash_mm)`` already computed (:func:`backlash_curve`)
+    in place of ``count`` misalignments from 0 to ``max_deg``."""
+    if curve is None:
+        a = np.linspace(0.0, max_deg, count)
+        b = backlash_curve(spec, a)
+    else:
+        a, b = (np.asarray(v, dtype=float) for v in curve)
     fig, ax = figure_axes(ax, (1, 1), figsize=(8, 5))
     ax.plot(a, b * 1e3, "o-", ms=3, label="smallest backlash over a turn")
     ax.axhline(0.0, color="k", lw=0.8)
@@ -260,9 +265,10 @@ def plot_generation(spec: CouplingSpec, misalignment_deg: float, *, count: int =
 
 def plot_all(result: SweepResult, spec: CouplingSpec,
              out_dir: str | Path, *, design: dict | None = None,
-             studies: bool = True) -> list[Path]:
+             studies: bool = True, backlash=None) -> list[Path]:
     """Every sweep picture into ``out_dir``; ``studies`` adds the backlash, R_c and
-    generation studies (several seconds)."""
+    generation studies (several seconds); ``backlash``: the backlash curve to draw
+    (``curve`` of :func:`plot_backlash`), else one 0-6° is computed."""
     out = Path(out_dir)
     figures = {"sweep_clearance.png": lambda: plot_clearance(result),
                "sweep_contact_path.png": lambda: plot_contact_path(result, spec),
@@ -271,7 +277,8 @@ def plot_all(result: SweepResult, spec: CouplingSpec,
         binding = (design or {}).get("binding_angle_deg")
         if binding is None and design is None:
             binding = binding_angle_deg(spec, tolerance_deg=1e-3, steps=8)
-        figures["sweep_backlash.png"] = lambda: plot_backlash(spec, binding_deg=binding)
+        figures["sweep_backlash.png"] = lambda: plot_backlash(spec, binding_deg=binding,
+                                                              curve=backlash)
         figures["sweep_critical_vs_rc.png"] = lambda: plot_critical_vs_radius(spec)
         figures["sweep_generation.png"] = lambda: plot_generation(
             spec, max(result.misalignment_deg, 0.5))

@@ -5,6 +5,7 @@ from __future__ import annotations
 from ..arguments import GAP_TOLERANCE_MM, TORQUE_RANGE_NM
 from ..loading import PHASES, model_names, models_help
 from ..outputs import write_load
+from ..reporting import load_verdicts
 from .common import (
     MAX_ANGLES,
     add_misalignment_argument,
@@ -13,6 +14,7 @@ from .common import (
     misalignment_deg,
     output_dir,
     positive_length,
+    print_findings,
     progress,
     spec_from_args,
     torque,
@@ -47,10 +49,12 @@ def run(args) -> int:
     out = output_dir(args, spec)
     # one bar: the turn's poses, then the studies' misalignments
     with progress(f"load {spec.name}", args.angles or PHASES) as update:
-        paths = write_load(spec, out, mis, args.angles, torque_Nm=args.torque,
-                           model=args.model, tolerance_mm=args.tolerance,
-                           plots=not args.no_plots, with_studies=not args.quick_plots,
-                           progress=update)
+        res, paths = write_load(spec, out, mis, args.angles, torque_Nm=args.torque,
+                                model=args.model, tolerance_mm=args.tolerance,
+                                plots=not args.no_plots, with_studies=not args.quick_plots,
+                                progress=update)
+    status = print_findings(f"{spec.name}: {res.model} model, T = {res.torque_Nm:.4g} N·m at "
+                            f"{mis:g}°:", load_verdicts(spec, res, None, with_capacity=False))
     for path in paths:
         print(path)
-    return 0
+    return status

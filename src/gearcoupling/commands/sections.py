@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from ..plots import plot_sections
-from .common import add_spec_arguments, output_dir, positive_length, spec_from_args
+from .common import add_spec_arguments, output_dir, positive_length, progress, spec_from_args
 
 
 def register(sub) -> None:
@@ -16,6 +16,9 @@ def register(sub) -> None:
 
 def run(args) -> int:
     spec = spec_from_args(args)
-    path = plot_sections(spec, output_dir(args, spec) / "sections.png", args.tolerance)
+    out = output_dir(args, spec)
+    with progress(f"sections {spec.name}", 1) as update:
+        path = plot_sections(spec, out / "sections.png", args.tolerance)
+        update(1, 1)
     print(path)
     return 0

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import math
 
 from ..io import plain
 from ..outputs import resolved_spec
@@ -23,21 +24,40 @@ def run(args) -> int:
         print(json.dumps(plain(data, "spec"), indent=2, allow_nan=False))
         return 0
     from rich.console import Console
-    from rich.table import Table
 
     console = Console()
-
-    def table(title: str, rows: dict, prefix: str = "") -> None:
-        t = Table(title=title, show_header=False, title_justify="left")
-        for key, value in rows.items():
-            if isinstance(value, dict):
-                table(f"{title}.{key}", value)
-                continue
-            t.add_row(prefix + key, f"{value:.6g}" if isinstance(value, float) else str(value))
-        console.print(t)
-
-    head = {k: v for k, v in data.items() if k not in ("tooth", "hub", "sleeve", "derived")}
-    table(spec.name, head)
-    for section in ("tooth", "hub", "sleeve", "derived"):
-        table(section, data[section])
+    head = {k: v for k, v in data.items() if k != "derived"}
+    for path, rows in [*_sections(spec.name, head), ("derived", data["derived"])]:
+        console.print(_table(path, rows))
     return 0
+
+
+def _sections(title: str, data: dict, prefix: str = "") -> list[tuple[str, dict]]:
+    """``(heading, scalar rows)`` of ``data`` and its sub-tables (headings the dotted paths
+    of the file), in the spec's order: a table before its sub-tables, as in the file."""
+    rows = {k: v for k, v in data.items() if not isinstance(v, dict)}
+    out = [(title, rows)] if rows else []
+    for key, value in data.items():
+        if isinstance(value, dict):
+            out += _sections(prefix + key, value, f"{prefix}{key}.")
+    return out
+
+
+def _cell(section: str, value) -> str:
+    """A value as printed: unset limits (None, or infinite in [inspection]) as "not set"."""
+    if value is None or (section.startswith("inspection") and value == math.inf):
+        return "not set"
+    return f"{value:.6g}" if isinstance(value, float) else str(value)
+
+
+def _table(path: str, rows: dict):
+    """One section as a rich table under its ``[path]`` heading (a heading that never
+    wraps, whatever the width of the table or the terminal)."""
+    from rich.console import Group
+    from rich.table import Table
+    from rich.text import Text
+
+    t = Table(show_header=False)
+    for key, value in rows.items():
+        t.add_row(key, _cell(path, value))
+    return Group(Text(f"[{path}]", style="bold", no_wrap=True, overflow="ignore"), t)

@@ -23,21 +23,25 @@ from .stiffness import (
     rectangle_halfspace_work_mm_per_N,
     tooth_compliance_table,
 )
+from .validation import CUT_DISTANCE_PITCHES, check_sector, fe_sector_at_loads
 from .volume import VolumeMesh
 from .write import region_ids, write_inp, write_mesh
 
 __all__ = [
+    "CUT_DISTANCE_PITCHES",
     "DEFAULT_SECTOR_TEETH",
     "ComplianceTable",
     "FEContactResult",
     "FESectorResult",
     "VolumeMesh",
     "ccx_path",
+    "check_sector",
     "check_size",
     "compute_compliance_table",
     "default_size",
     "fe_contact",
     "fe_contact_sector",
+    "fe_sector_at_loads",
     "fillet_notes",
     "gmsh_module",
     "mesh_part",

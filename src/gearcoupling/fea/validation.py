@@ -1,13 +1,50 @@
-"""Closed-form check of the FE pipeline: a straight cantilever of rectangular section."""
+"""Checks made with the FE pipeline: the pipeline itself against a closed form (a straight
+cantilever of rectangular section), and the misaligned FE sector posed where a load model
+puts its most loaded tooth (:func:`fe_sector_at_loads`, the FE half of
+:func:`gearcoupling.sector_check`)."""
 
 from __future__ import annotations
 
 import numpy as np
 
+from ..errors import ArgumentError
+from ..spec import CouplingSpec
 from .backends import gmsh_session
 from .ccx import run_ccx, solver_dir
 from .deck import LoadCase, static_deck
 from .mesh import extract_mesh
+from .sector import FESectorResult, fe_contact_sector
+
+CUT_DISTANCE_PITCHES = 2  # compared teeth stand at least this far from a cut
+
+
+def check_sector(spec: CouplingSpec, sector) -> int:
+    """``sector`` checked: whole teeth, enough for a tooth :data:`CUT_DISTANCE_PITCHES`
+    from each cut, fewer than the coupling's."""
+    lo = 2 * CUT_DISTANCE_PITCHES + 1
+    if isinstance(sector, bool) or not (isinstance(sector, int)
+                                        and lo <= sector < spec.tooth.teeth):
+        raise ArgumentError("sector", sector, f"a whole number of teeth from {lo} (teeth "
+                            f"{CUT_DISTANCE_PITCHES} pitches from a cut) to "
+                            f"{spec.tooth.teeth - 1}")
+    return sector
+
+
+def fe_sector_at_loads(spec: CouplingSpec, tooth_loads_N: np.ndarray, *,
+                       misalignment_deg: float, rotation_deg: float, windup_rad: float,
+                       sector: int = 5, size_mm: float | None = None, workdir=None
+                       ) -> tuple[FESectorResult, list[int], list[float]]:
+    """The FE sector of ``sector`` teeth centred on the most loaded tooth of
+    ``tooth_loads_N`` ``(N,)`` (a model's tangential loads at the pose), turned by
+    ``windup_rad``; returns the FE result, the sector's compared teeth (indexes, at least
+    :data:`CUT_DISTANCE_PITCHES` from a cut) and FE / given load on each."""
+    W = np.asarray(tooth_loads_N, dtype=float)
+    first = (int(np.argmax(W)) - check_sector(spec, sector) // 2) % W.size
+    fe = fe_contact_sector(spec, misalignment_deg=misalignment_deg, rotation_deg=rotation_deg,
+                           windup_rad=windup_rad, first_tooth=first, sector=sector,
+                           size_mm=size_mm, workdir=workdir)
+    compared = list(range(CUT_DISTANCE_PITCHES, sector - CUT_DISTANCE_PITCHES))
+    return fe, compared, [fe.tangential_force_N[k] / W[fe.teeth[k]] for k in compared]
 
 
 def timoshenko_tip_deflection(force_N: float, length_mm: float, width_mm: float,

@@ -36,7 +36,7 @@ from .models.registry import (
     resolve_model,
 )
 from .models.surface_capacity import LOAD_GRID
-from .patchmap import PatchMap, patch_maps
+from .patchmap import PatchMap, most_loaded, patch_maps
 from .plots import (
     plot_capacity,
     plot_loads_over_turn,
@@ -77,6 +77,7 @@ __all__ = [
     "mesh_stiffness_N_per_mm",
     "model_names",
     "models_help",
+    "most_loaded",
     "patch_maps",
     "plot_capacity",
     "plot_loads_over_turn",

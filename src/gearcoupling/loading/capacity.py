@@ -40,8 +40,6 @@ from .limits import CRITERIA, limit_loads
 from .models.registry import PoseSearch, load_model, resolve_model
 
 
-
-
 @dataclass(frozen=True, eq=False)
 class Capacity:
     """Torque capacity at one misalignment, per criterion (torques in N·m, magnitudes).

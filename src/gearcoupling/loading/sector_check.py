@@ -1,8 +1,8 @@
 """A load model against the misaligned finite-element sector at one pose.
 
 The model (:func:`gearcoupling.load`) solves the pose at the torque; the finite-element
-sector (:func:`gearcoupling.fea.fe_contact_sector`) is then centred on the model's
-most loaded tooth and turned by the model's wind-up plus the bodies' torsion
+sector (:func:`gearcoupling.fea.fe_sector_at_loads`, which runs the FE) is then centred on
+the model's most loaded tooth and turned by the model's wind-up plus the bodies' torsion
 (:func:`body_windup_rad`), the same total the aligned reference measures. Equal wind-up,
 since a sector cannot be given its share of the torque: the share is the answer sought.
 The teeth at least two pitches from a cut are the compared ones (their loads change by
@@ -20,14 +20,12 @@ from scipy.optimize import brentq
 from ..arguments import TORQUE_RANGE_NM, real
 from ..clearance import sweep
 from ..errors import ArgumentError
-from ..fea import FESectorResult, fe_contact_sector
+from ..fea import FESectorResult, check_sector, fe_sector_at_loads
 from ..spec import CouplingSpec, as_spec, check_misalignment_deg
 from .api import load, load_from_sweep
 from .body import body_windup_rad
 from .inputs import resolve_torque_Nm
 from .models.registry import resolve_model
-
-CUT_DISTANCE_PITCHES = 2  # compared teeth stand at least this far from a cut
 
 
 @dataclass(frozen=True)
@@ -73,12 +71,7 @@ def sector_check(spec: CouplingSpec, misalignment_deg: float, *, rotation_deg: f
         Keep the solver's deck, log and printout here.
     """
     spec = as_spec(spec)
-    lo = 2 * CUT_DISTANCE_PITCHES + 1
-    if isinstance(sector, bool) or not (isinstance(sector, int)
-                                        and lo <= sector < spec.tooth.teeth):
-        raise ArgumentError("sector", sector, f"a whole number of teeth from {lo} (teeth "
-                            f"{CUT_DISTANCE_PITCHES} pitches from a cut) to "
-                            f"{spec.tooth.teeth - 1}")
+    check_sector(spec, sector)
     T = resolve_torque_Nm(spec, torque_Nm)
     check_misalignment_deg(misalignment_deg, error=ArgumentError)
     real(rotation_deg, "rotation_deg", unit="degrees")
@@ -87,14 +80,11 @@ def sector_check(spec: CouplingSpec, misalignment_deg: float, *, rotation_deg: f
         raise ArgumentError("torque_Nm", T, "a torque above 0 N·m: unloaded, nothing touches")
     res = load(spec, misalignment_deg, [rotation_deg], torque_Nm=T, model=model)
     W = res.tangential_force_N[:, 0]
-    N = W.size
-    first = (int(np.argmax(W)) - sector // 2) % N
     body = body_windup_rad(spec, T)["body_rad"]
-    fe = fe_contact_sector(spec, misalignment_deg=misalignment_deg, rotation_deg=rotation_deg,
-                           windup_rad=float(res.windup_rad[0]) + body, first_tooth=first,
-                           sector=sector, size_mm=size_mm, workdir=workdir)
-    compared = list(range(CUT_DISTANCE_PITCHES, sector - CUT_DISTANCE_PITCHES))
-    ratio = [fe.tangential_force_N[k] / W[fe.teeth[k]] for k in compared]
+    fe, compared, ratio = fe_sector_at_loads(
+        spec, W, misalignment_deg=misalignment_deg, rotation_deg=rotation_deg,
+        windup_rad=float(res.windup_rad[0]) + body, sector=sector, size_mm=size_mm,
+        workdir=workdir)
     return SectorCheck(model=res.model, stiffness=spec.load.stiffness, torque_Nm=T,
                        model_windup_rad=float(res.windup_rad[0]), body_rad=body,
                        model_tangential_force_N=[float(W[t]) for t in fe.teeth],

@@ -1,8 +1,9 @@
 """``gc.run``: every file the project can make for a spec, into one folder.
 
 The steps fall in two chains that share nothing but the folder; with two workers each chain
-runs in a forked process, so a two-core machine does both at once.
-The sweep step's result feeds the load step in the same process (one sweep, not two).
+runs in a forked process, so a two-core machine does both at once. The stages the steps
+compute (:mod:`~gearcoupling.outputs.stages`) are kept in this process, the workers'
+included, for a report made after the run (``gc.report``) to reuse.
 """
 
 from __future__ import annotations
@@ -28,6 +29,7 @@ from .interference import write_interference
 from .load import write_load
 from .parts import write_parts, write_step_files
 from .spec import write_spec
+from .stages import remember, take_new
 from .sweep import write_sweep
 
 #: the steps in the order they are listed, each with what it writes
@@ -41,8 +43,10 @@ STEPS: dict[str, str] = {
     "check": "interference check at the design angle",
     "viewer": "static viewer HTML",
 }
-# about equal halves of the work (renzo-1967: 4.2 s and 4.4 s on one core)
-CHAINS = (("sweep", "load", "viewer"), ("spec", "sections", "parts", "step", "check"))
+# halves of the work as near equal as whole steps allow (renzo-1967, CPU seconds on a
+# loaded machine: load 9.5 (its studies 5.1), viewer 0.7; spec 0, sections 0.7, sweep 2.7,
+# parts 0.6, step 1.8, check 2.0)
+CHAINS = (("load", "viewer"), ("spec", "sections", "sweep", "parts", "step", "check"))
 CHECK_ANGLES = 72
 RUN_ANGLES = 360
 
@@ -72,7 +76,7 @@ class RunResult:
                 "skipped": self.skipped, "files": [p.name for p in self.files]}
 
 
-def _step(key: str, spec: CouplingSpec, out: Path, state: dict[str, Any]) -> list[Path]:
+def _step(key: str, spec: CouplingSpec, out: Path) -> list[Path]:
     mis = spec.design_misalignment_deg
     if key == "spec":
         return write_spec(spec, out)
@@ -83,24 +87,22 @@ def _step(key: str, spec: CouplingSpec, out: Path, state: dict[str, Any]) -> lis
     if key == "step":
         return write_step_files(spec, out)
     if key == "sweep":
-        state["sweep"], paths = write_sweep(spec, out, mis, RUN_ANGLES)
-        return paths
+        return write_sweep(spec, out, mis, RUN_ANGLES)[1]
     if key == "load":
         if spec.load.torque_Nm is None:
             raise SkipStep("no [load] torque_Nm in the spec")
-        return write_load(spec, out, mis)  # a turn of PHASES poses per pitch
+        return write_load(spec, out, mis)[1]  # a turn of PHASES poses per pitch
     if key == "check":
         angles = [360.0 * j / CHECK_ANGLES for j in range(CHECK_ANGLES)]
         return write_interference(spec, check_interference(spec, mis, angles), out)
     return [write_html(spec, out / "viewer.html")]
 
 
-def _timed(key: str, spec: CouplingSpec, out: Path, state: dict[str, Any] | None = None
-           ) -> tuple[str, list[Path], float, str | None]:
+def _timed(key: str, spec: CouplingSpec, out: Path) -> tuple[str, list[Path], float, str | None]:
     """Run one step: ``(key, files, seconds, reason skipped or None)``."""
     t0 = time.perf_counter()
     try:
-        files = _step(key, spec, out, {} if state is None else state)
+        files = _step(key, spec, out)
         reason = None
     except (BackendError, SkipStep) as err:  # an extra missing: the others stand
         files, reason = [], str(err)
@@ -130,9 +132,11 @@ def _names(value: Any, name: str) -> set[str]:
 
 def _can_fork() -> bool:
     """Forking is safe only from a single-threaded process (no lock held by a thread that
-    the child would not have)."""
-    return ("fork" in multiprocessing.get_all_start_methods()
-            and threading.active_count() == 1)
+    the child would not have); a thread marked ``fork_safe`` (the CLI's signal watcher,
+    which only waits on a socket) does not count."""
+    others = [t for t in threading.enumerate()
+              if t is not threading.main_thread() and not getattr(t, "fork_safe", False)]
+    return "fork" in multiprocessing.get_all_start_methods() and not others
 
 
 def _chain_worker(keys: list[str], spec: CouplingSpec, out: Path, conn) -> None:
@@ -142,10 +146,9 @@ def _chain_worker(keys: list[str], spec: CouplingSpec, out: Path, conn) -> None:
     _die_with_parent()
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C reaches the whole group
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
-    state: dict[str, Any] = {}
     try:
-        for k in keys:
-            conn.send(("done", _timed(k, spec, out, state)))
+        for k in keys:  # each step's results, and the stages it computed for the parent
+            conn.send(("done", _timed(k, spec, out), take_new()))
     except Exception as err:  # re-raised by the parent
         try:
             conn.send(("error", err))
@@ -187,7 +190,7 @@ def _run_forked(chains: list[list[str]], spec: CouplingSpec, out: Path,
             for ready in multiprocessing.connection.wait(list(waiting)):
                 conn = cast(multiprocessing.connection.Connection, ready)
                 try:
-                    kind, item = conn.recv()
+                    kind, item, *stages = conn.recv()
                 except EOFError:  # the chain is finished, or its process died
                     proc = waiting.pop(conn)
                     proc.join()
@@ -197,6 +200,7 @@ def _run_forked(chains: list[list[str]], spec: CouplingSpec, out: Path,
                     continue
                 if kind == "error":
                     raise item
+                remember(stages[0])
                 finished(item)
     finally:
         for proc, recv in workers:
@@ -261,9 +265,8 @@ def run(spec: CouplingSpec, out: str | os.PathLike, *, only: Iterable[str] | Non
     if parallel:
         _run_forked(chains, spec, folder, finished)
     else:
-        state: dict[str, Any] = {}
         for k in keys:
-            finished(_timed(k, spec, folder, state))
+            finished(_timed(k, spec, folder))
     files = [p for k in keys for p in done[k][1]]
     result = RunResult(spec.name, folder, tuple(files), {k: done[k][2] for k in keys},
                        {k: r for k in keys if (r := done[k][3]) is not None},

@@ -16,8 +16,6 @@ from typing import Any
 import numpy as np
 
 from ..clearance import (
-    backlash_curve,
-    design_quantities,
     plot_backlash,
     plot_backlash_over_turn,
     plot_clearance,
@@ -32,17 +30,14 @@ from ..interference import check_interference, plot_interference
 from ..io import write_csv_records, write_csv_rows, write_text
 from ..loading import (
     capacity,
-    capacity_from_sweep,
-    default_angles,
     load_from_sweep,
     load_model,
-    patch_maps,
+    most_loaded,
     plot_capacity,
     plot_loads_over_turn,
     plot_patches,
     plot_q_graph,
     plot_tooth_load,
-    renzo_q,
     resolve_torque_Nm,
     rotation_table,
     springs_name,
@@ -50,8 +45,9 @@ from ..loading import (
     windup_error,
     write_capacity_csv,
 )
+from ..outputs import backlash_grid, backlash_range_deg, design_point, q_points, turn_sweep
 from ..plots import crown_profile, new_figure, sections_figure
-from ..spec import MISALIGNMENT_RANGE_DEG, CouplingSpec, check_misalignment_deg
+from ..spec import CouplingSpec, check_misalignment_deg
 from ..viewer import ViewSettings, write_html
 from .capacity import compare_capacity, comparison_range
 from .document import Figure, Note, Row, Section, Table, Viewer, png_bytes
@@ -167,8 +163,7 @@ def coupling(ctx: Context) -> Section:
 def clearance(ctx: Context) -> Section:
     spec, s = ctx.spec, ctx.settings
     sec = Section("clearance", "Clearance, backlash and contact over the turn")
-    angles = np.arange(s.angles) * 360.0 / s.angles
-    sw = sweep(spec, ctx.misalignment_deg, angles, tolerance_mm=s.tolerance_mm).check_finite()
+    sw = turn_sweep(spec, ctx.misalignment_deg, s.angles, s.tolerance_mm)
     ctx.found["sweep"] = sw
     summ = sw.summary()
     ctx.found["min_backlash_mm"] = summ["min_backlash_mm"]
@@ -201,7 +196,7 @@ def design_angles(ctx: Context) -> Section:
     """Critical and binding misalignment, contact travel and z0 with Renzo's estimates."""
     spec = ctx.spec
     sec = Section("design-angles", "Critical and binding angles")
-    dq = design_quantities(spec, ctx.misalignment_deg)
+    dq = design_point(spec, ctx.misalignment_deg)
     crit, bind = dq["critical_misalignment_deg"], dq["binding_angle_deg"]
     ctx.found.update(critical_deg=crit, binding_deg=bind)
     rc = spec.derived["crowning_radius_midplane_mm"]
@@ -237,14 +232,12 @@ def design_angles(ctx: Context) -> Section:
                             f"({dq['design_rotations_per_pitch']} rotations per tooth pitch); "
                             "– where the coupling does not reach it by 6° or the crown is "
                             "straight."))
-    top = max(2.0 * (bind or 3.0), ctx.misalignment_deg * 1.5)
-    mis = np.linspace(0.0, min(MISALIGNMENT_RANGE_DEG[1], top), 25)
-    curve = backlash_curve(spec, mis)
+    mis, curve = backlash_grid(spec, backlash_range_deg(spec, bind, ctx.misalignment_deg))
     name = ctx.table_file("backlash_vs_misalignment.csv",
                           ("misalignment_deg", "min_backlash_mm"), zip(mis, curve, strict=True))
     sec.blocks.append(ctx.figure("backlash-vs-misalignment",
                                  "Smallest backlash over a turn against misalignment",
-                                 plot_backlash(spec, max_deg=float(mis[-1]), binding_deg=bind),
+                                 plot_backlash(spec, binding_deg=bind, curve=(mis, curve)),
                                  "25 misalignments, 8 rotations per tooth pitch each.", name))
     return sec
 
@@ -305,7 +298,7 @@ def loads(ctx: Context) -> Section:
                                  "loads over the rotations", plot_loads_over_turn(res), how,
                                  name))
     j = int(np.argmax(np.max(res.tangential_force_N, axis=0)))
-    maps = patch_maps(res, j, count=s.patch_teeth)
+    mapped = set(most_loaded(res, j, s.patch_teeth).tolist())  # the teeth plot_patches maps
     name = ctx.table_file(
         "contact_patches.csv", ("tooth", "theta_deg", "normal_force_N", "contact_z_mm",
                                 "contact_r_mm", "patch_length_mm", "patch_width_mm",
@@ -314,7 +307,7 @@ def loads(ctx: Context) -> Section:
         ((k, res.theta_deg[k, j], res.normal_force_N[k, j], res.contact_z_mm[k, j],
           res.contact_r_mm[k, j], res.patch_length_mm[k, j], res.patch_width_mm[k, j],
           res.interior_pressure_MPa[k, j], res.max_pressure_MPa[k, j],
-          bool(res.edge_contact[k, j]), k in {m.tooth for m in maps})
+          bool(res.edge_contact[k, j]), k in mapped)
          for k in range(res.teeth)))
     sec.blocks.append(ctx.figure(
         "patches", "Contact pressure on the developed flanks, the most loaded teeth and every "
@@ -342,19 +335,13 @@ def q_graph(ctx: Context, sec: Section) -> None:
                                "mesh_stiffness (Renzo's C); not drawn.", "skip"))
         return
     top = max(ctx.misalignment_deg, 0.5)
-    pts = []
-    for i in np.linspace(top / 7, top, 7):
-        c = capacity_from_sweep(sweep(spec, float(i), default_angles(spec, None)), model="linear")
-        z0 = renzo_z0_mm(spec.derived["crowning_radius_midplane_mm"], math.radians(i),
-                         spec.tooth.pressure_angle)
-        zc = ld.allowable_tooth_load_N / ld.mesh_stiffness_N_per_mm
-        T_tooth = c.criteria_Nm.get("tooth_load")
-        if 0 < z0 < math.inf and T_tooth and c.aligned_capacity_Nm:
-            q = T_tooth / c.aligned_capacity_Nm
-            pts.append((float(i), zc / z0, q, renzo_q(zc / z0)))
+    pts = q_points(spec, ctx.misalignment_deg)  # the stage gc.run's q graph draws
     name = ctx.table_file("q_graph.csv", ("misalignment_deg", "zc_over_z0", "q_linear_model",
-                                          "q_renzo_eq8"), pts)
-    fig = plot_q_graph({"linear model, exact geometry": [(p[1], p[2]) for p in pts]},
+                                          "q_renzo_eq8"),
+                          [(p.misalignment_deg, p.zc_over_z0, p.q_linear, p.q_renzo)
+                           for p in pts])
+    fig = plot_q_graph({"linear model, exact geometry": [(p.zc_over_z0, p.q_linear)
+                                                         for p in pts]},
                        title=f"{spec.name}: load proportion q against z_c / z0 (Renzo Fig. 12)")
     sec.blocks.append(ctx.figure("q-graph", "Renzo's load proportion q against z_c / z0", fig,
                                  f"Linear model (C = {ld.mesh_stiffness_N_per_mm:.4g} N/mm, "
@@ -366,7 +353,13 @@ def capacity_section(ctx: Context) -> Section:
     spec, s = ctx.spec, ctx.settings
     sec = Section("capacity", "Capacity per criterion against misalignment")
     flank = "cw" if (ctx.torque_Nm or 0.0) < 0 else "ccw"
-    at = capacity(spec, ctx.misalignment_deg, model=ctx.model, loaded_flank=flank)
+    grid, critical = comparison_range([spec], s.capacity_count)
+    mis = _through(grid, ctx.misalignment_deg) if flank == "ccw" else grid
+    comp = compare_capacity([spec], mis, model=ctx.model)
+    if flank == "ccw":
+        at = comp.curves[spec.name][int(np.searchsorted(mis, ctx.misalignment_deg))]
+    else:
+        at = capacity(spec, ctx.misalignment_deg, model=ctx.model, loaded_flank=flank)
     ctx.found["capacity"] = at
     rows = [(f"{k.replace('_', ' ')}", v, "N·m") for k, v in at.criteria_Nm.items()]
     rows += [("governing capacity K·T", at.capacity_Nm, f"N·m ({at.governing.replace('_', ' ')})"),
@@ -378,17 +371,28 @@ def capacity_section(ctx: Context) -> Section:
                             f"At i = {ctx.misalignment_deg:g}° ({at.model} model, {flank} flanks,"
                             f" K = {at.accuracy_factor:g}); a criterion without its limit is "
                             "left out."))
-    mis, critical = comparison_range([spec], s.capacity_count)
-    comp = compare_capacity([spec], mis, model=ctx.model)
     write_capacity_csv(comp.curves, ctx.data_path("capacity.csv"))
     sec.blocks.append(ctx.figure(
         "capacity", "Capacity per criterion against misalignment, design point starred",
         plot_capacity(comp.curves, critical_deg=critical),
-        f"{at.model} model, {s.capacity_count} misalignments 0–{mis[-1]:.3g}° (to the critical "
-        f"misalignment), {load_model(at.model).rotations} rotations over one tooth pitch each, "
-        "loaded flank ccw.",
+        f"{at.model} model, {mis.size} misalignments 0–{grid[-1]:.3g}° (to the critical "
+        f"misalignment){', the design point among them' if flank == 'ccw' else ''}, "
+        f"{load_model(at.model).rotations} rotations over one tooth pitch each, loaded flank ccw.",
         "capacity.csv"))
     return sec
+
+
+def _through(grid: np.ndarray, design_deg: float) -> np.ndarray:
+    """The capacity curve's misalignments through the design point, so that one search
+    gives the verdict's capacity and the curve's point: it takes the place of the nearest
+    interior point of ``grid`` (0 and the critical misalignment stay), else it is added."""
+    inside = grid[1:-1]
+    out = grid.copy()
+    if inside.size and grid[0] < design_deg < grid[-1]:
+        out[1 + int(np.argmin(np.abs(inside - design_deg)))] = design_deg
+    else:
+        out = np.append(out, design_deg)
+    return np.unique(out)
 
 
 # --------------------------------------------------------------------------- checks
@@ -405,7 +409,7 @@ def interference(ctx: Context) -> Section:
         sec.blocks.append(Note(f"Not run: {err}", "skip"))
         return sec
     ctx.found["interference"] = (result, "")
-    ref = sweep(spec, ctx.misalignment_deg, angles, tolerance_mm=s.tolerance_mm)
+    ref = turn_sweep(spec, ctx.misalignment_deg, s.check_angles, s.tolerance_mm)
     reference = np.min(ref.normal_clearance_mm, axis=(0, 1))
     summ = result.summary()
     rows = [("poses over the turn", summ["angles"], ""),

@@ -112,9 +112,11 @@ def _material_source(spec: CouplingSpec, key: str) -> str:
     return "[material] (smaller of hub and sleeve)"
 
 
-def load_verdicts(spec: CouplingSpec, res, capacity_at_design) -> list[Verdict]:
-    """Tooth load, contact pressure, root stress and torque capacity at the reported load
-    (``res`` None: no torque, nothing judged)."""
+def load_verdicts(spec: CouplingSpec, res, capacity_at_design, *,
+                  with_capacity: bool = True) -> list[Verdict]:
+    """Tooth load, contact pressure, root stress, torque capacity (unless not
+    ``with_capacity``: ``gearcoupling load`` searches none) and edge contact at the
+    reported load (``res`` None: no torque, nothing judged)."""
     if res is None:
         why = "no torque: set [load] torque_Nm or --torque"
         return [Verdict(c, "–", "–", "–", OPEN, why) for c in
@@ -143,22 +145,26 @@ def load_verdicts(spec: CouplingSpec, res, capacity_at_design) -> list[Verdict]:
     out.append(judged("root bending stress ≤ allowable", s, s_allow,
                       (f"{s:.4g} MPa", f"{s_allow:.4g} MPa",
                        _material_source(spec, "allowable_bending_stress_MPa")), band))
-    T = abs(res.torque_Nm)
-    cap = None if capacity_at_design is None else capacity_at_design.capacity_Nm
-    if cap is None:
-        out.append(Verdict("torque ≤ capacity at the misalignment", f"{T:.4g} N·m", "–", "–",
-                           OPEN, "no criterion reaches its limit"))
-    else:
-        gov = capacity_at_design.governing.replace("_", " ")
-        out.append(judged("torque ≤ capacity at the misalignment", T, cap,
-                          (f"{T:.4g} N·m", f"{cap:.4g} N·m ({gov} governs)",
-                           f"capacity × K = {spec.load.accuracy_factor:g}"), band,
-                          scales_with_load=False))
+    if with_capacity:
+        out.append(_capacity_verdict(spec, abs(res.torque_Nm), capacity_at_design, band))
     edge = int(np.max(np.sum(res.edge_contact, axis=0)))
     out.append(Verdict("no contact patch reaches a face end at this torque",
                        f"{edge} teeth at worst", "0 teeth", "geometry (edge contact)",
                        PASS if edge == 0 else FAIL))
     return out
+
+
+def _capacity_verdict(spec: CouplingSpec, T: float, capacity_at_design,
+                      band: tuple[float, float] | None) -> Verdict:
+    cap = None if capacity_at_design is None else capacity_at_design.capacity_Nm
+    if cap is None:
+        return Verdict("torque ≤ capacity at the misalignment", f"{T:.4g} N·m", "–", "–",
+                       OPEN, "no criterion reaches its limit")
+    gov = capacity_at_design.governing.replace("_", " ")
+    return judged("torque ≤ capacity at the misalignment", T, cap,
+                  (f"{T:.4g} N·m", f"{cap:.4g} N·m ({gov} governs)",
+                   f"capacity × K = {spec.load.accuracy_factor:g}"), band,
+                  scales_with_load=False)
 
 
 def interference_verdict(result, reason: str = "") -> Verdict:
