@@ -15,7 +15,6 @@ import math
 from dataclasses import asdict, dataclass
 
 import numpy as np
-from scipy.optimize import brentq
 
 from ..arguments import TORQUE_RANGE_NM, real
 from ..clearance import sweep
@@ -125,5 +124,7 @@ def loads_at_windup(spec: CouplingSpec, misalignment_deg: float, rotation_deg: f
                                     f"{t_max:g} N·m")
             hi = min(hi * 2.0, t_max)
             f_hi = excess(hi)
+    from scipy.optimize import brentq  # at the call: `import gearcoupling` stays light
+
     T = float(brentq(excess, lo, hi, rtol=rtol)) if lo < hi else lo
     return T, load_from_sweep(sw, torque_Nm=T, model=model).tangential_force_N[:, 0]

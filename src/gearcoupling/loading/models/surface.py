@@ -67,7 +67,6 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy import ndimage
 
 from ...errors import ArgumentError, GearCouplingError
 from ...geometry import FLANKS, developed_arc
@@ -227,6 +226,7 @@ def _extent(on: NDArray[np.bool_], axis_coord: NDArray[np.float64], cell: float,
 def patch_measures(gf: GapField, p: NDArray[np.float64], interior_mm: float
                    ) -> dict[str, NDArray]:
     """Grid-independent measures of each grid's pressure ``p`` ``(n, nf, nd)``."""
+    from scipy import ndimage  # at the call: `import gearcoupling` stays light
     A = gf.dz * gf.ds
     load = A * np.sum(p, axis=(1, 2))
     loaded = load > 0
@@ -583,6 +583,7 @@ def _transfer(seed: SolvedPose, idx: NDArray[np.intp], gf: GapField, moved_mm=0.
     """The pressure of ``seed``'s teeth ``idx`` (-1: none) on the grids of ``gf``, moved
     along the face by ``moved_mm`` (each tooth's first touch moved so much): bilinear in
     the developed flank co-ordinates, zero beyond the seed's windows (a warm start)."""
+    from scipy import ndimage  # at the call: `import gearcoupling` stays light
     n, nf, nd = gf.gap_rad.shape
     out = np.zeros((n, nf, nd))
     sel = np.flatnonzero(idx >= 0)
