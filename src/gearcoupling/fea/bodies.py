@@ -23,25 +23,29 @@ pitch radius, the table's measure (mm per N of tangential load at the pitch radi
 
 from __future__ import annotations
 
+import json
 import math
 import resource
-from dataclasses import dataclass, replace
+import time
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
 
 import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import ArgumentError, GeometryError
 from ..geometry import rot_z
-from ..io import inp_number
+from ..io import inp_number, safe_name, write_json
 from ..spec import CouplingSpec
 from .ccx import run_ccx, solver_dir
 from .deck import LoadCase, static_deck
-from .mesh import mesh_part
+from .mesh import check_size, mesh_part
 from .reference import cyclic_equations
-from .stiffness import load_case, material
+from .stiffness import cache_dir, load_case, material, spec_hash
 from .volume import VolumeMesh
 
 SUPPORTS = ("ring", "fixed", "cyclic")
+BODIES_VERSION = 1  # bump when the set-up changes: old cache entries are then ignored
 
 
 def pitch_mesh(spec: CouplingSpec, part: str, size_mm: float | None = None) -> VolumeMesh:
@@ -100,7 +104,7 @@ def assemble(pitch: VolumeMesh, teeth: int, copies: int) -> VolumeMesh:
                 continue
             key = f"T{k}_{name[3:]}" if name.startswith("T0_") else name
             regions.setdefault(key, []).append(compact[k][tri])
-            faces.setdefault(key, []).append(pitch.faces[name] + [k * m, 0])
+            faces.setdefault(key, []).append(pitch.faces[name] + np.array([k * m, 0]))
     quality = {"nodes": len(nodes), "elements": len(tets), "copies": copies,
                "pitch": dict(pitch.quality)}
     return VolumeMesh(pitch.part, nodes, tets,
@@ -138,6 +142,21 @@ class PatchSolution:
     deflection_mm: NDArray[np.float64]
     twist_rad: NDArray[np.float64]
     nodes: int
+    solve_seconds: float
+    max_rss_MB: float
+
+
+@dataclass(frozen=True)
+class RingSolution:
+    """Deflections of a ring (or cyclic sector) solved harmonic by harmonic:
+    ``deflection_mm (C, K)`` of every tooth per case, ``twist_rad (C,)`` the mean turn of
+    the watched root nodes (0 when none were asked for), the pitch mesh's ``nodes``, the
+    number of ``harmonics`` solved, solver time and the largest solver memory so far."""
+
+    deflection_mm: NDArray[np.float64]
+    twist_rad: NDArray[np.float64]
+    nodes: int
+    harmonics: int
     solve_seconds: float
     max_rss_MB: float
 
@@ -215,7 +234,7 @@ def stack(pitch: VolumeMesh, blocks: int) -> VolumeMesh:
     return VolumeMesh(pitch.part, np.tile(pitch.nodes, (blocks, 1)),
                       np.concatenate([pitch.tets + b * n for b in range(blocks)]),
                       {support: np.concatenate([tri + b * n for b in range(blocks)])},
-                      {support: np.concatenate([faces + [b * m, 0] for b in range(blocks)])},
+                      {support: np.concatenate([faces + np.array([b * m, 0]) for b in range(blocks)])},
                       [0], pitch.size_mm, {"nodes": n * blocks, "elements": m * blocks})
 
 
@@ -242,10 +261,16 @@ def bloch_equations(cw: NDArray, ccw: NDArray, turn: NDArray, phase: float, a: i
 
 
 def bloch_solve(pitch: VolumeMesh, spec: CouplingSpec, phases, forces: NDArray,
-                watch: NDArray, *, workdir=None, job: str = "bloch"
+                watch: NDArray, *, per_run: int = 4, workdir=None, job: str = "bloch"
                 ) -> tuple[NDArray[np.complex128], float]:
     """Displacements of a chain of pitches whose loads and response go as
-    ``exp(i phase k)`` from pitch to pitch, one ccx run for all phases and cases.
+    ``exp(i phase k)`` from pitch to pitch.
+
+    Each phase is one pitch mesh (two, real and imaginary part, unless the phase is 0 or
+    pi) whose ccw cut follows its cw cut turned by a pitch times ``exp(i phase)``
+    (:func:`bloch_equations`); ``per_run`` phases share one ccx run as disjoint meshes
+    (the solver's memory grows with it), every case is a step. Phases without load are
+    not solved (their response is 0).
 
     Parameters
     ----------
@@ -254,7 +279,7 @@ def bloch_solve(pitch: VolumeMesh, spec: CouplingSpec, phases, forces: NDArray,
         ``2 pi j / K`` for a cyclic sector of ``K`` pitches.
     forces : (C, P, n, 3) complex
         Nodal forces on the pitch's nodes of every case and phase (the teeth's loads'
-        discrete Fourier transform); imaginary parts at a phase of 0 or pi must be 0.
+        discrete Fourier transform); imaginary parts at a phase of 0 or pi are ignored.
     watch : (w,) int
         Pitch nodes to return.
 
@@ -262,9 +287,27 @@ def bloch_solve(pitch: VolumeMesh, spec: CouplingSpec, phases, forces: NDArray,
     -------
     u : (C, P, w, 3) complex
     seconds : float
-        The solver's time.
+        The solver's time, all runs.
     """
     phases = np.asarray(phases, dtype=float)
+    forces = np.asarray(forces)
+    out = np.zeros((len(forces), len(phases), len(watch), 3), dtype=complex)
+    loaded = [p for p in range(len(phases)) if np.any(forces[:, p] != 0)]
+    seconds = 0.0
+    with solver_dir(workdir) as work:
+        for g in range(0, len(loaded), max(1, int(per_run))):
+            group = loaded[g:g + max(1, int(per_run))]
+            cases = [c for c in range(len(forces)) if np.any(forces[c][group] != 0)]
+            u, secs = _bloch_run(pitch, spec, phases[group], forces[cases][:, group], watch,
+                                 work, f"{job}_{g}")
+            out[np.ix_(cases, group)] = u
+            seconds += secs
+    return out, seconds
+
+
+def _bloch_run(pitch: VolumeMesh, spec: CouplingSpec, phases: NDArray, forces: NDArray,
+               watch: NDArray, work, job: str) -> tuple[NDArray[np.complex128], float]:
+    """One ccx run of :func:`bloch_solve`: ``phases (P,)``, ``forces (C, P, n, 3)``."""
     n = len(pitch.nodes)
     real = np.isclose(np.sin(phases), 0.0, atol=1e-12)
     offsets, k = [], 0
@@ -273,7 +316,8 @@ def bloch_solve(pitch: VolumeMesh, spec: CouplingSpec, phases, forces: NDArray,
         k += 1 if r else 2
     mesh = stack(pitch, k)
     cw, ccw = _cut_partners(pitch, 2 * math.pi / spec.tooth.teeth)
-    skip = set(pitch.node_set(fixed_sets(pitch, "ring")[0]).tolist())
+    support = fixed_sets(pitch, "ring")
+    skip = set(pitch.node_set(support[0]).tolist())
     turn = rot_z(2 * math.pi / spec.tooth.teeth)
     eqs = []
     for ph, (a, b) in zip(phases, offsets, strict=True):
@@ -292,13 +336,10 @@ def bloch_solve(pitch: VolumeMesh, spec: CouplingSpec, phases, forces: NDArray,
     E, nu = material(spec, pitch.part)
     watched = np.concatenate([watch + a for a, _ in offsets]
                              + [watch + b for _, b in offsets if b is not None])
-    deck = static_deck(mesh, youngs_modulus_MPa=E, poisson_ratio=nu,
-                       fixed=fixed_sets(pitch, "ring"), cases=cases,
-                       node_print=[("WATCH", np.unique(watched))])
+    deck = static_deck(mesh, youngs_modulus_MPa=E, poisson_ratio=nu, fixed=support,
+                       cases=cases, node_print=[("WATCH", np.unique(watched))])
     head, sep, tail = deck.partition("\n*STEP\n")
-    deck = head + "\n" + "\n".join(eqs) + sep + tail
-    with solver_dir(workdir) as work:
-        res = run_ccx(deck, work, job)
+    res = run_ccx(head + "\n" + "\n".join(eqs) + sep + tail, work, job)
     blocks = res.get("displacements", "WATCH")
     if len(blocks) != len(cases):
         raise GeometryError(f"ccx printed {len(blocks)} displacement blocks for {len(cases)} "
@@ -313,8 +354,9 @@ def bloch_solve(pitch: VolumeMesh, spec: CouplingSpec, phases, forces: NDArray,
 
 
 def chain_deflections(pitch: VolumeMesh, spec: CouplingSpec, period: int,
-                      patterns: list[list[LoadCase]], loads: NDArray, *, workdir=None,
-                      job: str = "bloch") -> tuple[NDArray[np.float64], float]:
+                      patterns: list[list[LoadCase]], loads: NDArray, *,
+                      twist_nodes: NDArray | None = None, workdir=None,
+                      job: str = "bloch") -> RingSolution:
     """Work-conjugate deflections of ``period`` teeth repeated round a chain (``period =
     N``: the whole ring; ``K < N``: a sector of K teeth with cyclic cuts) under patch loads.
 
@@ -325,10 +367,9 @@ def chain_deflections(pitch: VolumeMesh, spec: CouplingSpec, period: int,
     loads : (C, period) float
         Tooth loads (N, tangential at the pitch radius).
 
-    Returns
-    -------
-    deflection_mm : (C, period) float
-    seconds : float
+    twist_nodes : (t,) int, optional
+        Pitch nodes whose mean turn ``u_theta / r`` over the teeth is returned per case
+        (the root circle: the body's twist).
     """
     C, K = np.shape(loads)
     n = len(pitch.nodes)
@@ -341,13 +382,183 @@ def chain_deflections(pitch: VolumeMesh, spec: CouplingSpec, period: int,
                 continue
             w = loads[c, k] * np.exp(-1j * phases * k)
             np.add.at(forces[c], (slice(None), pat.nodes), w[:, None, None] * pat.forces)
-    watch = np.unique(np.concatenate([p.nodes for pats in patterns for p in pats]))
+    extra = np.zeros(0, np.int64) if twist_nodes is None else np.asarray(twist_nodes)
+    watch = np.unique(np.concatenate([p.nodes for pats in patterns for p in pats] + [extra]))
     u, seconds = bloch_solve(pitch, spec, phases, forces, watch, workdir=workdir, job=job)
     weight = np.where((harmonics == 0) | (2 * harmonics == K), 1.0, 2.0) / K
     pos = np.searchsorted(watch, np.arange(n))
     out = np.zeros((C, K))
     for c in range(C):
         for k, pat in enumerate(patterns[c]):
-            uk = np.einsum("p,pwd->wd", weight * np.exp(1j * phases * k), u[c][:, pos[pat.nodes]]).real
+            turn = weight * np.exp(1j * phases * k)
+            uk = np.einsum("p,pwd->wd", turn, u[c][:, pos[pat.nodes]]).real
             out[c, k] = float(np.sum(pat.forces * uk))
-    return out, seconds
+    twist = np.zeros(C)
+    if len(extra):
+        p, u0 = pitch.nodes[extra], u[:, 0, pos[extra]].real / K  # (C, t, 3)
+        twist = np.mean((p[:, 0] * u0[..., 1] - p[:, 1] * u0[..., 0])
+                        / (p[:, 0] ** 2 + p[:, 1] ** 2), axis=-1)
+    return RingSolution(out, twist, len(pitch.nodes), len(phases), seconds,
+                        resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024)
+
+
+def unit_patterns(pitch: VolumeMesh, spec: CouplingSpec, z_mm, r_mm,
+                  patch_mm: float) -> list[LoadCase]:
+    """Unit patch patterns on the pitch's tooth at the points ``z_mm, r_mm (k,)`` (equal
+    points share one pattern)."""
+    seen: dict[tuple[float, float], LoadCase] = {}
+    out = []
+    for z, r in zip(np.ravel(z_mm), np.ravel(r_mm), strict=True):
+        key = (round(float(z), 9), round(float(r), 9))
+        if key not in seen:
+            seen[key] = patch_load(pitch, spec, 0, key[0], key[1], patch_mm)
+        out.append(seen[key])
+    return out
+
+
+def ring_deflections(pitch: VolumeMesh, spec: CouplingSpec, loads, z_mm, r_mm, *,
+                     patch_mm: float, period: int | None = None, twist: bool = False,
+                     workdir=None, job: str = "ring") -> RingSolution:
+    """Each tooth's deflection (work conjugate of its own unit pattern, mm) under every
+    tooth's load at its own point, round the whole ring of ``pitch`` copies (``period``
+    ``None``: N teeth) or a cyclic sector of ``period`` teeth.
+
+    Parameters
+    ----------
+    loads, z_mm, r_mm : (C, K) float
+        Tangential load at the pitch radius (N) and load point of every tooth, per case.
+
+    twist : bool
+        Also the mean turn of the tooth root circle (hub ``ROOT``; sleeve ``ROOT``, at its
+        major diameter) per case.
+    """
+    loads = np.atleast_2d(np.asarray(loads, dtype=float))
+    K = spec.tooth.teeth if period is None else int(period)
+    z = np.broadcast_to(np.asarray(z_mm, dtype=float), loads.shape)
+    r = np.broadcast_to(np.asarray(r_mm, dtype=float), loads.shape)
+    if loads.shape[1] != K:
+        raise ArgumentError("loads", loads.shape, f"(cases, {K}): one load per tooth")
+    pats = [unit_patterns(pitch, spec, z[c], r[c], patch_mm) for c in range(len(loads))]
+    roots = pitch.node_set("T0_ROOT") if twist else None
+    return chain_deflections(pitch, spec, K, pats, loads, twist_nodes=roots, workdir=workdir,
+                             job=job)
+
+
+def sector_self(pitch: VolumeMesh, spec: CouplingSpec, z_mm, r_mm, *, patch_mm: float,
+                sector: int = 3, workdir=None, job: str = "sector"
+                ) -> tuple[NDArray[np.float64], float]:
+    """The tooth table's measure on copies of ``pitch``: the middle tooth's own deflection
+    per unit load (mm/N) in a sector of ``sector`` teeth with fixed cuts (the table's
+    :data:`~gearcoupling.fea.stiffness` set-up), at each point ``z_mm, r_mm (q,)``."""
+    vm = assemble(pitch, spec.tooth.teeth, sector)
+    pats = [patch_load(vm, spec, sector // 2, z, r, patch_mm)
+            for z, r in zip(np.ravel(z_mm), np.ravel(r_mm), strict=True)]
+    sol = solve_patches(vm, spec, pats, pats, supports="fixed", workdir=workdir, job=job)
+    return np.diag(sol.deflection_mm).copy(), sol.solve_seconds
+
+
+@dataclass(frozen=True)
+class BodyInfluenceTable:
+    """The bodies' influence between teeth, from the FE ring and the table's sector.
+
+    Attributes
+    ----------
+    z_mm : (nz,) float
+        Axial load points ``|z|`` at the pitch radius (the ring is even in z).
+    ring_mm_per_N : (2, nz, N) float
+        Hub / sleeve ring: deflection of tooth ``m`` (work conjugate of its unit pattern at
+        ``(z_i, R)``) under a unit tangential load on tooth 0 at the same point.
+    sector_mm_per_N : (2, nz) float
+        The loaded tooth's own deflection in the tooth table's 3-tooth sector with fixed
+        cuts, on the same mesh: what the table already holds.
+    root_twist_rad_per_N : (2,) float
+        Mean turn of the root circle per N of load on every tooth (hub: against the bore;
+        sleeve: against the outside diameter).
+    pitch_radius_mm : float
+    info : dict
+        Spec name and hash, element size, patch, nodes, harmonics, times.
+    """
+
+    z_mm: NDArray[np.float64]
+    ring_mm_per_N: NDArray[np.float64]
+    sector_mm_per_N: NDArray[np.float64]
+    root_twist_rad_per_N: NDArray[np.float64]
+    pitch_radius_mm: float
+    info: dict = field(default_factory=dict)
+
+    @property
+    def kernel_mm_per_N(self) -> NDArray[np.float64]:
+        """Hub + sleeve body influence ``(nz, N)``: ring less, on the loaded tooth, what
+        the 3-tooth table holds (``b(m)``, :mod:`gearcoupling.loading.body`)."""
+        k = self.ring_mm_per_N.sum(axis=0)
+        k[:, 0] -= self.sector_mm_per_N.sum(axis=0)
+        return k
+
+    def to_dict(self) -> dict:
+        d = asdict(self)
+        return {k: (v.tolist() if isinstance(v, np.ndarray) else v) for k, v in d.items()}
+
+    @classmethod
+    def from_dict(cls, d: dict) -> BodyInfluenceTable:
+        arrays = {k: np.asarray(d[k], dtype=float) for k in
+                  ("z_mm", "ring_mm_per_N", "sector_mm_per_N", "root_twist_rad_per_N")}
+        return cls(**arrays, pitch_radius_mm=float(d["pitch_radius_mm"]), info=d["info"])
+
+
+def compute_body_influence(spec: CouplingSpec, *, size_mm: float | None = None, nz: int = 3,
+                           workdir=None) -> BodyInfluenceTable:
+    """Solve the ring and the 3-tooth sector of hub and sleeve (no cache): unit loads at
+    ``|z|`` from 0 to 0.8 of the hub half face at the pitch radius."""
+    size = default_size_bodies(spec) if size_mm is None else float(size_mm)
+    R, N = spec.tooth.pitch_radius, spec.tooth.teeth
+    z = np.linspace(0.0, 0.4 * spec.hub.face_width, nz)
+    patch = default_patch(spec, size)
+    ring, sector, twist, info = [], [], [], {"spec": spec.name, "size_mm": size,
+                                             "patch_mm": patch, "parts": {}}
+    t0 = time.perf_counter()
+    with solver_dir(workdir) as work:
+        for part in ("hub", "sleeve"):
+            pitch = pitch_mesh(spec, part, size)
+            loads = np.zeros((nz + 1, N))
+            loads[:nz, 0] = 1.0
+            loads[nz] = 1.0  # every tooth at mid-face: the root twist
+            zz = np.zeros((nz + 1, N))
+            zz[:nz] = z[:, None]
+            sol = ring_deflections(pitch, spec, loads, zz, R, patch_mm=patch, twist=True,
+                                   workdir=work, job=f"{part}_ring")
+            self_, secs = sector_self(pitch, spec, z, np.full(nz, R), patch_mm=patch,
+                                      workdir=work, job=f"{part}_sector")
+            ring.append(sol.deflection_mm[:nz])
+            sector.append(self_)
+            twist.append(sol.twist_rad[nz])
+            info["parts"][part] = {"pitch_nodes": sol.nodes, "harmonics": sol.harmonics,
+                                   "ring_seconds": sol.solve_seconds,
+                                   "sector_seconds": secs, "max_rss_MB": sol.max_rss_MB}
+    info["total_seconds"] = time.perf_counter() - t0
+    return BodyInfluenceTable(z, np.array(ring), np.array(sector), np.array(twist), R, info)
+
+
+def default_size_bodies(spec: CouplingSpec) -> float:
+    """Default element size of the body rings: the coarsest :func:`check_size` allows on
+    both parts (module / 2, or twice the smaller root fillet radius)."""
+    return min(spec.tooth.module / 2.0, 2.0 * spec.hub.root.fillet_radius,
+               2.0 * spec.sleeve.root_fillet_radius)
+
+
+def body_influence_table(spec: CouplingSpec, *, size_mm: float | None = None, nz: int = 3,
+                         cache: str | Path | None = None, refresh: bool = False
+                         ) -> BodyInfluenceTable:
+    """The body influence table of a spec, cached like the tooth table
+    (:func:`~gearcoupling.fea.tooth_compliance_table`: ``<cache>/<name>-<hash>.json``)."""
+    size = default_size_bodies(spec) if size_mm is None else size_mm
+    check_size(spec, "hub", size)
+    check_size(spec, "sleeve", size)
+    key = spec_hash(spec, size_mm=size, nz=nz, kind="bodies", version=BODIES_VERSION)
+    path = (Path(cache) if cache is not None else cache_dir()) / \
+        f"{safe_name(spec.name)}-bodies-{key}.json"
+    if path.exists() and not refresh:
+        return BodyInfluenceTable.from_dict(json.loads(path.read_text()))
+    table = compute_body_influence(spec, size_mm=size, nz=nz)
+    table.info["spec_hash"] = key
+    write_json(path, table.to_dict())
+    return table

@@ -19,7 +19,11 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
 from ..arguments import torque_Nm as check_torque_Nm
+from ..errors import ArgumentError
 from ..spec import CouplingSpec, as_spec
 
 
@@ -49,3 +53,78 @@ def body_windup_rad(spec: CouplingSpec, torque_Nm: float) -> dict[str, float]:
     sleeve_rad = annulus_twist_rad(T, 0.5 * sleeve.major_diameter, 0.5 * sleeve.outer_diameter,
                                    sleeve.face_width, spec.material.sleeve.shear_modulus_MPa)
     return {"hub_rad": hub_rad, "sleeve_rad": sleeve_rad, "body_rad": hub_rad + sleeve_rad}
+
+
+# --- Tooth by tooth: the bodies' influence between teeth -------------------------------------
+#
+# Under unequal tooth loads (a misalignment) the bodies do not twist as one: tooth k's
+# deflection at the pitch radius (mm, the tooth table's measure) from the bodies is
+#
+#     v_k = sum_j b((k - j) mod N) W_j
+#
+# with W_j the tangential tooth loads at the pitch radius (N) and b (N,) the body kernel
+# (mm/N): the whole ring's deflection of tooth m under a unit load on tooth 0, less, on the
+# loaded tooth itself, what the tooth table's 3-tooth sector with fixed cuts already holds
+# (:class:`gearcoupling.fea.bodies.BodyInfluenceTable`, hub + sleeve). b is symmetric
+# (reciprocity) and circulant (every tooth alike); its discrete Fourier transform
+# lambda_n (:func:`kernel_harmonics`) is the body compliance per tooth for loads going as
+# cos(2 pi n k / N): lambda_0 is the uniform torsion beyond what the table holds, the
+# closed form's N R² theta/T when the table holds nothing of it. The load models' uniform
+# body (:func:`body_windup_rad`, for the whole coupling) is the kernel R² theta/T on every
+# tooth (lambda_n = 0 for n > 0); counted per tooth it is N R² theta/T on the loaded one
+# only (lambda_n = lambda_0 for every n).
+
+
+def kernel_matrix(kernel: ArrayLike) -> NDArray[np.float64]:
+    """The circulant influence matrix ``(K, K)`` of a kernel ``(K,)``:
+    ``B[k, j] = kernel[(k - j) mod K]`` (mm/N)."""
+    b = _kernel(kernel)
+    idx = (np.arange(b.size)[:, None] - np.arange(b.size)[None, :]) % b.size
+    return b[idx]
+
+
+def kernel_harmonics(kernel: ArrayLike) -> NDArray[np.float64]:
+    """Body compliance per load harmonic ``lambda_n``, ``n = 0 .. K // 2`` ``(K // 2 + 1,)``
+    (mm/N): the eigenvalues of :func:`kernel_matrix` (a symmetric kernel's are real)."""
+    return np.fft.rfft(_kernel(kernel)).real
+
+
+def periodic_kernel(kernel: ArrayLike, period: int) -> NDArray[np.float64]:
+    """The kernel ``(period,)`` of loads that repeat every ``period`` teeth, as a sector of
+    ``period`` teeth with cyclic cuts sees them: ``b_K(m) = sum_l b(m + l K)`` over the
+    teeth of a chain, the ring kernel unrolled to ``|m| <= N / 2`` (it decays with the
+    distance; ``period = N`` gives the kernel back, and every period the same uniform
+    torsion ``sum b``)."""
+    b = _kernel(kernel)
+    N = b.size
+    if not (isinstance(period, int | np.integer) and 1 <= period <= N):
+        raise ArgumentError("period", period, f"a whole number of teeth from 1 to {N}")
+    if period == N:
+        return b.copy()
+    m = np.arange(N)
+    line = np.where(m <= N // 2, m, m - N)
+    weight = np.where(2 * np.abs(line) == N, 0.5, 1.0)  # tooth N/2: half at +N/2, half at -N/2
+    out = np.zeros(int(period))
+    np.add.at(out, line % period, weight * b)
+    if N % 2 == 0:
+        out[(-(N // 2)) % period] += 0.5 * b[N // 2]
+    return out
+
+
+def convolve_loads(kernel: ArrayLike, loads: ArrayLike) -> NDArray[np.float64]:
+    """``v_k = sum_j kernel[(k - j) mod K] W_j`` for loads ``(K,)`` or ``(K, M)`` (N): the
+    same shape (mm)."""
+    b = _kernel(kernel)
+    W = np.asarray(loads, dtype=float)
+    if W.ndim not in (1, 2) or W.shape[0] != b.size or not np.all(np.isfinite(W)):
+        raise ArgumentError("loads", W.shape, f"finite, shaped ({b.size},) or ({b.size}, M)")
+    fb = np.fft.rfft(b)
+    fw = np.fft.rfft(W, axis=0)
+    return np.fft.irfft(fb.reshape((-1,) + (1,) * (W.ndim - 1)) * fw, n=b.size, axis=0)
+
+
+def _kernel(kernel: ArrayLike) -> NDArray[np.float64]:
+    b = np.asarray(kernel, dtype=float)
+    if b.ndim != 1 or b.size < 1 or not np.all(np.isfinite(b)):
+        raise ArgumentError("kernel", b.shape, "a finite kernel shaped (K,) (mm/N)")
+    return b
