@@ -6,6 +6,14 @@ when called; a missing one raises :class:`gearcoupling.errors.BackendError` nami
 """
 
 from .backends import ccx_path, gmsh_module
+from .bodies import (
+    BodyInfluenceTable,
+    RingSolution,
+    body_influence_table,
+    compute_body_influence,
+    ring_deflections,
+    sector_self,
+)
 from .mesh import (
     DEFAULT_SECTOR_TEETH,
     check_size,
@@ -29,12 +37,16 @@ from .write import FORMATS, region_ids, write_inp, write_mesh
 __all__ = [
     "DEFAULT_SECTOR_TEETH",
     "FORMATS",
+    "BodyInfluenceTable",
     "ComplianceTable",
     "FEContactResult",
     "FESectorResult",
+    "RingSolution",
     "VolumeMesh",
+    "body_influence_table",
     "ccx_path",
     "check_size",
+    "compute_body_influence",
     "compute_compliance_table",
     "default_size",
     "fe_contact",
@@ -45,6 +57,8 @@ __all__ = [
     "pitch_point_compliance",
     "rectangle_halfspace_work_mm_per_N",
     "region_ids",
+    "ring_deflections",
+    "sector_self",
     "sector_teeth",
     "tooth_compliance_table",
     "write_inp",

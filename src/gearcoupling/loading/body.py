@@ -128,3 +128,102 @@ def _kernel(kernel: ArrayLike) -> NDArray[np.float64]:
     if b.ndim != 1 or b.size < 1 or not np.all(np.isfinite(b)):
         raise ArgumentError("kernel", b.shape, "a finite kernel shaped (K,) (mm/N)")
     return b
+
+
+def influence_matrix(kernel: ArrayLike, z_grid_mm: ArrayLike | None = None,
+                     z_mm: ArrayLike | None = None) -> NDArray[np.float64]:
+    """The influence matrix ``(K, K)`` (mm/N) of a kernel tabulated over load positions.
+
+    Parameters
+    ----------
+    kernel : (nz, K) or (K,) float
+        Kernel rows at the axial load points ``z_grid_mm (nz,)`` (one row: no z).
+    z_grid_mm : (nz,) float, optional
+        Increasing ``|z|`` of the rows.
+    z_mm : (K,) float, optional
+        The teeth's load points (default 0): ``B[k, j]`` is the kernel at offset
+        ``(k - j) mod K``, linear in ``|z|`` at the pair's mean ``(|z_k| + |z_j|) / 2``
+        (held beyond the grid). Symmetric, like the ring it stands for.
+    """
+    b = np.atleast_2d(np.asarray(kernel, dtype=float))
+    nz, K = b.shape
+    if not np.all(np.isfinite(b)):
+        raise ArgumentError("kernel", b.shape, "finite values (mm/N)")
+    zg = np.zeros(1) if z_grid_mm is None else np.asarray(z_grid_mm, dtype=float).ravel()
+    if zg.size != nz or np.any(np.diff(zg) <= 0):
+        raise ArgumentError("z_grid_mm", zg.tolist(), f"{nz} increasing |z| (mm), one per "
+                            "kernel row")
+    z = np.zeros(K) if z_mm is None else np.abs(np.asarray(z_mm, dtype=float))
+    if z.shape != (K,) or not np.all(np.isfinite(z)):
+        raise ArgumentError("z_mm", z.shape, f"finite, shaped ({K},)")
+    m = (np.arange(K)[:, None] - np.arange(K)[None, :]) % K
+    if nz == 1:
+        return b[0][m]
+    zb = np.clip(0.5 * (z[:, None] + z[None, :]), zg[0], zg[-1])
+    i = np.clip(np.searchsorted(zg, zb, side="right") - 1, 0, nz - 2)
+    t = (zb - zg[i]) / (zg[i + 1] - zg[i])
+    return (1.0 - t) * b[i, m] + t * b[i + 1, m]
+
+
+def body_influence_matrix(spec: CouplingSpec, z_mm: ArrayLike | None = None, *,
+                          period: int | None = None, table=None) -> NDArray[np.float64]:
+    """The bodies' influence matrix ``(K, K)`` (mm/N) of a spec, tooth by tooth.
+
+    ``B @ W`` is every tooth's body deflection at the pitch radius (mm) under the tooth
+    loads ``W (K,)`` (N, tangential at the pitch radius) at load points ``z_mm (K,)``
+    (default 0): the whole ring's bodies less the part the tooth table's 3-tooth sector
+    already holds, hub + sleeve (the kernel comment above). It replaces the uniform body
+    torsion (:func:`body_windup_rad`) in a model whose tooth springs are the FE table
+    (``[load] stiffness = "fe"``): its harmonic 0 is the bodies' uniform torsion beyond
+    the table's.
+
+    Parameters
+    ----------
+    period : int, optional
+        ``K``: loads repeating every ``period`` teeth, as a sector of ``period`` teeth with
+        cyclic cuts sees them (:func:`periodic_kernel`); default N, the whole coupling.
+    table : BodyInfluenceTable, optional
+        Default :func:`gearcoupling.fea.body_influence_table` (FE, cached per spec).
+    """
+    table = _table(spec, table)
+    kernel = table.kernel_mm_per_N
+    if period is not None:
+        kernel = np.stack([periodic_kernel(row, period) for row in kernel])
+    return influence_matrix(kernel, table.z_mm, z_mm)
+
+
+def body_deflection_mm(spec: CouplingSpec, loads: ArrayLike, z_mm: ArrayLike | None = None,
+                       *, period: int | None = None, table=None) -> NDArray[np.float64]:
+    """Every tooth's body deflection at the pitch radius (mm), shaped like ``loads``.
+
+    Parameters
+    ----------
+    loads : (K,) or (K, M) float
+        Tangential tooth loads at the pitch radius (N), one column per rotation.
+    z_mm : like ``loads``, optional
+        The teeth's load points (hub frame; default 0).
+    period, table
+        As :func:`body_influence_matrix`.
+    """
+    table = _table(spec, table)
+    K = table.ring_mm_per_N.shape[-1] if period is None else period
+    W = np.asarray(loads, dtype=float)
+    z = np.zeros_like(W) if z_mm is None else np.asarray(z_mm, dtype=float)
+    if (W.ndim not in (1, 2) or W.shape[0] != K or z.shape != W.shape
+            or not np.all(np.isfinite(W))):
+        raise ArgumentError("loads", W.shape, f"finite, shaped ({K},) or ({K}, M), and z_mm "
+                            "shaped alike")
+    cols = W.reshape(W.shape[0], -1)
+    zc = z.reshape(cols.shape)
+    out = np.column_stack([body_influence_matrix(spec, zc[:, j], period=period, table=table)
+                           @ cols[:, j] for j in range(cols.shape[1])])
+    return out.reshape(W.shape)
+
+
+def _table(spec: CouplingSpec, table):
+    """``table``, or the spec's FE body influence table (cached)."""
+    if table is not None:
+        return table
+    from ..fea import body_influence_table
+
+    return body_influence_table(spec)
