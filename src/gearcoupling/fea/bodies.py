@@ -414,7 +414,7 @@ def chain_deflections(pitch: VolumeMesh, spec: CouplingSpec, period: int,
         for k, pat in enumerate(patterns[c]):
             if loads[c, k] != 0:
                 w = loads[c, k] * np.exp(-1j * phases * k)
-                np.add.at(forces[c], (slice(None), pat.nodes), w[:, None, None] * pat.forces)
+                forces[c][:, pat.nodes] += w[:, None, None] * pat.forces  # nodes unique
     forces[np.abs(forces) <= 1e-12 * np.abs(forces).max(initial=0.0)] = 0.0  # rounding
     tets = _shell_tets(pitch) if shell else np.zeros(0, np.int64)
     extra = np.unique(pitch.tets[tets])
