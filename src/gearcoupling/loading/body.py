@@ -24,6 +24,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..arguments import torque_Nm as check_torque_Nm
 from ..errors import ArgumentError
+from ..fea import body_influence_table
 from ..spec import CouplingSpec, as_spec
 
 
@@ -222,8 +223,4 @@ def body_deflection_mm(spec: CouplingSpec, loads: ArrayLike, z_mm: ArrayLike | N
 
 def _table(spec: CouplingSpec, table):
     """``table``, or the spec's FE body influence table (cached)."""
-    if table is not None:
-        return table
-    from ..fea import body_influence_table
-
-    return body_influence_table(spec)
+    return body_influence_table(spec) if table is None else table
