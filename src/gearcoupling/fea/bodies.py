@@ -141,7 +141,7 @@ def patch_load(vm: VolumeMesh, spec: CouplingSpec, tooth: int, z_mm: float, r_mm
                patch_mm: float) -> LoadCase:
     """The unit patch load of ``tooth`` at ``(z_mm, r_mm)`` (1 N tangential at the pitch
     radius; module docstring)."""
-    case, _ = load_case(vm, float(z_mm), float(r_mm), spec.tooth.pitch_radius, patch_mm,
+    case, _, _ = load_case(vm, float(z_mm), float(r_mm), spec.tooth.pitch_radius, patch_mm,
                         tooth=tooth)
     return case
 
