@@ -3,9 +3,10 @@ model's own tooth loads, against the load models' uniform body torsion and the i
 model (docs/load.md, "The bodies").
 
 Run: ``python benchmarks/bench_bodies.py [--specs NAME ...] [--size MM] [--runs FILE]
-[--stored]``. For each spec (the poses of ``bench_fea_sector.py``: its turning angle, the
-template's torque, 0°, 1° and 2°) the FE (kept in ``--runs``, reused from there;
-``--stored`` solves nothing new):
+[--stored] [--table-only] [--sector-runs FILE]``. For each spec (the poses of
+``bench_fea_sector.py``: its turning angle, the template's torque, 0°, 1° and 2°) the FE
+(kept in ``--runs``, reused from there; ``--stored`` solves nothing new; ``--table-only``
+only the influence table, the first item):
 
 - the body influence table (:func:`gearcoupling.fea.compute_body_influence`): the ring's
   kernel at three ``|z|``, the tooth table's 3-tooth sector on the same mesh, the body
@@ -21,7 +22,12 @@ exact for the z-mean of a full-length body, and the uniform body per tooth again
 models' closed form); the kernel and its harmonics; per pose the body deflection of the
 most loaded teeth (FE, the models' uniform torsion, the influence model, the torsion per
 tooth); the most loaded tooth's load with each (a fixed point of the ``surface`` model
-with the body deflection as gap offsets); the 5-tooth periodic kernel against the FE.
+with the body deflection as gap offsets); the 5-tooth periodic kernel against the FE;
+and the stored misaligned sector references (``--sector-runs``, ``bench_fea_sector.py``'s
+runs) against the model at the sector's wind-up, with the bodies counted as the models
+do (the uniform closed form) and as the sector has them (its cuts are cyclic: its loads
+repeat every K teeth round the whole ring, so its bodies carry N / K times its own teeth's
+torque; the K-periodic kernel).
 """
 
 from __future__ import annotations
@@ -36,6 +42,7 @@ from pathlib import Path
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import numpy as np
+from scipy.optimize import brentq
 
 import gearcoupling as gc
 from gearcoupling.fea import BodyInfluenceTable, compute_body_influence, ring_deflections
@@ -44,9 +51,11 @@ from gearcoupling.fea.bodies import default_patch, pitch_mesh
 from gearcoupling.loading import load_from_sweep
 from gearcoupling.loading.body import (
     body_deflection_mm,
+    body_influence_matrix,
     kernel_harmonics,
     periodic_kernel,
 )
+from gearcoupling.loading.sector_check import loads_at_windup
 
 ROOT = Path(__file__).resolve().parent.parent
 SPECS = {"renzo-1967": 3.6, "industrial-m2": 7.1}  # turning angle (°) of bench_fea_sector
@@ -73,15 +82,18 @@ def poses(spec: gc.CouplingSpec, rotation: float) -> dict:
     return out
 
 
-def solve(name: str, size: float, work: Path) -> dict:
-    """Every FE run of one spec (module docstring)."""
+def solve(name: str, size: float, work: Path, run: dict, table_only: bool) -> dict:
+    """Every FE run of one spec not yet in ``run`` (module docstring)."""
     spec = fe_spec(name)
     R = spec.tooth.pitch_radius
-    run: dict = {"poses": poses(spec, SPECS[name])}
-    t0 = time.perf_counter()
-    table = compute_body_influence(spec, size_mm=size, workdir=work / "table")
-    run["table"] = table.to_dict()
-    run["table_seconds"] = time.perf_counter() - t0
+    if "table" not in run:
+        t0 = time.perf_counter()
+        table = compute_body_influence(spec, size_mm=size, workdir=work / "table")
+        run["table"] = table.to_dict()
+        run["table_seconds"] = time.perf_counter() - t0
+    if table_only or "poses" in run:
+        return run
+    run["poses"] = poses(spec, SPECS[name])
     patch = default_patch(spec, size)
     P = run["poses"]
     for part in PARTS:
@@ -124,10 +136,11 @@ def setup_table(runs: dict) -> None:
         info = run["table"]["info"]
         for part in PARTS:
             t = info["parts"][part]
+            p = run.get(part, {"ring_seconds": np.nan, "own_seconds": np.nan, "max_rss_MB": 0})
             print(f"| {name} | {part} | {info['size_mm']:g} | {t['pitch_nodes']} | "
                   f"{t['harmonics']} | {t['ring_seconds']:.0f} | {t['sector_seconds']:.0f} | "
-                  f"{run[part]['ring_seconds']:.0f} | {run[part]['own_seconds']:.0f} | "
-                  f"{max(t['max_rss_MB'], run[part]['max_rss_MB']):.0f} |")
+                  f"{p['ring_seconds']:.0f} | {p['own_seconds']:.0f} | "
+                  f"{max(t['max_rss_MB'], p['max_rss_MB']):.0f} |")
 
 
 def closed_shell_twist(spec: gc.CouplingSpec, shell, part: str) -> float:
@@ -200,6 +213,8 @@ def fixed_point(sw, spec, T: float, body, tol: float = 1e-4):
 
 def pose_tables(runs: dict, top: int = 4) -> None:
     for name, run in runs.items():
+        if "poses" not in run:
+            continue
         spec, tab = fe_spec(name), BodyInfluenceTable.from_dict(run["table"])
         N, R, T = spec.tooth.teeth, spec.tooth.pitch_radius, spec.load.torque_Nm
         kb = gc.body_windup_rad(spec, 1e-3)["body_rad"]
@@ -255,6 +270,8 @@ def periodic_check(runs: dict) -> None:
     print("| spec | part | FE | periodic_kernel of the ring kernel | largest difference |")
     print("|---|---|---|---|---|")
     for name, run in runs.items():
+        if "poses" not in run:
+            continue
         tab = BodyInfluenceTable.from_dict(run["table"])
         for i, part in enumerate(PARTS):
             fe = np.roll(np.array(run[part]["cyclic_mm_per_N"]), -(PERIOD // 2))
@@ -267,18 +284,83 @@ def periodic_check(runs: dict) -> None:
                   f"{1e6 * np.max(np.abs(model - fe)):.4f} |")
 
 
+def sector_loads(spec: gc.CouplingSpec, mis: float, rot: float, fe: dict, tab,
+                 tol: float = 1e-4) -> np.ndarray:
+    """The ``surface`` model's loads on the sector's teeth ``fe["teeth"]`` at the sector's
+    wind-up with the bodies as the sector has them: each tooth's gap grows by the
+    K-periodic kernel's deflection under the sector's loads (:func:`body_influence_matrix`
+    with ``period = K``; at a fixed wind-up the model's teeth are independent), iterated
+    (half steps) to ``tol`` of the largest load."""
+    teeth, R = fe["teeth"], spec.tooth.pitch_radius
+    sw = gc.sweep(spec, mis, [rot])
+    _, W0 = loads_at_windup(spec, mis, rot, fe["windup_rad"], model="surface")
+    z = load_from_sweep(sw, torque_Nm=spec.load.torque_Nm,
+                        model="surface").contact_z_mm[teeth, 0]
+    B = body_influence_matrix(spec, z, period=len(teeth), table=tab)
+    W = W0[teeth]
+    for _ in range(100):
+        off = np.zeros(spec.tooth.teeth)
+        off[teeth] = B @ W / R
+
+        def excess(T: float, off=off) -> float:
+            res = load_from_sweep(sw, torque_Nm=T, model="surface", gap_offset_rad=off)
+            return float(res.windup_rad[0]) - fe["windup_rad"]
+
+        T = brentq(excess, 1e-3 * spec.load.torque_Nm, 1e2 * spec.load.torque_Nm, rtol=1e-6)
+        new = load_from_sweep(sw, torque_Nm=T, model="surface",
+                              gap_offset_rad=off).tangential_force_N[teeth, 0]
+        if np.max(np.abs(new - W)) <= tol * new.max():
+            return new
+        W = 0.5 * (W + new)
+    raise RuntimeError("the sector's body fixed point did not converge")
+
+
+def sector_reference(runs: dict, sector_runs: Path) -> None:
+    """The stored sector references against the model, bodies counted two ways."""
+    stored = json.loads(sector_runs.read_text()) if sector_runs.exists() else {}
+    rows = [(k, r) for k, r in stored.items() if k.split("|")[0] in runs]
+    if not rows:
+        return
+    print("\n### The misaligned sector reference and its bodies (compared tooth, `surface`; "
+          "FE / model at the sector's wind-up)\n")
+    print("| pose | sector | springs | FE load N | model, uniform body (as compared so far) N "
+          "| FE / model | model, the sector's K-periodic bodies N | FE / model |")
+    print("|---|---|---|---|---|---|---|---|")
+    for k, run in sorted(rows):
+        name, mis, rot, T = k.split("|")[:4]
+        fe, c = run["fe"], run["compared"][0]
+        tab = BodyInfluenceTable.from_dict(runs[name]["table"])
+        t = fe["teeth"][c]
+        for springs in ("fe-fit", "fe"):
+            spec = gc.load_spec(name)
+            spec = replace(spec, load=replace(spec.load, stiffness=springs, torque_Nm=float(T)))
+            _, W0 = loads_at_windup(spec, float(mis), float(rot), fe["windup_rad"],
+                                    model="surface")
+            Wk = sector_loads(spec, float(mis), float(rot), fe, tab)[c]
+            w = fe["tangential_force_N"][c]
+            print(f"| {name} {mis}°, {T} N·m | {len(fe['teeth'])} | {springs} | {w:.0f} | "
+                  f"{W0[t]:.0f} | {w / W0[t]:.3f} | {Wk:.0f} | {w / Wk:.3f} |")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--specs", nargs="*", default=list(SPECS), choices=list(SPECS))
     ap.add_argument("--size", type=float, default=1.0, help="element size on the teeth, mm")
     ap.add_argument("--runs", type=Path, default=ROOT / "outputs" / "bench_bodies.json")
     ap.add_argument("--stored", action="store_true", help="only the runs in --runs")
+    ap.add_argument("--table-only", action="store_true",
+                    help="solve only the influence table of specs without one")
+    ap.add_argument("--sector-runs", type=Path,
+                    default=ROOT / "outputs" / "bench_fea_sector.json",
+                    help="bench_fea_sector.py's stored runs")
     a = ap.parse_args()
     runs = json.loads(a.runs.read_text()) if a.runs.exists() else {}
     for name in a.specs:
         key = f"{name}|{a.size:g}"
-        if key not in runs and not a.stored:
-            runs[key] = solve(name, a.size, a.runs.parent / f"bench_bodies-{name}")
+        if not a.stored and "poses" not in runs.get(key, {}) and not (
+                a.table_only and key in runs):
+            runs[key] = solve(name, a.size, a.runs.parent / f"bench_bodies-{name}",
+                              runs.get(key, {}), a.table_only)
             a.runs.parent.mkdir(parents=True, exist_ok=True)
             a.runs.write_text(json.dumps(runs))
     have = {k.split("|")[0]: v for k, v in runs.items()
@@ -293,6 +375,7 @@ def main() -> None:
     pose_tables(have)
     periodic_check(have)
     load_effect(have)
+    sector_reference(have, a.sector_runs)
 
 
 if __name__ == "__main__":
