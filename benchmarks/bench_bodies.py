@@ -33,6 +33,7 @@ torque; the K-periodic kernel).
 from __future__ import annotations
 
 import argparse
+import itertools
 import json
 import os
 import time
@@ -284,18 +285,17 @@ def periodic_check(runs: dict) -> None:
                   f"{1e6 * np.max(np.abs(model - fe)):.4f} |")
 
 
-def sector_loads(spec: gc.CouplingSpec, mis: float, rot: float, fe: dict, tab,
+def sector_loads(spec: gc.CouplingSpec, mis: float, rot: float, fe: dict, tab, model: str,
                  tol: float = 1e-4) -> np.ndarray:
-    """The ``surface`` model's loads on the sector's teeth ``fe["teeth"]`` at the sector's
+    """The ``model``'s loads on the sector's teeth ``fe["teeth"]`` at the sector's
     wind-up with the bodies as the sector has them: each tooth's gap grows by the
     K-periodic kernel's deflection under the sector's loads (:func:`body_influence_matrix`
     with ``period = K``; at a fixed wind-up the model's teeth are independent), iterated
     (half steps) to ``tol`` of the largest load."""
     teeth, R = fe["teeth"], spec.tooth.pitch_radius
     sw = gc.sweep(spec, mis, [rot])
-    _, W0 = loads_at_windup(spec, mis, rot, fe["windup_rad"], model="surface")
-    z = load_from_sweep(sw, torque_Nm=spec.load.torque_Nm,
-                        model="surface").contact_z_mm[teeth, 0]
+    _, W0 = loads_at_windup(spec, mis, rot, fe["windup_rad"], model=model)
+    z = load_from_sweep(sw, torque_Nm=spec.load.torque_Nm, model=model).contact_z_mm[teeth, 0]
     B = body_influence_matrix(spec, z, period=len(teeth), table=tab)
     W = W0[teeth]
     for _ in range(100):
@@ -303,11 +303,11 @@ def sector_loads(spec: gc.CouplingSpec, mis: float, rot: float, fe: dict, tab,
         off[teeth] = B @ W / R
 
         def excess(T: float, off=off) -> float:
-            res = load_from_sweep(sw, torque_Nm=T, model="surface", gap_offset_rad=off)
+            res = load_from_sweep(sw, torque_Nm=T, model=model, gap_offset_rad=off)
             return float(res.windup_rad[0]) - fe["windup_rad"]
 
         T = brentq(excess, 1e-3 * spec.load.torque_Nm, 1e2 * spec.load.torque_Nm, rtol=1e-6)
-        new = load_from_sweep(sw, torque_Nm=T, model="surface",
+        new = load_from_sweep(sw, torque_Nm=T, model=model,
                               gap_offset_rad=off).tangential_force_N[teeth, 0]
         if np.max(np.abs(new - W)) <= tol * new.max():
             return new
@@ -321,12 +321,12 @@ def sector_reference(runs: dict, sector_runs: Path) -> None:
     rows = [(k, r) for k, r in stored.items() if k.split("|")[0] in runs]
     if not rows:
         return
-    print("\n### The misaligned sector reference and its bodies (compared tooth, `surface`; "
-          "FE / model at the sector's wind-up)\n")
-    print("| pose | sector | springs | FE load N | model, uniform body (as compared so far) N "
-          "| FE / model | model, the sector's K-periodic bodies N | FE / model |")
-    print("|---|---|---|---|---|---|---|---|")
-    for k, run in sorted(rows):
+    print("\n### The misaligned sector reference and its bodies (compared tooth; FE / model "
+          "at the sector's wind-up)\n")
+    print("| pose | sector | model | springs | FE load N | model, uniform body (as compared "
+          "so far) N | FE / model | model, the sector's K-periodic bodies N | FE / model |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for (k, run), model in itertools.product(sorted(rows), ("surface", "compliance")):
         name, mis, rot, T = k.split("|")[:4]
         fe, c = run["fe"], run["compared"][0]
         tab = BodyInfluenceTable.from_dict(runs[name]["table"])
@@ -335,11 +335,11 @@ def sector_reference(runs: dict, sector_runs: Path) -> None:
             spec = gc.load_spec(name)
             spec = replace(spec, load=replace(spec.load, stiffness=springs, torque_Nm=float(T)))
             _, W0 = loads_at_windup(spec, float(mis), float(rot), fe["windup_rad"],
-                                    model="surface")
-            Wk = sector_loads(spec, float(mis), float(rot), fe, tab)[c]
+                                    model=model)
+            Wk = sector_loads(spec, float(mis), float(rot), fe, tab, model)[c]
             w = fe["tangential_force_N"][c]
-            print(f"| {name} {mis}°, {T} N·m | {len(fe['teeth'])} | {springs} | {w:.0f} | "
-                  f"{W0[t]:.0f} | {w / W0[t]:.3f} | {Wk:.0f} | {w / Wk:.3f} |")
+            print(f"| {name} {mis}°, {T} N·m | {len(fe['teeth'])} | {model} | {springs} | "
+                  f"{w:.0f} | {W0[t]:.0f} | {w / W0[t]:.3f} | {Wk:.0f} | {w / Wk:.3f} |")
 
 
 def main() -> None:
