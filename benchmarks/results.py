@@ -41,6 +41,8 @@ FULL = [
      "the load models against the stored CalculiX contact references (aligned)"),
     ("bench_fea_sector.py", ["--stored", "--sectors", "5"],
      "misaligned FE sector: the models at equal wind-up (the stored FE runs)"),
+    ("bench_bodies.py", ["--stored"],
+     "the bodies tooth by tooth: FE rings, the influence model, the sector's own bodies"),
     ("bench_study.py", [], "studies on dask.distributed"),
     ("bench_random_specs.py", [], "1000 seeded random specs: accepted, finite, closed parts"),
 ]

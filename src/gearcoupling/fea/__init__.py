@@ -6,6 +6,14 @@ when called; a missing one raises :class:`gearcoupling.errors.BackendError` nami
 """
 
 from .backends import ccx_path, gmsh_module
+from .bodies import (
+    BodyInfluenceTable,
+    RingSolution,
+    body_influence_table,
+    compute_body_influence,
+    ring_deflections,
+    sector_self,
+)
 from .mesh import (
     DEFAULT_SECTOR_TEETH,
     check_size,
@@ -30,13 +38,17 @@ from .write import region_ids, write_inp, write_mesh
 __all__ = [
     "CUT_DISTANCE_PITCHES",
     "DEFAULT_SECTOR_TEETH",
+    "BodyInfluenceTable",
     "ComplianceTable",
     "FEContactResult",
     "FESectorResult",
+    "RingSolution",
     "VolumeMesh",
+    "body_influence_table",
     "ccx_path",
     "check_sector",
     "check_size",
+    "compute_body_influence",
     "compute_compliance_table",
     "default_size",
     "fe_contact",
@@ -48,6 +60,8 @@ __all__ = [
     "pitch_point_compliance",
     "rectangle_halfspace_work_mm_per_N",
     "region_ids",
+    "ring_deflections",
+    "sector_self",
     "sector_teeth",
     "tooth_compliance_table",
     "write_inp",

@@ -233,24 +233,24 @@ def _loaded_tooth(vm: VolumeMesh) -> int:
 
 
 def load_case(vm: VolumeMesh, z: float, r: float, pitch_radius: float, patch_mm: float,
-              subdivisions: int = 8) -> tuple[LoadCase, float, float]:
+              subdivisions: int = 8, *, tooth: int | None = None
+              ) -> tuple[LoadCase, float, float]:
     """Consistent nodal forces of a uniform pressure on the loaded flank within
     ``|dz|, |dr| <= patch_mm`` of ``(z, r)``, along the patch's mean normal into the tooth
     and scaled to a moment of ``1 N x R`` about the axis, with the patch's area (mm²) and
-    axial length (mm).
+    axial length (mm). ``z`` is signed; ``tooth`` defaults to the sector's middle tooth.
 
     The pressure is integrated over the quadratic flank triangles with the triangles'
     shape functions at the centroids of ``subdivisions²`` sub-triangles each, so the
     forces follow the patch's edges, not the mesh.
     """
-    k = _loaded_tooth(vm)
+    k = _loaded_tooth(vm) if tooth is None else tooth
     tri = vm.regions[f"T{k}_FLANK_{LOADED_FLANK[vm.part]}"]
     x = vm.nodes[tri]  # (t, 6, 3)
     N, dxi, deta = _tri6(_subcentroids(subdivisions))
     pts = np.einsum("sa,tad->tsd", N, x)
     normal = np.cross(np.einsum("sa,tad->tsd", dxi, x), np.einsum("sa,tad->tsd", deta, x))
     jac = np.linalg.norm(normal, axis=-1)
-    z = abs(z)  # the table is even in z
     inside = ((np.abs(pts[..., 2] - z) <= patch_mm)
               & (np.abs(np.hypot(pts[..., 0], pts[..., 1]) - r) <= patch_mm))
     w = jac * inside / (2.0 * subdivisions**2)  # area of each sub-triangle in the patch
@@ -317,7 +317,7 @@ def part_compliance(vm: VolumeMesh, spec: CouplingSpec, z_mm, r_mm, *, patch_mm:
     cases, near = [], []
     for z in z_mm:
         for r in r_mm:
-            case, area, length = load_case(vm, z, r, R, patch_mm)
+            case, area, length = load_case(vm, abs(z), r, R, patch_mm)  # the table is even in z
             cases.append(case)
             force = float(np.linalg.norm(case.forces.sum(axis=0)))
             near.append(rectangle_halfspace_work_mm_per_N(force, length, area / length, E, nu))
