@@ -26,7 +26,7 @@ from ..arguments import GAP_TOLERANCE_MM
 from ..geometry import map_polar, sleeve_model
 from ..io import atomic_path
 from ..plots import figure_axes
-from ..spec import CouplingSpec
+from ..spec import MISALIGNMENT_RANGE_DEG, CouplingSpec
 from .design import binding_angle_deg, critical_misalignment_deg, min_backlash_rad
 from .flank_table import flank_table
 from .kernel import _Sleeve
@@ -181,8 +181,8 @@ def backlash_curve(spec: CouplingSpec, misalignment_deg, *, steps: int = 8):
                      for a in misalignment_deg])
 
 
-def plot_backlash(spec: CouplingSpec, *, max_deg: float = 6.0, count: int = 25,
-                  binding_deg: float | None = None, ax=None, curve=None):
+def plot_backlash(spec: CouplingSpec, *, max_deg: float = MISALIGNMENT_RANGE_DEG[1],
+                  count: int = 25, binding_deg: float | None = None, ax=None, curve=None):
     """Smallest backlash over a turn against misalignment, with the binding angle.
     ``curve``: ``(misalignments_deg, backlash_mm)`` already computed (:func:`backlash_curve`)
     in place of ``count`` misalignments from 0 to ``max_deg``."""

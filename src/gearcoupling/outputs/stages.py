@@ -22,6 +22,7 @@ from typing import Any, TypeVar
 
 import numpy as np
 
+from ..arguments import GAP_TOLERANCE_MM
 from ..clearance import SweepResult, backlash_curve, design_quantities, sweep
 from ..errors import ArgumentError
 from ..geometry import renzo_z0_mm
@@ -33,7 +34,7 @@ from ..loading import (
     renzo_q,
     resolve_model,
 )
-from ..spec import CouplingSpec
+from ..spec import MISALIGNMENT_RANGE_DEG, CouplingSpec
 
 MEMO_SIZE = 64  # stage results kept per process (least recently used dropped)
 _MEMO: OrderedDict[tuple, Any] = OrderedDict()
@@ -89,7 +90,7 @@ def stage(fn: F) -> F:
 
 @stage
 def turn_sweep(spec: CouplingSpec, misalignment_deg: float, angles: int,
-               tolerance_mm: float = 1e-7) -> SweepResult:
+               tolerance_mm: float = GAP_TOLERANCE_MM) -> SweepResult:
     """The sweep of ``angles`` rotations evenly over a turn, checked finite."""
     if angles < 1:
         raise ArgumentError("angles", angles, "at least 1")
@@ -116,7 +117,7 @@ def backlash_range_deg(spec: CouplingSpec, binding_deg: float | None,
                        misalignment_deg: float) -> float:
     """The top of the backlash-against-misalignment grid: twice the binding angle (3° when
     it does not bind), at least 1.5 times the misalignment, at most 6°."""
-    return min(6.0, max(2.0 * (binding_deg or 3.0), 1.5 * misalignment_deg))
+    return min(MISALIGNMENT_RANGE_DEG[1], max(2.0 * (binding_deg or 3.0), 1.5 * misalignment_deg))
 
 
 @stage
