@@ -190,6 +190,8 @@ def default_dedendum(tooth: ToothSystem, thickness: float, crowning: Crowning,
 
 
 def _build(root: Table, name: str) -> CouplingSpec:
+    """The spec of a spec file's ``root`` table; tables and keys are read in a fixed order,
+    which decides the error raised first."""
     units, name, misalignment = _header(root, name)
     tooth = _tooth_system(root)
     s = root.table("sleeve")
