@@ -190,6 +190,28 @@ def default_dedendum(tooth: ToothSystem, thickness: float, crowning: Crowning,
 
 
 def _build(root: Table, name: str) -> CouplingSpec:
+    """The spec of a spec file's ``root`` table; tables and keys are read in a fixed order,
+    which decides the error raised first."""
+    units, name, misalignment = _header(root, name)
+    tooth = _tooth_system(root)
+    s = root.table("sleeve")
+    space_width = s.length("space_width", 0.5 * math.pi * tooth.module)
+    _positive("sleeve.space_width", space_width)
+    hub, tip_default = _hub(root, tooth, space_width)
+    sleeve = _sleeve(s, tooth, hub, space_width, tip_default)
+    load = parse_load(root.table("load"))
+    material = parse_material(root.table("material"))
+    ins = root.table("inspection")  # tolerance limits for compare
+    inspection = InspectionLimits(**{k: ins.length(k, math.inf) for k in INSPECTION_LIMITS})
+    ins.done(SPEC_KEYS.get(ins.where, ()))
+    root.done(SPEC_KEYS.get(root.where, ()))
+    return CouplingSpec(tooth, hub, sleeve, misalignment, name=name, units=units, load=load,
+                        material=material, inspection=inspection)
+
+
+def _header(root: Table, name: str) -> tuple[str, str, float]:
+    """The top-level ``units`` (which sets ``root.scale``), ``name`` and the design
+    misalignment in radians."""
     units = root.string("units", "mm")
     _check(units in UNITS, "units", units, f"one of {tuple(UNITS)}")
     root.scale = UNITS[units]
@@ -199,7 +221,11 @@ def _build(root: Table, name: str) -> CouplingSpec:
     misalignment = math.radians(check_misalignment_deg(root.number("design_misalignment_deg",
                                                                    0.0),
                                                        "design_misalignment_deg"))
+    return units, name, misalignment
 
+
+def _tooth_system(root: Table) -> ToothSystem:
+    """The ``tooth`` table: teeth, module (or diametral pitch) and pressure angle."""
     t = root.table("tooth")
     teeth = t.integer("teeth")
     if t.has("diametral_pitch"):
@@ -214,27 +240,44 @@ def _build(root: Table, name: str) -> CouplingSpec:
         module = t.length("module")
     tooth = ToothSystem(teeth, module, t.angle("pressure_angle_deg", 20.0))
     t.done(SPEC_KEYS.get(t.where, ()))
-    m, R = module, tooth.pitch_radius
+    return tooth
 
-    s = root.table("sleeve")
-    space_width = s.length("space_width", 0.5 * math.pi * m)
-    _positive("sleeve.space_width", space_width)
+
+def _hub(root: Table, tooth: ToothSystem, space_width: float) -> tuple[Hub, float]:
+    """The ``hub`` table and its sub-tables, with the default tip radius the sleeve's
+    default major diameter is derived from."""
     h = root.table("hub")
     face = h.length("face_width")
     _positive("hub.face_width", face)
+    thickness = _hub_thickness(h, tooth, space_width)
+    # defaults: standard proportions, kept below where hub teeth or sleeve spaces turn
+    # pointed (which matters for few teeth)
+    crowning = _crowning(h)
+    tip, tip_default = _hub_tip(h, tooth, thickness, crowning, face)
+    hub_root = _hub_root(h, tooth, thickness, crowning, face)
+    body = _hub_body(h, tooth, hub_root, face)
+    hub = Hub(face, thickness, tip, hub_root, crowning, body)
+    h.done(SPEC_KEYS.get(h.where, ()))
+    return hub, tip_default
+
+
+def _hub_thickness(h: Table, tooth: ToothSystem, space_width: float) -> float:
+    """Hub tooth thickness: given, or the sleeve space width less the backlash."""
     if h.has("tooth_thickness"):
         _check(not h.has("backlash"), "hub.backlash", None,
                "give tooth_thickness or backlash, not both")
         thickness = h.length("tooth_thickness")
     else:
-        backlash = h.length("backlash", 0.04 * m)
+        backlash = h.length("backlash", 0.04 * tooth.module)
         _check(math.isfinite(backlash) and 0 <= backlash < space_width, "hub.backlash",
                backlash, f"must be >= 0 and below the sleeve space width {space_width:.6g} mm")
         thickness = space_width - backlash
     _positive("hub.tooth_thickness", thickness)
+    return thickness
 
-    # defaults: standard proportions, kept below where hub teeth or sleeve spaces turn
-    # pointed (which matters for few teeth)
+
+def _crowning(h: Table) -> Crowning:
+    """The ``hub.crowning`` table (the radius is required for the kinds that use one)."""
     c = h.table("crowning")
     kind = c.string("kind", "circular")
     needs_radius = kind in ("circular", "vari_crown", "end_round")
@@ -243,13 +286,21 @@ def _build(root: Table, name: str) -> CouplingSpec:
         radius=c.length("radius", None if needs_radius else math.inf),
         end_radius=c.length("end_radius", math.inf),
         start_z=c.length("start_z", 0.0),
-        table_s=c.array("s", root.scale),
-        table_kappa=c.array("kappa", 1.0 / root.scale),
-        table_z=c.array("z", root.scale),
-        table_drop=c.array("drop", root.scale),
+        table_s=c.array("s", c.scale),
+        table_kappa=c.array("kappa", 1.0 / c.scale),
+        table_z=c.array("z", c.scale),
+        table_drop=c.array("drop", c.scale),
         generation=c.string("generation", "enveloped"),
     )
     c.done(SPEC_KEYS.get(c.where, ()))
+    return crowning
+
+
+def _hub_tip(h: Table, tooth: ToothSystem, thickness: float, crowning: Crowning,
+             face: float) -> tuple[HubTip, float]:
+    """The ``hub.tip`` table, and the default tip radius: R + m, lowered where the teeth
+    would be pointed, at the face ends too."""
+    R, m = tooth.pitch_radius, tooth.module
     # the crown drop thins the teeth toward the face ends: keep the tip below where they
     # would be pointed there too (a sphere tip falls with z by itself)
     r_hub_pointed = _pointed_radius(tooth, thickness)
@@ -264,6 +315,12 @@ def _build(root: Table, name: str) -> CouplingSpec:
                       - 0.25 * (r_hub_pointed - R))
     tip = HubTip(tip_kind, tip_t.length("diameter", 2 * tip_default))
     tip_t.done(SPEC_KEYS.get(tip_t.where, ()))
+    return tip, tip_default
+
+
+def _hub_root(h: Table, tooth: ToothSystem, thickness: float, crowning: Crowning,
+              face: float) -> HubRoot:
+    """The ``hub.root`` table; the default dedendum is derived only when none is given."""
     root_t = h.table("root")
     dedendum = root_t.length("dedendum") if root_t.has("dedendum") else root_t.length(
         "dedendum", default_dedendum(tooth, thickness, crowning, face))
@@ -271,24 +328,35 @@ def _build(root: Table, name: str) -> CouplingSpec:
     hub_root = HubRoot(dedendum, root_t.length("fillet_radius",
                                                default_fillet_radius(tooth, thickness, dedendum)))
     root_t.done(SPEC_KEYS.get(root_t.where, ()))
+    return hub_root
+
+
+def _hub_body(h: Table, tooth: ToothSystem, hub_root: HubRoot, face: float) -> HubBody:
+    """The ``hub.body`` table: bore below the root diameter, length the face width."""
+    m, R = tooth.module, tooth.pitch_radius
     root_dia = 2 * (R - hub_root.dedendum)
     b = h.table("body")
     body = HubBody(b.length("bore_diameter", max(0.0, root_dia - 2 * max(3 * m, 0.15 * R))),
                    b.length("length", face))
     b.done(SPEC_KEYS.get(b.where, ()))
-    hub = Hub(face, thickness, tip, hub_root, crowning, body)
-    h.done(SPEC_KEYS.get(h.where, ()))
+    return body
 
+
+def _sleeve(s: Table, tooth: ToothSystem, hub: Hub, space_width: float,
+            tip_default: float) -> Sleeve:
+    """The rest of the ``sleeve`` table (``space_width`` is read before the hub)."""
+    m, R = tooth.module, tooth.pitch_radius
     r_space_pointed = _pointed_radius(tooth, space_width)
     major = s.length("major_diameter", 2 * min(R + 1.25 * m,
                                                tip_default + 0.5 * (r_space_pointed - tip_default)))
     # the sleeve tips stay above the hub's form circle (all contact on the involutes)
+    hub_root = hub.root
     h_form = hub_root.dedendum - hub_root.fillet_radius * (1 - math.sin(tooth.pressure_angle))
     r_form_hub = math.hypot(R - h_form, h_form / math.tan(tooth.pressure_angle))
     minor_default = max(r_form_hub + 0.05 * m, R - hub_root.dedendum + 0.25 * m,
                         tooth.base_radius + 0.1 * m)
     sleeve = Sleeve(
-        face_width=s.length("face_width", face + 4 * m),
+        face_width=s.length("face_width", hub.face_width + 4 * m),
         minor_diameter=s.length("minor_diameter", 2 * minor_default),
         major_diameter=major,
         space_width=space_width,
@@ -298,14 +366,7 @@ def _build(root: Table, name: str) -> CouplingSpec:
         outer_diameter=s.length("outer_diameter", major + 2 * max(3 * m, 0.1 * R)),
     )
     s.done(SPEC_KEYS.get(s.where, ()))
-    load = parse_load(root.table("load"))
-    material = parse_material(root.table("material"))
-    ins = root.table("inspection")  # tolerance limits for compare
-    inspection = InspectionLimits(**{k: ins.length(k, math.inf) for k in INSPECTION_LIMITS})
-    ins.done(SPEC_KEYS.get(ins.where, ()))
-    root.done(SPEC_KEYS.get(root.where, ()))
-    return CouplingSpec(tooth, hub, sleeve, misalignment, name=name, units=units, load=load,
-                        material=material, inspection=inspection)
+    return sleeve
 
 
 def _crown_drop(crowning: Crowning, R: float, face: float, z: float) -> float:

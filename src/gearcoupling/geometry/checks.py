@@ -21,7 +21,7 @@ from .hub import (
     tip_radius,
 )
 from .renzo import renzo_z0_mm
-from .sleeve import sleeve_model
+from .sleeve import SleeveModel, sleeve_model
 from .speclike import SpecLike
 
 _Z_SAMPLES = 17  # planes from the midplane to the face end checked for undercut and points
@@ -74,10 +74,30 @@ def _check_table_path(m: HubModel, crowning) -> None:
 
 def check_spec(spec: SpecLike) -> None:
     """Raise :class:`SpecError` if the spec's geometry cannot be built as specified."""
-    t, hub, sl = spec.tooth, spec.hub, spec.sleeve
-    R, m_ = t.pitch_radius, t.module
-    cr = hub.crowning
+    _check_proportions(spec)
+    m = hub_model(spec)
+    _check_hob_rounds(spec, m)
+    _check_crown(spec, m)
+    sm = _checked_sleeve_model(spec)
+    r_tip0 = float(tip_radius(m, 0.0))
+    _check_radial_overlap(spec, m, sm, r_tip0)
+    z = np.linspace(0.0, m.half_face, _Z_SAMPLES)
+    _check_undercut(spec, m, z)
+    _check_fillet_reach(spec, m, sm, r_tip0)
+    pts, r_form = _check_flank_to_tip(spec, m, z)
+    r_root_min = float(np.min(root_radius(m, z)))
+    rim_limit = 2 * r_root_min - spec.tooth.module
+    if spec.hub.body.bore_diameter > rim_limit:
+        raise SpecError("hub.body.bore_diameter", spec.hub.body.bore_diameter,
+                        f"leaves less than half a module of rim under the tooth roots: must "
+                        f"be at most {rim_limit:.6g} mm")
+    if not (np.all(np.isfinite(pts)) and np.all(np.isfinite(r_form))):
+        raise SpecError("spec", spec.name, "geometry is not finite (please report this spec)")
 
+
+def _check_proportions(spec: SpecLike) -> None:
+    """The hub tooth fits the sleeve space and the sleeve face covers the hub's."""
+    hub, sl = spec.hub, spec.sleeve
     if hub.tooth_thickness > sl.space_width:
         raise SpecError("hub.tooth_thickness", hub.tooth_thickness,
                         f"exceeds the sleeve space width {sl.space_width:.6g} mm: the parts "
@@ -85,17 +105,29 @@ def check_spec(spec: SpecLike) -> None:
     if sl.face_width < hub.face_width:
         raise SpecError("sleeve.face_width", sl.face_width,
                         f"must cover the hub face width {hub.face_width:.6g} mm")
-    m = hub_model(spec)
+
+
+def _check_hob_rounds(spec: SpecLike, m: HubModel) -> None:
+    """The hob tooth is not pointed above the dedendum and the tip rounds of adjacent flanks
+    do not overlap (the round centre within half a circular pitch)."""
+    t, hub = spec.tooth, spec.hub
     u_c, _ = m.round_centre
-    if u_c > 0.5 * t.circular_pitch:
-        if 0.5 * hub.tooth_thickness + hub.root.dedendum * math.tan(t.pressure_angle) \
-                > 0.5 * t.circular_pitch:
-            raise SpecError("hub.root.dedendum", hub.root.dedendum,
-                            "too deep for the tooth space: the hob tooth is pointed before "
-                            "this depth; use a smaller dedendum or a thinner hub tooth")
-        raise SpecError("hub.root.fillet_radius", hub.root.fillet_radius,
-                        "too large: the hob tip rounds of adjacent flanks overlap; use a "
-                        "smaller radius or a thinner hub tooth")
+    if u_c <= 0.5 * t.circular_pitch:
+        return
+    if 0.5 * hub.tooth_thickness + hub.root.dedendum * math.tan(t.pressure_angle) \
+            > 0.5 * t.circular_pitch:
+        raise SpecError("hub.root.dedendum", hub.root.dedendum,
+                        "too deep for the tooth space: the hob tooth is pointed before "
+                        "this depth; use a smaller dedendum or a thinner hub tooth")
+    raise SpecError("hub.root.fillet_radius", hub.root.fillet_radius,
+                    "too large: the hob tip rounds of adjacent flanks overlap; use a "
+                    "smaller radius or a thinner hub tooth")
+
+
+def _check_crown(spec: SpecLike, m: HubModel) -> None:
+    """A table crown's path, the crown curvature against the dedendum and the feed-path
+    tangent at the face ends."""
+    hub, cr = spec.hub, spec.hub.crowning
     if cr.kind == "table":
         _check_table_path(m, cr)
     kmax = _max_curvature(m, cr)
@@ -103,10 +135,9 @@ def check_spec(spec: SpecLike) -> None:
         raise SpecError(_crown_field(cr, end=True),
                         1.0 / kmax, f"crowning radius must be at least twice the hub dedendum "
                         f"({2 * hub.root.dedendum:.6g} mm)")
-    z_end = m.half_face
     try:
-        depths = np.array([-(m.tip_radius - R), hub.root.dedendum])
-        e_end = float(np.max(np.abs(m.path.solve_plane(z_end, depths)[2])))
+        depths = np.array([-(m.tip_radius - spec.tooth.pitch_radius), hub.root.dedendum])
+        e_end = float(np.max(np.abs(m.path.solve_plane(m.half_face, depths)[2])))
     except GeometryError:
         e_end = math.pi / 2
     if abs(math.degrees(e_end)) > MAX_END_TANGENT_DEG:
@@ -116,6 +147,11 @@ def check_spec(spec: SpecLike) -> None:
                         f"turns {math.degrees(e_end):.1f}° by the face end, at most "
                         f"{MAX_END_TANGENT_DEG:g}° allowed")
 
+
+def _checked_sleeve_model(spec: SpecLike) -> SleeveModel:
+    """The sleeve model, its failures and pointed spaces or teeth named by the field to
+    change."""
+    t, sl = spec.tooth, spec.sleeve
     try:
         sm = sleeve_model(spec)
     except GeometryError as err:
@@ -132,8 +168,13 @@ def check_spec(spec: SpecLike) -> None:
         raise SpecError("sleeve.minor_diameter", sl.minor_diameter,
                         "too small: the sleeve teeth are pointed at the minor circle "
                         "(with the tip chamfer)")
+    return sm
 
-    r_tip0 = float(tip_radius(m, 0.0))
+
+def _check_radial_overlap(spec: SpecLike, m: HubModel, sm: SleeveModel, r_tip0: float) -> None:
+    """In the midplane the hub tips clear the sleeve root, the sleeve tips the hub root, and
+    the hub tips reach the sleeve flank (``r_tip0``: hub tip radius there)."""
+    hub, sl = spec.hub, spec.sleeve
     if r_tip0 >= sm.r_major:
         raise SpecError("hub.tip.diameter", hub.tip.diameter,
                         f"hub tips reach the sleeve root: must be below the sleeve major "
@@ -148,12 +189,15 @@ def check_spec(spec: SpecLike) -> None:
                         f"the hub teeth do not reach the sleeve flank, which starts at "
                         f"diameter {2 * sm.r_form:.6g} mm")
 
-    z = np.linspace(0.0, z_end, _Z_SAMPLES)
+
+def _check_undercut(spec: SpecLike, m: HubModel, z: np.ndarray) -> None:
+    """The rack reaches the form depth without undercut in every plane ``z``."""
+    hub = spec.hub
     try:
         _, d_r2 = radius_squared(m, z, m.h_form, m.phi)
     except GeometryError as err:
-        raise SpecError("hub.crowning.radius", cr.radius, f"the rack cannot reach the "
-                        f"dedendum {hub.root.dedendum:.6g} mm in every plane") from err
+        raise SpecError("hub.crowning.radius", hub.crowning.radius, f"the rack cannot reach "
+                        f"the dedendum {hub.root.dedendum:.6g} mm in every plane") from err
     if np.any(d_r2 >= 0):
         zi = float(z[np.argmax(d_r2 >= 0)])
         raise SpecError("hub.root.dedendum", hub.root.dedendum,
@@ -162,6 +206,11 @@ def check_spec(spec: SpecLike) -> None:
                         "a larger pressure angle, a smaller dedendum or a larger fillet radius"
                         + (" (or a flatter crown: the undercut is off the midplane)"
                            if zi > 0 else ""))
+
+
+def _check_fillet_reach(spec: SpecLike, m: HubModel, sm: SleeveModel, r_tip0: float) -> None:
+    """In the midplane neither part's tips reach into the other's root fillets."""
+    hub, sl = spec.hub, spec.sleeve
     r_form0 = float(form_radius(m, 0.0))
     if sm.r_minor < r_form0:
         raise SpecError("sleeve.minor_diameter", sl.minor_diameter,
@@ -172,32 +221,33 @@ def check_spec(spec: SpecLike) -> None:
         raise SpecError("hub.tip.diameter", hub.tip.diameter,
                         f"hub tips reach into the sleeve root fillets: must be at most "
                         f"{2 * sm.r_fillet:.6g} mm, where the sleeve fillets start")
+
+
+def _check_flank_to_tip(spec: SpecLike, m: HubModel,
+                        z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """In every plane ``z`` a hub flank is left above the form radius and generated up to
+    the tip without a point; returns the flank points ``(n, 3)`` and form radii ``(nz,)``."""
+    tip = spec.hub.tip
     r_form = form_radius(m, z)
     r_tip = tip_radius(m, z)
     if np.any(r_form >= r_tip):
         zi = float(z[np.argmax(r_form >= r_tip)])
-        raise SpecError("hub.tip.diameter", hub.tip.diameter,
+        raise SpecError("hub.tip.diameter", tip.diameter,
                         f"no flank left at z = {zi:.4g} mm: the tip falls below the form "
                         "radius (crown drop too large for the tooth depth"
                         + ("; a spherical tip drops faster than a crown of radius above R: "
                            "use a larger tip diameter, tip kind cylinder or a smaller face "
-                           "width)" if hub.tip.kind == "sphere" else ")"))
+                           "width)" if tip.kind == "sphere" else ")"))
     try:
         pts, _, _ = hub_flank_model(m, "cw", z, r_tip, check=False)
     except GeometryError as err:
-        raise SpecError("hub.tip.diameter", hub.tip.diameter,
+        raise SpecError("hub.tip.diameter", tip.diameter,
                         "the flank cannot be generated up to the tip") from err
     if np.any(pts[:, 1] >= 0):
         zi = float(z[np.argmax(pts[:, 1] >= 0)])
-        raise SpecError("hub.tip.diameter", hub.tip.diameter,
+        raise SpecError("hub.tip.diameter", tip.diameter,
                         f"hub teeth are pointed at z = {zi:.4g} mm: lower the tip or the crown")
-    r_root_min = float(np.min(root_radius(m, z)))
-    if hub.body.bore_diameter > 2 * r_root_min - m_:
-        raise SpecError("hub.body.bore_diameter", hub.body.bore_diameter,
-                        f"leaves less than half a module of rim under the tooth roots: must "
-                        f"be at most {2 * r_root_min - m_:.6g} mm")
-    if not (np.all(np.isfinite(pts)) and np.all(np.isfinite(r_form))):
-        raise SpecError("spec", spec.name, "geometry is not finite (please report this spec)")
+    return pts, r_form
 
 
 def derived_values(spec: SpecLike) -> dict[str, float]:

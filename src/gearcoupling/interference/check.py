@@ -402,53 +402,18 @@ def check_interference(spec: CouplingSpec, misalignment_deg: float, angles_deg: 
     margin = tol if margin_mm is None else real(margin_mm, "margin_mm", 0.0, unit="mm")
 
     t0 = time.perf_counter()
-    if model is None:
-        model = build_model(spec, tol, k)
-    elif model.half_window != k or abs(model.hub.tolerance_mm - tol) > 1e-12 * tol:
-        raise ArgumentError("model", f"{model.label}, tolerance {model.hub.tolerance_mm} mm",
-                            f"does not match teeth = {teeth!r}, tolerance_mm = {tol}: give "
-                            "a model built for them")
+    model = _prepared_model(spec, model, tol, k, teeth)
     if k is None:  # model.full
-        every = frozenset(range(N))
-        sides = (every, every) if backlash else (frozenset(), frozenset())
-        plan = [[Window(0, every, every, sides)] for _ in psi]
+        plan = _full_plan(N, psi.size, backlash)
     else:
-        swept = sweep(spec, misalignment_deg, np.degrees(psi), tolerance_mm=min(1e-4, tol / 10))
-        per_side = side_clearance(swept, delta)
-        gap_teeth, over_teeth = hot_teeth(np.min(per_side, axis=0), margin, 2.0 * tol)
-        side_sets = side_teeth(per_side, margin) if backlash else [((), ())] * psi.size
-        plan = [plan_pose(N, k, o, g, sd)
-                for g, o, sd in zip(gap_teeth, over_teeth, side_sets, strict=True)]
-    _ = model.hub.shell_bvh, model.sleeve.shell_bvh  # built once, before the timing
-    if backlash:
-        _ = [part.side_bvh(f) for part in (model.hub, model.sleeve) for f in FLANKS]
-    if method == "boolean":
-        _ = model.hub.manifold, model.sleeve.manifold
+        plan = _sector_plan(spec, misalignment_deg, psi, delta, tol, k, margin, backlash)
+    _build_trees(model, method, backlash)
     setup = time.perf_counter() - t0
 
     M = psi.size
-    out = _Arrays(M)
-    overlaps: list[Overlap] = []
-    pieces_of = _PIECES[method]
-    r_b = spec.tooth.base_radius
     t1 = time.perf_counter()
-    for j, p in enumerate(psi):
-        acc = _PoseAcc()
-        seen: dict[bytes, _WindowResult] = {}  # equal poses (e.g. all teeth at i = 0) once
-        for w in plan[j]:
-            A = hub_pose(mis, p, delta) if model.full else window_pose(mis, p, w.centre, N,
-                                                                         delta)
-            key = np.round(A, 13).tobytes() + bytes([bool(w.overlap), bool(w.gap),
-                                                     bool(w.sides[0]), bool(w.sides[1])])
-            if key not in seen:
-                seen[key] = _evaluate(model, A, N, w, pieces_of)
-            _collect(acc, seen[key], w, A, j, float(np.degrees(p)), N, r_b, model)
-        if backlash:
-            _refine_sides(acc, model, 1e-3 * tol / spec.tooth.pitch_radius)
-        overlaps.extend(acc.pieces)
-        out.store(j, acc)
-        if progress is not None:
-            progress(j + 1, M)
+    out, overlaps = _run_poses(spec, model, plan, mis, psi, delta, method, backlash, tol,
+                               progress)
     per_pose = (time.perf_counter() - t1) / M
     R = spec.tooth.pitch_radius
     return InterferenceResult(
@@ -465,6 +430,89 @@ def check_interference(spec: CouplingSpec, misalignment_deg: float, angles_deg: 
         backlash_mm=R * np.sum(out.side_angle, axis=0) if backlash else None,
         side_gap_rad=out.side_angle if backlash else None,
         prepared=model, poses=tuple(tuple(windows) for windows in plan))
+
+
+def _prepared_model(spec: CouplingSpec, model: Model | None, tol: float, k: int | None,
+                    teeth: int | str) -> Model:
+    """``model`` if it was built for ``k`` and ``tol`` (else an :class:`ArgumentError`
+    quoting ``teeth``), or a new one."""
+    if model is None:
+        return build_model(spec, tol, k)
+    if model.half_window != k or abs(model.hub.tolerance_mm - tol) > 1e-12 * tol:
+        raise ArgumentError("model", f"{model.label}, tolerance {model.hub.tolerance_mm} mm",
+                            f"does not match teeth = {teeth!r}, tolerance_mm = {tol}: give "
+                            "a model built for them")
+    return model
+
+
+def _full_plan(N: int, M: int, backlash: bool) -> list[list[Window]]:
+    """One window of all ``N`` teeth for each of the ``M`` poses (the full parts)."""
+    every = frozenset(range(N))
+    sides = (every, every) if backlash else (frozenset(), frozenset())
+    return [[Window(0, every, every, sides)] for _ in range(M)]
+
+
+def _sector_plan(spec: CouplingSpec, misalignment_deg: float, psi: NDArray, delta: float,
+                 tol: float, k: int, margin: float, backlash: bool) -> list[list[Window]]:
+    """Windows of ``2k + 1`` teeth per pose ``psi`` (radians) at the teeth the sweep finds
+    within ``margin`` of the smallest clearance (or below ``2 tol``), and at each side's
+    teeth with ``backlash``."""
+    N = spec.tooth.teeth
+    swept = sweep(spec, misalignment_deg, np.degrees(psi), tolerance_mm=min(1e-4, tol / 10))
+    per_side = side_clearance(swept, delta)
+    gap_teeth, over_teeth = hot_teeth(np.min(per_side, axis=0), margin, 2.0 * tol)
+    side_sets = side_teeth(per_side, margin) if backlash else [((), ())] * psi.size
+    return [plan_pose(N, k, o, g, sd)
+            for g, o, sd in zip(gap_teeth, over_teeth, side_sets, strict=True)]
+
+
+def _build_trees(model: Model, method: str, backlash: bool) -> None:
+    """Build the model's bounding-volume trees (and manifolds for ``"boolean"``) once,
+    before the per-pose timing."""
+    _ = model.hub.shell_bvh, model.sleeve.shell_bvh
+    if backlash:
+        _ = [part.side_bvh(f) for part in (model.hub, model.sleeve) for f in FLANKS]
+    if method == "boolean":
+        _ = model.hub.manifold, model.sleeve.manifold
+
+
+def _run_poses(spec: CouplingSpec, model: Model, plan: list[list[Window]], mis: float,
+               psi: NDArray, delta: float, method: str, backlash: bool, tol: float,
+               progress: Callable[[int, int], None] | None) -> tuple[_Arrays, list[Overlap]]:
+    """Evaluate every pose ``psi`` (radians) over its windows of ``plan``: the per-angle
+    arrays and every overlap piece (the backlash refined to ``1e-3 tol`` at the pitch
+    radius)."""
+    N, r_b = spec.tooth.teeth, spec.tooth.base_radius
+    pieces_of = _PIECES[method]
+    M = psi.size
+    out = _Arrays(M)
+    overlaps: list[Overlap] = []
+    for j, p in enumerate(psi):
+        acc = _pose(model, plan[j], mis, p, delta, j, N, r_b, pieces_of)
+        if backlash:
+            _refine_sides(acc, model, 1e-3 * tol / spec.tooth.pitch_radius)
+        overlaps.extend(acc.pieces)
+        out.store(j, acc)
+        if progress is not None:
+            progress(j + 1, M)
+    return out, overlaps
+
+
+def _pose(model: Model, windows: list[Window], mis: float, p: float, delta: float, j: int,
+          N: int, r_b: float, pieces_of: Callable) -> _PoseAcc:
+    """Gather one rotation ``p`` (radians, index ``j``) over its windows; windows with the
+    same pose and the same queries are evaluated once (e.g. all teeth at i = 0)."""
+    acc = _PoseAcc()
+    seen: dict[bytes, _WindowResult] = {}
+    for w in windows:
+        A = hub_pose(mis, p, delta) if model.full else window_pose(mis, p, w.centre, N,
+                                                                     delta)
+        key = np.round(A, 13).tobytes() + bytes([bool(w.overlap), bool(w.gap),
+                                                 bool(w.sides[0]), bool(w.sides[1])])
+        if key not in seen:
+            seen[key] = _evaluate(model, A, N, w, pieces_of)
+        _collect(acc, seen[key], w, A, j, float(np.degrees(p)), N, r_b, model)
+    return acc
 
 
 @dataclass

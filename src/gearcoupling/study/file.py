@@ -247,38 +247,12 @@ def load_study(path: str | Path) -> Study:
     chunk = s.get("chunk", int, 1)
     outputs = tuple(s.get("outputs", list, ["critical_misalignment_deg"]))
     s.done()
-    if chunk < 1:
-        s.fail("study.chunk", chunk, "must be at least 1 sample per task")
-    for out in outputs:
-        if out not in OUTPUTS + TOLERANCE_OUTPUTS:
-            s.fail("study.outputs", out, f"unknown output; allowed: {list(OUTPUTS)}, or with "
-                   f"[tolerances] {list(TOLERANCE_OUTPUTS)}")
-    if not outputs:
-        s.fail("study.outputs", outputs, "name at least one output")
+    _check_chunk_outputs(s, chunk, outputs)
     base_path = _resolve_base(base, p.parent)
     base_text = base_path.read_text()
     fixed = root.get("set", dict, {})
-    cond_r = Table(root.get("conditions", dict, {}), "conditions", source=src, text=text)
-    conditions: dict[str, Any] = {k: cond_r.get(k, float) for k in CONDITIONS
-                                  if k in cond_r.data}
-    where = f"{src}:{line_of(text, '[conditions]')} conditions"
-    if "torque_Nm" in conditions:  # the range of every entry point
-        torque_Nm(conditions["torque_Nm"], f"{where}.torque_Nm", error=SpecError)
-    if "misalignment_deg" in conditions:
-        check_misalignment_deg(conditions["misalignment_deg"], f"{where}.misalignment_deg")
-    if "load_model" in cond_r.data:
-        conditions["load_model"] = cond_r.get("load_model", str)
-    cond_r.done()
-    acc_r = Table(root.get("accuracy", dict, {}), "accuracy", source=src, text=text)
-    accuracy = {k: acc_r.get(k, type(v), v) for k, v in ACCURACY.items()}
-    acc_r.done()
-    limits = {"tolerance_mm": lambda v, f: sweep_tolerance_mm(v, f, SpecError),
-              "angle_tolerance_deg": lambda v, f: real(v, f, *ANGLE_TOLERANCE_RANGE_DEG,
-                                                       unit="degrees", error=SpecError),
-              "steps": lambda v, f: count(v, f, 1, MAXIMA["steps"], error=SpecError),
-              "load_angles": lambda v, f: count(v, f, 1, MAXIMA["angles"], error=SpecError)}
-    for k, v in accuracy.items():
-        limits[k](v, f"{src}:{line_of(text, k)} accuracy.{k}")
+    conditions = _conditions(root, src, text)
+    accuracy = _accuracy(root, src, text)
     params = tuple(_parameter(e, k, text, src) for k, e in enumerate(root.get("vary", list, [])))
     plots = tuple(root.get("plot", list, []))
     optimise = root.get("optimise", dict)
@@ -290,17 +264,88 @@ def load_study(path: str | Path) -> Study:
     elif any(o in TOLERANCE_OUTPUTS and o not in OUTPUTS for o in outputs):
         s.fail("study.outputs", list(outputs), "tolerance outputs need a [tolerances] table")
     root.done()
+    _check_base_and_values(params, src, text, p.stem, base_path.stem, base_text, fixed)
+    _check_sampling(s, params, src, method, samples, optimise)
+    study = Study(name, src, base_path.stem, base_text, fixed, params, method, samples, seed,
+                  chunk, outputs, conditions, accuracy, plots, tolerances, optimise)
+    if optimise is not None:
+        optimise_options(study)
+        return study
+    n = sample_count(study)
+    if not 1 <= n <= MAX_SAMPLES:
+        raise SpecError(f"{src} samples", n, f"must be 1-{MAX_SAMPLES}")
+    for i, plot in enumerate(plots):
+        _check_plot(plot, i, study, text)
+    return study
+
+
+def _check_chunk_outputs(s: Table, chunk: int, outputs: tuple[str, ...]) -> None:
+    """``study.chunk`` is at least 1 and ``study.outputs`` names known outputs, at least
+    one."""
+    if chunk < 1:
+        s.fail("study.chunk", chunk, "must be at least 1 sample per task")
+    for out in outputs:
+        if out not in OUTPUTS + TOLERANCE_OUTPUTS:
+            s.fail("study.outputs", out, f"unknown output; allowed: {list(OUTPUTS)}, or with "
+                   f"[tolerances] {list(TOLERANCE_OUTPUTS)}")
+    if not outputs:
+        s.fail("study.outputs", outputs, "name at least one output")
+
+
+def _conditions(root: Table, src: str, text: str) -> dict[str, Any]:
+    """The ``[conditions]`` table: torque and misalignment in the range of every entry point,
+    and the load model."""
+    cond_r = Table(root.get("conditions", dict, {}), "conditions", source=src, text=text)
+    conditions: dict[str, Any] = {k: cond_r.get(k, float) for k in CONDITIONS
+                                  if k in cond_r.data}
+    where = f"{src}:{line_of(text, '[conditions]')} conditions"
+    if "torque_Nm" in conditions:  # the range of every entry point
+        torque_Nm(conditions["torque_Nm"], f"{where}.torque_Nm", error=SpecError)
+    if "misalignment_deg" in conditions:
+        check_misalignment_deg(conditions["misalignment_deg"], f"{where}.misalignment_deg")
+    if "load_model" in cond_r.data:
+        conditions["load_model"] = cond_r.get("load_model", str)
+    cond_r.done()
+    return conditions
+
+
+def _accuracy(root: Table, src: str, text: str) -> dict[str, Any]:
+    """The ``[accuracy]`` knobs (defaults :data:`ACCURACY`), each within the range the
+    entry points allow."""
+    acc_r = Table(root.get("accuracy", dict, {}), "accuracy", source=src, text=text)
+    accuracy = {k: acc_r.get(k, type(v), v) for k, v in ACCURACY.items()}
+    acc_r.done()
+    limits = {"tolerance_mm": lambda v, f: sweep_tolerance_mm(v, f, SpecError),
+              "angle_tolerance_deg": lambda v, f: real(v, f, *ANGLE_TOLERANCE_RANGE_DEG,
+                                                       unit="degrees", error=SpecError),
+              "steps": lambda v, f: count(v, f, 1, MAXIMA["steps"], error=SpecError),
+              "load_angles": lambda v, f: count(v, f, 1, MAXIMA["angles"], error=SpecError)}
+    for k, v in accuracy.items():
+        limits[k](v, f"{src}:{line_of(text, k)} accuracy.{k}")
+    return accuracy
+
+
+def _check_base_and_values(params: tuple[Parameter, ...], src: str, text: str, stem: str,
+                           base_name: str, base_text: str, fixed: dict[str, Any]) -> None:
+    """No key is varied twice, the base spec takes the ``[set]`` overrides (read under the
+    study's name ``stem``) and every varied value passes alone."""
     keys = [q.key for q in params]
     if len(set(keys)) != len(keys):
         dup = next(k for k in keys if keys.count(k) > 1)
         raise SpecError(f"{src}:{line_of(text, dup)} vary", dup, "varied twice")
     try:
-        build_spec(p.stem, base_text, fixed)
+        build_spec(stem, base_text, fixed)
     except SpecError as err:
         raise SpecError(f"{src}:{line_of(text, '[set]')} set", None,
                         f"the base spec with these overrides is refused: {err}") from err
     for q in params:
-        _check_values(q, src, base_path.stem, base_text, fixed)
+        _check_values(q, src, base_name, base_text, fixed)
+
+
+def _check_sampling(s: Table, params: tuple[Parameter, ...], src: str, method: str,
+                    samples: int, optimise: dict | None) -> None:
+    """Random and LHS studies take ``samples`` and no steps; a grid range needs steps
+    (unless the study optimises)."""
     if method != "grid":
         if not 1 <= samples <= MAX_SAMPLES:
             s.fail("study.samples", samples, f"method '{method}' needs samples from 1 to "
@@ -314,17 +359,6 @@ def load_study(path: str | Path) -> Study:
             if q.low is not None and q.steps is None:
                 raise SpecError(f"{src}:{q.line} vary '{q.key}'", None,
                                 "a range on a grid needs steps = N")
-    study = Study(name, src, base_path.stem, base_text, fixed, params, method, samples, seed,
-                  chunk, outputs, conditions, accuracy, plots, tolerances, optimise)
-    if optimise is not None:
-        optimise_options(study)
-        return study
-    n = sample_count(study)
-    if not 1 <= n <= MAX_SAMPLES:
-        raise SpecError(f"{src} samples", n, f"must be 1-{MAX_SAMPLES}")
-    for i, plot in enumerate(plots):
-        _check_plot(plot, i, study, text)
-    return study
 
 
 def _check_plot(plot: Any, k: int, study: Study, text: str) -> None:

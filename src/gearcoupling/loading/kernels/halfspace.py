@@ -333,29 +333,35 @@ def solve_contact(hs: HalfSpace, gap0_mm: ArrayLike, *, load_N: float | None = N
         np.asarray(mask, bool), g0.shape)
     if not np.all(np.isfinite(g0[m])):
         raise ArgumentError("gap0_mm", "non-finite", "must be finite on contactable cells")
-    B = int(np.prod(batch, dtype=int))
     if compliance is None:
-        c = np.zeros(batch) if spring_mm_per_N is None else np.broadcast_to(
-            np.asarray(spring_mm_per_N, dtype=float), batch)
-        update = None if spring_update is None else (
-            lambda p: np.broadcast_to(np.asarray(spring_update(p.reshape(g0.shape)), float),
-                                      batch).reshape(B))
-        compliance = RigidSprings(c.reshape(B), hs.cell_area, update, spring_tolerance)
+        compliance = _rigid_springs(hs, g0.shape, spring_mm_per_N, spring_update,
+                                    spring_tolerance)
     if not (tolerance > 0):
         raise ArgumentError("tolerance", tolerance, "must be > 0")
-    gmin = float(np.min(g0[m])) if np.any(m) else 0.0
     if load_N is not None:
         if not (math.isfinite(load_N) and load_N > 0):
             raise ArgumentError("load_N", load_N, "must be finite and > 0 N")
     elif approach_mm is not None:
         if not math.isfinite(approach_mm):
             raise ArgumentError("approach_mm", approach_mm, "must be finite")
+        gmin = float(np.min(g0[m])) if np.any(m) else 0.0
         if approach_mm <= gmin or not np.any(m):
             z = np.zeros(g0.shape)
             return ContactSolution(z, np.where(m, g0 - approach_mm, 0.0), approach_mm,
                                    np.zeros(batch), np.zeros(batch), 0, 0.0)
     if not np.any(m):
         raise ArgumentError("mask", "empty", "no contactable cell carries the load")
+    return _solve_grids(hs, g0, m, compliance, tolerance, max_iter, load_N, approach_mm, p0)
+
+
+def _solve_grids(hs: HalfSpace, g0: NDArray[np.float64], m: NDArray[np.bool_],
+                 compliance: GridCompliance, tolerance: float, max_iter: int,
+                 load_N: float | None, approach_mm: float | None,
+                 p0: ArrayLike | None) -> ContactSolution:
+    """:func:`solve_contact` on checked arguments: gaps ``g0 (..., n1, n2)`` and mask
+    ``m``, exactly one of ``load_N`` (shared approach) and ``approach_mm`` (given)."""
+    batch = g0.shape[:-2]
+    B = int(np.prod(batch, dtype=int))
     start = None if p0 is None else np.broadcast_to(np.asarray(p0, float), g0.shape)
     # grids as one leading axis
     flat = _Grids(hs, g0.reshape(B, *hs.shape), m.reshape(B, *hs.shape), compliance,
@@ -375,6 +381,20 @@ def solve_contact(hs: HalfSpace, gap0_mm: ArrayLike, *, load_N: float | None = N
     load = hs.cell_area * np.sum(p, axis=(-2, -1))
     return ContactSolution(p, np.where(m, g, 0.0), float(alpha), load, deflection, it, res,
                            laws)
+
+
+def _rigid_springs(hs: HalfSpace, shape: tuple[int, ...], spring_mm_per_N: ArrayLike | None,
+                   spring_update, spring_tolerance: float) -> RigidSprings:
+    """:class:`RigidSprings` of the grids of ``shape (..., n1, n2)`` (flattened to one
+    leading axis), ``spring_update`` called with the pressure in that shape."""
+    batch = shape[:-2]
+    B = int(np.prod(batch, dtype=int))
+    c = np.zeros(batch) if spring_mm_per_N is None else np.broadcast_to(
+        np.asarray(spring_mm_per_N, dtype=float), batch)
+    update = None if spring_update is None else (
+        lambda p: np.broadcast_to(np.asarray(spring_update(p.reshape(shape)), float),
+                                  batch).reshape(B))
+    return RigidSprings(c.reshape(B), hs.cell_area, update, spring_tolerance)
 
 
 class _Grids:
@@ -432,22 +452,8 @@ def _per_grid_loads(grids: _Grids, W: NDArray[np.float64], p: NDArray[np.float64
     A, m, g0 = grids.area, grids.m, grids.g0
     B = W.shape[0]
     loaded = W > 0
-    p = np.where(loaded[:, None, None] & m, np.maximum(p, 0.0), 0.0)
-    fresh = loaded & ~np.any(p > 0, axis=(1, 2))
-    for b in np.flatnonzero(fresh):
-        p[b] = grids.band_start(b)
-    tot = A * np.sum(p, axis=(1, 2))
-    scale = np.where(loaded, W / np.where(tot > 0, tot, 1.0), 0.0)
-    p *= scale[:, None, None]
+    p, u = _scaled_start(grids, W, p, u_hs)
     every = np.flatnonzero(loaded)
-    u = np.zeros_like(p)
-    if u_hs is None:
-        fresh = loaded
-    else:
-        u[every] = u_hs[every] * scale[every, None, None]
-    redo = np.flatnonzero(fresh)
-    if redo.size:
-        u[redo] = _displacement(grids.hs, p[redo])
     # single-precision transforms while their rounding stays below the tolerance (checked
     # in double precision at the end)
     noise = SINGLE_PRECISION_NOISE * np.max(np.abs(u[every]), axis=(1, 2), initial=0.0)
@@ -544,13 +550,50 @@ def _per_grid_loads(grids: _Grids, W: NDArray[np.float64], p: NDArray[np.float64
     if exact and np.any(stale):
         redo = np.flatnonzero(stale)
         u[redo] = grids.operator(p[redo], redo)
+    alpha = _approaches(grids, p, u, loaded)
+    return p, alpha, it, float(np.max(res, initial=0.0)), u
+
+
+def _scaled_start(grids: _Grids, W: NDArray[np.float64], p: NDArray[np.float64],
+                  u_hs: NDArray[np.float64] | None
+                  ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The start of :func:`_per_grid_loads`: ``p (B, n1, n2)`` kept >= 0 on the
+    contactable cells of the loaded grids (a band start where it carries nothing), scaled to
+    the loads ``W (B,)``, and its half-space displacement (``u_hs`` rescaled where given).
+    """
+    loaded = W > 0
+    p = np.where(loaded[:, None, None] & grids.m, np.maximum(p, 0.0), 0.0)
+    fresh = loaded & ~np.any(p > 0, axis=(1, 2))
+    for b in np.flatnonzero(fresh):
+        p[b] = grids.band_start(b)
+    tot = grids.area * np.sum(p, axis=(1, 2))
+    scale = np.where(loaded, W / np.where(tot > 0, tot, 1.0), 0.0)
+    p *= scale[:, None, None]
+    every = np.flatnonzero(loaded)
+    u = np.zeros_like(p)
+    if u_hs is None:
+        fresh = loaded
+    else:
+        u[every] = u_hs[every] * scale[every, None, None]
+    redo = np.flatnonzero(fresh)
+    if redo.size:
+        u[redo] = _displacement(grids.hs, p[redo])
+    return p, u
+
+
+def _approaches(grids: _Grids, p: NDArray[np.float64], u: NDArray[np.float64],
+                loaded: NDArray[np.bool_]) -> NDArray[np.float64]:
+    """Each loaded grid's approach, the mean of ``u + g0`` over its contact set (``nan``
+    where unloaded); the compliance behind is then taken out of ``u`` (in place), which
+    leaves the half-space displacement."""
     on = p > 0
     n_on = np.maximum(np.count_nonzero(on, axis=(1, 2)), 1)
-    alpha = np.where(loaded, np.sum(u + g0, axis=(1, 2), where=on) / n_on, np.nan)
+    alpha = np.where(loaded, np.sum(u + grids.g0, axis=(1, 2), where=on) / n_on, np.nan)
+    every = np.flatnonzero(loaded)
     behind = grids.compliance.displacement(p[every], every)
     if behind is not None:
         u[every] -= behind
-    return p, alpha, it, float(np.max(res, initial=0.0)), u
+    return alpha
 
 
 MAX_SPLITS = 60  # load splits between grids sharing one approach

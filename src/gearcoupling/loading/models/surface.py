@@ -647,15 +647,7 @@ def solve_surface(spec: CouplingSpec,
         ``windup_rad (M,)``, ``loaded_flank``, ``torque_Nm``, ``grid``,
         ``interior_distance_mm`` and ``cell_mm``.
     """
-    try:
-        T = float(torque_Nm)
-    except (TypeError, ValueError) as err:
-        raise ArgumentError("torque_Nm", torque_Nm, "must be a number") from err
-    if not math.isfinite(T):
-        raise ArgumentError("torque_Nm", torque_Nm, "must be finite")
-    flank = loaded_flank if loaded_flank is not None else ("ccw" if T >= 0 else "cw")
-    if flank not in FLANKS:
-        raise ArgumentError("loaded_flank", loaded_flank, f"must be one of {FLANKS}")
+    T, flank = _torque_and_flank(torque_Nm, loaded_flank)
     _check_grid(grid)
     sw = sweep_result
     N, M = sw.theta_deg.shape
@@ -667,39 +659,13 @@ def solve_surface(spec: CouplingSpec,
     res: dict[str, Any] = {name: np.zeros((N, M)) for name in ARRAYS}
     res["edge_contact"] = np.zeros((N, M), dtype=bool)
     res["patches"] = np.zeros((N, M), dtype=int)
-    windup = np.zeros(M)
-    fields: list[dict[str, Any]] = [{} for _ in range(M)]
-    cell = (0.0, 0.0)
     if load_N == 0:
-        g = solver.gap
-        windup = np.min(g, axis=0)
-        res["gap_angle_rad"] = g
-        res["contact_z_mm"] = np.nan_to_num(solver.contact_z)
-        res["contact_r_mm"] = np.nan_to_num(solver.contact_r)
-        if progress is not None:
-            progress(M, M)
+        windup = _unloaded_poses(solver, res, progress)
+        cell: tuple[float, float] = (0.0, 0.0)
+        fields: list[dict[str, Any]] = [{} for _ in range(M)]
     else:
-        order, source, shift = solver.plan()
-        solved: dict[int, tuple] = {}
-        # another load on this sweep starts where the last one ended (phases wrap around
-        # the pitch, so the last pose neighbours the first)
-        last = _LAST_POSE.get(sw, {}).get(flank)
-        for i, j in enumerate(order):
-            out, extra, last = solver.solve_pose(int(j), load_N, last, keep_fields)
-            solved[int(j)] = (out, extra)
-            if progress is not None:
-                progress(i + 1, order.size)
-        _LAST_POSE.setdefault(sw, {})[flank] = last
-        for j in range(M):
-            out, extra = solved[int(source[j])]
-            s = int(shift[j])
-            for name in (*ARRAYS, "edge_contact"):
-                res[name][:, j] = np.roll(out[name], -s)
-            res["gap_angle_rad"][:, j] = solver.gap[:, j]
-            windup[j] = extra["windup_rad"]
-            cell = extra["cell_mm"]
-            if keep_fields:
-                fields[j] = {**extra, "teeth": np.mod(extra["teeth"] - s, N)}
+        windup, cell, fields = _loaded_poses(solver, sw, flank, load_N, res, keep_fields,
+                                             progress)
     res["gap_angle_rad"] = np.where(np.isfinite(res["gap_angle_rad"]), res["gap_angle_rad"],
                                     0.0)
     s_lo, s_hi = (developed_arc(v, r_b) for v in depth_range(spec, solver.mis))
@@ -712,3 +678,66 @@ def solve_surface(spec: CouplingSpec,
     if keep_fields:
         res["fields"] = fields
     return res
+
+
+def _torque_and_flank(torque_Nm: Any, loaded_flank: str | None) -> tuple[float, str]:
+    """The torque as a finite float and the loaded flank (by default the one its sign
+    loads: ccw for >= 0)."""
+    try:
+        T = float(torque_Nm)
+    except (TypeError, ValueError) as err:
+        raise ArgumentError("torque_Nm", torque_Nm, "must be a number") from err
+    if not math.isfinite(T):
+        raise ArgumentError("torque_Nm", torque_Nm, "must be finite")
+    flank = loaded_flank if loaded_flank is not None else ("ccw" if T >= 0 else "cw")
+    if flank not in FLANKS:
+        raise ArgumentError("loaded_flank", loaded_flank, f"must be one of {FLANKS}")
+    return T, flank
+
+
+def _unloaded_poses(solver: SurfaceSolver, res: dict[str, Any], progress) -> NDArray:
+    """Zero torque: the unloaded gap angles and contact points into ``res``; the wind-up
+    ``(M,)`` is the smallest gap angle of each pose."""
+    g = solver.gap
+    M = g.shape[1]
+    windup = np.min(g, axis=0)
+    res["gap_angle_rad"] = g
+    res["contact_z_mm"] = np.nan_to_num(solver.contact_z)
+    res["contact_r_mm"] = np.nan_to_num(solver.contact_r)
+    if progress is not None:
+        progress(M, M)
+    return windup
+
+
+def _loaded_poses(solver: SurfaceSolver, sw, flank: str, load_N: float, res: dict[str, Any],
+                  keep_fields: bool, progress
+                  ) -> tuple[NDArray, tuple[float, float], list[dict[str, Any]]]:
+    """Solve the planned poses (each warm-started from the last; the others are the solved
+    ones rolled by whole teeth) into ``res``; the wind-up ``(M,)``, the cell size and, with
+    ``keep_fields``, the fields of every pose."""
+    N, M = sw.theta_deg.shape
+    windup = np.zeros(M)
+    fields: list[dict[str, Any]] = [{} for _ in range(M)]
+    cell = (0.0, 0.0)
+    order, source, shift = solver.plan()
+    solved: dict[int, tuple] = {}
+    # another load on this sweep starts where the last one ended (phases wrap around
+    # the pitch, so the last pose neighbours the first)
+    last = _LAST_POSE.get(sw, {}).get(flank)
+    for i, j in enumerate(order):
+        out, extra, last = solver.solve_pose(int(j), load_N, last, keep_fields)
+        solved[int(j)] = (out, extra)
+        if progress is not None:
+            progress(i + 1, order.size)
+    _LAST_POSE.setdefault(sw, {})[flank] = last
+    for j in range(M):
+        out, extra = solved[int(source[j])]
+        s = int(shift[j])
+        for name in (*ARRAYS, "edge_contact"):
+            res[name][:, j] = np.roll(out[name], -s)
+        res["gap_angle_rad"][:, j] = solver.gap[:, j]
+        windup[j] = extra["windup_rad"]
+        cell = extra["cell_mm"]
+        if keep_fields:
+            fields[j] = {**extra, "teeth": np.mod(extra["teeth"] - s, N)}
+    return windup, cell, fields
