@@ -653,3 +653,40 @@ def test_an_unreachable_scheduler_leaves_no_manifest(tmp_path, capsys):
     err = capsys.readouterr().err
     assert code == 2 and "scheduler" in err and len(err.strip().splitlines()) == 1, err
     assert not out.exists() or not any(out.rglob("*"))
+
+
+@pytest.mark.needs_fea
+def test_a_stopped_process_starts_no_new_solver(tmp_path):
+    """After an interruption's stop_solvers a thread that reaches run_ccx does not start
+    ccx (no log is written: nothing ran); allow_solvers lets the next command solve."""
+    from gearcoupling.errors import BackendError
+    from gearcoupling.fea import ccx
+
+    ccx.stop_solvers()
+    try:
+        with pytest.raises(BackendError, match="interrupted"):
+            ccx.run_ccx("*HEADING\n", tmp_path / "stopped")
+        assert not (tmp_path / "stopped" / "job.log").exists()
+    finally:
+        ccx.allow_solvers()
+    with contextlib.suppress(BackendError):  # an empty model: whatever ccx makes of it
+        ccx.run_ccx("*HEADING\n", tmp_path / "allowed")
+    assert (tmp_path / "allowed" / "job.log").exists()  # it ran
+
+
+def test_an_output_folder_is_named_before_it_is_made(tmp_path, monkeypatch):
+    """An interruption while the folder is being made still knows where the command was
+    writing (the one-line summary names it)."""
+    from gearcoupling.commands import WRITING, common
+
+    def interrupted(path, field="out", *, create=True):
+        if create:
+            raise KeyboardInterrupt
+        return path
+
+    monkeypatch.setattr(common, "output_folder", interrupted)
+    WRITING.clear()
+    with pytest.raises(KeyboardInterrupt):
+        common.writing_into(tmp_path / "new")
+    assert WRITING == [tmp_path / "new"]
+    WRITING.clear()

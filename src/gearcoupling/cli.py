@@ -92,10 +92,14 @@ def _signals_raise() -> Iterator[None]:
             signal.signal(s, h)
 
 
-def _stop_solvers() -> None:
+def _stop_solvers(stop: bool = True) -> None:
+    """Stop the FE solvers and refuse new ones (``stop=False``: allow them again)."""
     ccx = sys.modules.get("gearcoupling.fea.ccx")  # only if this command ran an FE solver
     if ccx is not None:
-        ccx.stop_solvers()
+        if stop:
+            ccx.stop_solvers()
+        else:
+            ccx.allow_solvers()
 
 
 @contextmanager
@@ -124,7 +128,9 @@ def _kill_solvers_at_signal() -> Iterator[None]:
         w.close()
         with contextlib.suppress(OSError):
             r.shutdown(socket.SHUT_RDWR)
+        watcher.join(timeout=5.0)
         r.close()
+        _stop_solvers(stop=False)  # the next command in this process may solve again
 
 
 def _tidy() -> None:

@@ -143,10 +143,13 @@ def writing_into(out: str | Path, field: str = "-o", *, create: bool = True) -> 
     :func:`~gearcoupling.io.output_folder`), and remembered as where this command writes
     (:data:`WRITING`, :data:`CREATED`)."""
     new = not os.path.lexists(out) if isinstance(out, str | Path) and str(out) else False
-    folder = output_folder(out, field) if create else Path(out)
+    folder = output_folder(out, field, create=False) if create else Path(out)
+    # named before it is made: an interruption from here on says where it wrote
     WRITING.append(folder)
     if new and create:
         CREATED.append(folder)
+    if create:
+        output_folder(out, field)
     return folder
 
 

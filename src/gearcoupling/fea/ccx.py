@@ -58,17 +58,29 @@ def solver_dir(workdir=None) -> Iterator[Path]:
 RUNNING: set[subprocess.Popen] = set()
 """The ccx processes :func:`run_ccx` is waiting on, in any thread."""
 _LOCK = threading.Lock()
+_STOPPED = threading.Event()  # set by stop_solvers: no new solver starts until allowed
 
 
 def stop_solvers() -> int:
-    """Kill every ccx process this process is running (an interruption: the threads that
-    wait on them then fail at once instead of holding the process until they finish);
-    returns how many."""
+    """Kill every ccx process this process is running, and refuse new ones until
+    :func:`allow_solvers` (an interruption: the threads that wait on them then fail at
+    once instead of holding the process, or starting the next solve, until they finish);
+    returns how many were killed."""
     with _LOCK:
+        _STOPPED.set()
         running = list(RUNNING)
     for proc in running:
         proc.kill()
     return len(running)
+
+
+def allow_solvers() -> None:
+    """Let :func:`run_ccx` start solvers again after :func:`stop_solvers`."""
+    _STOPPED.clear()
+
+
+def _stopped() -> BackendError:
+    return BackendError("ccx not run: the command was interrupted (stop_solvers)")
 
 
 def run_ccx(deck: str, workdir: str | Path, job: str = "job", *,
@@ -86,10 +98,14 @@ def run_ccx(deck: str, workdir: str | Path, job: str = "job", *,
     env = dict(os.environ, OMP_NUM_THREADS=str(threads),
                CCX_NPROC_EQUATION_SOLVER=str(threads))
     t0 = time.perf_counter()
+    if _STOPPED.is_set():
+        raise _stopped()
     with subprocess.Popen([exe, "-i", job], cwd=work, stdout=subprocess.PIPE,
                           stderr=subprocess.PIPE, text=True, env=env) as proc:
         with _LOCK:
             RUNNING.add(proc)
+            if _STOPPED.is_set():  # stopped while it started: it goes at once
+                proc.kill()
         try:
             stdout, stderr = proc.communicate(timeout=timeout_s)
         except subprocess.TimeoutExpired as err:
@@ -105,6 +121,8 @@ def run_ccx(deck: str, workdir: str | Path, job: str = "job", *,
             with _LOCK:
                 RUNNING.discard(proc)
     log.write_text(stdout + "\n" + stderr)
+    if _STOPPED.is_set():
+        raise _stopped()
     seconds = time.perf_counter() - t0
     dat = work / f"{job}.dat"
     failed = proc.returncode != 0 or "*ERROR" in stdout or not dat.exists()
