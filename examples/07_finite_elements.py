@@ -11,7 +11,9 @@ import gearcoupling as gc
 spec = gc.load_spec("industrial-m2")
 mesh: gc.VolumeMesh = gc.mesh_part(spec, "hub", sector=1, size_mm=1.0)
 print(gc.write_mesh(mesh, "outputs/examples/hub-sector-1.inp"), mesh.quality["elements"])
-table: gc.ComplianceTable = gc.tooth_compliance_table(spec, size_mm=1.0, sector=3)  # cached
+# the FE tooth springs at the default mesh: half a minute of solver time once, then read
+# from the cache ($GEARCOUPLING_CACHE, default ~/.cache/gearcoupling)
+table: gc.ComplianceTable = gc.tooth_compliance_table(spec)
 print("mesh stiffness C", round(table.mesh_stiffness_N_per_mm), "N/mm; far field at the pitch "
       "point", round(1e3 * float(table.pair_compliance_mm_per_N(0.0, 38.0)), 5), "µm/N")
 # the aligned contact reference: one pitch in CalculiX contact, loaded by the torque
