@@ -33,4 +33,6 @@ if [ "${1:-}" = "--fast" ]; then
     shift
     set -- -m "not slow" "$@"
 fi
-"$python" -m pytest "$@"
+# two pytest-xdist workers; the tests sharing a module fixture run on one of them
+# (tests/conftest.py); -n 0 after the script's arguments runs everything in one process
+"$python" -m pytest -n 2 --dist loadgroup "$@"

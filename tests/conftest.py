@@ -5,11 +5,18 @@ Markers (``pyproject.toml``): ``slow`` (over about 5 s; ``scripts/test.sh --fast
 them out), ``needs_fea`` (gmsh, OpenCASCADE and CalculiX ``ccx``), ``needs_fcl``
 (python-fcl), ``needs_dask`` (dask.distributed, pyarrow), ``needs_browser`` (playwright and
 Debian's chromium), ``needs_viewer`` (viser), ``needs_ross`` (ross-rotordynamics).
+
+``scripts/test.sh`` runs the suite on two pytest-xdist workers (``-n 2 --dist loadgroup``):
+the tests of a module with module-scoped fixtures go to one worker (``xdist_group``, so the
+fixture is made once), every other test to whichever worker is free, and the session's FE
+table is made once for all workers (:func:`fe_table_industrial`).
 """
 
 from __future__ import annotations
 
+import fcntl
 import importlib.util
+import os
 import shutil
 from pathlib import Path
 
@@ -38,10 +45,22 @@ def _missing(modules, executable) -> list[str]:
     return gone
 
 
+def _uses_module_fixture(item) -> bool:
+    """Whether a test uses a fixture made once per module or class (pytest's fixture
+    closure; False where a pytest release no longer has it: then the fixture is only made
+    once more on the other worker)."""
+    defs = getattr(getattr(item, "_fixtureinfo", None), "name2fixturedefs", {})
+    return any(getattr(d, "scope", None) in ("module", "class", "package")
+               for found in defs.values() for d in found)
+
+
 def pytest_collection_modifyitems(config, items):
-    """Skip, with the reason, a test whose marked back-end is not installed."""
+    """Skip, with the reason, a test whose marked back-end is not installed; put the tests
+    of a module with module-scoped fixtures in one xdist group (module docstring)."""
     checked: dict[str, list[str]] = {}
     for item in items:
+        if item.get_closest_marker("xdist_group") is None and _uses_module_fixture(item):
+            item.add_marker(pytest.mark.xdist_group(item.nodeid.split("::")[0]))
         for name, (modules, exe, install) in REQUIRES.items():
             if item.get_closest_marker(name) is None:
                 continue
@@ -82,8 +101,16 @@ def fe_table_industrial(tmp_path_factory):
     the CalculiX contact reference needs the default mesh (its accuracy is what it
     asserts), and the table's physics, cache and protocol tests hold on it as well as on
     a coarser one, so they share it instead of paying for a second table (half a minute
-    of CPU each)."""
+    of CPU each); so does examples/07_finite_elements.py. Under pytest-xdist the workers
+    share one cache folder of the run: the first to get its lock runs the solver, the
+    others read the table it wrote."""
     from gearcoupling.fea import tooth_compliance_table
 
-    base = tmp_path_factory.mktemp("fe-cache")
-    return base, tooth_compliance_table(gc.load_spec("industrial-m2"), cache=base / "fea")
+    if os.environ.get("PYTEST_XDIST_WORKER"):  # the run's folder, above the worker's own
+        base = tmp_path_factory.getbasetemp().parent / "fe-cache"
+        base.mkdir(exist_ok=True)
+    else:
+        base = tmp_path_factory.mktemp("fe-cache")
+    with open(base / "lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)  # released when the file closes
+        return base, tooth_compliance_table(gc.load_spec("industrial-m2"), cache=base / "fea")

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import re
 import subprocess
 import sys
@@ -27,10 +28,17 @@ def _params():
 
 
 @pytest.mark.parametrize("path", list(_params()))
-def test_example_runs(path, tmp_path):
+def test_example_runs(path, tmp_path, request):
+    env = dict(os.environ)
+    if path.name == "07_finite_elements.py":  # its default FE table: the session's, made
+        base, _ = request.getfixturevalue("fe_table_industrial")  # by CalculiX (conftest.py)
+        env["GEARCOUPLING_CACHE"] = str(base)
+        tables = sorted((base / "fea").glob("*.json"))
     out = subprocess.run([sys.executable, str(path)], cwd=tmp_path, capture_output=True,
-                         text=True, timeout=900)
+                         text=True, timeout=900, env=env)
     assert out.returncode == 0, out.stderr[-2000:]
+    if path.name == "07_finite_elements.py":  # read from the cache, not a second table
+        assert sorted((base / "fea").glob("*.json")) == tables
 
 
 def test_every_public_name_is_documented_and_used_in_an_example():

@@ -105,7 +105,8 @@ def test_cyclic_equations_hold_for_a_rigid_rotation_and_not_for_a_shift():
 @pytest.mark.slow
 @pytest.mark.needs_fea
 def test_aligned_reference_carries_the_torque_and_converges(tmp_path):
-    # industrial-m2 on a coarse mesh (1 mm, module / 2) through the command line: the tooth
+    # industrial-m2 on the coarsest mesh (1 mm, module / 2: the largest size the mesher
+    # takes, and the smallest spec with a reference) through the command line: the tooth
     # load equals T / (N R) (equilibrium of the pitch); the wind-up beyond first touch is
     # within 10 % of the Richardson-extrapolated figure of the converged runs
     T = 400.0
@@ -225,7 +226,8 @@ def test_misaligned_sector_carries_what_the_fe_spring_model_predicts(fe_table_in
     20 % the other way). The cantilever-spring model at the same wind-up carries less than
     1/1.4 of it (too soft, as at 0°: 1.8 measured), the default model and springs no less
     than the sector's load less 5 % (the unsafe side), and the rigid body's reaction
-    balances the contact loads."""
+    balances the contact loads. The smallest deck the check takes: five teeth (the fewest
+    with one two pitches from either cut) at 1 mm (module / 2, the coarsest size)."""
     from gearcoupling.loading.sector_check import loads_at_windup
 
     base, _ = fe_table_industrial
