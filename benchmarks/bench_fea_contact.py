@@ -203,7 +203,9 @@ def misaligned(spec: gc.CouplingSpec, torques) -> None:
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--specs", nargs="*", default=list(SIZES))
+    ap.add_argument("--specs", nargs="*", default=[],
+                    help="templates (default: those of SIZES; with --from-golden, every "
+                         "spec the golden file has)")
     ap.add_argument("--random", nargs="*", default=[], metavar="NAME",
                     help="random specs of bench_springs.py by name (springs-<i>-<crown>)")
     ap.add_argument("--sizes", nargs="*", type=float, default=None)
@@ -214,7 +216,8 @@ def main() -> None:
                     help="no FE: the references already in the golden file")
     a = ap.parse_args()
     golden = golden_file()
-    specs = {name: reference_spec(name, golden["specs"]) for name in a.specs + a.random}
+    names = a.specs + a.random or list(golden["references"] if a.from_golden else SIZES)
+    specs = {name: reference_spec(name, golden["specs"]) for name in names}
     if a.from_golden:
         refs = {name: golden["references"][name] for name in specs
                 if name in golden["references"]}
