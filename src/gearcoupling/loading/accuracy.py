@@ -4,11 +4,12 @@ and tooth spring: the one table that load summaries, the report and the data she
 Two measurements: the wind-up against the CalculiX contact reference (aligned, each
 spec's torque and half of it, bodies included; renzo-1967 and industrial-m2 converged
 over three meshes, mill-spindle and the random springs-24-circular the finer of two;
-``python benchmarks/bench_fea_contact.py --from-golden``), and the most loaded tooth against a CalculiX sector
-at 1° and 2° at equal wind-up (FE / model; ``python benchmarks/bench_fea_sector.py``),
-for the FE springs with the bodies as the sector has them (its cyclic cuts repeat its
-loads round the ring; ``python benchmarks/bench_bodies.py --stored``, docs/load.md "The
-bodies"; the uniform body of the coupling's torque gave 0.68–0.87).
+``python benchmarks/bench_fea_contact.py --from-golden``), and the most loaded tooth
+against a CalculiX sector at 1° and 2° at equal wind-up (FE / model; ``python
+benchmarks/bench_fea_sector.py``), for the FE springs with the bodies as the sector has
+them (its cyclic cuts repeat its loads round the ring; ``python benchmarks/bench_bodies.py
+--stored``, docs/load.md "The bodies"; the uniform body of the coupling's torque gave
+0.68–0.87).
 A model and spring not on the ladder are named as such, never given a borrowed figure.
 """
 
