@@ -27,7 +27,6 @@ import math
 import os
 import sys
 import time
-from dataclasses import replace
 from pathlib import Path
 
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
@@ -38,7 +37,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 import gearcoupling as gc
 from gearcoupling.errors import GearCouplingError
 from gearcoupling.fea.stiffness import ComplianceTable, cache_dir, spec_hash
-from random_specs import proportions_spec
+from random_specs import springs_specs
 
 ROOT = Path(__file__).resolve().parents[1]
 TEMPLATES = ("renzo-1967", "renzo-1967-vari-crown", "renzo-1967-end-round", "industrial-m2",
@@ -47,12 +46,7 @@ TEMPLATES = ("renzo-1967", "renzo-1967-vari-crown", "renzo-1967-end-round", "ind
 
 def dataset_specs(count: int, seed: int) -> list[gc.CouplingSpec]:
     """The templates and ``count`` random specs (named ``springs-<i>-<crown>``)."""
-    rng = np.random.default_rng(seed)
-    specs = [gc.load_spec(name) for name in TEMPLATES]
-    for i in range(count):
-        s = proportions_spec(rng)
-        specs.append(replace(s, name=f"springs-{i:02d}-{s.hub.crowning.kind}"))
-    return specs
+    return [gc.load_spec(name) for name in TEMPLATES] + springs_specs(count, seed)
 
 
 def cached_table(spec: gc.CouplingSpec) -> ComplianceTable | None:

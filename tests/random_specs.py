@@ -1,5 +1,7 @@
 """Seeded random specs over the documented range, stratified by crown kind, generation and
-tip (used by ``tests/test_random_specs.py`` and ``benchmarks/bench_random_specs.py``).
+tip (used by ``tests/test_random_specs.py`` and ``benchmarks/bench_random_specs.py``; the
+proportion specs ``springs-<i>-<crown>`` by ``benchmarks/bench_springs.py`` and
+``benchmarks/bench_fea_contact.py``).
 
 The documented range: 6-300 teeth, module 0.2-60 mm (log-uniform), pressure angle
 14.5-30°, misalignment 0-6°. Face width, backlash and crown are drawn in proportions a
@@ -12,6 +14,7 @@ from __future__ import annotations
 
 import itertools
 import math
+from dataclasses import replace
 
 import numpy as np
 
@@ -120,3 +123,28 @@ def proportions_spec(rng: np.random.Generator, tries: int = 50):
                 continue
             return spec
     raise RuntimeError("no valid spec drawn")
+
+
+SPRINGS_SEED = 2026  # the seed of bench_springs.py's data set
+
+
+def springs_specs(count: int, seed: int = SPRINGS_SEED) -> list:
+    """The first ``count`` specs of :func:`proportions_spec` drawn with ``seed``, named
+    ``springs-<i>-<crown kind>`` (the random specs of ``benchmarks/bench_springs.py``)."""
+    rng = np.random.default_rng(seed)
+    out = []
+    for i in range(count):
+        s = proportions_spec(rng)
+        out.append(replace(s, name=f"springs-{i:02d}-{s.hub.crowning.kind}"))
+    return out
+
+
+def springs_spec(name: str, seed: int = SPRINGS_SEED):
+    """The spec of :func:`springs_specs` named ``name`` (``springs-<i>-<crown kind>``)."""
+    parts = name.split("-")
+    if len(parts) != 3 or parts[0] != "springs" or not parts[1].isdigit():
+        raise ValueError(f"{name!r}: not a name springs-<i>-<crown kind>")
+    spec = springs_specs(int(parts[1]) + 1, seed)[-1]
+    if spec.name != name:
+        raise ValueError(f"{name!r}: spec {parts[1]} of seed {seed} is {spec.name}")
+    return spec

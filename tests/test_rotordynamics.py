@@ -367,7 +367,7 @@ def test_zero_torque_is_refused(renzo):
 # --------------------------------------------------------------------------- torsion
 
 
-@pytest.mark.parametrize("name", ["renzo-1967", "industrial-m2"])
+@pytest.mark.parametrize("name", ["renzo-1967", "industrial-m2", "mill-spindle"])
 def test_torsional_stiffness_against_the_calculix_reference(name):
     """Aligned wind-up from first touch plus the bodies at the reference torques, against
     the CalculiX contact reference, within the accuracy ladder's band for the data sheet's
