@@ -14,7 +14,7 @@ from ..arguments import count as check_count
 from ..clearance import critical_misalignment_deg
 from ..errors import ArgumentError
 from ..loading import CapacityCurve, capacity, model_names
-from ..outputs.forked import default_workers, fork_map
+from ..outputs import default_workers, fork_map
 from ..spec import MISALIGNMENT_RANGE_DEG, CouplingSpec, as_spec
 
 DEFAULT_COUNT = 25
