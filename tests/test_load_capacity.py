@@ -229,3 +229,26 @@ def test_surface_capacity_near_binding_is_finite_and_agrees_with_compliance():
     compliance = gc.capacity(spec, 5.2327423095703125, model="compliance")
     assert surface.governing == compliance.governing == "bending_stress"
     assert surface.capacity_Nm == pytest.approx(compliance.capacity_Nm, rel=0.10)
+
+
+@pytest.mark.parametrize("step_ln", [-3.0, -0.35, -0.15, 0.0, 0.05, 0.35, 2.0])
+def test_face_end_bisection_brackets_the_step_in_few_solves(step_ln):
+    """The face-end search on a step at ``T = e^step_ln`` from ``T0 = 1``: the answer is a
+    solved torque at or above the step and within FACE_END_RTOL of it (a solved torque
+    below it lies within FACE_END_RTOL), in at most 6 solves for a start within e^±0.35
+    of the step (the compliance model's spread on the templates; factors of 2 took 7) and
+    at most 12 for one e^3 off."""
+    from gearcoupling.loading.models.surface_capacity import FACE_END_RTOL, _bisect_root
+
+    solved = {}
+
+    def ratio(T):
+        solved[T] = 2.0 if math.log(T) >= step_ln else 0.5
+        return solved[T]
+
+    T = _bisect_root(ratio, 1.0, FACE_END_RTOL)
+    assert T in solved and solved[T] > 1.0
+    assert 0.0 <= math.log(T) - step_ln <= FACE_END_RTOL * (1 + 1e-9)
+    below = max(t for t, r in solved.items() if r < 1.0)
+    assert math.log(T / below) <= FACE_END_RTOL * (1 + 1e-9)
+    assert len(solved) <= (6 if abs(step_ln) <= 0.35 else 12)
