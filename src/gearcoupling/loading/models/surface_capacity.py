@@ -221,10 +221,14 @@ def _secant_root(ratio, T0: float, slope: float, rtol: float = SURFACE_RTOL) -> 
     """``ratio(T) = 1`` for increasing ``ratio``: secant steps on ``ln ratio`` against
     ``ln T`` (nearly straight: the first step takes the slope ``slope``), kept inside the
     bracket once one is found (bisection where a step leaves it, doubling steps outward
-    before); stops when the step is below ``rtol`` (relative)."""
+    before); stops when the step is below ``rtol`` (relative), the first one (from the
+    slope alone) when it is below ``rtol / 2``: there a true slope from half to twice
+    ``slope`` moves the root by less than ``rtol``."""
     x0, f0 = math.log(T0), math.log(max(ratio(T0), TINY))
     lo, hi = (-math.inf, x0) if f0 >= 0 else (x0, math.inf)
     x1 = x0 - f0 / slope
+    if abs(x1 - x0) <= 0.5 * rtol:
+        return math.exp(x1)
     for _ in range(100):
         if x1 > LOG_T_MAX:
             return math.inf
