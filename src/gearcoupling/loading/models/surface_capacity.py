@@ -65,9 +65,10 @@ def surface_torques(problem: LoadProblem, limits: dict[str, NDArray]
         j, T = first[name]
         search = pressure if name == "contact_stress" else load
         if name in CRITERIA and (T <= (1.0 + SCREEN_MARGIN) * best or search is pressure):
-            # to SURFACE_RTOL on its own grid, from the rough root
+            # to SURFACE_RTOL on its own grid, from the rough root, with the slope the
+            # rough search measured
             T = _rotation_root(search, name, j, T, SURFACE_RTOL if T <= (
-                1.0 + SCREEN_MARGIN) * best else INFO_RTOL)
+                1.0 + SCREEN_MARGIN) * best else INFO_RTOL, _measured_slope(load, name, j, T))
         if name in CRITERIA and T <= (1.0 + SCREEN_MARGIN) * best:
             T = _surface_capacity(search, name, guesses[name], j, T)
         if name in CRITERIA:
