@@ -49,6 +49,10 @@ def worker_signals() -> None:
     die_with_parent()
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    signal.pthread_sigmask(signal.SIG_UNBLOCK, STOP_SIGNALS)  # blocked over the fork
+
+
+STOP_SIGNALS = {signal.SIGINT, signal.SIGTERM}
 
 
 def _map_worker(func: Callable[[Any], Any], items: Sequence[Any], indices: Sequence[int],
@@ -75,7 +79,9 @@ def fork_map(func: Callable[[Any], T], items: Sequence[Any], workers: int = 2,
     split evenly) and sends each result back (pickled); this process only waits, so it
     answers a signal at once. On any exception here (an error in ``func``, which is raised
     again here, ``KeyboardInterrupt``, the CLI's signal) the workers are killed and reaped
-    before it propagates. ``done(n)`` is called after each result with the count so far.
+    before it propagates (SIGINT and SIGTERM are held while the workers start, so that
+    one arriving then is raised here, not lost in a fork hook). ``done(n)`` is called
+    after each result with the count so far.
     """
     if workers < 2 or len(items) < 2 or not can_fork():
         out = []
@@ -88,13 +94,19 @@ def fork_map(func: Callable[[Any], T], items: Sequence[Any], workers: int = 2,
     results: dict[int, T] = {}
     procs = []
     try:
-        for k in range(min(workers, len(items))):
-            recv, send = ctx.Pipe(duplex=False)
-            proc = ctx.Process(target=_map_worker, daemon=True,
-                               args=(func, items, range(k, len(items), workers), send))
-            proc.start()
-            send.close()
-            procs.append((proc, recv))
+        # a signal during a fork would reach an after-fork hook, which drops its exception:
+        # held until the workers are started
+        mask = signal.pthread_sigmask(signal.SIG_BLOCK, STOP_SIGNALS)
+        try:
+            for k in range(min(workers, len(items))):
+                recv, send = ctx.Pipe(duplex=False)
+                proc = ctx.Process(target=_map_worker, daemon=True,
+                                   args=(func, items, range(k, len(items), workers), send))
+                proc.start()
+                send.close()
+                procs.append((proc, recv))
+        finally:
+            signal.pthread_sigmask(signal.SIG_SETMASK, mask)
         waiting = {recv: proc for proc, recv in procs}
         while waiting:
             for ready in multiprocessing.connection.wait(list(waiting)):
