@@ -44,6 +44,10 @@ def rows(src: Path, angles: list[float]) -> list[list]:
     return json.loads(out.stdout.splitlines()[-1])
 
 
+def num(v) -> str:
+    return "—" if v is None else f"{v:.4g}"
+
+
 def change(a, b) -> float:
     if a is None or b is None:
         return 0.0 if a == b else float("inf")
@@ -62,9 +66,9 @@ def main(argv: list[str] | None = None) -> None:
     for (name, ang, s, cpu, cap, fe), (_, _, s0, cpu0, cap0, fe0) in zip(new, old, strict=True):
         if a.against:
             print(f"| {name} | {ang:g} | {s0} → {s} | {cpu0:.2f} → {cpu:.2f} | {cap0:.6g} → "
-                  f"{cap:.6g} | {fe0} → {fe} |")
+                  f"{cap:.6g} | {num(fe0)} → {num(fe)} |")
         else:
-            print(f"| {name} | {ang:g} | {s} | {cpu:.2f} | {cap:.6g} | {fe:.4g} |")
+            print(f"| {name} | {ang:g} | {s} | {cpu:.2f} | {cap:.6g} | {num(fe)} |")
     print(f"\nsolves {sum(r[2] for r in old)} → {sum(r[2] for r in new)}, CPU "
           f"{sum(r[3] for r in old):.1f} → {sum(r[3] for r in new):.1f} s, largest per angle "
           f"{max(r[3] for r in new):.2f} s")

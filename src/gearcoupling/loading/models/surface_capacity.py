@@ -285,11 +285,11 @@ def _secant_root(ratio, T0: float, slope: float, rtol: float = SURFACE_RTOL) -> 
 
 def _bisect_root(ratio, T0: float, rtol: float = SURFACE_RTOL) -> float:
     """The torque where the increasing step ``ratio`` passes 1, by bisection on ``ln T``
-    from ``T0`` to ``rtol``. The bracket grows from ``T0`` in steps of ``BRACKET_BISECTIONS``
-    halvings of ``rtol`` (``e^0.24`` at 3e-2: the compliance model's face-end torque, the
-    usual ``T0``, lies within ``e^±0.35`` of the surface model's on the templates), the
-    steps doubling after the second: 5 to 6 solves for such a start where factors of 2
-    took 7, and few more for a start that is far off."""
+    from ``T0`` to ``rtol``. The bracket grows from ``T0`` in steps of
+    ``rtol 2^BRACKET_BISECTIONS`` in ``ln T`` (0.24 at 3e-2: the compliance model's
+    face-end torque, the usual ``T0``, lies within ``e^±0.35`` of the surface model's on
+    the templates), the steps doubling after the second: 5 to 6 solves for such a start
+    where factors of 2 took 7, 12 for a start ``e^3`` off where they took 9."""
     step = rtol * 2 ** BRACKET_BISECTIONS
     x0 = math.log(T0)
     above = ratio(T0) >= 1.0
