@@ -119,8 +119,10 @@ def test_surface_capacity_brings_the_worst_tooth_to_its_limit(renzo):
     governing criterion and those within SCREEN_MARGIN of it, INFO_RTOL for the others,
     times the criterion's slope). The face-end torque is searched at the rotation where
     the compliance model reaches a face end first, not screened over the others (that
-    would double the search): edge contact above it by FACE_END_RTOL, none 10 % below it
-    (the other rotations reach the face end up to 6 % lower here)."""
+    would double the search): edge contact above it by FACE_END_RTOL, none below it by
+    FACE_END_RTOL and 8 % (the bisection's answer lies up to FACE_END_RTOL above the
+    searched rotation's step; the other rotations reach the face end up to 7 % below that
+    here: an edge at 0.92, none at 0.90 of the answer)."""
     from gearcoupling.loading.models.surface_capacity import (
         FACE_END_RTOL,
         INFO_RTOL,
@@ -150,7 +152,8 @@ def test_surface_capacity_brings_the_worst_tooth_to_its_limit(renzo):
         assert np.max(getattr(res, field)) == pytest.approx(
             limit, rel=2 * rtol * SLOPES[name]), name
     T = c.face_end_torque_Nm
-    below = load_from_sweep(sw, torque_Nm=T / 1.1, model="surface", pressure_grid=LOAD_GRID)
+    below = load_from_sweep(sw, torque_Nm=T / ((1 + FACE_END_RTOL) * 1.08), model="surface",
+                            pressure_grid=LOAD_GRID)
     above = load_from_sweep(sw, torque_Nm=(1 + FACE_END_RTOL) * T, model="surface",
                             pressure_grid=LOAD_GRID)
     assert not np.any(below.edge_contact) and np.any(above.edge_contact)
@@ -229,3 +232,47 @@ def test_surface_capacity_near_binding_is_finite_and_agrees_with_compliance():
     compliance = gc.capacity(spec, 5.2327423095703125, model="compliance")
     assert surface.governing == compliance.governing == "bending_stress"
     assert surface.capacity_Nm == pytest.approx(compliance.capacity_Nm, rel=0.10)
+
+
+@pytest.mark.parametrize("step_ln", [-3.0, -0.35, -0.15, 0.0, 0.05, 0.35, 2.0])
+def test_face_end_bisection_brackets_the_step_in_few_solves(step_ln):
+    """The face-end search on a step at ``T = e^step_ln`` from ``T0 = 1``: the answer is a
+    solved torque at or above the step and within FACE_END_RTOL of it (a solved torque
+    below it lies within FACE_END_RTOL), in at most 6 solves for a start within e^±0.35
+    of the step (the compliance model's spread on the templates; factors of 2 took 7) and
+    at most 12 for one e^3 off."""
+    from gearcoupling.loading.models.surface_capacity import FACE_END_RTOL, _bisect_root
+
+    solved = {}
+
+    def ratio(T):
+        solved[T] = 2.0 if math.log(T) >= step_ln else 0.5
+        return solved[T]
+
+    T = _bisect_root(ratio, 1.0, FACE_END_RTOL)
+    assert T in solved and solved[T] > 1.0
+    assert 0.0 <= math.log(T) - step_ln <= FACE_END_RTOL * (1 + 1e-9)
+    below = max(t for t, r in solved.items() if r < 1.0)
+    assert math.log(T / below) <= FACE_END_RTOL * (1 + 1e-9)
+    assert len(solved) <= (6 if abs(step_ln) <= 0.35 else 12)
+
+
+@pytest.mark.parametrize("true_over_nominal", [0.5, 0.67, 1.0, 2.0])
+@pytest.mark.parametrize("start_ln", [-4e-4, 3e-4, 0.05])
+def test_secant_root_within_rtol_for_a_slope_within_a_factor_two(true_over_nominal, start_ln):
+    """The surface capacity's secant on ``ratio = (T / T_root)^s``: a start whose first
+    step (from the nominal slope) is below rtol/2 is accepted after one solve, and every
+    answer lies within SURFACE_RTOL of the root for a true slope from half to twice the
+    nominal one (the worst tooth's share falls with the torque: bending has about 0.67)."""
+    from gearcoupling.loading.models.surface_capacity import SURFACE_RTOL, _secant_root
+
+    solved = []
+
+    def ratio(T):
+        solved.append(T)
+        return (T / 1234.5) ** true_over_nominal
+
+    T = _secant_root(ratio, 1234.5 * math.exp(start_ln), 1.0, SURFACE_RTOL)
+    assert abs(math.log(T / 1234.5)) <= SURFACE_RTOL
+    if abs(start_ln) * true_over_nominal <= 0.5 * SURFACE_RTOL:
+        assert len(solved) == 1

@@ -5,6 +5,7 @@ Each writer validates before it writes (no NaN, no half-written file) and return
 paths it wrote; the commands only parse their options, call these and print.
 """
 
+from .forked import default_workers, fork_map
 from .interference import write_interference
 from .load import load_studies, write_load
 from .parts import PART_NAMES, write_parts, write_step_files
@@ -32,7 +33,9 @@ __all__ = [
     "SkipStep",
     "backlash_grid",
     "backlash_range_deg",
+    "default_workers",
     "design_point",
+    "fork_map",
     "load_studies",
     "load_study",
     "q_points",

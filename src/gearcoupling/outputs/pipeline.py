@@ -11,8 +11,6 @@ from __future__ import annotations
 import multiprocessing
 import multiprocessing.connection
 import os
-import signal
-import threading
 import time
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
@@ -25,6 +23,7 @@ from ..io import output_folder, remove_stale_temporaries, write_json
 from ..plots import plot_sections
 from ..spec import CouplingSpec, as_spec
 from ..viewer import write_html
+from .forked import can_fork, worker_signals
 from .interference import write_interference
 from .load import write_load
 from .parts import write_parts, write_step_files
@@ -130,22 +129,11 @@ def _names(value: Any, name: str) -> set[str]:
     return set(names)
 
 
-def _can_fork() -> bool:
-    """Forking is safe only from a single-threaded process (no lock held by a thread that
-    the child would not have); a thread marked ``fork_safe`` (the CLI's signal watcher,
-    which only waits on a socket) does not count."""
-    others = [t for t in threading.enumerate()
-              if t is not threading.main_thread() and not getattr(t, "fork_safe", False)]
-    return "fork" in multiprocessing.get_all_start_methods() and not others
-
-
 def _chain_worker(keys: list[str], spec: CouplingSpec, out: Path, conn) -> None:
     """A forked worker: run the steps ``keys`` in order, sending each ``_timed`` result (or
     the error that stopped the chain) to the parent. It dies with its parent and leaves
     signals to it: the parent stops the workers and cleans up (:func:`_run_forked`)."""
-    _die_with_parent()
-    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C reaches the whole group
-    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    worker_signals()
     try:
         for k in keys:  # each step's results, and the stages it computed for the parent
             conn.send(("done", _timed(k, spec, out), take_new()))
@@ -156,18 +144,6 @@ def _chain_worker(keys: list[str], spec: CouplingSpec, out: Path, conn) -> None:
             conn.send(("error", BackendError(f"{type(err).__name__}: {err}")))
     finally:
         conn.close()
-
-
-def _die_with_parent() -> None:
-    """Ask Linux to kill this process when its parent ends, however it ends (a no-op
-    elsewhere): a worker never outlives the process that started it."""
-    try:
-        import ctypes
-
-        libc = ctypes.CDLL(None, use_errno=True)
-        libc.prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
-    except (OSError, AttributeError):  # pragma: no cover - not Linux
-        pass
 
 
 def _run_forked(chains: list[list[str]], spec: CouplingSpec, out: Path,
@@ -253,7 +229,7 @@ def run(spec: CouplingSpec, out: str | os.PathLike, *, only: Iterable[str] | Non
         raise ArgumentError("workers", workers, "1 or 2")
     folder = output_folder(out, "out")
     chains = [[k for k in chain if k in keys] for chain in CHAINS]
-    parallel = workers == 2 and all(chains) and _can_fork()
+    parallel = workers == 2 and all(chains) and can_fork()
     done: dict[str, tuple[str, list[Path], float, str | None]] = {}
 
     def finished(item: tuple[str, list[Path], float, str | None]) -> None:

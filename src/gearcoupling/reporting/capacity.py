@@ -13,7 +13,8 @@ from ..arguments import MAXIMA, angle_list, choice
 from ..arguments import count as check_count
 from ..clearance import critical_misalignment_deg
 from ..errors import ArgumentError
-from ..loading import CapacityCurve, capacity_curve, model_names
+from ..loading import CapacityCurve, capacity, model_names
+from ..outputs import default_workers, fork_map
 from ..spec import MISALIGNMENT_RANGE_DEG, CouplingSpec, as_spec
 
 DEFAULT_COUNT = 25
@@ -48,11 +49,15 @@ def comparison_range(specs: Sequence[CouplingSpec], count: int = DEFAULT_COUNT,
 
 def compare_capacity(specs: Sequence[CouplingSpec], misalignments_deg: ArrayLike | None = None,
                      *, model: str | None = None, count: int = DEFAULT_COUNT,
-                     progress: Callable[[int, int], None] | None = None) -> CapacityComparison:
+                     progress: Callable[[int, int], None] | None = None,
+                     workers: int | None = None) -> CapacityComparison:
     """Capacity curves of ``specs`` over the same misalignments (default
     :func:`comparison_range`); ``progress(done, total)`` after each point. Every argument
     is checked before any work: each spec a CouplingSpec, template name or TOML path, each
-    with its own name."""
+    with its own name. ``workers``: 1 computes every point in this process, 2 (the default
+    where the machine has two cores and forking is safe) splits them over two forked
+    processes while this one waits; interrupted, the workers are killed first
+    (:func:`~gearcoupling.outputs.forked.fork_map`)."""
     if isinstance(specs, str | bytes) or not isinstance(specs, Sequence) or not specs:
         raise ArgumentError("specs", specs, "a non-empty list of specs (CouplingSpec, "
                             "template names or TOML paths)")
@@ -62,6 +67,8 @@ def compare_capacity(specs: Sequence[CouplingSpec], misalignments_deg: ArrayLike
         raise ArgumentError("specs", names, "each compared spec needs its own name (a spec "
                             "compared with itself is the same curve)")
     check_count(count, "count", 2, MAXIMA["misalignments"])
+    if workers is not None and (workers not in (1, 2) or isinstance(workers, bool)):
+        raise ArgumentError("workers", workers, "1 or 2")
     if model is not None:
         choice(model, "model", model_names())
     lo, hi = MISALIGNMENT_RANGE_DEG
@@ -69,11 +76,10 @@ def compare_capacity(specs: Sequence[CouplingSpec], misalignments_deg: ArrayLike
         misalignments_deg, "misalignments_deg", lo=lo, hi=hi, most=MAXIMA["misalignments"]))
     auto, critical = comparison_range(specs, count)
     mis = auto if given is None else given
-    total = len(specs) * mis.size
-    curves = {}
-    for k, spec in enumerate(specs):
-        curves[spec.name] = capacity_curve(
-            spec, mis, model=model,
-            progress=None if progress is None else
-            (lambda i, _n, k=k: progress(k * mis.size + i, total)))
+    points = [(spec, float(m)) for spec in specs for m in mis]
+    found = fork_map(lambda p: capacity(p[0], p[1], model=model), points,
+                     default_workers() if workers is None else workers,
+                     None if progress is None else (lambda n: progress(n, len(points))))
+    curves = {spec.name: CapacityCurve(found[k * mis.size:(k + 1) * mis.size])
+              for k, spec in enumerate(specs)}
     return CapacityComparison(mis, curves, critical)

@@ -65,9 +65,10 @@ def surface_torques(problem: LoadProblem, limits: dict[str, NDArray]
         j, T = first[name]
         search = pressure if name == "contact_stress" else load
         if name in CRITERIA and (T <= (1.0 + SCREEN_MARGIN) * best or search is pressure):
-            # to SURFACE_RTOL on its own grid, from the rough root
+            # to SURFACE_RTOL on its own grid, from the rough root, with the slope the
+            # rough search measured
             T = _rotation_root(search, name, j, T, SURFACE_RTOL if T <= (
-                1.0 + SCREEN_MARGIN) * best else INFO_RTOL)
+                1.0 + SCREEN_MARGIN) * best else INFO_RTOL, _measured_slope(load, name, j, T))
         if name in CRITERIA and T <= (1.0 + SCREEN_MARGIN) * best:
             T = _surface_capacity(search, name, guesses[name], j, T)
         if name in CRITERIA:
@@ -180,50 +181,86 @@ def _surface_capacity(limits: _SurfaceLimits, name: str, guess_Nmm: NDArray, fir
     does; the capacity is the smallest of the rotations' roots. Every other rotation whose
     compliance-model root (``guess_Nmm (M,)``) lies within :data:`SCREEN_RANGE` of the
     smallest is screened at ``best`` (a ratio at or below 1: its root is no smaller); those
-    above are searched in the order of their estimated roots (``T ratio^(-1/slope)``; face
-    end: most teeth on a face end first), each first checked at the best torque so far."""
+    above are searched in the order of their estimated roots (``T ratio^(-1/slope)``, the
+    slope measured at ``first``, :func:`_measured_slope`; face end: most teeth on a face end
+    first). A rotation is left out without a solve where its root, with a slope up to
+    :data:`SLOPE_SPREAD` off, stays within :data:`SURFACE_RTOL` above the best so far;
+    otherwise it is first checked at the best torque so far."""
     if not math.isfinite(best) or best <= 0.0:  # never reached, or over it at no torque
         return best
     finite = np.isfinite(guess_Nmm) & (guess_Nmm > 0)
     low = np.min(guess_Nmm[finite]) if np.any(finite) else math.inf
     near = ~finite | (guess_Nmm <= (1.0 + SCREEN_RANGE) * low)
+    slope = _measured_slope(limits, name, first, best)
     estimate: dict[int, float] = {}
+    lowest: dict[int, float] = {}
     for j in map(int, np.flatnonzero(near)):
         if j == first or limits.ratio(name, j, best) <= 1.0:
             continue
         if name == "face_end":
             estimate[j] = -float(np.sum(limits.out(j, best)["edge_contact"]))
+            lowest[j] = 0.0
         else:
-            estimate[j] = best * limits.ratio(name, j, best) ** (-1.0 / SLOPES[name])
+            drop = math.log(limits.ratio(name, j, best)) / slope
+            estimate[j] = best * math.exp(-drop)
+            lowest[j] = best * math.exp(-(1.0 + SLOPE_SPREAD) * drop)
     for j in sorted(estimate, key=estimate.__getitem__):
+        if lowest[j] >= best * math.exp(-SURFACE_RTOL):
+            continue  # its root lies above best, or below it by less than SURFACE_RTOL
         if limits.ratio(name, j, best) > 1.0:
             T0 = best if name == "face_end" else min(estimate[j], best)
-            best = min(best, _rotation_root(limits, name, j, T0))
+            best = min(best, _rotation_root(limits, name, j, T0, slope=slope))
     return best
 
 
+SLOPE_SPREAD = 0.5  # a rotation's d ln ratio / d ln T within a factor 1.5 of the measured
+
+
+def _measured_slope(limits: _SurfaceLimits, name: str, j: int, T_Nmm: float) -> float:
+    """``d ln ratio / d ln T`` of criterion ``name`` at rotation ``j`` near ``T``: from the
+    two poses solved there nearest ``T`` (within 25 %; the worst tooth's share falls as
+    more teeth take load, so bending at 1° on renzo-1967 has 0.67, not 1), kept within a
+    factor 2 of :data:`SLOPES`; the nominal slope where there are none (face end: 1)."""
+    nominal = SLOPES.get(name, 1.0)
+    near = sorted((abs(math.log(T / T_Nmm)), T) for k, T in limits.solved
+                  if k == j and abs(math.log(T / T_Nmm)) <= math.log(1.25))
+    if name not in SLOPES or len(near) < 2:
+        return nominal
+    (_, Ta), (_, Tb) = near[:2]
+    ra, rb = limits.ratio(name, j, Ta), limits.ratio(name, j, Tb)
+    if ra <= 0 or rb <= 0 or Ta == Tb:
+        return nominal
+    measured = math.log(rb / ra) / math.log(Tb / Ta)
+    return min(max(measured, 0.5 * nominal), 2.0 * nominal)
+
+
 def _rotation_root(limits: _SurfaceLimits, name: str, j: int, T0: float,
-                   rtol: float = SURFACE_RTOL) -> float:
+                   rtol: float = SURFACE_RTOL, slope: float | None = None) -> float:
     def ratio(T):
         return limits.ratio(name, j, T)
 
     if name == "face_end":
         return _bisect_root(ratio, T0, FACE_END_RTOL)
-    return _secant_root(ratio, T0, SLOPES[name], rtol)
+    return _secant_root(ratio, T0, SLOPES[name] if slope is None else slope, rtol)
 
 
 LOG_T_MAX = math.log(1e18)  # N·mm: a torque never reached
 LOG_T_MIN = math.log(1e-12)
+BRACKET_BISECTIONS = 3  # the face-end bracket's first steps: rtol times 2^3 (_bisect_root)
 
 
 def _secant_root(ratio, T0: float, slope: float, rtol: float = SURFACE_RTOL) -> float:
     """``ratio(T) = 1`` for increasing ``ratio``: secant steps on ``ln ratio`` against
     ``ln T`` (nearly straight: the first step takes the slope ``slope``), kept inside the
     bracket once one is found (bisection where a step leaves it, doubling steps outward
-    before); stops when the step is below ``rtol`` (relative)."""
+    before); stops when the step is below ``rtol`` (relative), the first one (from the
+    slope alone) when it is below ``rtol / 2``: there a true slope from half to twice
+    ``slope`` moves the root by less than ``rtol``."""
     x0, f0 = math.log(T0), math.log(max(ratio(T0), TINY))
     lo, hi = (-math.inf, x0) if f0 >= 0 else (x0, math.inf)
     x1 = x0 - f0 / slope
+    if abs(x1 - x0) <= 0.5 * rtol:
+        return math.exp(x1)
     for _ in range(100):
         if x1 > LOG_T_MAX:
             return math.inf
@@ -248,19 +285,28 @@ def _secant_root(ratio, T0: float, slope: float, rtol: float = SURFACE_RTOL) -> 
 
 def _bisect_root(ratio, T0: float, rtol: float = SURFACE_RTOL) -> float:
     """The torque where the increasing step ``ratio`` passes 1, by bisection on ``ln T``
-    from ``T0`` (bracketed by factors of 2) to ``rtol``."""
-    lo = hi = math.log(T0)
-    if ratio(T0) >= 1.0:
-        while ratio(math.exp(lo)) >= 1.0:
-            hi, lo = lo, lo - math.log(2.0)
-            if lo < LOG_T_MIN:
-                return 0.0
-    else:
-        while ratio(math.exp(hi)) < 1.0:
-            lo, hi = hi, hi + math.log(2.0)
-            if hi > LOG_T_MAX:
-                return math.inf
-    while hi - lo > rtol:
+    from ``T0`` to ``rtol``. The bracket grows from ``T0`` in steps of
+    ``rtol 2^BRACKET_BISECTIONS`` in ``ln T`` (0.24 at 3e-2: the compliance model's
+    face-end torque, the usual ``T0``, lies within ``e^±0.35`` of the surface model's on
+    the templates), the steps doubling after the second: 5 to 6 solves for such a start
+    where factors of 2 took 7, 12 for a start ``e^3`` off where they took 9."""
+    step = rtol * 2 ** BRACKET_BISECTIONS
+    x0 = math.log(T0)
+    above = ratio(T0) >= 1.0
+    lo = hi = x0
+    for k in range(200):
+        x = x0 + (-step if above else step)
+        if x < LOG_T_MIN:
+            return 0.0
+        if x > LOG_T_MAX:
+            return math.inf
+        if (ratio(math.exp(x)) >= 1.0) != above:
+            lo, hi = (x, x0) if above else (x0, x)
+            break
+        x0 = x
+        if k >= 1:
+            step *= 2.0
+    while hi - lo > rtol * (1.0 + 1e-9):  # the bracket's halvings land on rtol
         mid = 0.5 * (lo + hi)
         if ratio(math.exp(mid)) >= 1.0:
             hi = mid

@@ -1,0 +1,134 @@
+"""Forked worker processes: when forking is safe, and a map over two of them that leaves no
+worker behind (the run's chains, the capacity points of a report)."""
+
+from __future__ import annotations
+
+import multiprocessing
+import multiprocessing.connection
+import os
+import signal
+import threading
+from collections.abc import Callable, Sequence
+from typing import Any, TypeVar, cast
+
+from ..errors import BackendError
+
+T = TypeVar("T")
+
+
+def can_fork() -> bool:
+    """Forking is safe only from a single-threaded process (no lock held by a thread that
+    the child would not have); a thread marked ``fork_safe`` (the CLI's signal watcher,
+    which only waits on a socket) does not count."""
+    others = [t for t in threading.enumerate()
+              if t is not threading.main_thread() and not getattr(t, "fork_safe", False)]
+    return "fork" in multiprocessing.get_all_start_methods() and not others
+
+
+def default_workers() -> int:
+    """2 where the machine has two cores or more and forking is safe (:func:`can_fork`),
+    else 1."""
+    return 2 if (os.cpu_count() or 1) >= 2 and can_fork() else 1
+
+
+def die_with_parent() -> None:
+    """Ask Linux to kill this process when its parent ends, however it ends (a no-op
+    elsewhere): a worker never outlives the process that started it."""
+    try:
+        import ctypes
+
+        libc = ctypes.CDLL(None, use_errno=True)
+        libc.prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
+    except (OSError, AttributeError):  # pragma: no cover - not Linux
+        pass
+
+
+def worker_signals() -> None:
+    """A forked worker leaves signals to its parent: it ignores Ctrl-C (which reaches the
+    whole group) and ends at SIGTERM; it dies with the parent (:func:`die_with_parent`)."""
+    die_with_parent()
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    signal.pthread_sigmask(signal.SIG_UNBLOCK, STOP_SIGNALS)  # blocked over the fork
+
+
+STOP_SIGNALS = {signal.SIGINT, signal.SIGTERM}
+
+
+def _map_worker(func: Callable[[Any], Any], items: Sequence[Any], indices: Sequence[int],
+                conn) -> None:
+    worker_signals()
+    try:
+        for i in indices:
+            conn.send(("done", i, func(items[i])))
+    except Exception as err:  # re-raised by the parent
+        try:
+            conn.send(("error", i, err))
+        except Exception:  # an error that does not pickle: its text
+            conn.send(("error", i, BackendError(f"{type(err).__name__}: {err}")))
+    finally:
+        conn.close()
+
+
+def fork_map(func: Callable[[Any], T], items: Sequence[Any], workers: int = 2,
+             done: Callable[[int], None] | None = None) -> list[T]:
+    """``[func(item) for item in items]``, over ``workers`` forked processes where there are
+    two items or more and forking is safe (:func:`can_fork`), else in this process.
+
+    Worker ``k`` takes the items ``k, k + workers, ...`` (costs that grow along the list
+    split evenly) and sends each result back (pickled); this process only waits, so it
+    answers a signal at once. On any exception here (an error in ``func``, which is raised
+    again here, ``KeyboardInterrupt``, the CLI's signal) the workers are killed and reaped
+    before it propagates (SIGINT and SIGTERM are held while the workers start, so that
+    one arriving then is raised here, not lost in a fork hook). ``done(n)`` is called
+    after each result with the count so far.
+    """
+    if workers < 2 or len(items) < 2 or not can_fork():
+        out = []
+        for item in items:
+            out.append(func(item))
+            if done is not None:
+                done(len(out))
+        return out
+    ctx = multiprocessing.get_context("fork")
+    results: dict[int, T] = {}
+    procs = []
+    try:
+        # a signal during a fork would reach an after-fork hook, which drops its exception:
+        # held until the workers are started
+        mask = signal.pthread_sigmask(signal.SIG_BLOCK, STOP_SIGNALS)
+        try:
+            for k in range(min(workers, len(items))):
+                recv, send = ctx.Pipe(duplex=False)
+                proc = ctx.Process(target=_map_worker, daemon=True,
+                                   args=(func, items, range(k, len(items), workers), send))
+                proc.start()
+                send.close()
+                procs.append((proc, recv))
+        finally:
+            signal.pthread_sigmask(signal.SIG_SETMASK, mask)
+        waiting = {recv: proc for proc, recv in procs}
+        while waiting:
+            for ready in multiprocessing.connection.wait(list(waiting)):
+                conn = cast(multiprocessing.connection.Connection, ready)
+                try:
+                    kind, i, value = conn.recv()
+                except EOFError:  # the worker is finished, or died
+                    proc = waiting.pop(conn)
+                    proc.join()
+                    if proc.exitcode:
+                        raise BackendError(f"a worker process ended with exit code "
+                                           f"{proc.exitcode}") from None
+                    continue
+                if kind == "error":
+                    raise value
+                results[i] = value
+                if done is not None:
+                    done(len(results))
+    finally:
+        for proc, recv in procs:
+            if proc.is_alive():
+                proc.kill()
+            proc.join()
+            recv.close()
+    return [results[i] for i in range(len(items))]

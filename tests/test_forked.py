@@ -1,0 +1,115 @@
+"""The forked map of the capacity points (outputs/forked.py): the same answers as in one
+process, a worker's error raised in the parent, no worker outliving an interrupt. Each
+runs in a fresh interpreter: forking needs a process without other threads, and a test
+run before may have left one (fork_map then works in this process)."""
+
+import subprocess
+import sys
+import textwrap
+
+import pytest
+
+from gearcoupling.outputs.forked import can_fork
+
+pytestmark = pytest.mark.skipif(not can_fork(), reason="needs the fork start method")
+
+
+def _fresh(code: str, *args: str) -> str:
+    out = subprocess.run([sys.executable, "-c", textwrap.dedent(code), *args],
+                         capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
+    return out.stdout
+
+
+def test_fork_map_keeps_the_order_and_runs_in_two_workers():
+    _fresh("""
+        import os
+        from gearcoupling.outputs.forked import fork_map
+
+        def pid_of(_item):
+            return os.getpid()
+
+        seen = []
+        pids = fork_map(pid_of, list(range(5)), 2, done=seen.append)
+        assert os.getpid() not in pids, pids
+        assert len(set(pids)) == 2, pids
+        assert pids[0::2] == [pids[0]] * 3 and pids[1::2] == [pids[1]] * 2  # round robin
+        assert seen == [1, 2, 3, 4, 5], seen
+        assert fork_map(pid_of, [0, 1], 1) == [os.getpid()] * 2  # one worker: this process
+    """)
+
+
+def test_a_workers_error_is_raised_in_the_parent():
+    _fresh("""
+        from gearcoupling.errors import ArgumentError
+        from gearcoupling.outputs.forked import fork_map
+
+        def fails_on_three(x):
+            if x == 3:
+                raise ArgumentError("x", x, "not 3")
+            return x
+
+        try:
+            fork_map(fails_on_three, [0, 1, 2, 3], 2)
+        except ArgumentError as err:
+            assert "not 3" in str(err)
+        else:
+            raise AssertionError("no error")
+    """)
+
+
+def test_an_interrupt_kills_and_reaps_the_workers(tmp_path):
+    """Ctrl-C reaches the parent as soon as both workers run (even while the second is
+    still being started: the signals are held over the fork); both are killed and
+    reaped."""
+    _fresh("""
+        import os, signal, sys, time
+        from pathlib import Path
+        from gearcoupling.outputs.forked import fork_map
+
+        folder, parent = Path(sys.argv[1]), os.getpid()
+
+        def slow(x):
+            (folder / f"{os.getpid()}.pid").touch()
+            while len(list(folder.glob("*.pid"))) < 2:
+                time.sleep(0.001)
+            if x == 1:
+                os.kill(parent, signal.SIGINT)
+            time.sleep(60.0)
+
+        t0 = time.monotonic()
+        try:
+            fork_map(slow, [0, 1], 2)
+        except KeyboardInterrupt:
+            pass
+        else:
+            raise AssertionError("no KeyboardInterrupt")
+        assert time.monotonic() - t0 < 30.0
+        pids = [int(p.stem) for p in folder.glob("*.pid")]
+        assert len(pids) == 2, pids
+        for pid in pids:  # killed and reaped: no such process
+            try:
+                os.kill(pid, 0)
+            except ProcessLookupError:
+                continue
+            raise AssertionError(f"worker {pid} alive")
+    """, str(tmp_path))
+
+
+def test_forked_capacity_points_equal_those_of_one_process():
+    _fresh("""
+        import gearcoupling as gc
+        from gearcoupling.errors import ArgumentError
+
+        spec = gc.load_spec("industrial-m2")
+        one = gc.compare_capacity([spec], [0.5, 1.0, 2.0], model="compliance", workers=1)
+        two = gc.compare_capacity([spec], [0.5, 1.0, 2.0], model="compliance", workers=2)
+        assert [c.row() for c in two.curves[spec.name]] == \\
+            [c.row() for c in one.curves[spec.name]]
+        try:
+            gc.compare_capacity([spec], [1.0], workers=3)
+        except ArgumentError as err:
+            assert "workers" in str(err)
+        else:
+            raise AssertionError("workers=3 accepted")
+    """)
