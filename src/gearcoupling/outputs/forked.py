@@ -8,7 +8,7 @@ import multiprocessing.connection
 import os
 import signal
 import threading
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from typing import Any, TypeVar, cast
 
 from ..errors import BackendError
@@ -70,6 +70,63 @@ def _map_worker(func: Callable[[Any], Any], items: Sequence[Any], indices: Seque
         conn.close()
 
 
+def start_workers(target: Callable[..., None], args: Sequence[tuple]
+                  ) -> list[tuple[Any, multiprocessing.connection.Connection]]:
+    """Fork one process per ``args`` entry running ``target(*entry, send)``; returns each
+    process with the end of its pipe to read. SIGINT and SIGTERM are held while they
+    start: one arriving during a fork would reach an after-fork hook, which drops its
+    exception (the workers unblock them, :func:`worker_signals`)."""
+    ctx = multiprocessing.get_context("fork")
+    procs = []
+    mask = signal.pthread_sigmask(signal.SIG_BLOCK, STOP_SIGNALS)
+    try:
+        for entry in args:
+            recv, send = ctx.Pipe(duplex=False)
+            proc = ctx.Process(target=target, args=(*entry, send), daemon=True)
+            proc.start()
+            send.close()
+            procs.append((proc, recv))
+    except BaseException:  # none left behind: those started go again
+        stop_workers(procs)
+        raise
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, mask)
+    return procs
+
+
+def messages(procs: Sequence[tuple[Any, multiprocessing.connection.Connection]]
+             ) -> Iterator[tuple]:
+    """Each message the workers send, as it comes, until every worker has closed its
+    pipe; a message ``("error", ..., err)`` raises ``err`` here, and a worker that died
+    with an exit code a :class:`BackendError`."""
+    waiting = {recv: proc for proc, recv in procs}
+    while waiting:
+        for ready in multiprocessing.connection.wait(list(waiting)):
+            conn = cast(multiprocessing.connection.Connection, ready)
+            try:
+                message = conn.recv()
+            except EOFError:  # the worker is finished, or died
+                proc = waiting.pop(conn)
+                proc.join()
+                if proc.exitcode:
+                    raise BackendError(f"a worker process ended with exit code "
+                                       f"{proc.exitcode}") from None
+                continue
+            if message[0] == "error":
+                raise message[-1]
+            yield message
+
+
+def stop_workers(procs: Sequence[tuple[Any, multiprocessing.connection.Connection]]
+                 ) -> None:
+    """Kill the workers still running and reap them all."""
+    for proc, recv in procs:
+        if proc.is_alive():
+            proc.kill()
+        proc.join()
+        recv.close()
+
+
 def fork_map(func: Callable[[Any], T], items: Sequence[Any], workers: int = 2,
              done: Callable[[int], None] | None = None) -> list[T]:
     """``[func(item) for item in items]``, over ``workers`` forked processes where there are
@@ -79,9 +136,7 @@ def fork_map(func: Callable[[Any], T], items: Sequence[Any], workers: int = 2,
     split evenly) and sends each result back (pickled); this process only waits, so it
     answers a signal at once. On any exception here (an error in ``func``, which is raised
     again here, ``KeyboardInterrupt``, the CLI's signal) the workers are killed and reaped
-    before it propagates (SIGINT and SIGTERM are held while the workers start, so that
-    one arriving then is raised here, not lost in a fork hook). ``done(n)`` is called
-    after each result with the count so far.
+    before it propagates. ``done(n)`` is called after each result with the count so far.
     """
     if workers < 2 or len(items) < 2 or not can_fork():
         out = []
@@ -90,45 +145,16 @@ def fork_map(func: Callable[[Any], T], items: Sequence[Any], workers: int = 2,
             if done is not None:
                 done(len(out))
         return out
-    ctx = multiprocessing.get_context("fork")
     results: dict[int, T] = {}
-    procs = []
+    procs: list = []
     try:
-        # a signal during a fork would reach an after-fork hook, which drops its exception:
-        # held until the workers are started
-        mask = signal.pthread_sigmask(signal.SIG_BLOCK, STOP_SIGNALS)
-        try:
-            for k in range(min(workers, len(items))):
-                recv, send = ctx.Pipe(duplex=False)
-                proc = ctx.Process(target=_map_worker, daemon=True,
-                                   args=(func, items, range(k, len(items), workers), send))
-                proc.start()
-                send.close()
-                procs.append((proc, recv))
-        finally:
-            signal.pthread_sigmask(signal.SIG_SETMASK, mask)
-        waiting = {recv: proc for proc, recv in procs}
-        while waiting:
-            for ready in multiprocessing.connection.wait(list(waiting)):
-                conn = cast(multiprocessing.connection.Connection, ready)
-                try:
-                    kind, i, value = conn.recv()
-                except EOFError:  # the worker is finished, or died
-                    proc = waiting.pop(conn)
-                    proc.join()
-                    if proc.exitcode:
-                        raise BackendError(f"a worker process ended with exit code "
-                                           f"{proc.exitcode}") from None
-                    continue
-                if kind == "error":
-                    raise value
-                results[i] = value
-                if done is not None:
-                    done(len(results))
+        procs = start_workers(_map_worker, [
+            (func, items, range(k, len(items), workers))
+            for k in range(min(workers, len(items)))])
+        for _, i, value in messages(procs):
+            results[i] = value
+            if done is not None:
+                done(len(results))
     finally:
-        for proc, recv in procs:
-            if proc.is_alive():
-                proc.kill()
-            proc.join()
-            recv.close()
+        stop_workers(procs)
     return [results[i] for i in range(len(items))]

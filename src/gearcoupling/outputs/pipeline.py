@@ -8,14 +8,12 @@ included, for a report made after the run (``gc.report``) to reuse.
 
 from __future__ import annotations
 
-import multiprocessing
-import multiprocessing.connection
 import os
 import time
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, cast
+from typing import Any
 
 from ..errors import ArgumentError, BackendError
 from ..interference import check_interference
@@ -23,7 +21,7 @@ from ..io import output_folder, remove_stale_temporaries, write_json
 from ..plots import plot_sections
 from ..spec import CouplingSpec, as_spec
 from ..viewer import write_html
-from .forked import can_fork, worker_signals
+from .forked import can_fork, messages, start_workers, stop_workers, worker_signals
 from .interference import write_interference
 from .load import write_load
 from .parts import write_parts, write_step_files
@@ -152,38 +150,14 @@ def _run_forked(chains: list[list[str]], spec: CouplingSpec, out: Path,
     signal at once). On any exception here (an error of a step, ``KeyboardInterrupt``,
     the CLI's signal) the workers are killed and reaped and their temporaries removed
     before it propagates: no file is written after it."""
-    ctx = multiprocessing.get_context("fork")
-    workers = []
+    workers: list = []
     try:
-        for chain in chains:
-            recv, send = ctx.Pipe(duplex=False)
-            proc = ctx.Process(target=_chain_worker, args=(chain, spec, out, send), daemon=True)
-            proc.start()
-            send.close()
-            workers.append((proc, recv))
-        waiting = {recv: proc for proc, recv in workers}
-        while waiting:
-            for ready in multiprocessing.connection.wait(list(waiting)):
-                conn = cast(multiprocessing.connection.Connection, ready)
-                try:
-                    kind, item, *stages = conn.recv()
-                except EOFError:  # the chain is finished, or its process died
-                    proc = waiting.pop(conn)
-                    proc.join()
-                    if proc.exitcode:
-                        raise BackendError(f"a run worker process ended with exit code "
-                                           f"{proc.exitcode}") from None
-                    continue
-                if kind == "error":
-                    raise item
-                remember(stages[0])
-                finished(item)
+        workers = start_workers(_chain_worker, [(chain, spec, out) for chain in chains])
+        for _, item, stages in messages(workers):
+            remember(stages)
+            finished(item)
     finally:
-        for proc, recv in workers:
-            if proc.is_alive():
-                proc.kill()
-            proc.join()
-            recv.close()
+        stop_workers(workers)
         remove_stale_temporaries(out)
 
 
