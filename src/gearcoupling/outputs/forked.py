@@ -70,14 +70,15 @@ def _map_worker(func: Callable[[Any], Any], items: Sequence[Any], indices: Seque
         conn.close()
 
 
-def start_workers(target: Callable[..., None], args: Sequence[tuple]
-                  ) -> list[tuple[Any, multiprocessing.connection.Connection]]:
-    """Fork one process per ``args`` entry running ``target(*entry, send)``; returns each
-    process with the end of its pipe to read. SIGINT and SIGTERM are held while they
-    start: one arriving during a fork would reach an after-fork hook, which drops its
-    exception (the workers unblock them, :func:`worker_signals`)."""
+def start_workers(target: Callable[..., None], args: Sequence[tuple],
+                  procs: list[tuple[Any, multiprocessing.connection.Connection]]) -> None:
+    """Fork one process per ``args`` entry running ``target(*entry, send)``, appending
+    each with the end of its pipe to read to ``procs`` as it starts (the caller's
+    ``finally`` stops them: :func:`stop_workers`, also when a signal comes in here).
+    SIGINT and SIGTERM are held while they start: one arriving during a fork would reach
+    an after-fork hook, which drops its exception (the workers unblock them,
+    :func:`worker_signals`); it is raised here once they are started."""
     ctx = multiprocessing.get_context("fork")
-    procs = []
     mask = signal.pthread_sigmask(signal.SIG_BLOCK, STOP_SIGNALS)
     try:
         for entry in args:
@@ -86,12 +87,8 @@ def start_workers(target: Callable[..., None], args: Sequence[tuple]
             proc.start()
             send.close()
             procs.append((proc, recv))
-    except BaseException:  # none left behind: those started go again
-        stop_workers(procs)
-        raise
     finally:
         signal.pthread_sigmask(signal.SIG_SETMASK, mask)
-    return procs
 
 
 def messages(procs: Sequence[tuple[Any, multiprocessing.connection.Connection]]
@@ -148,9 +145,8 @@ def fork_map(func: Callable[[Any], T], items: Sequence[Any], workers: int = 2,
     results: dict[int, T] = {}
     procs: list = []
     try:
-        procs = start_workers(_map_worker, [
-            (func, items, range(k, len(items), workers))
-            for k in range(min(workers, len(items)))])
+        start_workers(_map_worker, [(func, items, range(k, len(items), workers))
+                                    for k in range(min(workers, len(items)))], procs)
         for _, i, value in messages(procs):
             results[i] = value
             if done is not None:

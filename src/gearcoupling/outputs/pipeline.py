@@ -152,7 +152,7 @@ def _run_forked(chains: list[list[str]], spec: CouplingSpec, out: Path,
     before it propagates: no file is written after it."""
     workers: list = []
     try:
-        workers = start_workers(_chain_worker, [(chain, spec, out) for chain in chains])
+        start_workers(_chain_worker, [(chain, spec, out) for chain in chains], workers)
         for _, item, stages in messages(workers):
             remember(stages)
             finished(item)
