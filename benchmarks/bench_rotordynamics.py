@@ -26,6 +26,7 @@ from gearcoupling.rotordynamics import (
     mass_properties,
     stiffness_matrix,
 )
+from gearcoupling.rotordynamics.stiffness import default_rotations
 from gearcoupling.rotordynamics.torsion import mesh_windup_from_touch
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -64,13 +65,19 @@ def _table(title: str, knob: str, values, build) -> None:
 
 
 def convergence() -> None:
+    """The knobs of the matrix: the default model (``surface``, over fewer rotations) and
+    ``compliance``, renzo-1967 at 1° and the spec's torque."""
     spec = gc.load_spec("renzo-1967")
-    _table("Step convergence (renzo-1967, 1°, spec torque, 8 rotations; change against the "
-           "smallest step)", "relative_step", (0.005, 0.01, 0.02, 0.05, 0.1),
-           lambda s: stiffness_matrix(spec, 1.0, relative_step=s))
-    _table("Rotations over one pitch (renzo-1967, 1°, step 0.02; change against 32)",
-           "rotations", (1, 2, 4, 8, 16, 32),
-           lambda n: stiffness_matrix(spec, 1.0, rotations=n))
+    for model, steps, rotations in (("surface", (0.01, 0.02, 0.05), (2, 4, 8, 16)),
+                                    ("compliance", (0.005, 0.01, 0.02, 0.05, 0.1),
+                                     (1, 2, 4, 8, 16, 32))):
+        n = default_rotations(model)
+        _table(f"Step convergence ({model}, renzo-1967, 1°, spec torque, {n} rotations; change "
+               "against the smallest step)", "relative_step", steps,
+               lambda s, m=model: stiffness_matrix(spec, 1.0, model=m, relative_step=s))
+        _table(f"Rotations over one pitch ({model}, renzo-1967, 1°, step 0.02; change against "
+               f"{rotations[-1]})", "rotations", rotations,
+               lambda r, m=model: stiffness_matrix(spec, 1.0, model=m, rotations=r))
 
 
 def _asymmetry(K) -> float:

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import csv
 import html
+import json
 import re
 import time
 
@@ -19,7 +20,7 @@ import pytest
 
 import gearcoupling as gc
 from gearcoupling.cli import main
-from gearcoupling.loading import patch_maps, plot_patches
+from gearcoupling.loading import patch_maps, plot_patches, springs_name
 from gearcoupling.reporting import ReportSettings
 from gearcoupling.reporting.verdict import (
     FAIL,
@@ -96,6 +97,10 @@ def test_report_numbers_are_the_librarys(made, renzo):
     # the verdict's capacity and the design angles are those of the library's calls
     cap = gc.capacity(renzo, 1.0)
     assert f"{cap.capacity_Nm:.4g} N·m (bending stress governs)" in text
+    # one capacity per report: the data sheet's is the verdict's, the same model and springs
+    sheet = json.loads((res.html.parent / "report-data" / "datasheet.json").read_text())
+    assert (sheet["model"], sheet["springs"]) == (cap.model, springs_name(renzo, cap.model))
+    assert sheet["capacity_Nm"] == pytest.approx(cap.capacity_Nm, rel=1e-12)
     crit = gc.critical_misalignment_deg(renzo)
     assert f"≤ critical misalignment {crit:.3f}°" in text
     # Renzo's estimates beside them: b/2 = R_c cot(phi) i and eq. 4/6 binding, within 2 %

@@ -15,7 +15,6 @@ from gearcoupling.cli import main
 from gearcoupling.geometry import form_radius, hub_model, inv, tip_radius
 from gearcoupling.loading import machine_loads, mesh_stiffness_N_per_mm, springs_name
 from gearcoupling.rotordynamics import (
-    DATASHEET_MODEL,
     FILES,
     WINDUP_ERROR_PCT,
     coupling_data,
@@ -323,13 +322,13 @@ def test_friction_adds_the_antisymmetric_part_of_its_moment(name, deg):
     k_yx = -dM_f/di, so an antisymmetric part (M_f / i + dM_f/di) / 2, where M_f is the
     friction moment from the tooth loads alone (:func:`_friction_moment`)."""
     spec = gc.load_spec(name)
-    with_f = stiffness_matrix(spec, deg).at_constant_torque()
-    without = stiffness_matrix(spec, deg, friction=0.0).at_constant_torque()
+    with_f = stiffness_matrix(spec, deg, model="compliance").at_constant_torque()
+    without = stiffness_matrix(spec, deg, model="compliance", friction=0.0).at_constant_torque()
     anti = 0.5 * ((with_f[3, 4] - with_f[4, 3]) - (without[3, 4] - without[4, 3]))
     a, h = math.radians(deg), 0.02 * math.radians(deg)
-    mf = _friction_moment(spec, deg)
-    dmf = (_friction_moment(spec, math.degrees(a + h))
-           - _friction_moment(spec, math.degrees(a - h))) / (2 * h)
+    mf = _friction_moment(spec, deg, "compliance")
+    dmf = (_friction_moment(spec, math.degrees(a + h), "compliance")
+           - _friction_moment(spec, math.degrees(a - h), "compliance")) / (2 * h)
     assert anti == pytest.approx(0.5 * (mf / a + dmf), rel=0.05)
     assert with_f[3, 4] == pytest.approx(mf / a, rel=0.05)
 
@@ -337,8 +336,10 @@ def test_friction_adds_the_antisymmetric_part_of_its_moment(name, deg):
 def test_the_torques_sign_mirrors_the_frictionless_matrix(renzo):
     """The cw flanks are the mirror image of the ccw ones: without friction a reversed
     torque gives the same diagonal and reversed tilt-torsion terms."""
-    ahead = stiffness_matrix(renzo, 1.0, 2000.0, friction=0.0, rotations=2).matrix
-    back = stiffness_matrix(renzo, 1.0, -2000.0, friction=0.0, rotations=2).matrix
+    ahead = stiffness_matrix(renzo, 1.0, 2000.0, model="compliance", friction=0.0,
+                             rotations=2).matrix
+    back = stiffness_matrix(renzo, 1.0, -2000.0, model="compliance", friction=0.0,
+                            rotations=2).matrix
     assert np.diag(back) == pytest.approx(np.diag(ahead), rel=1e-6)
     assert back[3, 5] == pytest.approx(-ahead[3, 5], rel=1e-6)
 
@@ -346,13 +347,13 @@ def test_the_torques_sign_mirrors_the_frictionless_matrix(renzo):
 def test_the_matrix_is_continuous_at_the_end_of_the_range(renzo):
     """Within a step of 6° the tilt difference turns backward (second order too): the
     matrix at 6° continues the one at 5.99°."""
-    inside = stiffness_matrix(renzo, 5.99, rotations=2).matrix
-    end = stiffness_matrix(renzo, 6.0, rotations=2).matrix
+    inside = stiffness_matrix(renzo, 5.99, model="compliance", rotations=2).matrix
+    end = stiffness_matrix(renzo, 6.0, model="compliance", rotations=2).matrix
     assert np.diag(end) == pytest.approx(np.diag(inside), rel=0.01)
 
 
 def test_aligned_friction_is_left_out_and_said_so(renzo):
-    K = stiffness_matrix(renzo, 0.0)
+    K = stiffness_matrix(renzo, 0.0, model="compliance")
     assert K.friction == 0.0 and any("friction" in n for n in K.notes)
     assert K.axial_slip_force_N == pytest.approx(
         renzo.load.friction * renzo.load.torque_Nm * 1e3
@@ -373,7 +374,7 @@ def test_torsional_stiffness_against_the_calculix_reference(name):
     the CalculiX contact reference, within the accuracy ladder's band for the data sheet's
     model and springs (docs/load.md; 0.5 points of rounding)."""
     spec = gc.load_spec(name)
-    model = DATASHEET_MODEL
+    model = spec.load.model  # the data sheet's: the spec's, the validated default
     lo, hi = WINDUP_ERROR_PCT[(model, springs_name(spec, model))]
     refs = json.loads(GOLDEN.read_text())["references"][name]
     sw = gc.sweep(spec, 0.0, [0.0])
@@ -389,7 +390,7 @@ def test_torsional_stiffness_against_the_calculix_reference(name):
 
 @pytest.fixture(scope="module")
 def data(renzo):
-    return coupling_data(renzo, rotations=4, turn_angles=72, curve_points=9)
+    return coupling_data(renzo, rotations=4, turn_angles=72, curve_points=5)
 
 
 def test_coupling_data_is_consistent(data, renzo):
@@ -434,8 +435,9 @@ def test_data_sheet_files_and_dataframe(data, tmp_path):
 
 
 def test_datasheet_command_writes_the_files(tmp_path, capsys):
-    code = main(["datasheet", "industrial-m2", "--rotations", "2", "--angles", "36",
-                 "-o", str(tmp_path)])
+    # the files, not the model: the compliance model, a second of solves
+    code = main(["datasheet", "industrial-m2", "--model", "compliance", "--rotations", "2",
+                 "--angles", "36", "-o", str(tmp_path)])
     assert code == 0
     assert {p.name for p in tmp_path.iterdir()} == set(FILES)
     assert capsys.readouterr().out.split() == [str(tmp_path / f) for f in FILES]

@@ -38,11 +38,11 @@ def register(sub) -> None:
                    help=f"operating torque in N·m, 0 < |T| <= {MAX_TORQUE_NM:g}; the sign picks "
                         "the loaded flank (default: the spec's)")
     p.add_argument("--model", choices=model_names(), default=None,
-                   help="load model (default: compliance, a few hundred load solves in under a "
-                        "second; surface takes about a minute)")
-    p.add_argument("--rotations", type=count(1, 64), default=8, metavar="N",
+                   help="load model (default: the spec's [load] model, the validated surface "
+                        "model unless the spec says otherwise)")
+    p.add_argument("--rotations", type=count(1, 64), default=None, metavar="N",
                    help="rotations over one tooth pitch the stiffness is averaged over, 1-64 "
-                        "(default 8)")
+                        "(default: the model's load-study rotations, 4 for surface, else 8)")
     p.add_argument("--step", type=number_in(1e-4, 0.2, "of the tooth deflection"),
                    default=0.02, metavar="S",
                    help="difference step as a share of the largest tooth deflection, "

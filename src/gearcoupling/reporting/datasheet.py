@@ -19,8 +19,8 @@ def datasheet(ctx: Context) -> Section:
                                "teeth; give [load] torque_Nm or --torque.", "skip"))
         return sec
     try:
-        data = coupling_data(ctx.spec, ctx.misalignment_deg, ctx.torque_Nm,
-                             model=ctx.settings.model)  # the data sheet's own default
+        data = coupling_data(ctx.spec, ctx.misalignment_deg, ctx.torque_Nm, model=ctx.model,
+                             known=ctx.found.get("capacity_curve", ()))
     except SpecError as err:
         sec.blocks.append(Note(f"Not made: {err}", "skip"))
         return sec

@@ -361,6 +361,7 @@ def capacity_section(ctx: Context) -> Section:
     else:
         at = capacity(spec, ctx.misalignment_deg, model=ctx.model, loaded_flank=flank)
     ctx.found["capacity"] = at
+    ctx.found["capacity_curve"] = comp.curves[spec.name]  # ccw flanks: the data sheet's too
     rows = [(f"{k.replace('_', ' ')}", v, "N·m") for k, v in at.criteria_Nm.items()]
     rows += [("governing capacity K·T", at.capacity_Nm, f"N·m ({at.governing.replace('_', ' ')})"),
              ("torque at which a patch reaches a face end", at.face_end_torque_Nm, "N·m"),

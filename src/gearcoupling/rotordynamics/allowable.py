@@ -2,7 +2,7 @@
 
 The allowable misalignment is the smaller of the critical angle (the pivot teeth's
 contact runs onto a face end, :func:`gearcoupling.critical_misalignment_deg`) and the
-largest angle at which the capacity still carries the torque (bisection on
+largest angle at which the capacity still carries the torque (regula falsi on
 :func:`gearcoupling.capacity`, which falls with the angle), within the supported 0-6°.
 There the coupling's machine loads over a turn: the bending moment on the hub (normal
 and friction forces about ``O``, perpendicular to the hub axis), the thrust along the hub
@@ -13,6 +13,8 @@ the teeth when the shafts move axially), with their extremes.
 
 from __future__ import annotations
 
+import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -20,12 +22,13 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..clearance import critical_misalignment_deg
-from ..loading import capacity, load, machine_loads
+from ..errors import ArgumentError
+from ..loading import Capacity, capacity, load, machine_loads, resolve_model
 from ..spec import MISALIGNMENT_RANGE_DEG
-from .stiffness import DATASHEET_MODEL
 
 DEFAULT_TURN_ANGLES = 360
 ANGLE_TOLERANCE_DEG = 0.01
+CAPACITY_MATCH = 1e-3  # the capacity search's own relative tolerance
 
 
 @dataclass(frozen=True, eq=False)
@@ -75,44 +78,88 @@ class AllowableLoads:
 
 
 def capacity_limit_deg(spec, torque_Nm: float, top_deg: float, *, model: str | None = None,
-                       tolerance_deg: float = ANGLE_TOLERANCE_DEG
-                       ) -> tuple[float | None, str | None]:
+                       tolerance_deg: float = ANGLE_TOLERANCE_DEG,
+                       known: Sequence[Capacity] = ()) -> tuple[float | None, str | None]:
     """The largest misalignment up to ``top_deg`` whose capacity carries ``|torque_Nm|``
-    (``None`` when ``top_deg`` still does) and the criterion that governs there."""
+    (``None`` when ``top_deg`` still does) and the criterion that governs just beyond it.
+
+    The capacity falls with the angle; the search is regula falsi (Illinois) on it, in a
+    bracket that shrinks by at least ``tolerance_deg`` / 2 a step. It stops when the
+    bracket is ``tolerance_deg`` wide or the capacity at its low end is within
+    :data:`CAPACITY_MATCH` above the torque. ``known``: capacities of this spec and model
+    (ccw flank) already computed, e.g. the report's capacity curve, used as points of the
+    search instead of solving them again.
+    """
     need = abs(torque_Nm)
+    model = resolve_model(spec, model)
+    seen = known_capacities(spec, model, known)
 
-    def carries(deg: float) -> tuple[bool, str]:
-        c = capacity(spec, deg, model=model)
-        return c.capacity_Nm is None or c.capacity_Nm >= need, c.governing
+    def margin(deg: float) -> tuple[float, str]:
+        if deg not in seen:
+            seen[deg] = capacity(spec, deg, model=model)
+        c = seen[deg]
+        return (math.inf if c.capacity_Nm is None else c.capacity_Nm - need), c.governing
 
-    ok, governing = carries(top_deg)
-    if ok:
+    f_hi, governing = margin(top_deg)
+    if f_hi >= 0:
         return None, None
-    ok, _ = carries(0.0)
-    if not ok:
-        return 0.0, governing
-    lo, hi = 0.0, top_deg
-    while hi - lo > tolerance_deg:
-        mid = 0.5 * (lo + hi)
-        ok, g = carries(mid)
-        if ok:
-            lo = mid
+    lo, hi = _bracket(seen, top_deg, need)
+    f_lo, g = margin(lo)
+    if f_lo < 0:
+        return 0.0, g
+    f_hi, governing = margin(hi)
+    kept = 0  # +1: the low end was moved last, -1: the high end
+    while hi - lo > tolerance_deg and margin(lo)[0] > CAPACITY_MATCH * need:
+        x = 0.5 * (lo + hi) if math.isinf(f_lo) else lo + (hi - lo) * f_lo / (f_lo - f_hi)
+        x = min(max(x, lo + 0.5 * tolerance_deg), hi - 0.5 * tolerance_deg)
+        f, g = margin(x)
+        if f >= 0:
+            lo, f_lo = x, f
+            f_hi = f_hi / 2 if kept == 1 else f_hi
+            kept = 1
         else:
-            hi, governing = mid, g
+            hi, f_hi, governing = x, f, g
+            f_lo = f_lo / 2 if kept == -1 else f_lo
+            kept = -1
     return lo, governing
+
+
+def known_capacities(spec, model: str, known: Sequence[Capacity]) -> dict[float, Capacity]:
+    """``known`` by misalignment, each checked to be of ``spec`` and ``model``, ccw flank."""
+    out = {}
+    for c in known:
+        if not (isinstance(c, Capacity) and c.spec == spec and c.model == model
+                and c.loaded_flank == "ccw"):
+            raise ArgumentError("known", c, f"capacities of this spec ({spec.name}) with the "
+                                f"{model} model on the ccw flank")
+        out[c.misalignment_deg] = c
+    return out
+
+
+def _bracket(seen: dict[float, Capacity], top_deg: float, need: float) -> tuple[float, float]:
+    """The narrowest ``(lo, hi)`` within 0 to ``top_deg`` that the capacities ``seen`` give:
+    ``lo`` the largest angle known to carry ``need`` (else 0), ``hi`` the smallest known
+    angle above it that does not (``top_deg`` does not)."""
+    carries = sorted(d for d, c in seen.items() if 0 <= d <= top_deg
+                     and (c.capacity_Nm is None or c.capacity_Nm >= need))
+    lo = carries[-1] if carries else 0.0
+    hi = min(d for d, c in seen.items() if lo < d <= top_deg and c.capacity_Nm is not None
+             and c.capacity_Nm < need)
+    return lo, hi
 
 
 def allowable_loads(spec, torque_Nm: float, *, model: str | None = None,
                     angles: int = DEFAULT_TURN_ANGLES,
-                    tolerance_deg: float = ANGLE_TOLERANCE_DEG) -> AllowableLoads:
+                    tolerance_deg: float = ANGLE_TOLERANCE_DEG,
+                    known: Sequence[Capacity] = ()) -> AllowableLoads:
     """The allowable misalignment at ``torque_Nm`` and the machine loads over a turn there
-    (``angles`` rotations; module docstring); ``model`` default
-    :data:`~.stiffness.DATASHEET_MODEL`."""
-    model = DATASHEET_MODEL if model is None else model
+    (``angles`` rotations; module docstring); ``model`` default the spec's; ``known`` as
+    :func:`capacity_limit_deg`."""
+    model = resolve_model(spec, model)
     top = MISALIGNMENT_RANGE_DEG[1]
     critical = critical_misalignment_deg(spec)
     limit, governing = capacity_limit_deg(spec, torque_Nm, critical or top, model=model,
-                                          tolerance_deg=tolerance_deg)
+                                          tolerance_deg=tolerance_deg, known=known)
     if limit is not None:
         angle, criterion = limit, "capacity"
     elif critical is not None:
@@ -128,4 +175,5 @@ def allowable_loads(spec, torque_Nm: float, *, model: str | None = None,
                           ml["axial_force_N"], ml["radial_force_N"], slip)
 
 
-__all__ = ["AllowableLoads", "allowable_loads", "capacity_limit_deg"]
+__all__ = ["ANGLE_TOLERANCE_DEG", "CAPACITY_MATCH", "AllowableLoads", "allowable_loads",
+           "capacity_limit_deg", "known_capacities"]

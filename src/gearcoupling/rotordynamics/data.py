@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -19,20 +19,27 @@ from typing import Any
 from ..clearance import sweep
 from ..errors import ArgumentError
 from ..io import write_csv_rows, write_json
-from ..loading import capacity, resolve_torque_Nm, springs_name, tooth_load_error, windup_error
+from ..loading import (
+    Capacity,
+    capacity,
+    resolve_model,
+    resolve_torque_Nm,
+    springs_name,
+    tooth_load_error,
+    windup_error,
+)
 from ..spec import CouplingSpec, as_spec, check_misalignment_deg
 from ..tables import dataframe
-from .allowable import DEFAULT_TURN_ANGLES, AllowableLoads, allowable_loads
+from .allowable import DEFAULT_TURN_ANGLES, AllowableLoads, allowable_loads, known_capacities
 from .mass import MassProperties, mass_properties
 from .ross import coupling_element
 from .stiffness import (
-    DATASHEET_MODEL,
     DEFAULT_RELATIVE_STEP,
-    DEFAULT_ROTATIONS,
     DISPLACEMENT_UNITS,
     DOFS,
     FORCE_UNITS,
     StiffnessMatrix,
+    default_rotations,
     pitch_rotations,
     stiffness_from_sweep,
 )
@@ -249,10 +256,10 @@ def check_inputs(spec: CouplingSpec, torque_Nm: float | None) -> float:
 
 def coupling_data(spec: CouplingSpec, misalignment_deg: float | None = None,
                   torque_Nm: float | None = None, *, model: str | None = None,
-                  rotations: int = DEFAULT_ROTATIONS,
+                  rotations: int | None = None,
                   relative_step: float = DEFAULT_RELATIVE_STEP,
                   turn_angles: int = DEFAULT_TURN_ANGLES, curve_points: int = DEFAULT_POINTS,
-                  tolerance_mm: float | None = None,
+                  tolerance_mm: float | None = None, known: Sequence[Capacity] = (),
                   progress: Callable[[int, int], Any] | None = None) -> CouplingData:
     """The API 671 data of a coupling at an operating point (module docstring).
 
@@ -264,9 +271,10 @@ def coupling_data(spec: CouplingSpec, misalignment_deg: float | None = None,
     torque_Nm : float, optional
         Signed, not zero; default the spec's ``[load]`` torque.
     model : str, optional
-        Load model; default :data:`DATASHEET_MODEL` (``"compliance"``), whatever the spec's.
-    rotations : int
-        Rotations over one tooth pitch the stiffness is averaged over (accuracy knob).
+        Load model; default the spec's ``[load] model``, the validated default.
+    rotations : int, optional
+        Rotations over one tooth pitch the stiffness is averaged over (accuracy knob);
+        default :func:`~.stiffness.default_rotations`.
     relative_step : float
         Difference step, a share of the largest tooth deflection (accuracy knob).
     turn_angles : int
@@ -275,6 +283,10 @@ def coupling_data(spec: CouplingSpec, misalignment_deg: float | None = None,
         Torques on the wind-up curve.
     tolerance_mm : float, optional
         Chordal tolerance of the part meshes (default module / 200; accuracy knob).
+    known : sequence of Capacity
+        Capacities of this spec and model (ccw flank) already computed, such as the
+        report's capacity curve: the capacity at the misalignment and the points of the
+        allowable misalignment's search are taken from them where they have the angle.
     progress : callable, optional
         ``progress(done, 4)`` after the masses, the matrix, the torsion and the
         allowable misalignment.
@@ -291,7 +303,8 @@ def coupling_data(spec: CouplingSpec, misalignment_deg: float | None = None,
     mis = (spec.design_misalignment_deg if misalignment_deg is None else
            check_misalignment_deg(misalignment_deg, "misalignment_deg", ArgumentError))
     T = check_inputs(spec, torque_Nm)
-    model = DATASHEET_MODEL if model is None else model
+    model = resolve_model(spec, model)
+    given = known_capacities(spec, model, known)
 
     def step(done: int) -> None:
         if progress is not None:
@@ -299,19 +312,21 @@ def coupling_data(spec: CouplingSpec, misalignment_deg: float | None = None,
 
     mass = mass_properties(spec, tolerance_mm)
     step(1)
-    sw = sweep(spec, mis, pitch_rotations(spec, rotations))
+    sw = sweep(spec, mis, pitch_rotations(spec, default_rotations(model) if rotations is None
+                                          else rotations))
     K = stiffness_from_sweep(sw, T, model=model, relative_step=relative_step)
     step(2)
-    cap = capacity(spec, mis, model=model)
+    cap = given.get(float(mis)) or capacity(spec, mis, model=model)
     torsion = torsional_stiffness(sw, T, float(K.matrix[5, 5]), cap.capacity_Nm, model=model,
                                   points=curve_points)
     step(3)
-    allowed = allowable_loads(spec, T, model=model, angles=turn_angles)
+    allowed = allowable_loads(spec, T, model=model, angles=turn_angles,
+                              known=[*given.values(), cap])
     step(4)
     used = K.model
     return CouplingData(spec, float(mis), T, used, springs_name(spec, used), mass, torsion, K,
                         cap.capacity_Nm, allowed, time.perf_counter() - t0)
 
 
-__all__ = ["DATASHEET_COLUMNS", "DATASHEET_MODEL", "FILES", "MAX_TORQUE_NM", "NOT_MODELLED",
+__all__ = ["DATASHEET_COLUMNS", "FILES", "MAX_TORQUE_NM", "NOT_MODELLED",
            "CouplingData", "check_inputs", "coupling_data"]

@@ -18,10 +18,9 @@ from numpy.typing import NDArray
 
 from ..clearance import SweepResult
 from ..errors import ArgumentError
-from ..loading import body_windup_rad, load_from_sweep
-from .stiffness import DATASHEET_MODEL
+from ..loading import body_windup_rad, load_from_sweep, resolve_model
 
-DEFAULT_POINTS = 21
+DEFAULT_POINTS = 11
 
 
 @dataclass(frozen=True, eq=False)
@@ -87,13 +86,13 @@ def torsional_stiffness(sw: SweepResult, torque_Nm: float, tangent_Nm_per_rad: f
     """The wind-up curve of the operating sweep ``sw`` (rotations over one pitch) and the
     secant stiffness at ``torque_Nm``; ``tangent_Nm_per_rad`` from the stiffness matrix.
     ``points``: torques on the curve (the accuracy knob of its drawing only); ``model``
-    default :data:`~.stiffness.DATASHEET_MODEL`."""
+    default the spec's."""
     if isinstance(points, bool) or not isinstance(points, int) or not 2 <= points <= 1000:
         raise ArgumentError("points", points, "a whole number of torques from 2 to 1000")
     T = float(torque_Nm)
     top = 2.0 * abs(T) if capacity_Nm is None else max(float(capacity_Nm), abs(T))
     grid = np.unique(np.append(np.linspace(0.0, top, points), abs(T))) * math.copysign(1.0, T)
-    model = DATASHEET_MODEL if model is None else model
+    model = resolve_model(sw.spec, model)
     mesh = np.array([mesh_windup_from_touch(sw, t, model) for t in grid])
     body = np.array([body_windup_rad(sw.spec, t)["body_rad"] for t in grid])
     at = int(np.argmin(np.abs(grid - T)))
