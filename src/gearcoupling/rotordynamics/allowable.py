@@ -24,11 +24,11 @@ from numpy.typing import NDArray
 from ..clearance import critical_misalignment_deg
 from ..errors import ArgumentError
 from ..loading import Capacity, capacity, load, machine_loads, resolve_model
+from ..numeric import TINY
 from ..spec import MISALIGNMENT_RANGE_DEG
 
 DEFAULT_TURN_ANGLES = 360
 ANGLE_TOLERANCE_DEG = 0.01
-CAPACITY_MATCH = 1e-3  # the capacity search's own relative tolerance
 
 
 @dataclass(frozen=True, eq=False)
@@ -81,14 +81,15 @@ def capacity_limit_deg(spec, torque_Nm: float, top_deg: float, *, model: str | N
                        tolerance_deg: float = ANGLE_TOLERANCE_DEG,
                        known: Sequence[Capacity] = ()) -> tuple[float | None, str | None]:
     """The largest misalignment up to ``top_deg`` whose capacity carries ``|torque_Nm|``
-    (``None`` when ``top_deg`` still does) and the criterion that governs just beyond it.
+    (``None`` when ``top_deg`` still does), within ``tolerance_deg``, and the criterion
+    that governs just beyond it.
 
-    The capacity falls with the angle; the search is regula falsi (Illinois) on it, in a
-    bracket that shrinks by at least ``tolerance_deg`` / 2 a step. It stops when the
-    bracket is ``tolerance_deg`` wide or the capacity at its low end is within
-    :data:`CAPACITY_MATCH` above the torque. ``known``: capacities of this spec and model
-    (ccw flank) already computed, e.g. the report's capacity curve, used as points of the
-    search instead of solving them again.
+    The capacity falls with the angle, about exponentially: the search is regula falsi
+    (Illinois) on ``ln(capacity / torque)`` in a bracket that shrinks by at least
+    ``tolerance_deg`` / 2 a step, and stops when the bracket or the secant's step from its
+    low end is within the tolerance. ``known``: capacities of this spec and model (ccw
+    flank) already computed, e.g. the report's capacity curve; they narrow the first
+    bracket and are not solved again.
     """
     need = abs(torque_Nm)
     model = resolve_model(spec, model)
@@ -98,7 +99,8 @@ def capacity_limit_deg(spec, torque_Nm: float, top_deg: float, *, model: str | N
         if deg not in seen:
             seen[deg] = capacity(spec, deg, model=model)
         c = seen[deg]
-        return (math.inf if c.capacity_Nm is None else c.capacity_Nm - need), c.governing
+        cap = math.inf if c.capacity_Nm is None else max(c.capacity_Nm, TINY)
+        return math.log(cap / need), c.governing
 
     f_hi, governing = margin(top_deg)
     if f_hi >= 0:
@@ -108,18 +110,19 @@ def capacity_limit_deg(spec, torque_Nm: float, top_deg: float, *, model: str | N
     if f_lo < 0:
         return 0.0, g
     f_hi, governing = margin(hi)
-    kept = 0  # +1: the low end was moved last, -1: the high end
-    while hi - lo > tolerance_deg and margin(lo)[0] > CAPACITY_MATCH * need:
-        x = 0.5 * (lo + hi) if math.isinf(f_lo) else lo + (hi - lo) * f_lo / (f_lo - f_hi)
+    w_lo, w_hi, kept = f_lo, f_hi, 0  # Illinois: the end kept twice counts half
+    while hi - lo > tolerance_deg and not (
+            math.isfinite(f_lo) and (hi - lo) * f_lo / (f_lo - f_hi) <= 0.5 * tolerance_deg):
+        x = 0.5 * (lo + hi) if math.isinf(w_lo) else lo + (hi - lo) * w_lo / (w_lo - w_hi)
         x = min(max(x, lo + 0.5 * tolerance_deg), hi - 0.5 * tolerance_deg)
         f, g = margin(x)
         if f >= 0:
-            lo, f_lo = x, f
-            f_hi = f_hi / 2 if kept == 1 else f_hi
+            lo, f_lo, w_lo = x, f, f
+            w_hi = w_hi / 2 if kept == 1 else w_hi
             kept = 1
         else:
-            hi, f_hi, governing = x, f, g
-            f_lo = f_lo / 2 if kept == -1 else f_lo
+            hi, f_hi, w_hi, governing = x, f, f, g
+            w_lo = w_lo / 2 if kept == -1 else w_lo
             kept = -1
     return lo, governing
 
@@ -175,5 +178,5 @@ def allowable_loads(spec, torque_Nm: float, *, model: str | None = None,
                           ml["axial_force_N"], ml["radial_force_N"], slip)
 
 
-__all__ = ["ANGLE_TOLERANCE_DEG", "CAPACITY_MATCH", "AllowableLoads", "allowable_loads",
+__all__ = ["ANGLE_TOLERANCE_DEG", "AllowableLoads", "allowable_loads",
            "capacity_limit_deg", "known_capacities"]
