@@ -490,3 +490,17 @@ def test_ross_rotor_first_torsional_frequency(data, tmp_path):
                      if s.mode_type == "Torsional" and w > 1.0]
         k = 1.0 / (2.0 / k_shaft + 1.0 / coupling.kr_z)
         assert min(torsional) == pytest.approx(math.sqrt(k * 2.0 / J), rel=0.01)
+
+
+def test_known_capacities_must_be_of_the_spec_and_model(renzo):
+    """The allowable search reuses capacities only of its own spec, model and flank: one of
+    another model would move the answer silently, so it is refused by name."""
+    from gearcoupling.errors import ArgumentError
+    from gearcoupling.rotordynamics.allowable import capacity_limit_deg
+
+    other = gc.capacity(renzo, 1.0, model="compliance")
+    with pytest.raises(ArgumentError, match=r"known = .*surface model"):
+        capacity_limit_deg(renzo, 2000.0, 2.0, model="surface", known=[other])
+    cw = gc.capacity(renzo, 1.0, model="compliance", loaded_flank="cw")
+    with pytest.raises(ArgumentError, match="ccw flank"):
+        capacity_limit_deg(renzo, 2000.0, 2.0, model="compliance", known=[cw])
