@@ -43,10 +43,11 @@ STEPS: dict[str, str] = {
     "check": "interference check at the design angle",
     "viewer": "static viewer HTML",
 }
-#: CPU seconds of each step on renzo-1967 (this pipeline, a quiet machine, the modules of
-#: :data:`NEEDS` loaded before the fork): what the two workers balance (:func:`chains`)
-COST = {"spec": 0.0, "sections": 0.6, "parts": 0.6, "step": 1.6, "sweep": 1.9, "load": 7.0,
-        "check": 2.0, "viewer": 0.6}
+#: CPU seconds of each step on renzo-1967 (this pipeline, the modules of :data:`NEEDS`
+#: loaded before the fork; a loaded machine: their ratios count): what the two workers
+#: balance (:func:`chains`)
+COST = {"spec": 0.0, "sections": 0.45, "parts": 0.85, "step": 1.75, "sweep": 1.7,
+        "load": 6.15, "check": 2.0, "viewer": 0.6}
 #: steps that run in one process, in this order (``step`` adds its files to ``parts.json``)
 TOGETHER = (("parts", "step"),)
 #: what a step loads that another step may load too: with two workers, what both need is
@@ -164,7 +165,7 @@ def _preload(spec: CouplingSpec, split: list[list[str]]) -> None:
     both = set.intersection(*({n for k in chain for n in NEEDS[k]} for chain in split))
     if "figures" in both:
         import_matplotlib()
-        import matplotlib.backends.backend_agg  # noqa: F401
+        import matplotlib.backends.backend_agg
         import matplotlib.figure  # noqa: F401
     if "meshes" in both:
         import trimesh  # noqa: F401
@@ -226,8 +227,9 @@ def run(spec: CouplingSpec, out: str | os.PathLike, *, only: Iterable[str] | Non
     workers : int, optional
         1 runs every step in this process; 2 (the default where the machine has two cores
         and this process runs no other thread) runs each of the two :func:`chains` of the
-        steps in a forked process while this one waits. Interrupted (``KeyboardInterrupt`` or any other
-        exception), the workers are killed first: no file is written after it.
+        steps in a forked process while this one waits. Interrupted
+        (``KeyboardInterrupt`` or any other exception), the workers are killed first: no
+        file is written after it.
     progress : callable, optional
         ``progress(done, total)`` after each step.
 
