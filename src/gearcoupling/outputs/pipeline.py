@@ -2,9 +2,9 @@
 
 The steps fall in two chains of near equal cost (:func:`chains`) that share nothing but the
 folder; with two workers each chain runs in a forked process, so a two-core machine does
-both at once. The stages the steps
-compute (:mod:`~gearcoupling.outputs.stages`) are kept in this process, the workers'
-included, for a report made after the run (``gc.report``) to reuse.
+both at once. The stages the steps compute (:mod:`~gearcoupling.outputs.stages`) are kept
+in this process, the workers' included, for a report made after the run (``gc.report``)
+to reuse.
 """
 
 from __future__ import annotations
@@ -53,7 +53,7 @@ TOGETHER = (("parts", "step"),)
 #: what a step loads that another step may load too: with two workers, what both need is
 #: loaded once before the fork, not once in each (matplotlib 0.3 s, trimesh 0.2 s, the
 #: compiled sweep kernels 0.4 s of CPU)
-NEEDS = {"spec": (), "sections": ("figures",), "parts": ("meshes",), "step": ("meshes",),
+NEEDS = {"spec": (), "sections": ("figures",), "parts": ("meshes",), "step": (),
          "sweep": ("figures", "kernels"), "load": ("figures", "kernels"),
          "check": ("figures", "meshes", "kernels"), "viewer": ("figures", "meshes", "kernels")}
 CHECK_ANGLES = 72
