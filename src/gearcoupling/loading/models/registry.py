@@ -145,7 +145,7 @@ COSTS = ("fast", "slow")  # the cost classes of :attr:`LoadModel.cost`
 # rotations on the load criteria's 24 x 16 cells (LOAD_GRID), at the 7 misalignments of the
 # studies (1/7 to 7/7 of the design angle) and T/2, T, 2T: the largest tooth load within
 # 0.45 % (renzo-1967) and 0.34 % (industrial-m2), the mean tilting moment within 0.33 % and
-# 0.44 %, at a fifth of the time (2.8 s against 12.8 s of CPU, renzo-1967); 4 rotations on
+# 0.44 %, at a fifth of the time (2.9 s against 13.1 s of CPU, renzo-1967); 4 rotations on
 # 16 x 10 cells were within 0.31 % and 0.44 % at 4.4 s (benchmarks/bench_load_study.py)
 SURFACE_STUDY = (3, (12, 8))
 
