@@ -9,6 +9,8 @@ import sys
 import pytest
 
 import gearcoupling as gc
+from gearcoupling.outputs import STEPS as ALL_STEPS
+from gearcoupling.outputs.pipeline import COST, chains
 
 STEPS = ["spec", "sweep", "viewer"]  # one chain each way, quick
 
@@ -28,6 +30,32 @@ def test_two_workers_write_the_same_files_as_one(tmp_path):
     assert all(s > 0 for s in two["step_seconds"].values())
     for name in ("spec.json", "sweep.csv", "sweep_summary.json"):
         assert (tmp_path / "one" / name).read_bytes() == (tmp_path / "two" / name).read_bytes()
+
+
+def _longer(split: list[list[str]]) -> float:
+    return max(sum(COST[k] for k in chain) for chain in split)
+
+
+@pytest.mark.parametrize("keys", [list(ALL_STEPS), ["spec", "viewer"],
+                                  ["sections", "parts", "step", "load"],
+                                  ["parts", "step", "check"], ["load"], []])
+def test_the_chains_hold_every_step_once_and_no_move_shortens_the_longer(keys):
+    """Each step in one chain, in the order of STEPS, parts and step together; moving any
+    step (parts and step as one) to the other chain makes the longer chain no cheaper;
+    two steps or more make two chains."""
+    split = chains(keys)
+    assert sorted(k for chain in split for k in chain) == sorted(keys)
+    assert all(chain == [k for k in ALL_STEPS if k in chain] for chain in split)
+    assert len(split) == min(len(keys), 2) or {"parts", "step"} == set(keys)
+    if {"parts", "step"} <= set(keys):
+        assert any({"parts", "step"} <= set(chain) for chain in split)
+    if len(split) == 2:
+        for i, chain in enumerate(split):
+            for k in chain:
+                moved = {k, "step"} if k == "parts" else {"parts", k} if k == "step" else {k}
+                moved &= set(keys)
+                other = [[x for x in split[i] if x not in moved], split[1 - i] + sorted(moved)]
+                assert _longer(other) >= _longer(split) - 1e-12
 
 
 def test_steps_are_checked_before_anything_is_written(tmp_path):

@@ -1,24 +1,27 @@
 """``gc.run``: every file the project can make for a spec, into one folder.
 
-The steps fall in two chains that share nothing but the folder; with two workers each chain
-runs in a forked process, so a two-core machine does both at once. The stages the steps
-compute (:mod:`~gearcoupling.outputs.stages`) are kept in this process, the workers'
-included, for a report made after the run (``gc.report``) to reuse.
+The steps fall in two chains of near equal cost (:func:`chains`) that share nothing but the
+folder; with two workers each chain runs in a forked process, so a two-core machine does
+both at once. The stages the steps compute (:mod:`~gearcoupling.outputs.stages`) are kept
+in this process, the workers' included, for a report made after the run (``gc.report``)
+to reuse.
 """
 
 from __future__ import annotations
 
+import itertools
 import os
 import time
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..errors import ArgumentError, BackendError
+from ..clearance import sweep
+from ..errors import ArgumentError, BackendError, GearCouplingError
 from ..interference import check_interference
 from ..io import output_folder, remove_stale_temporaries, write_json
-from ..plots import plot_sections
+from ..plots import import_matplotlib, plot_sections
 from ..spec import CouplingSpec, as_spec
 from ..viewer import write_html
 from .forked import can_fork, messages, start_workers, stop_workers, worker_signals
@@ -40,10 +43,19 @@ STEPS: dict[str, str] = {
     "check": "interference check at the design angle",
     "viewer": "static viewer HTML",
 }
-# halves of the work as near equal as whole steps allow (renzo-1967, CPU seconds on a
-# loaded machine: load 9.5 (its studies 5.1), viewer 0.7; spec 0, sections 0.7, sweep 2.7,
-# parts 0.6, step 1.8, check 2.0)
-CHAINS = (("load", "viewer"), ("spec", "sections", "sweep", "parts", "step", "check"))
+#: CPU seconds of each step on renzo-1967 (this pipeline, the modules of :data:`NEEDS`
+#: loaded before the fork; a loaded machine: their ratios count): what the two workers
+#: balance (:func:`chains`)
+COST = {"spec": 0.0, "sections": 0.45, "parts": 0.85, "step": 1.75, "sweep": 1.7,
+        "load": 6.15, "check": 2.0, "viewer": 0.6}
+#: steps that run in one process, in this order (``step`` adds its files to ``parts.json``)
+TOGETHER = (("parts", "step"),)
+#: what a step loads that another step may load too: with two workers, what both need is
+#: loaded once before the fork, not once in each (matplotlib 0.3 s, trimesh 0.2 s, the
+#: compiled sweep kernels 0.4 s of CPU)
+NEEDS = {"spec": (), "sections": ("figures",), "parts": ("meshes",), "step": (),
+         "sweep": ("figures", "kernels"), "load": ("figures", "kernels"),
+         "check": ("figures", "meshes", "kernels"), "viewer": ("figures", "meshes", "kernels")}
 CHECK_ANGLES = 72
 RUN_ANGLES = 360
 
@@ -127,6 +139,43 @@ def _names(value: Any, name: str) -> set[str]:
     return set(names)
 
 
+def chains(keys: Sequence[str]) -> list[list[str]]:
+    """The steps ``keys`` split in two chains of near equal :data:`COST` (of the splits
+    that keep :data:`TOGETHER` steps in one chain, the one with the cheapest longer chain,
+    two chains where that ties), each chain in the order of :data:`STEPS`."""
+    groups = [[k for k in g if k in keys] for g in TOGETHER]
+    groups = [g for g in groups if g] + [[k] for k in keys
+                                         if not any(k in g for g in TOGETHER)]
+    if not groups:
+        return []
+    scored = []
+    for sides in itertools.product((0, 1), repeat=len(groups) - 1):
+        halves: list[list[str]] = [[], []]
+        for side, group in zip((0, *sides), groups, strict=True):
+            halves[side] += group
+        scored.append(((max(sum(COST[k] for k in h) for h in halves),
+                        sum(not h for h in halves)), halves))
+    best = min(scored, key=lambda item: item[0])[1]
+    return [[k for k in STEPS if k in h] for h in best if h]
+
+
+def _preload(spec: CouplingSpec, split: list[list[str]]) -> None:
+    """Load here, before the fork, what steps of every chain need (:data:`NEEDS`): once,
+    not once in each worker."""
+    both = set.intersection(*({n for k in chain for n in NEEDS[k]} for chain in split))
+    if "figures" in both:
+        import_matplotlib()
+        import matplotlib.backends.backend_agg
+        import matplotlib.figure  # noqa: F401
+    if "meshes" in both:
+        import trimesh  # noqa: F401
+    if "kernels" in both:  # the compiled sweep kernels and the spec's flank table
+        try:
+            sweep(spec, spec.design_misalignment_deg, [0.0])
+        except GearCouplingError:  # the steps report it
+            pass
+
+
 def _chain_worker(keys: list[str], spec: CouplingSpec, out: Path, conn) -> None:
     """A forked worker: run the steps ``keys`` in order, sending each ``_timed`` result (or
     the error that stopped the chain) to the parent. It dies with its parent and leaves
@@ -144,15 +193,16 @@ def _chain_worker(keys: list[str], spec: CouplingSpec, out: Path, conn) -> None:
         conn.close()
 
 
-def _run_forked(chains: list[list[str]], spec: CouplingSpec, out: Path,
+def _run_forked(split: list[list[str]], spec: CouplingSpec, out: Path,
                 finished: Callable[[tuple[str, list[Path], float, str | None]], None]) -> None:
     """Run each chain in its own forked process, this one only waiting (so it answers a
     signal at once). On any exception here (an error of a step, ``KeyboardInterrupt``,
     the CLI's signal) the workers are killed and reaped and their temporaries removed
     before it propagates: no file is written after it."""
+    _preload(spec, split)
     workers: list = []
     try:
-        start_workers(_chain_worker, [(chain, spec, out) for chain in chains], workers)
+        start_workers(_chain_worker, [(chain, spec, out) for chain in split], workers)
         for _, item, stages in messages(workers):
             remember(stages)
             finished(item)
@@ -176,9 +226,10 @@ def run(spec: CouplingSpec, out: str | os.PathLike, *, only: Iterable[str] | Non
         Steps of :data:`STEPS` to run, or to leave out (default: all).
     workers : int, optional
         1 runs every step in this process; 2 (the default where the machine has two cores
-        and this process runs no other thread) runs each of :data:`CHAINS` in a forked
-        process while this one waits. Interrupted (``KeyboardInterrupt`` or any other
-        exception), the workers are killed first: no file is written after it.
+        and this process runs no other thread) runs each of the two :func:`chains` of the
+        steps in a forked process while this one waits. Interrupted
+        (``KeyboardInterrupt`` or any other exception), the workers are killed first: no
+        file is written after it.
     progress : callable, optional
         ``progress(done, total)`` after each step.
 
@@ -202,8 +253,8 @@ def run(spec: CouplingSpec, out: str | os.PathLike, *, only: Iterable[str] | Non
     if workers not in (1, 2) or isinstance(workers, bool):
         raise ArgumentError("workers", workers, "1 or 2")
     folder = output_folder(out, "out")
-    chains = [[k for k in chain if k in keys] for chain in CHAINS]
-    parallel = workers == 2 and all(chains) and can_fork()
+    split = chains(keys)
+    parallel = workers == 2 and len(split) == 2 and can_fork()
     done: dict[str, tuple[str, list[Path], float, str | None]] = {}
 
     def finished(item: tuple[str, list[Path], float, str | None]) -> None:
@@ -213,7 +264,7 @@ def run(spec: CouplingSpec, out: str | os.PathLike, *, only: Iterable[str] | Non
 
     t0 = time.perf_counter()
     if parallel:
-        _run_forked(chains, spec, folder, finished)
+        _run_forked(split, spec, folder, finished)
     else:
         for k in keys:
             finished(_timed(k, spec, folder))

@@ -141,11 +141,13 @@ CapacitySearch = Callable[[LoadProblem, dict[str, NDArray]],
                           tuple[dict[str, float], Sequence[PoseSearch]]]
 
 COSTS = ("fast", "slow")  # the cost classes of :attr:`LoadModel.cost`
-# the surface model's load studies: 4 rotations per tooth pitch on 16 x 10 cells; on
-# renzo-1967 at 1/7, 1/2 and 1°, T/2 and 2T, the largest tooth load within 0.23 % and the
-# mean tilting moment within 0.33 % of 8 rotations on the load criteria's 24 x 16 cells
-# (LOAD_GRID), at a third of the time (0.17 s against 0.55 s a torque)
-SURFACE_STUDY = (4, (16, 10))
+# the surface model's load studies: 3 rotations per tooth pitch on 12 x 8 cells; against 8
+# rotations on the load criteria's 24 x 16 cells (LOAD_GRID), at the 7 misalignments of the
+# studies (1/7 to 7/7 of the design angle) and T/2, T, 2T: the largest tooth load within
+# 0.45 % (renzo-1967) and 0.34 % (industrial-m2), the mean tilting moment within 0.33 % and
+# 0.44 %, at a fifth of the time (2.9 s against 13.1 s of CPU, renzo-1967); 4 rotations on
+# 16 x 10 cells were within 0.31 % and 0.44 % at 4.4 s (benchmarks/bench_load_study.py)
+SURFACE_STUDY = (3, (12, 8))
 
 
 @dataclass(frozen=True)
