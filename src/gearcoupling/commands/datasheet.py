@@ -42,7 +42,7 @@ def register(sub) -> None:
                         "model unless the spec says otherwise)")
     p.add_argument("--rotations", type=count(1, 64), default=None, metavar="N",
                    help="rotations over one tooth pitch the stiffness is averaged over, 1-64 "
-                        "(default: the model's load-study rotations, 4 for surface, else 8)")
+                        "(default: the model's load-study rotations, 3 for surface, else 8)")
     p.add_argument("--step", type=number_in(1e-4, 0.2, "of the tooth deflection"),
                    default=0.02, metavar="S",
                    help="difference step as a share of the largest tooth deflection, "
