@@ -87,6 +87,7 @@ from ..kernels.halfspace import (
     RigidSprings,
     composite_modulus,
     half_space,
+    influence,
     load_split,
     solve_contact,
 )
@@ -269,6 +270,26 @@ def patch_measures(gf: GapField, p: NDArray[np.float64], interior_mm: float
         "edge_contact": edge & loaded,
     }
     return out
+
+
+def face_end_closure(gf: GapField, p: NDArray[np.float64], gap_mm: NDArray[np.float64],
+                     e_star_MPa: float) -> float:
+    """How far the patches are from a face end, continuous in the load: the largest over
+    the cells next to a face cut (in the windows) of ``1 + (p c - g) / h``, with ``g`` the
+    loaded gap, ``p`` the pressure, ``c`` a cell's own compliance (mm/MPa) and ``h`` the
+    cell's unloaded gap above its tooth's smallest (mm). Below 1: every such cell open (1 -
+    the share of its gap the load has closed); 1: one closes, where ``edge_contact`` turns
+    on; above 1: pressed. ``nan`` where no window reaches a face end (every patch is then
+    inside its window, off the face ends)."""
+    fc = np.pad(gf.face_cut, ((0, 0), (1, 1), (0, 0)), constant_values=False)
+    edge = gf.mask & (fc[:, :-2] | fc[:, 2:])
+    if not np.any(edge):
+        return math.nan
+    g0 = gf.base_radius * gf.gap_rad
+    h = g0 - np.min(np.where(gf.mask, g0, np.inf), axis=(1, 2))[:, None, None]
+    c = float(influence(0.0, 0.0, gf.dz, gf.ds, e_star_MPa))
+    rho = 1.0 + (p[edge] * c - gap_mm[edge]) / np.maximum(h[edge], TINY)
+    return float(np.max(rho))
 
 
 def _window_hit(gf: GapField, p) -> NDArray[np.bool_]:
@@ -567,7 +588,9 @@ class SurfaceSolver:
                 v[alike] = v[alike[0]]
         nf = gf.z_mm.shape[1]
         extra = {"windup_rad": windup, "iterations": sol.iterations,
-                 "cell_mm": (gf.dz, gf.ds), "window_mm": gf.dz * nf, "level": seed.level}
+                 "cell_mm": (gf.dz, gf.ds), "window_mm": gf.dz * nf, "level": seed.level,
+                 "face_end_closure": face_end_closure(gf, sol.pressure_MPa, sol.gap_mm,
+                                                      self.e_star)}
         if keep:
             extra.update({"field": gf, "pressure_MPa": sol.pressure_MPa, "teeth": teeth})
         return out, extra
