@@ -62,7 +62,7 @@ from __future__ import annotations
 
 import math
 import weakref
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -100,6 +100,8 @@ COARSE_TOLERANCE = 1e-5
 WINDOW_FACTOR = 1.75  # windows: the shortest level at least this x the longest patch
 TEETH_MARGIN = 0.1  # a solve takes the teeth within this share of the lift above the wind-up
 MAX_ROUNDS = 40  # solves of one pose while its windows and teeth settle
+FIELD_ROWS = 4096  # per-tooth gap field rows a solver keeps (SurfaceSolver._field)
+_ROW_FIELDS = ("z_mm", "gap_rad", "mask", "face_cut", "hub_z_mm", "hub_r_mm")
 
 #: the last solved pose of each sweep and flank: a later load on the sweep (another torque)
 #: starts from it; held as long as the sweep is
@@ -391,6 +393,8 @@ class SurfaceSolver:
         self.tooth_compliance = tooth_compliance
         self.e_star = contact_modulus(spec)
         self.tolerance = tolerance
+        self._rows: dict[tuple, tuple] = {}  # gap field rows (_field)
+        self._depth: dict[int, GapField] = {}  # a field per depth count: its depth rows
 
     def plan(self):
         """The rotations to solve, in solving order, and how every rotation maps onto them:
@@ -422,8 +426,25 @@ class SurfaceSolver:
         return sol, z, r
 
     def _field(self, j: int, teeth, z_mm, n_depth: int) -> GapField:
-        return gap_field(self.spec, self.mis, self.theta[teeth, j], self.flank, z_mm, n_depth,
-                         gap_offset_rad=self.offsets[teeth])
+        """The gap field of ``teeth`` at rotation ``j`` on windows ``z_mm``: each tooth's
+        rows computed once per window (a search solves one rotation at several torques,
+        mostly on the same windows; :data:`FIELD_ROWS` kept)."""
+        z = np.asarray(z_mm, dtype=float)
+        keys = [(j, int(k), z[i].tobytes(), n_depth) for i, k in enumerate(teeth)]
+        new = [i for i, key in enumerate(keys) if key not in self._rows]
+        if new:
+            if len(self._rows) + len(new) > FIELD_ROWS:
+                self._rows.clear()
+            sel = np.asarray(new)
+            gf = gap_field(self.spec, self.mis, self.theta[teeth[sel], j], self.flank, z[sel],
+                           n_depth, gap_offset_rad=self.offsets[teeth[sel]])
+            self._depth[n_depth] = gf
+            for r, i in enumerate(new):
+                self._rows[keys[i]] = tuple(getattr(gf, f)[r] for f in _ROW_FIELDS)
+        rows = [self._rows[key] for key in keys]
+        return replace(self._depth[n_depth], dz=float(z[0, 1] - z[0, 0]),
+                       **{f: np.stack([row[k] for row in rows])
+                          for k, f in enumerate(_ROW_FIELDS)})
 
     def _state(self, j, teeth, level, gf, sol, lift_from, centres) -> SolvedPose:
         c, e = _spans(gf, sol.pressure_MPa)
