@@ -491,7 +491,12 @@ class SurfaceSolver:
             cand, load_N = cand[:1], load_N / alike.size
         g_min = float(np.min(gap[cand]))
         seed = start if start is not None else self._coarse(j, cand, load_N)
-        teeth = cand[gap[cand] <= seed.windup_rad + TEETH_MARGIN * max(seed.lift_rad, 0.0)]
+        # the seed's wind-up, or above the smallest gap its lift grown with the load (about
+        # linearly: springs and line contacts), so that a start at a smaller load has no
+        # teeth missing; a tooth that stays unloaded leaves the answer as it is
+        lift = max(seed.lift_rad, 0.0)
+        windup = max(seed.windup_rad, g_min + lift * _load_ratio(seed, load_N))
+        teeth = cand[gap[cand] <= windup + TEETH_MARGIN * lift]
         teeth = np.union1d(teeth, cand[np.argmin(gap[cand])])
         if seed.level is None:  # from the coarse grid: its patches, less a coarse cell
             level = window_level(self.spec, self.mis, WINDOW_FACTOR * max(
@@ -615,6 +620,12 @@ class SurfaceSolver:
         if keep:
             extra.update({"field": gf, "pressure_MPa": sol.pressure_MPa, "teeth": teeth})
         return out, extra
+
+
+def _load_ratio(seed: SolvedPose, load_N: float) -> float:
+    """``load_N`` over the load of ``seed`` (its pressure summed)."""
+    carried = float(np.sum(seed.pressure_MPa)) * seed.field.dz * seed.field.ds
+    return load_N / carried if carried > 0 else 1.0
 
 
 def _smallest(gf: GapField) -> NDArray[np.float64]:
