@@ -151,9 +151,11 @@ class _SurfaceLimits:
         :func:`.surface.face_end_closure`, which passes 1 where a patch reaches one)."""
         out = self.out(j, T_Nmm)
         if name == "face_end":
-            # nan: no window reaches a face end, so every patch lies inside its window
+            # nan: no window reaches a face end, so every patch lies inside its window;
+            # bounded (a face-end cell at its tooth's smallest gap has a vanishing scale):
+            # the secant's steps stay within ln 4
             closure = self.solved[(j, float(f"{T_Nmm:.12g}"))][2]
-            return closure if math.isfinite(closure) else 0.5
+            return min(max(closure, 0.25), 4.0) if math.isfinite(closure) else 0.5
         if name == "bending_stress":
             value = nominal_root_stress_MPa(self.problem.spec, out["normal_force_N"],
                                             out["contact_z_mm"], out["contact_r_mm"])
