@@ -442,9 +442,9 @@ class SurfaceSolver:
             for r, i in enumerate(new):
                 self._rows[keys[i]] = tuple(getattr(gf, f)[r] for f in _ROW_FIELDS)
         rows = [self._rows[key] for key in keys]
-        return replace(self._depth[n_depth], dz=float(z[0, 1] - z[0, 0]),
-                       **{f: np.stack([row[k] for row in rows])
-                          for k, f in enumerate(_ROW_FIELDS)})
+        stacked: dict[str, Any] = {f: np.stack([row[k] for row in rows])
+                                   for k, f in enumerate(_ROW_FIELDS)}
+        return replace(self._depth[n_depth], dz=float(z[0, 1] - z[0, 0]), **stacked)
 
     def _state(self, j, teeth, level, gf, sol, lift_from, centres) -> SolvedPose:
         c, e = _spans(gf, sol.pressure_MPa)
