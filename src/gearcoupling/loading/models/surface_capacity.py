@@ -121,7 +121,7 @@ class _SurfaceLimits:
         return self.solved[key][1]
 
     def out(self, j: int, T_Nmm: float) -> dict:
-        key = (j, float(f"{T_Nmm:.12g}"))  # one pose for a torque that went through N·m
+        key = _key(j, T_Nmm)
         if key not in self.solved:
             load_N = T_Nmm / self.spec.tooth.base_radius
             out, extra, pose = self.solver.solve_pose(j, load_N, self._start(j, T_Nmm))
@@ -154,7 +154,7 @@ class _SurfaceLimits:
             # nan: no window reaches a face end, so every patch lies inside its window;
             # bounded (a face-end cell at its tooth's smallest gap has a vanishing scale):
             # the secant's steps stay within ln 4
-            closure = self.solved[(j, float(f"{T_Nmm:.12g}"))][2]
+            closure = self.solved[_key(j, T_Nmm)][2]
             return min(max(closure, 0.25), 4.0) if math.isfinite(closure) else 0.5
         if name == "bending_stress":
             value = nominal_root_stress_MPa(self.problem.spec, out["normal_force_N"],
@@ -163,6 +163,11 @@ class _SurfaceLimits:
             value = out[{"tooth_load": "tangential_force_N",
                          "contact_stress": "interior_pressure_MPa"}[name]]
         return float(np.max(value)) / self.limit[name]
+
+
+def _key(j: int, T_Nmm: float) -> tuple[int, float]:
+    """A solved pose's key: one pose for a torque that went through N·m."""
+    return j, float(f"{T_Nmm:.12g}")
 
 
 def _first_root(limits: _SurfaceLimits, name: str, guess_Nmm: NDArray,
