@@ -69,11 +69,14 @@ def compare_capacity(specs: Sequence[CouplingSpec], misalignments_deg: ArrayLike
 class StartedComparison:
     """:func:`compare_capacity` started now (its points in forked workers where it forks)
     and collected later by :meth:`result`; :meth:`stop` in a ``finally`` kills the workers
-    still running (the report starts its capacity curve before its first section)."""
+    still running (the report starts its capacity curve before its first section).
+    ``known_range``: :func:`comparison_range` of ``specs`` where the caller has it (it
+    searches each spec's critical misalignment)."""
 
     def __init__(self, specs: Sequence[CouplingSpec],
                  misalignments_deg: ArrayLike | None = None, *, model: str | None = None,
-                 count: int = DEFAULT_COUNT, workers: int | None = None):
+                 count: int = DEFAULT_COUNT, workers: int | None = None,
+                 known_range: tuple[NDArray, dict[str, float | None]] | None = None):
         if isinstance(specs, str | bytes) or not isinstance(specs, Sequence) or not specs:
             raise ArgumentError("specs", specs, "a non-empty list of specs (CouplingSpec, "
                                 "template names or TOML paths)")
@@ -91,7 +94,8 @@ class StartedComparison:
         given = None if misalignments_deg is None else np.unique(angle_list(
             misalignments_deg, "misalignments_deg", lo=lo, hi=hi,
             most=MAXIMA["misalignments"]))
-        auto, self.critical = comparison_range(specs, count)
+        auto, self.critical = (comparison_range(specs, count) if known_range is None
+                               else known_range)
         self.top_deg = float(auto[-1])  # the automatic range's end
         self.mis = auto if given is None else given
         self.specs = specs

@@ -354,10 +354,11 @@ def start_capacity(ctx: Context) -> None:
     """Start the capacity curve's points (forked workers where the machine has two cores):
     they run while the sections before the capacity are built. The caller stops it in a
     ``finally`` (``ctx.capacity_curve.stop()``)."""
-    grid, _ = comparison_range([ctx.spec], ctx.settings.capacity_count)
+    known = comparison_range([ctx.spec], ctx.settings.capacity_count)
     flank = "cw" if (ctx.torque_Nm or 0.0) < 0 else "ccw"
-    mis = _through(grid, ctx.misalignment_deg) if flank == "ccw" else grid
-    ctx.capacity_curve = StartedComparison([ctx.spec], mis, model=ctx.model)
+    mis = _through(known[0], ctx.misalignment_deg) if flank == "ccw" else known[0]
+    ctx.capacity_curve = StartedComparison([ctx.spec], mis, model=ctx.model,
+                                           known_range=known)
 
 
 def capacity_section(ctx: Context) -> Section:
