@@ -234,26 +234,31 @@ def test_surface_capacity_near_binding_is_finite_and_agrees_with_compliance():
     assert surface.capacity_Nm == pytest.approx(compliance.capacity_Nm, rel=0.10)
 
 
+@pytest.mark.parametrize("slope", [0.4, 1.0])
 @pytest.mark.parametrize("step_ln", [-3.0, -0.35, -0.15, 0.0, 0.05, 0.35, 2.0])
-def test_face_end_bisection_brackets_the_step_in_few_solves(step_ln):
-    """The face-end search on a step at ``T = e^step_ln`` from ``T0 = 1``: the answer is a
-    solved torque at or above the step and within FACE_END_RTOL of it (a solved torque
-    below it lies within FACE_END_RTOL), in at most 6 solves for a start within e^±0.35
-    of the step (the compliance model's spread on the templates; factors of 2 took 7) and
-    at most 12 for one e^3 off."""
-    from gearcoupling.loading.models.surface_capacity import FACE_END_RTOL, _bisect_root
+def test_face_end_search_finds_the_closure_root_in_few_solves(step_ln, slope):
+    """The face-end search (a secant, as the criteria's) on a closure that passes 1 at
+    ``T = e^step_ln`` from ``T0 = 1``, with the slopes measured on the templates (0.4 to 1
+    in ln closure against ln T) and no closure known (the search's 0.5) below e^-1 of the
+    root: the answer lies within FACE_END_RTOL of the root, in at most 6 solves for a start
+    within e^±0.35 of it and at most 12 for one e^3 off. (Until the solver reported the
+    closure, the search bisected the step edge_contact on and off; this test asked the
+    same of that bisection, its answer then a solved torque at or above the step.)"""
+    from gearcoupling.loading.models.surface_capacity import (
+        FACE_END_RTOL,
+        SLOPES,
+        _secant_root,
+    )
 
-    solved = {}
+    solved = []
 
     def ratio(T):
-        solved[T] = 2.0 if math.log(T) >= step_ln else 0.5
-        return solved[T]
+        solved.append(T)
+        x = math.log(T) - step_ln
+        return math.exp(slope * x) if x > -1.0 else 0.5
 
-    T = _bisect_root(ratio, 1.0, FACE_END_RTOL)
-    assert T in solved and solved[T] > 1.0
-    assert 0.0 <= math.log(T) - step_ln <= FACE_END_RTOL * (1 + 1e-9)
-    below = max(t for t, r in solved.items() if r < 1.0)
-    assert math.log(T / below) <= FACE_END_RTOL * (1 + 1e-9)
+    T = _secant_root(ratio, 1.0, SLOPES["face_end"], FACE_END_RTOL)
+    assert abs(math.log(T) - step_ln) <= FACE_END_RTOL
     assert len(solved) <= (6 if abs(step_ln) <= 0.35 else 12)
 
 

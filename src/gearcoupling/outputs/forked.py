@@ -135,22 +135,46 @@ def fork_map(func: Callable[[Any], T], items: Sequence[Any], workers: int = 2,
     again here, ``KeyboardInterrupt``, the CLI's signal) the workers are killed and reaped
     before it propagates. ``done(n)`` is called after each result with the count so far.
     """
-    if workers < 2 or len(items) < 2 or not can_fork():
-        out = []
-        for item in items:
-            out.append(func(item))
-            if done is not None:
-                done(len(out))
-        return out
-    results: dict[int, T] = {}
-    procs: list = []
+    started = ForkedMap(func, items, workers)
     try:
-        start_workers(_map_worker, [(func, items, range(k, len(items), workers))
-                                    for k in range(min(workers, len(items)))], procs)
-        for _, i, value in messages(procs):
-            results[i] = value
-            if done is not None:
-                done(len(results))
+        return started.results(done)
     finally:
-        stop_workers(procs)
-    return [results[i] for i in range(len(items))]
+        started.stop()
+
+
+class ForkedMap:
+    """:func:`fork_map` started now and collected later: the workers run while this
+    process does other work. :meth:`results` waits for them (without workers: computes
+    the items then); :meth:`stop` kills and reaps those still running, and must follow in
+    a ``finally`` (a started map leaves no worker behind)."""
+
+    def __init__(self, func: Callable[[Any], T], items: Sequence[Any], workers: int = 2):
+        self.func, self.items = func, items
+        self.procs: list = []
+        self.forked = workers >= 2 and len(items) >= 2 and can_fork()
+        if self.forked:
+            try:
+                start_workers(_map_worker, [(func, items, range(k, len(items), workers))
+                                            for k in range(min(workers, len(items)))],
+                              self.procs)
+            except BaseException:
+                self.stop()
+                raise
+
+    def results(self, done: Callable[[int], None] | None = None) -> list:
+        if not self.forked:
+            out = []
+            for item in self.items:
+                out.append(self.func(item))
+                if done is not None:
+                    done(len(out))
+            return out
+        found: dict[int, Any] = {}
+        for _, i, value in messages(self.procs):
+            found[i] = value
+            if done is not None:
+                done(len(found))
+        return [found[i] for i in range(len(self.items))]
+
+    def stop(self) -> None:
+        stop_workers(self.procs)

@@ -127,13 +127,17 @@ def _build(ctx: sec.Context, pdf: bool, progress: Callable[[int, int], None] | N
     total = len(steps) + 1 + (1 if pdf else 0)
     built: list[Section] = []
     seconds: dict[str, float] = {}
-    for n, (name, step) in enumerate(steps):
-        t = time.perf_counter()
-        section = step(ctx)
-        section.seconds = seconds[name] = time.perf_counter() - t
-        built.append(section)
-        if progress is not None:
-            progress(n + 1, total)
+    sec.start_capacity(ctx)  # its workers run while the sections before it are built
+    try:
+        for n, (name, step) in enumerate(steps):
+            t = time.perf_counter()
+            section = step(ctx)
+            section.seconds = seconds[name] = time.perf_counter() - t
+            built.append(section)
+            if progress is not None:
+                progress(n + 1, total)
+    finally:
+        ctx.capacity_curve.stop()
     verdicts = _verdicts(ctx)
     cls, text = overall(verdicts)
     head = Section("verdict", "Verdict against the spec's limits", [

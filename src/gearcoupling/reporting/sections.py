@@ -49,7 +49,7 @@ from ..outputs import backlash_grid, backlash_range_deg, design_point, q_points,
 from ..plots import crown_profile, new_figure, sections_figure
 from ..spec import CouplingSpec, check_misalignment_deg
 from ..viewer import ViewSettings, write_html
-from .capacity import compare_capacity, comparison_range
+from .capacity import StartedComparison, comparison_range
 from .document import Figure, Note, Row, Section, Table, Viewer, png_bytes
 from .settings import ReportSettings
 
@@ -70,6 +70,7 @@ class Context:
     files: list[Path] = field(default_factory=list)
     found: dict[str, Any] = field(default_factory=dict)
     scan_points: Any = None  # the scan's (n, 3) points in mm, read before any work
+    capacity_curve: Any = None  # the capacity curve, started before the first section
 
     @property
     def data_dir(self) -> Path:
@@ -349,13 +350,25 @@ def q_graph(ctx: Context, sec: Section) -> None:
                                  f"to {top:g}°, 25 rotations per tooth pitch.", name))
 
 
+def start_capacity(ctx: Context) -> None:
+    """Start the capacity curve's points (forked workers where the machine has two cores):
+    they run while the sections before the capacity are built. The caller stops it in a
+    ``finally`` (``ctx.capacity_curve.stop()``)."""
+    known = comparison_range([ctx.spec], ctx.settings.capacity_count)
+    flank = "cw" if (ctx.torque_Nm or 0.0) < 0 else "ccw"
+    mis = _through(known[0], ctx.misalignment_deg) if flank == "ccw" else known[0]
+    ctx.capacity_curve = StartedComparison([ctx.spec], mis, model=ctx.model,
+                                           known_range=known)
+
+
 def capacity_section(ctx: Context) -> Section:
-    spec, s = ctx.spec, ctx.settings
+    spec = ctx.spec
     sec = Section("capacity", "Capacity per criterion against misalignment")
     flank = "cw" if (ctx.torque_Nm or 0.0) < 0 else "ccw"
-    grid, critical = comparison_range([spec], s.capacity_count)
-    mis = _through(grid, ctx.misalignment_deg) if flank == "ccw" else grid
-    comp = compare_capacity([spec], mis, model=ctx.model)
+    if ctx.capacity_curve is None:
+        start_capacity(ctx)
+    comp = ctx.capacity_curve.result()
+    mis, critical = comp.misalignments_deg, comp.critical_deg
     if flank == "ccw":
         at = comp.curves[spec.name][int(np.searchsorted(mis, ctx.misalignment_deg))]
     else:
@@ -376,8 +389,9 @@ def capacity_section(ctx: Context) -> Section:
     sec.blocks.append(ctx.figure(
         "capacity", "Capacity per criterion against misalignment, design point starred",
         plot_capacity(comp.curves, critical_deg=critical),
-        f"{at.model} model, {mis.size} misalignments 0–{grid[-1]:.3g}° (to the critical "
-        f"misalignment){', the design point among them' if flank == 'ccw' else ''}, "
+        f"{at.model} model, {mis.size} misalignments 0–{ctx.capacity_curve.top_deg:.3g}° "
+        f"(to the critical misalignment)"
+        f"{', the design point among them' if flank == 'ccw' else ''}, "
         f"{load_model(at.model).rotations} rotations over one tooth pitch each, loaded flank ccw.",
         "capacity.csv"))
     return sec

@@ -62,7 +62,7 @@ from __future__ import annotations
 
 import math
 import weakref
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -87,6 +87,7 @@ from ..kernels.halfspace import (
     RigidSprings,
     composite_modulus,
     half_space,
+    influence,
     load_split,
     solve_contact,
 )
@@ -99,6 +100,8 @@ COARSE_TOLERANCE = 1e-5
 WINDOW_FACTOR = 1.75  # windows: the shortest level at least this x the longest patch
 TEETH_MARGIN = 0.1  # a solve takes the teeth within this share of the lift above the wind-up
 MAX_ROUNDS = 40  # solves of one pose while its windows and teeth settle
+FIELD_ROWS = 4096  # per-tooth gap field rows a solver keeps (SurfaceSolver._field)
+_ROW_FIELDS = ("z_mm", "gap_rad", "mask", "face_cut", "hub_z_mm", "hub_r_mm")
 
 #: the last solved pose of each sweep and flank: a later load on the sweep (another torque)
 #: starts from it; held as long as the sweep is
@@ -271,6 +274,26 @@ def patch_measures(gf: GapField, p: NDArray[np.float64], interior_mm: float
     return out
 
 
+def face_end_closure(gf: GapField, p: NDArray[np.float64], gap_mm: NDArray[np.float64],
+                     e_star_MPa: float) -> float:
+    """How far the patches are from a face end, continuous in the load: the largest over
+    the cells next to a face cut (in the windows) of ``1 + (p c - g) / h``, with ``g`` the
+    loaded gap, ``p`` the pressure, ``c`` a cell's own compliance (mm/MPa) and ``h`` the
+    cell's unloaded gap above its tooth's smallest (mm). Below 1: every such cell open (1 -
+    the share of its gap the load has closed); 1: one closes, where ``edge_contact`` turns
+    on; above 1: pressed. ``nan`` where no window reaches a face end (every patch is then
+    inside its window, off the face ends)."""
+    fc = np.pad(gf.face_cut, ((0, 0), (1, 1), (0, 0)), constant_values=False)
+    edge = gf.mask & (fc[:, :-2] | fc[:, 2:])
+    if not np.any(edge):
+        return math.nan
+    g0 = gf.base_radius * gf.gap_rad
+    h = g0 - np.min(np.where(gf.mask, g0, np.inf), axis=(1, 2))[:, None, None]
+    c = float(influence(0.0, 0.0, gf.dz, gf.ds, e_star_MPa))
+    rho = 1.0 + (p[edge] * c - gap_mm[edge]) / np.maximum(h[edge], TINY)
+    return float(np.max(rho))
+
+
 def _window_hit(gf: GapField, p) -> NDArray[np.bool_]:
     """Grids whose pressure reaches a window end that is not a flank end."""
     on = p > 0
@@ -370,6 +393,8 @@ class SurfaceSolver:
         self.tooth_compliance = tooth_compliance
         self.e_star = contact_modulus(spec)
         self.tolerance = tolerance
+        self._rows: dict[tuple, tuple] = {}  # gap field rows (_field)
+        self._depth: dict[int, GapField] = {}  # a field per depth count: its depth rows
 
     def plan(self):
         """The rotations to solve, in solving order, and how every rotation maps onto them:
@@ -401,8 +426,25 @@ class SurfaceSolver:
         return sol, z, r
 
     def _field(self, j: int, teeth, z_mm, n_depth: int) -> GapField:
-        return gap_field(self.spec, self.mis, self.theta[teeth, j], self.flank, z_mm, n_depth,
-                         gap_offset_rad=self.offsets[teeth])
+        """The gap field of ``teeth`` at rotation ``j`` on windows ``z_mm``: each tooth's
+        rows computed once per window (a search solves one rotation at several torques,
+        mostly on the same windows; :data:`FIELD_ROWS` kept)."""
+        z = np.asarray(z_mm, dtype=float)
+        keys = [(j, int(k), z[i].tobytes(), n_depth) for i, k in enumerate(teeth)]
+        new = [i for i, key in enumerate(keys) if key not in self._rows]
+        if new:
+            if len(self._rows) + len(new) > FIELD_ROWS:
+                self._rows.clear()
+            sel = np.asarray(new)
+            gf = gap_field(self.spec, self.mis, self.theta[teeth[sel], j], self.flank, z[sel],
+                           n_depth, gap_offset_rad=self.offsets[teeth[sel]])
+            self._depth[n_depth] = gf
+            for r, i in enumerate(new):
+                self._rows[keys[i]] = tuple(getattr(gf, f)[r] for f in _ROW_FIELDS)
+        rows = [self._rows[key] for key in keys]
+        stacked: dict[str, Any] = {f: np.stack([row[k] for row in rows])
+                                   for k, f in enumerate(_ROW_FIELDS)}
+        return replace(self._depth[n_depth], dz=float(z[0, 1] - z[0, 0]), **stacked)
 
     def _state(self, j, teeth, level, gf, sol, lift_from, centres) -> SolvedPose:
         c, e = _spans(gf, sol.pressure_MPa)
@@ -449,7 +491,12 @@ class SurfaceSolver:
             cand, load_N = cand[:1], load_N / alike.size
         g_min = float(np.min(gap[cand]))
         seed = start if start is not None else self._coarse(j, cand, load_N)
-        teeth = cand[gap[cand] <= seed.windup_rad + TEETH_MARGIN * max(seed.lift_rad, 0.0)]
+        # the seed's wind-up, or above the smallest gap its lift grown with the load (about
+        # linearly: springs and line contacts), so that a start at a smaller load has no
+        # teeth missing; a tooth that stays unloaded leaves the answer as it is
+        lift = max(seed.lift_rad, 0.0)
+        windup = max(seed.windup_rad, g_min + lift * _load_ratio(seed, load_N))
+        teeth = cand[gap[cand] <= windup + TEETH_MARGIN * lift]
         teeth = np.union1d(teeth, cand[np.argmin(gap[cand])])
         if seed.level is None:  # from the coarse grid: its patches, less a coarse cell
             level = window_level(self.spec, self.mis, WINDOW_FACTOR * max(
@@ -567,10 +614,18 @@ class SurfaceSolver:
                 v[alike] = v[alike[0]]
         nf = gf.z_mm.shape[1]
         extra = {"windup_rad": windup, "iterations": sol.iterations,
-                 "cell_mm": (gf.dz, gf.ds), "window_mm": gf.dz * nf, "level": seed.level}
+                 "cell_mm": (gf.dz, gf.ds), "window_mm": gf.dz * nf, "level": seed.level,
+                 "face_end_closure": face_end_closure(gf, sol.pressure_MPa, sol.gap_mm,
+                                                      self.e_star)}
         if keep:
             extra.update({"field": gf, "pressure_MPa": sol.pressure_MPa, "teeth": teeth})
         return out, extra
+
+
+def _load_ratio(seed: SolvedPose, load_N: float) -> float:
+    """``load_N`` over the load of ``seed`` (its pressure summed)."""
+    carried = float(np.sum(seed.pressure_MPa)) * seed.field.dz * seed.field.ds
+    return load_N / carried if carried > 0 else 1.0
 
 
 def _smallest(gf: GapField) -> NDArray[np.float64]:
