@@ -1,4 +1,4 @@
-"""The forked map of the capacity points (outputs/forked.py): the same answers as in one
+"""The forked map of the capacity points (gearcoupling/forked.py): the same answers as in one
 process, a worker's error raised in the parent, no worker outliving an interrupt. Each
 runs in a fresh interpreter: forking needs a process without other threads, and a test
 run before may have left one (fork_map then works in this process)."""
@@ -9,7 +9,7 @@ import textwrap
 
 import pytest
 
-from gearcoupling.outputs.forked import can_fork
+from gearcoupling.forked import can_fork
 
 pytestmark = pytest.mark.skipif(not can_fork(), reason="needs the fork start method")
 
@@ -24,7 +24,7 @@ def _fresh(code: str, *args: str) -> str:
 def test_fork_map_keeps_the_order_and_runs_in_two_workers():
     _fresh("""
         import os
-        from gearcoupling.outputs.forked import fork_map
+        from gearcoupling.forked import fork_map
 
         def pid_of(_item):
             return os.getpid()
@@ -42,7 +42,7 @@ def test_fork_map_keeps_the_order_and_runs_in_two_workers():
 def test_a_workers_error_is_raised_in_the_parent():
     _fresh("""
         from gearcoupling.errors import ArgumentError
-        from gearcoupling.outputs.forked import fork_map
+        from gearcoupling.forked import fork_map
 
         def fails_on_three(x):
             if x == 3:
@@ -65,7 +65,7 @@ def test_an_interrupt_kills_and_reaps_the_workers(tmp_path):
     _fresh("""
         import os, signal, sys, time
         from pathlib import Path
-        from gearcoupling.outputs.forked import fork_map
+        from gearcoupling.forked import fork_map
 
         folder, parent = Path(sys.argv[1]), os.getpid()
 

@@ -363,6 +363,8 @@ def test_aligned_friction_is_left_out_and_said_so(renzo):
 def test_zero_torque_is_refused(renzo):
     with pytest.raises(gc.ArgumentError, match="torque_Nm"):
         coupling_data(renzo, 1.0, 0.0)
+    with pytest.raises(gc.ArgumentError, match="workers = 3: 1 or 2"):
+        coupling_data(renzo, 1.0, workers=3)
 
 
 # --------------------------------------------------------------------------- torsion

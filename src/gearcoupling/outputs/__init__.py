@@ -5,7 +5,7 @@ Each writer validates before it writes (no NaN, no half-written file) and return
 paths it wrote; the commands only parse their options, call these and print.
 """
 
-from .forked import ForkedMap, default_workers, fork_map
+from ..forked import ForkedMap, default_workers, fork_map
 from .interference import write_interference
 from .load import load_studies, write_load
 from .parts import PART_NAMES, write_parts, write_step_files

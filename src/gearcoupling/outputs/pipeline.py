@@ -19,12 +19,12 @@ from typing import Any
 
 from ..clearance import sweep
 from ..errors import ArgumentError, BackendError, GearCouplingError
+from ..forked import can_fork, messages, start_workers, stop_workers, worker_signals
 from ..interference import check_interference
 from ..io import output_folder, remove_stale_temporaries, write_json
 from ..plots import import_matplotlib, plot_sections
 from ..spec import CouplingSpec, as_spec
 from ..viewer import write_html
-from .forked import can_fork, messages, start_workers, stop_workers, worker_signals
 from .interference import write_interference
 from .load import write_load
 from .parts import write_parts, write_step_files

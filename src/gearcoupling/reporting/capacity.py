@@ -13,8 +13,8 @@ from ..arguments import MAXIMA, angle_list, choice
 from ..arguments import count as check_count
 from ..clearance import critical_misalignment_deg
 from ..errors import ArgumentError
+from ..forked import ForkedMap, default_workers
 from ..loading import CapacityCurve, capacity, model_names
-from ..outputs import ForkedMap, default_workers
 from ..spec import MISALIGNMENT_RANGE_DEG, CouplingSpec, as_spec
 
 DEFAULT_COUNT = 25
@@ -57,7 +57,7 @@ def compare_capacity(specs: Sequence[CouplingSpec], misalignments_deg: ArrayLike
     with its own name. ``workers``: 1 computes every point in this process, 2 (the default
     where the machine has two cores and forking is safe) splits them over two forked
     processes while this one waits; interrupted, the workers are killed first
-    (:func:`~gearcoupling.outputs.forked.fork_map`)."""
+    (:func:`~gearcoupling.forked.fork_map`)."""
     started = StartedComparison(specs, misalignments_deg, model=model, count=count,
                                 workers=workers)
     try:

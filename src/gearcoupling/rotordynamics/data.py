@@ -13,11 +13,13 @@ import math
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from functools import partial
 from pathlib import Path
 from typing import Any
 
 from ..clearance import sweep
 from ..errors import ArgumentError
+from ..forked import default_workers, fork_map
 from ..io import write_csv_rows, write_json
 from ..loading import (
     Capacity,
@@ -43,7 +45,13 @@ from .stiffness import (
     pitch_rotations,
     stiffness_from_sweep,
 )
-from .torsion import DEFAULT_POINTS, TorsionalStiffness, torsional_stiffness
+from .torsion import (
+    DEFAULT_POINTS,
+    TorsionalStiffness,
+    mesh_windup_from_touch,
+    torsion_from_curve,
+    windup_torques,
+)
 
 DATASHEET_COLUMNS = ("section", "quantity", "value", "unit", "source")
 FILES = ("datasheet.json", "datasheet.csv", "stiffness_matrix.csv")
@@ -260,6 +268,7 @@ def coupling_data(spec: CouplingSpec, misalignment_deg: float | None = None,
                   relative_step: float = DEFAULT_RELATIVE_STEP,
                   turn_angles: int = DEFAULT_TURN_ANGLES, curve_points: int = DEFAULT_POINTS,
                   tolerance_mm: float | None = None, known: Sequence[Capacity] = (),
+                  workers: int | None = None,
                   progress: Callable[[int, int], Any] | None = None) -> CouplingData:
     """The API 671 data of a coupling at an operating point (module docstring).
 
@@ -287,9 +296,13 @@ def coupling_data(spec: CouplingSpec, misalignment_deg: float | None = None,
         Capacities of this spec and model (ccw flank) already computed, such as the
         report's capacity curve: the capacity at the misalignment and the points of the
         allowable misalignment's search are taken from them where they have the angle.
+    workers : {1, 2}, optional
+        The matrix, the allowable misalignment and the wind-up curve's torques computed in
+        this process (1) or over two forked ones (2; the default where the machine has two
+        cores and forking is safe, :func:`~gearcoupling.forked.default_workers`).
     progress : callable, optional
-        ``progress(done, 4)`` after the masses, the matrix, the torsion and the
-        allowable misalignment.
+        ``progress(done, total)`` after the masses and after each of the matrix, the
+        allowable misalignment and the wind-up curve's torques (in the order they end).
 
     Examples
     --------
@@ -305,24 +318,27 @@ def coupling_data(spec: CouplingSpec, misalignment_deg: float | None = None,
     T = check_inputs(spec, torque_Nm)
     model = resolve_model(spec, model)
     given = known_capacities(spec, model, known)
+    workers = default_workers() if workers is None else workers
+    if workers not in (1, 2) or isinstance(workers, bool):
+        raise ArgumentError("workers", workers, "1 or 2")
 
-    def step(done: int) -> None:
+    def step(done: int, total: int) -> None:
         if progress is not None:
-            progress(done, 4)
+            progress(done, total)
 
     mass = mass_properties(spec, tolerance_mm)
-    step(1)
+    step(1, 3 + curve_points)  # the masses; then the tasks below
     sw = sweep(spec, mis, pitch_rotations(spec, default_rotations(model) if rotations is None
                                           else rotations))
-    K = stiffness_from_sweep(sw, T, model=model, relative_step=relative_step)
-    step(2)
     cap = given.get(float(mis)) or capacity(spec, mis, model=model)
-    torsion = torsional_stiffness(sw, T, float(K.matrix[5, 5]), cap.capacity_Nm, model=model,
-                                  points=curve_points)
-    step(3)
-    allowed = allowable_loads(spec, T, model=model, angles=turn_angles,
-                              known=[*given.values(), cap])
-    step(4)
+    grid = windup_torques(T, cap.capacity_Nm, curve_points)
+    tasks = [lambda: stiffness_from_sweep(sw, T, model=model, relative_step=relative_step),
+             lambda: allowable_loads(spec, T, model=model, angles=turn_angles,
+                                     known=[*given.values(), cap]),
+             *(partial(mesh_windup_from_touch, sw, t, model) for t in grid)]
+    K, allowed, *curve = fork_map(lambda task: task(), tasks, workers=workers,
+                                  done=lambda n: step(1 + n, 1 + len(tasks)))
+    torsion = torsion_from_curve(spec, grid, curve, T, float(K.matrix[5, 5]), cap.capacity_Nm)
     used = K.model
     return CouplingData(spec, float(mis), T, used, springs_name(spec, used), mass, torsion, K,
                         cap.capacity_Nm, allowed, time.perf_counter() - t0)

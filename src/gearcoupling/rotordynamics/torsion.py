@@ -14,7 +14,7 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 from ..clearance import SweepResult
 from ..errors import ArgumentError
@@ -87,18 +87,36 @@ def torsional_stiffness(sw: SweepResult, torque_Nm: float, tangent_Nm_per_rad: f
     secant stiffness at ``torque_Nm``; ``tangent_Nm_per_rad`` from the stiffness matrix.
     ``points``: torques on the curve (the accuracy knob of its drawing only); ``model``
     default the spec's."""
+    grid = windup_torques(torque_Nm, capacity_Nm, points)
+    model = resolve_model(sw.spec, model)
+    mesh = [mesh_windup_from_touch(sw, t, model) for t in grid]
+    return torsion_from_curve(sw.spec, grid, mesh, torque_Nm, tangent_Nm_per_rad, capacity_Nm)
+
+
+def windup_torques(torque_Nm: float, capacity_Nm: float | None,
+                   points: int = DEFAULT_POINTS) -> NDArray[np.float64]:
+    """The curve's torques ``(points,)`` or ``(points + 1,)``: from 0 to the capacity (twice
+    the torque without one, never below the torque), the torque among them, signed like it."""
     if isinstance(points, bool) or not isinstance(points, int) or not 2 <= points <= 1000:
         raise ArgumentError("points", points, "a whole number of torques from 2 to 1000")
     T = float(torque_Nm)
     top = 2.0 * abs(T) if capacity_Nm is None else max(float(capacity_Nm), abs(T))
-    grid = np.unique(np.append(np.linspace(0.0, top, points), abs(T))) * math.copysign(1.0, T)
-    model = resolve_model(sw.spec, model)
-    mesh = np.array([mesh_windup_from_touch(sw, t, model) for t in grid])
-    body = np.array([body_windup_rad(sw.spec, t)["body_rad"] for t in grid])
+    return np.unique(np.append(np.linspace(0.0, top, points), abs(T))) * math.copysign(1.0, T)
+
+
+def torsion_from_curve(spec, grid: NDArray[np.float64], mesh_windup_rad: ArrayLike,
+                       torque_Nm: float, tangent_Nm_per_rad: float,
+                       capacity_Nm: float | None) -> TorsionalStiffness:
+    """:class:`TorsionalStiffness` of the teeth's wind-up ``mesh_windup_rad`` at the torques
+    ``grid`` (:func:`windup_torques`), the bodies' torsion added."""
+    T = float(torque_Nm)
+    mesh = np.asarray(mesh_windup_rad, float)
+    body = np.array([body_windup_rad(spec, t)["body_rad"] for t in grid])
     at = int(np.argmin(np.abs(grid - T)))
     secant = abs(T) / float(abs(mesh[at] + body[at]))
     return TorsionalStiffness(grid, mesh, body, T, secant, float(tangent_Nm_per_rad),
                               capacity_Nm)
 
 
-__all__ = ["TorsionalStiffness", "mesh_windup_from_touch", "torsional_stiffness"]
+__all__ = ["TorsionalStiffness", "mesh_windup_from_touch", "torsion_from_curve",
+           "torsional_stiffness", "windup_torques"]

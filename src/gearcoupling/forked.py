@@ -11,7 +11,7 @@ import threading
 from collections.abc import Callable, Iterator, Sequence
 from typing import Any, TypeVar, cast
 
-from ..errors import BackendError
+from .errors import BackendError
 
 T = TypeVar("T")
 
