@@ -56,15 +56,16 @@ from .cantilever import CantileverCompliance
 PARTS = ("hub", "sleeve")
 FLOOR = 0.05  # the pair's far field, at least this share of its pitch-point value
 FEATURES = ("one", "height", "height_squared", "face_end", "face_end_height", "other_end",
-            "tip_edge", "crown_thinning")
+            "tip_edge", "crown_thinning", "pressure_angle", "pressure_angle_height")
 
 
 def features(y_F: ArrayLike, to_face_ends: tuple[ArrayLike, ArrayLike], to_tip: ArrayLike,
-             thinning: ArrayLike, *, module: float,
-             root_thickness: float) -> NDArray[np.float64]:
+             thinning: ArrayLike, *, module: float, root_thickness: float,
+             pressure_angle: float) -> NDArray[np.float64]:
     """Features ``(..., len(FEATURES))`` of load points of one part (:data:`FEATURES`):
     ``1``, ``ln(y_F / S_f)`` and its square, ``exp(-d1 / m)``, ``exp(-d1 / y_F)``,
-    ``exp(-d2 / m)``, ``exp(-d_t / m)``, ``ln(1 - t_c / S_f)``.
+    ``exp(-d2 / m)``, ``exp(-d_t / m)``, ``ln(1 - t_c / S_f)``, ``a = (phi - 20°) / 10°``
+    and ``a ln(y_F / S_f)``.
 
     Parameters
     ----------
@@ -83,6 +84,8 @@ def features(y_F: ArrayLike, to_face_ends: tuple[ArrayLike, ArrayLike], to_tip: 
     module : float
     root_thickness : float
         The tooth's thickness ``S_f`` at its root circle (mm).
+    pressure_angle : float
+        ``phi`` (radians).
     """
     m = module
     y = np.maximum(np.asarray(y_F, dtype=float), 1e-3 * m)
@@ -90,8 +93,10 @@ def features(y_F: ArrayLike, to_face_ends: tuple[ArrayLike, ArrayLike], to_tip: 
     thin = np.clip(np.asarray(thinning, dtype=float) / root_thickness, 0.0, 0.9)
     y, d1, d2, dt, thin = np.broadcast_arrays(y, d1, d2, dt, thin)
     h = np.log(y / root_thickness)
+    a = (math.degrees(pressure_angle) - 20.0) / 10.0
     return np.stack([np.ones(y.shape), h, h * h, np.exp(-d1 / m), np.exp(-d1 / y),
-                     np.exp(-d2 / m), np.exp(-dt / m), np.log1p(-thin)], axis=-1)
+                     np.exp(-d2 / m), np.exp(-dt / m), np.log1p(-thin), np.full(y.shape, a),
+                     a * h], axis=-1)
 
 
 def load_fit() -> dict[str, Any]:
@@ -121,12 +126,16 @@ class FittedCompliance(CantileverCompliance):
         #: the tooth's free edge along the depth: hub tip and sleeve minor radius
         self.tip_radius = {"hub": 0.5 * spec.hub.tip.diameter,
                            "sleeve": 0.5 * spec.sleeve.minor_diameter}
+        #: the hub tooth's depth, tip to root circle (mm)
+        self.depth = self.tip_radius["hub"] - self._heights("hub", 0.0)[0]
         self.bend = {p: self.terms[p][0] for p in PARTS}
         self.crown = hub_model(spec).path  # the hub's crown drop along the face
         side = 0.5 * self.module  # the table's load patch, a square (module docstring)
         self.patch = {p: rectangle_halfspace_work_mm_per_N(
             1.0, side, side, getattr(self.materials, p).youngs_modulus_MPa,
             getattr(self.materials, p).poisson_ratio) for p in PARTS}
+        #: the columns of :data:`FEATURES` the fit uses (``fit["features"]``, by name)
+        self.columns = [FEATURES.index(name) for name in self.fit["features"]]
         #: per part: coefficients (F,), the features' fitted low and high ends (F,),
         #: the confinement's factor and length (modules)
         self.coefficients = {p: tuple(np.asarray(self.fit["parts"][p][k], dtype=float)
@@ -143,7 +152,7 @@ class FittedCompliance(CantileverCompliance):
                     if part == "hub" else np.zeros_like(z))
         return features(np.abs(r - root), (half - z, half + z),
                         np.abs(self.tip_radius[part] - r), thinning, module=self.module,
-                        root_thickness=self.root_thickness[part])
+                        root_thickness=self.root_thickness[part], pressure_angle=self.phi)
 
     def bending(self, part: str, z_mm: ArrayLike, r_mm: ArrayLike) -> NDArray:
         """``c_bend / y_F`` of ``part`` at hub flank points ``(z, r)`` (mm/N; module
@@ -164,7 +173,7 @@ class FittedCompliance(CantileverCompliance):
 
     def part_compliance_mm_per_N(self, part: str, z_mm: ArrayLike, r_mm: ArrayLike) -> NDArray:
         """Normal far-field compliance of one part at hub flank points ``(z, r)`` (mm/N)."""
-        f = self.part_features(part, z_mm, r_mm)
+        f = self.part_features(part, z_mm, r_mm)[..., self.columns]
         a, lo, hi = self.coefficients[part]
         c = self.fit["parts"][part]
         return (self.bending(part, z_mm, r_mm) * np.exp(np.clip(f, lo, hi) @ a)
@@ -207,6 +216,7 @@ class FittedCompliance(CantileverCompliance):
         values = {"teeth": self.teeth, "module_mm": self.module,
                   "pressure_angle_deg": math.degrees(self.phi),
                   "face_over_module": 2.0 * self.half_face_hub / self.module,
+                  "depth_over_module": self.depth / self.module,
                   "hub_rim_over_module": self.rim["hub"] / self.module,
                   "sleeve_ring_over_module": self.rim["sleeve"] / self.module,
                   "hub_fillet_over_module": self.fillet["hub"] / self.module,
