@@ -419,7 +419,7 @@ def compute_compliance_table(spec: CouplingSpec, *, size_mm: float | None = None
         if size <= m / 4.0 and sector >= DEFAULT_SECTOR_TEETH:
             why = ("at a mesh and sector that resolve it on other specs: this spec's teeth "
                    "are too few or its face too short for the split (measured on specs of "
-                   "6-12 teeth and a face width of at most 3 modules; on one of 11 teeth a "
+                   "6-14 teeth and a face width of at most 3.5 modules; on one of 11 teeth a "
                    "sector of 5 teeth too)")
         else:
             why = (f"a mesh too coarse for the patch, or a sector so small that its fixed "
