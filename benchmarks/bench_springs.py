@@ -142,6 +142,7 @@ def spec_ranges(specs) -> dict:
         for k, v in (("teeth", c.teeth), ("module_mm", c.module),
                      ("pressure_angle_deg", math.degrees(c.phi)),
                      ("face_over_module", 2.0 * c.half_face_hub / c.module),
+                     ("depth_over_module", c.depth / c.module),
                      ("hub_rim_over_module", c.rim["hub"] / c.module),
                      ("sleeve_ring_over_module", c.rim["sleeve"] / c.module),
                      ("hub_fillet_over_module", c.fillet["hub"] / c.module),
@@ -192,7 +193,10 @@ def main() -> None:
             path.write_text(json.dumps(fitted, indent=1) + "\n")
             print(f"wrote {path}")
     in_fit = set((fitted or load_fit()).get("specs", [s.name for s in specs]))
-    rows, worst, held = [], [], []
+    rows: list = []
+    groups: dict[str, list] = {"fitted on": [], "held out of the fit, inside its range": [],
+                               "held out of the fit, outside its range (named)": []}
+    labels = list(groups)
     for i, (spec, table) in enumerate(zip(specs, tables, strict=True)):
         t0 = time.perf_counter()
         springs = FittedCompliance(spec, fit=fitted)
@@ -205,9 +209,13 @@ def main() -> None:
         out = bool(a.holdout and i >= len(TEMPLATES) and i % a.holdout == 0) or (
             not a.fit and not a.holdout and spec.name not in in_fit)
         c_ratio = springs.mesh_stiffness_N_per_mm / table.mesh_stiffness_N_per_mm
-        rows.append((spec.name + (" (not in the fit)" if out else ""), describe(spec), err, whole,
+        notes = (["not in the fit"] if out else []) + [
+            "outside: " + ", ".join(o.split(" = ")[0] for o in springs.outside)] * bool(
+            springs.outside)
+        rows.append((spec.name + "".join(f" ({n})" for n in notes), describe(spec), err, whole,
                      dt, c_ratio))
-        (held if out else worst).append((err.ravel(), whole.ravel()))
+        groups[labels[2 if springs.outside else 1] if out else labels[0]].append(
+            (err.ravel(), whole.ravel()))
     print("\n| spec | teeth, module, pressure angle, face / module | far field: largest error "
           "| mean | whole compliance: largest error | C fit / FE | springs ms |")
     print("|---|---|---|---|---|---|---|")
@@ -215,7 +223,7 @@ def main() -> None:
         j, k = np.argmax(np.abs(err)), np.argmax(np.abs(whole))
         print(f"| {name} | {what} | {100 * err.ravel()[j]:+.1f} % | {100 * err.mean():+.1f} % "
               f"| {100 * whole.ravel()[k]:+.1f} % | {c_ratio:.3f} | {1e3 * dt:.0f} |")
-    for label, pairs in (("fitted on", worst), ("held out of the fit", held)):
+    for label, pairs in groups.items():
         if pairs:
             for what, e in (("far field", np.concatenate([p[0] for p in pairs])),
                             ("whole compliance", np.concatenate([p[1] for p in pairs]))):

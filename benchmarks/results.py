@@ -33,7 +33,7 @@ QUICK = [
 ]
 FULL = [
     ("bench_fea.py", [], "FE: cantilever check, convergence, FE vs cantilever vs ISO"),
-    ("bench_springs.py", ["--random", "44", "--no-compute"],
+    ("bench_springs.py", ["--random", "55", "--no-compute"],
      "the default tooth springs (fe-fit) against every cached FE tooth table"),
     ("bench_default.py", ["--random", "44", "--no-compute"],
      "the default model and springs against surface with FE springs: capacity, tooth load"),

@@ -299,7 +299,7 @@ def test_fe_springs_keep_the_nominal_root_stress_criterion(table):
 def test_default_springs_reproduce_the_fe_table(table):
     """The default springs (``fe-fit``: the shipped fit of FE tables, no solver) against
     this session's FE table of industrial-m2 at every load point of its grid: the far field
-    within 20 % (the fit's error table in docs/load.md gives -15 % at worst on this spec) and
+    within 20 % (the fit's error table in docs/load.md gives -6 % at worst on this spec) and
     the whole compliance, far + half-space near field, within 8 % (what a load model adds
     up); the cantilever, the default springs before the fit, is 1.8-4.2 times the far field
     (the least at the face-end corner of the grid)."""

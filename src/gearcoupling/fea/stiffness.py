@@ -414,13 +414,21 @@ def compute_compliance_table(spec: CouplingSpec, *, size_mm: float | None = None
                             np.stack([stress["hub"], stress["sleeve"]]),
                             spec.tooth.pitch_radius, np.stack([near["hub"], near["sleeve"]]),
                             info)
-    if not np.all(table.far_field_mm_per_N > 0):
+    bad = int(np.sum(table.far_field_mm_per_N <= 0))
+    if bad:
+        if size <= m / 4.0 and sector >= DEFAULT_SECTOR_TEETH:
+            why = ("at a mesh and sector that resolve it on other specs: this spec's teeth "
+                   "are too few or its face too short for the split (measured on specs of "
+                   "6-14 teeth and a face width of at most 3.5 modules; on one of 11 teeth a "
+                   "sector of 5 teeth too)")
+        else:
+            why = (f"a mesh too coarse for the patch, or a sector so small that its fixed "
+                   f"cuts hold the loaded tooth; use size_mm at most module / 4 = {m / 4:g} "
+                   f"mm and sector at least 3")
         raise ArgumentError(
-            "size_mm, sector", (meshes["hub"].size_mm, sector), "the FE compliance is "
-            f"below its half-space part under the {patch:g} mm load patch (a mesh too coarse "
-            f"for the patch, or a sector so small that its fixed cuts hold the loaded "
-            f"tooth); use size_mm at most module / 4 = {spec.tooth.module / 4:g} mm and "
-            f"sector at least 3")
+            "size_mm, sector", (meshes["hub"].size_mm, sector), f"the FE compliance is "
+            f"below its half-space part under the {patch:g} mm load patch at {bad} of the "
+            f"{table.far_field_mm_per_N.size} load points, {why}")
     return table
 
 
