@@ -159,11 +159,12 @@ def test_overall_verdict_names_failures_and_counts_what_was_not_judged():
 
 @pytest.mark.slow
 def test_cli_report_exit_status_follows_the_verdict(tmp_path, capsys):
-    quick = ["--no-viewer", "--angles", "36", "--capacity-count", "3", "--check-angles", "4",
-             "-o", str(tmp_path)]
+    quick = ["--no-viewer", "--no-datasheet", "--angles", "36", "--capacity-count", "3",
+             "--check-angles", "4", "-o", str(tmp_path)]
     assert main(["report", "renzo-1967", "--torque", "1500", *quick]) == 0
     out = capsys.readouterr().out
     assert "PASS on all" in out and str(tmp_path / "report.html") in out
+    assert '<section id="datasheet">' not in (tmp_path / "report.html").read_text()
     # the template's own 2260 N·m is above the validated capacity at 1° (2054 N·m with the
     # default surface model and fe-fit springs): the report fails and says on what
     assert main(["report", "renzo-1967", *quick]) == 1

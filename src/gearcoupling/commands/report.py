@@ -58,6 +58,9 @@ def register(sub) -> None:
         p.add_argument(f"--{name.replace('_', '-')}", type=count(lo, hi), default=None,
                        metavar="N", help=f"{text}; {lo}-{hi}")
     p.add_argument("--no-viewer", action="store_true", help="leave out the 3D view")
+    p.add_argument("--no-datasheet", action="store_true",
+                   help="leave out the API 671 data sheet (its stiffness matrix, wind-up curve "
+                        "and allowable misalignment: the costliest section)")
     p.add_argument("--pdf", action="store_true",
                    help="also print report.pdf through headless chromium (browser extra)")
     p.set_defaults(func=run)
@@ -79,6 +82,7 @@ def run(args) -> int:
                               scan_units=args.units, grade=args.grade,
                               limits=parse_limits(args.limit),
                               hob_diameter_mm=args.hob_diameter, viewer=not args.no_viewer,
+                              datasheet=not args.no_datasheet,
                               **knobs)
     out = output_dir(args, spec)
     with progress(f"report {spec.name}", 1) as update:

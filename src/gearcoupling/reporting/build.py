@@ -58,6 +58,8 @@ def _steps(settings: ReportSettings) -> list[tuple[str, Callable[[sec.Context], 
              ("capacity", sec.capacity_section), ("data sheet", datasheet),
              ("interference", sec.interference),
              ("manufacturing", sec.manufacturing)]
+    if not settings.datasheet:
+        steps.remove(("data sheet", datasheet))
     if settings.scan is not None:
         steps.append(("measured part", sec.measured))
     if settings.viewer:

@@ -53,6 +53,9 @@ class ReportSettings:
         :func:`gearcoupling.compare_part`.
     viewer : bool
         Embed the 3D viewer (the ``viewer`` extra).
+    datasheet : bool
+        The API 671 data sheet (with the default surface model about 13 s of CPU, the
+        report's costliest section).
     dpi : int
         Figure resolution.
     """
@@ -73,6 +76,7 @@ class ReportSettings:
     grade: int | None = None
     limits: dict[str, float] = field(default_factory=dict)
     viewer: bool = True
+    datasheet: bool = True
     dpi: int = 110
 
     def __post_init__(self):
@@ -95,6 +99,7 @@ class ReportSettings:
         if not isinstance(self.limits, dict):
             raise ArgumentError("limits", self.limits, "a dict of limit name -> mm")
         flag(self.viewer, "viewer")
+        flag(self.datasheet, "datasheet")
 
     def as_dict(self) -> dict[str, Any]:
         """Plain data for the report's settings table."""
