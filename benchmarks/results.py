@@ -35,7 +35,7 @@ FULL = [
     ("bench_fea.py", [], "FE: cantilever check, convergence, FE vs cantilever vs ISO"),
     ("bench_springs.py", ["--random", "55", "--no-compute"],
      "the default tooth springs (fe-fit) against every cached FE tooth table"),
-    ("bench_default.py", ["--random", "44", "--no-compute"],
+    ("bench_default.py", ["--random", "55", "--no-compute"],
      "the default model and springs against surface with FE springs: capacity, tooth load"),
     ("bench_fea_contact.py", ["--from-golden"],
      "the load models against the stored CalculiX contact references (aligned)"),
