@@ -293,3 +293,18 @@ def test_window_lattices_are_symmetric_with_the_face_ends_on_cell_edges(renzo):
     for length in (0.5, 2.0, 7.0):
         k = window_level(renzo, i, length, 48)
         assert window_length(renzo, i, k, 48) >= length > window_length(renzo, i, k + 1, 48)
+
+
+def test_a_full_row_cache_gives_the_same_capacity(renzo, monkeypatch):
+    """The solver keeps each tooth's gap-field rows (``FIELD_ROWS`` of them); when a call
+    finds the cache full it starts again with every row it needs. A cache of 16 rows, full
+    on almost every call of a capacity search, gives the same capacity as the default one
+    (the rows do not depend on the cache; a KeyError on a 260-tooth spec before)."""
+    from gearcoupling.loading import capacity
+    from gearcoupling.loading.models import surface
+
+    full = capacity(renzo, 1.0)
+    monkeypatch.setattr(surface, "FIELD_ROWS", 16)
+    small = capacity(renzo, 1.0)
+    assert small.capacity_Nm == pytest.approx(full.capacity_Nm, rel=1e-12)
+    assert small.solves == full.solves

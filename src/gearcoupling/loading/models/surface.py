@@ -432,9 +432,10 @@ class SurfaceSolver:
         z = np.asarray(z_mm, dtype=float)
         keys = [(j, int(k), z[i].tobytes(), n_depth) for i, k in enumerate(teeth)]
         new = [i for i, key in enumerate(keys) if key not in self._rows]
+        if new and len(self._rows) + len(new) > FIELD_ROWS:
+            self._rows.clear()  # full: start again, with every row of this call
+            new = list(range(len(keys)))
         if new:
-            if len(self._rows) + len(new) > FIELD_ROWS:
-                self._rows.clear()
             sel = np.asarray(new)
             gf = gap_field(self.spec, self.mis, self.theta[teeth[sel], j], self.flank, z[sel],
                            n_depth, gap_offset_rad=self.offsets[teeth[sel]])
