@@ -21,7 +21,7 @@ KNOB_RANGES = {"angles": (8, 3600), "capacity_count": (2, 200), "check_angles": 
 
 @dataclass(frozen=True)
 class ReportSettings:
-    """Inputs and accuracy knobs of a report (defaults: renzo-1967 in about 20 s).
+    """Inputs and accuracy knobs of a report (defaults: renzo-1967 in about 20 s on two cores).
 
     Attributes
     ----------
