@@ -14,6 +14,7 @@ from typing import Any, TypeVar, cast
 from .errors import BackendError
 
 T = TypeVar("T")
+STOP_SIGNALS = {signal.SIGINT, signal.SIGTERM}  # held while workers fork
 
 
 def can_fork() -> bool:
@@ -51,8 +52,6 @@ def worker_signals() -> None:
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
     signal.pthread_sigmask(signal.SIG_UNBLOCK, STOP_SIGNALS)  # blocked over the fork
 
-
-STOP_SIGNALS = {signal.SIGINT, signal.SIGTERM}
 
 
 def _map_worker(func: Callable[[Any], Any], items: Sequence[Any], indices: Sequence[int],

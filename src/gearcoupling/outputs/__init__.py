@@ -5,7 +5,6 @@ Each writer validates before it writes (no NaN, no half-written file) and return
 paths it wrote; the commands only parse their options, call these and print.
 """
 
-from ..forked import ForkedMap, default_workers, fork_map
 from .interference import write_interference
 from .load import load_studies, write_load
 from .parts import PART_NAMES, write_parts, write_step_files
@@ -27,16 +26,13 @@ from .sweep import write_sweep
 __all__ = [
     "PART_NAMES",
     "STEPS",
-    "ForkedMap",
     "LoadStudy",
     "QPoint",
     "RunResult",
     "SkipStep",
     "backlash_grid",
     "backlash_range_deg",
-    "default_workers",
     "design_point",
-    "fork_map",
     "load_studies",
     "load_study",
     "q_points",

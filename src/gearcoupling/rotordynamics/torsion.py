@@ -18,7 +18,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..clearance import SweepResult
 from ..errors import ArgumentError
-from ..loading import body_windup_rad, load_from_sweep, resolve_model
+from ..loading import body_windup_rad, load_from_sweep
 
 DEFAULT_POINTS = 11
 
@@ -80,19 +80,6 @@ def mesh_windup_from_touch(sw: SweepResult, torque_Nm: float, model: str | None)
     return math.copysign(float(np.mean(beyond)), torque_Nm)
 
 
-def torsional_stiffness(sw: SweepResult, torque_Nm: float, tangent_Nm_per_rad: float,
-                        capacity_Nm: float | None, *, model: str | None = None,
-                        points: int = DEFAULT_POINTS) -> TorsionalStiffness:
-    """The wind-up curve of the operating sweep ``sw`` (rotations over one pitch) and the
-    secant stiffness at ``torque_Nm``; ``tangent_Nm_per_rad`` from the stiffness matrix.
-    ``points``: torques on the curve (the accuracy knob of its drawing only); ``model``
-    default the spec's."""
-    grid = windup_torques(torque_Nm, capacity_Nm, points)
-    model = resolve_model(sw.spec, model)
-    mesh = [mesh_windup_from_touch(sw, t, model) for t in grid]
-    return torsion_from_curve(sw.spec, grid, mesh, torque_Nm, tangent_Nm_per_rad, capacity_Nm)
-
-
 def windup_torques(torque_Nm: float, capacity_Nm: float | None,
                    points: int = DEFAULT_POINTS) -> NDArray[np.float64]:
     """The curve's torques ``(points,)`` or ``(points + 1,)``: from 0 to the capacity (twice
@@ -119,4 +106,4 @@ def torsion_from_curve(spec, grid: NDArray[np.float64], mesh_windup_rad: ArrayLi
 
 
 __all__ = ["TorsionalStiffness", "mesh_windup_from_touch", "torsion_from_curve",
-           "torsional_stiffness", "windup_torques"]
+           "windup_torques"]

@@ -27,6 +27,7 @@ SOLVE_TOLERANCE = 1e-4  # contact solves of the search (the model's default 1e-6
 LOAD_GRID = (24, 16)  # surface-model cells of the load and bending criteria (bench_surface.py)
 PRESSURE_GRID = DEFAULT_GRID  # ... of the contact-pressure criterion
 SCREEN_MARGIN = 0.15  # criteria within this of the smallest are screened over the rotations
+SLOPE_SPREAD = 0.5  # a rotation's d ln ratio / d ln T within a factor 1.5 of the measured
 SCREEN_RANGE = 0.25  # rotations screened: compliance-model root within this of the smallest
 SLOPES = {"tooth_load": 1.0, "contact_stress": 0.5, "bending_stress": 1.0,  # d ln f / d ln T
           "face_end": 1.0}  # (face end: its closure; 0.4-1 measured)
@@ -227,8 +228,6 @@ def _surface_capacity(limits: _SurfaceLimits, name: str, guess_Nmm: NDArray, fir
             best = min(best, _rotation_root(limits, name, j, T0, slope=slope))
     return best
 
-
-SLOPE_SPREAD = 0.5  # a rotation's d ln ratio / d ln T within a factor 1.5 of the measured
 
 
 def _measured_slope(limits: _SurfaceLimits, name: str, j: int, T_Nmm: float) -> float:
