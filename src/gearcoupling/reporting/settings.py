@@ -54,7 +54,7 @@ class ReportSettings:
     viewer : bool
         Embed the 3D viewer (the ``viewer`` extra).
     datasheet : bool
-        The API 671 data sheet (with the default surface model about 13 s of CPU, the
+        The API 671 data sheet (with the default surface model about 16 s of CPU, the
         report's costliest section).
     dpi : int
         Figure resolution.
