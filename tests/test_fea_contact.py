@@ -9,6 +9,7 @@ figures (``tests/golden/fe_contact_reference.json``, written by
 from __future__ import annotations
 
 import dataclasses
+import functools
 import json
 import math
 from pathlib import Path
@@ -107,6 +108,22 @@ def test_cyclic_equations_hold_for_a_rigid_rotation_and_not_for_a_shift():
                              np.zeros(0, dtype=np.int64))
     assert np.max(np.abs(residuals(w * np.cross(M[:, 2], tilted.nodes)))) <= w * 1e-2 * vm.size_mm
     assert np.max(np.abs(residuals(w * np.cross([0.0, 0.0, 1.0], tilted.nodes)))) > 1e-3 * w
+
+    # partners a few µm apart (what gmsh leaves on a 256-tooth hub) are still tied, one to
+    # one; a partner moved half a node spacing is refused
+    ccw = vm.node_set("CUT_CCW")
+    spacing = min(np.sort(np.linalg.norm(x[ccw][:, None] - x[ccw][None], axis=-1))[:, 1])
+    for share, ok in ((0.05, True), (0.5, False)):
+        moved = x.copy()
+        moved[ccw[0]] += [0.0, 0.0, share * spacing]
+        call = functools.partial(cyclic_equations, dataclasses.replace(vm, nodes=moved),
+                                 "CUT_CW", "CUT_CCW", rot_z(2 * math.pi / spec.tooth.teeth),
+                                 np.zeros(0, dtype=np.int64))
+        if ok:
+            assert len(call()) == len(lines)
+        else:
+            with pytest.raises(gc.GeometryError, match="do not match node for node"):
+                call()
 
 
 @pytest.mark.slow
