@@ -85,6 +85,49 @@ def convergence() -> None:
                lambda r, m=model: stiffness_matrix(spec, 1.0, model=m, rotations=r))
 
 
+def breakdown() -> None:
+    """Where a data sheet's CPU goes, in one process, with the report's capacity curve as
+    ``known=`` (its 7 misalignments through the design point, computed first)."""
+    print("\n## Where the CPU goes (one process, the report's capacity curve as known=; "
+          "CPU seconds)\n")
+    print("| spec | matrix, forward | matrix, central | wind-up curve (other torques) | "
+          "allowable search | turn at the allowable misalignment | allowable |")
+    print("|---|---|---|---|---|---|---|")
+    for name in ("renzo-1967", "industrial-m2"):
+        _breakdown_row(gc.load_spec(name))
+
+
+def _breakdown_row(spec) -> None:
+    from gearcoupling.reporting.capacity import comparison_range
+    from gearcoupling.reporting.sections import _through  # the report's curve angles
+    from gearcoupling.rotordynamics.allowable import allowable_loads, capacity_limit_deg
+    from gearcoupling.rotordynamics.stiffness import pitch_rotations, stiffness_from_sweep
+    from gearcoupling.rotordynamics.torsion import windup_torques
+
+    mis, T = spec.design_misalignment_deg, spec.load.torque_Nm
+    known = [gc.capacity(spec, float(m)) for m in _through(comparison_range([spec], 7)[0], mis)]
+    cap = next(c for c in known if c.misalignment_deg == mis)
+    sw = gc.sweep(spec, mis, pitch_rotations(spec, default_rotations(spec.load.model)))
+    cells = []
+
+    def cpu(run):
+        t0 = time.process_time()
+        out = run()
+        cells.append(time.process_time() - t0)
+        return out
+
+    for scheme in ("forward", "central"):
+        cpu(lambda s=scheme: stiffness_from_sweep(sw, T, differences=s))
+    cpu(lambda: [mesh_windup_from_touch(sw, t, None)
+                 for t in windup_torques(T, cap.capacity_Nm) if t not in (0, T)])
+    top = gc.critical_misalignment_deg(spec) or 6.0
+    cpu(lambda: capacity_limit_deg(spec, T, top, known=known))
+    a = cpu(lambda: allowable_loads(spec, T, known=known))
+    cells[-1] -= cells[-2]  # the search again, then the turn
+    print(f"| {spec.name} | " + " | ".join(f"{c:.1f}" for c in cells)
+          + f" | {a.misalignment_deg:.3g}° ({a.criterion}) |")
+
+
 def schemes() -> None:
     """Forward against central differences at the design points (the surface model's
     default is forward): every entry the data sheet prints from the matrix, and its CPU."""
@@ -224,10 +267,11 @@ def _ross_rotor() -> None:
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--quick", action="store_true", help="no STEP solids, no ROSS rotor")
-    p.add_argument("--only", choices=("timing", "convergence", "schemes", "validation"))
+    p.add_argument("--only", choices=("timing", "breakdown", "convergence", "schemes",
+                                      "validation"))
     a = p.parse_args()
-    sections = {"timing": timing, "convergence": convergence, "schemes": schemes,
-                "validation": lambda: validation(a.quick)}
+    sections = {"timing": timing, "breakdown": breakdown, "convergence": convergence,
+                "schemes": schemes, "validation": lambda: validation(a.quick)}
     for name, run in sections.items():
         if a.only in (None, name):
             run()
