@@ -1,8 +1,8 @@
 """Coupling data for rotordynamics: time of the data sheet, convergence of the stiffness
 matrix in its two knobs, and the validation figures of docs/rotordynamics.md.
 
-Run: ``python benchmarks/bench_rotordynamics.py [--quick]`` (``--quick`` leaves out the
-STEP solids and the ROSS rotor).
+Run: ``python benchmarks/bench_rotordynamics.py [--quick] [--only SECTION]`` (``--quick``
+leaves out the STEP solids and the ROSS rotor; ``--only`` runs one section).
 """
 
 from __future__ import annotations
@@ -26,7 +26,11 @@ from gearcoupling.rotordynamics import (
     mass_properties,
     stiffness_matrix,
 )
-from gearcoupling.rotordynamics.stiffness import default_rotations
+from gearcoupling.rotordynamics.stiffness import (
+    DEFAULT_STEPS,
+    default_differences,
+    default_rotations,
+)
 from gearcoupling.rotordynamics.torsion import mesh_windup_from_touch
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -68,16 +72,93 @@ def convergence() -> None:
     """The knobs of the matrix: the default model (``surface``, over fewer rotations) and
     ``compliance``, renzo-1967 at 1° and the spec's torque."""
     spec = gc.load_spec("renzo-1967")
-    for model, steps, rotations in (("surface", (0.01, 0.02, 0.05), (2, 4, 8, 16)),
+    for model, steps, rotations in (("surface", (0.00125, 0.0025, 0.005, 0.01), (2, 4, 8, 16)),
                                     ("compliance", (0.005, 0.01, 0.02, 0.05, 0.1),
                                      (1, 2, 4, 8, 16, 32))):
-        n = default_rotations(model)
-        _table(f"Step convergence ({model}, renzo-1967, 1°, spec torque, {n} rotations; change "
-               "against the smallest step)", "relative_step", steps,
-               lambda s, m=model: stiffness_matrix(spec, 1.0, model=m, relative_step=s))
-        _table(f"Rotations over one pitch ({model}, renzo-1967, 1°, step 0.02; change against "
-               f"{rotations[-1]})", "rotations", rotations,
+        n, scheme = default_rotations(model), default_differences(model)
+        _table(f"Step convergence ({model}, renzo-1967, 1°, spec torque, {n} rotations, "
+               f"{scheme} differences; change against the smallest step)", "relative_step",
+               steps, lambda s, m=model: stiffness_matrix(spec, 1.0, model=m, relative_step=s))
+        _table(f"Rotations over one pitch ({model}, renzo-1967, 1°, {scheme} differences, step "
+               f"{DEFAULT_STEPS[scheme]:g}; change against {rotations[-1]})", "rotations",
+               rotations,
                lambda r, m=model: stiffness_matrix(spec, 1.0, model=m, rotations=r))
+
+
+def breakdown() -> None:
+    """Where a data sheet's CPU goes, in one process, with the report's capacity curve as
+    ``known=`` (its 7 misalignments through the design point, computed first)."""
+    print("\n## Where the CPU goes (one process, the report's capacity curve as known=; "
+          "CPU seconds)\n")
+    print("| spec | matrix, forward | matrix, central | wind-up curve (other torques) | "
+          "allowable search | turn at the allowable misalignment | allowable |")
+    print("|---|---|---|---|---|---|---|")
+    for name in ("renzo-1967", "industrial-m2"):
+        _breakdown_row(gc.load_spec(name))
+
+
+def _breakdown_row(spec) -> None:
+    from gearcoupling.reporting.capacity import comparison_range
+    from gearcoupling.reporting.sections import _through  # the report's curve angles
+    from gearcoupling.rotordynamics.allowable import allowable_loads, capacity_limit_deg
+    from gearcoupling.rotordynamics.stiffness import pitch_rotations, stiffness_from_sweep
+    from gearcoupling.rotordynamics.torsion import windup_torques
+
+    mis, T = spec.design_misalignment_deg, spec.load.torque_Nm
+    known = [gc.capacity(spec, float(m)) for m in _through(comparison_range([spec], 7)[0], mis)]
+    cap = next(c for c in known if c.misalignment_deg == mis)
+    sw = gc.sweep(spec, mis, pitch_rotations(spec, default_rotations(spec.load.model)))
+    cells = []
+
+    def cpu(run):
+        t0 = time.process_time()
+        out = run()
+        cells.append(time.process_time() - t0)
+        return out
+
+    for scheme in ("forward", "central"):
+        cpu(lambda s=scheme: stiffness_from_sweep(sw, T, differences=s))
+    cpu(lambda: [mesh_windup_from_touch(sw, t, None)
+                 for t in windup_torques(T, cap.capacity_Nm) if t not in (0, T)])
+    top = gc.critical_misalignment_deg(spec) or 6.0
+    cpu(lambda: capacity_limit_deg(spec, T, top, known=known))
+    a = cpu(lambda: allowable_loads(spec, T, known=known))
+    cells[-1] -= cells[-2]  # the search again, then the turn
+    print(f"| {spec.name} | " + " | ".join(f"{c:.1f}" for c in cells)
+          + f" | {a.misalignment_deg:.3g}° ({a.criterion}) |")
+
+
+def schemes() -> None:
+    """Forward against central differences at the design points (the surface model's
+    default is forward): every entry the data sheet prints from the matrix, and its CPU."""
+    print("\n## Difference schemes (surface, design point, spec torque, 3 rotations; change "
+          "against central at its default step; largest off-diagonal change over "
+          "sqrt(K_ii K_jj))\n")
+    names = [e for e, _, _ in ENTRIES if e != "k_xy"] + ["k_yx held torque"]
+    print("| spec | scheme, step | " + " | ".join(names) + " | off-diagonal | CPU s |")
+    print("|---|---|" + "---|" * (len(names) + 2))
+    for name in ("renzo-1967", "industrial-m2"):
+        spec = gc.load_spec(name)
+        ref = None
+        for scheme, step in (("central", DEFAULT_STEPS["central"]), ("forward", 0.005),
+                             ("forward", DEFAULT_STEPS["forward"])):
+            t0 = time.process_time()
+            S = stiffness_matrix(spec, spec.design_misalignment_deg, differences=scheme,
+                                 relative_step=step)
+            dt = time.process_time() - t0
+            K = S.matrix
+            vals = [K[i, j] for e, i, j in ENTRIES if e != "k_xy"]
+            vals.append(S.cross_coupled()["k_yx_held_torque_Nm_per_rad"])
+            if ref is None:
+                ref = (K, vals)
+                cells = [f"{v:.5g}" for v in vals] + ["", f"{dt:.1f}"]
+            else:
+                d = np.sqrt(np.abs(np.outer(np.diag(ref[0]), np.diag(ref[0]))))
+                off = np.max(np.where(d > 0, np.abs(K - ref[0]) / np.where(d > 0, d, 1), 0))
+                cells = [f"{v / r - 1:+.2%}" if r else f"{v:.3g}"
+                         for v, r in zip(vals, ref[1], strict=True)]
+                cells += [f"{off:.2%}", f"{dt:.1f}"]
+            print(f"| {name} | {scheme} {step:g} | " + " | ".join(cells) + " |")
 
 
 def _asymmetry(K) -> float:
@@ -186,10 +267,14 @@ def _ross_rotor() -> None:
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--quick", action="store_true", help="no STEP solids, no ROSS rotor")
+    p.add_argument("--only", choices=("timing", "breakdown", "convergence", "schemes",
+                                      "validation"))
     a = p.parse_args()
-    timing()
-    convergence()
-    validation(a.quick)
+    sections = {"timing": timing, "breakdown": breakdown, "convergence": convergence,
+                "schemes": schemes, "validation": lambda: validation(a.quick)}
+    for name, run in sections.items():
+        if a.only in (None, name):
+            run()
 
 
 if __name__ == "__main__":

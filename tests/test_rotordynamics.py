@@ -26,6 +26,7 @@ from gearcoupling.rotordynamics import (
     translation_gap_offsets,
 )
 from gearcoupling.rotordynamics.mass import combine
+from gearcoupling.rotordynamics.stiffness import pitch_rotations
 from gearcoupling.rotordynamics.torsion import mesh_windup_from_touch
 
 STEEL = 7850.0
@@ -352,6 +353,28 @@ def test_the_matrix_is_continuous_at_the_end_of_the_range(renzo):
     assert np.diag(end) == pytest.approx(np.diag(inside), rel=0.01)
 
 
+def test_forward_differences_against_central(renzo):
+    """Forward differences (one solve per column, the surface model's default) against
+    central ones at 1° (measured: diagonal within 0.4 % with the compliance model, whose
+    springs switch within a step, 0.12 % with surface; docs/rotordynamics.md). The axial
+    column is zero either way (an axial shift changes no gap); aligned the scheme is
+    central (the wind-up is even in the pose)."""
+    central = stiffness_matrix(renzo, 1.0, model="compliance", differences="central")
+    forward = stiffness_matrix(renzo, 1.0, model="compliance", differences="forward")
+    assert forward.steps["differences"] == "forward"
+    assert forward.steps["relative_step"] < central.steps["relative_step"]
+    d = np.diag(central.matrix)
+    assert np.diag(forward.matrix) == pytest.approx(d, rel=0.01)
+    scale = np.sqrt(np.abs(np.outer(d, d)))
+    assert np.max(np.abs(forward.matrix - central.matrix)[d > 0][:, d > 0]
+                  / scale[d > 0][:, d > 0]) < 0.02
+    assert not np.any(forward.matrix[:, 2]) and not np.any(central.matrix[:, 2])
+    aligned = stiffness_matrix(renzo, 0.0, model="compliance", differences="forward")
+    assert aligned.steps["differences"] == "central"
+    with pytest.raises(gc.ArgumentError, match="differences = 'backward'"):
+        stiffness_matrix(renzo, 1.0, model="compliance", differences="backward")
+
+
 def test_aligned_friction_is_left_out_and_said_so(renzo):
     K = stiffness_matrix(renzo, 0.0, model="compliance")
     assert K.friction == 0.0 and any("friction" in n for n in K.notes)
@@ -405,6 +428,12 @@ def test_coupling_data_is_consistent(data, renzo):
     # the curve runs to the capacity, or to the torque where that is higher
     assert t.torque_Nm[-1] == pytest.approx(max(data.capacity_Nm, abs(data.torque_Nm)))
     assert t.tangent_Nm_per_rad > t.secant_Nm_per_rad  # the contact stiffens
+    # the curve's point at the torque is the matrix's operating point, not solved again
+    at = int(np.flatnonzero(t.torque_Nm == data.torque_Nm)[0])
+    assert t.mesh_windup_rad[at] == data.stiffness.operating_windup_rad
+    sw = gc.sweep(renzo, data.misalignment_deg, pitch_rotations(renzo, 4))
+    assert t.mesh_windup_rad[at] == pytest.approx(
+        mesh_windup_from_touch(sw, data.torque_Nm, data.model), rel=1e-5)
     a = data.allowable
     assert a.misalignment_deg <= a.critical_misalignment_deg
     if a.criterion == "capacity":
@@ -448,6 +477,7 @@ def test_datasheet_command_writes_the_files(tmp_path, capsys):
 @pytest.mark.parametrize("argv, words", [  # more in tests/test_cli_bad_input.py
     (["--torque", "2e9"], "--torque"),
     (["--misalignment", "7"], "--misalignment = 7"),
+    (["--differences", "backward"], "--differences"),
     (["--set", "material.density_kg_per_m3=-7850"], "density_kg_per_m3 = -7850"),
     (["--set", "material.youngs_modulus_MPa=70000"], "density_kg_per_m3 = None"),
 ])

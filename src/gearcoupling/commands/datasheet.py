@@ -7,6 +7,8 @@ from pathlib import Path
 
 from ..loading import model_names
 from ..rotordynamics import (
+    DEFAULT_STEPS,
+    DIFFERENCES,
     MAX_TORQUE_NM,
     ROSS_SUFFIXES,
     check_inputs,
@@ -43,10 +45,15 @@ def register(sub) -> None:
     p.add_argument("--rotations", type=count(1, 64), default=None, metavar="N",
                    help="rotations over one tooth pitch the stiffness is averaged over, 1-64 "
                         "(default: the model's load-study rotations, 3 for surface, else 8)")
+    p.add_argument("--differences", choices=DIFFERENCES, default=None,
+                   help="difference scheme of the stiffness matrix: forward (one solve per "
+                        "column) or central (two, second order); default forward for the "
+                        "surface model, else central")
     p.add_argument("--step", type=number_in(1e-4, 0.2, "of the tooth deflection"),
-                   default=0.02, metavar="S",
+                   default=None, metavar="S",
                    help="difference step as a share of the largest tooth deflection, "
-                        "1e-4 to 0.2 (default 0.02)")
+                        "1e-4 to 0.2 (default: " + ", ".join(
+                            f"{v:g} {k}" for k, v in DEFAULT_STEPS.items()) + ")")
     p.add_argument("--angles", type=count(4, 3600), default=360, metavar="N",
                    help="rotations over the turn at the allowable misalignment, 4-3600 "
                         "(default 360)")
@@ -75,6 +82,7 @@ def run(args) -> int:
     with progress(f"datasheet {spec.name}", 4) as update:
         data = coupling_data(spec, mis, args.torque, model=args.model,
                              rotations=args.rotations, relative_step=args.step,
+                             differences=args.differences,
                              turn_angles=args.angles, progress=update)
     paths = data.write(out)
     if args.ross is not None:

@@ -18,12 +18,20 @@ from .mass import MassProperties, mass_properties, mesh_mass_properties
 from .plots import plot_allowable_loads, plot_windup
 from .pose import generalized_forces, tilt_pose, translation_gap_offsets
 from .ross import ROSS_SUFFIXES, coupling_element, import_ross, write_ross
-from .stiffness import DOFS, StiffnessMatrix, stiffness_matrix
+from .stiffness import (
+    DEFAULT_STEPS,
+    DIFFERENCES,
+    DOFS,
+    StiffnessMatrix,
+    stiffness_matrix,
+)
 from .torsion import TorsionalStiffness
 from .wrench import hub_wrench
 
 __all__ = [
     "DATASHEET_COLUMNS",
+    "DEFAULT_STEPS",
+    "DIFFERENCES",
     "DOFS",
     "FILES",
     "MAX_TORQUE_NM",

@@ -36,7 +36,6 @@ from .allowable import DEFAULT_TURN_ANGLES, AllowableLoads, allowable_loads, kno
 from .mass import MassProperties, mass_properties
 from .ross import coupling_element
 from .stiffness import (
-    DEFAULT_RELATIVE_STEP,
     DISPLACEMENT_UNITS,
     DOFS,
     FORCE_UNITS,
@@ -116,7 +115,8 @@ class CouplingData:
         return {
             "mass": MASS_ACCURACY,
             "torsion": wu + "; bodies: closed-form annulus torsion",
-            "stiffness": (f"{wu}; central differences, step {st['relative_step']:g} of the "
+            "stiffness": (f"{wu}; {st['differences']} differences, step "
+                          f"{st['relative_step']:g} of the "
                           f"largest tooth deflection (translation {st['translation_mm']:.3g} "
                           f"mm, tilt {st['tilt_rad']:.3g} rad), mean of {st['rotations']} "
                           "rotations over one pitch (their spread is listed)"),
@@ -265,7 +265,8 @@ def check_inputs(spec: CouplingSpec, torque_Nm: float | None) -> float:
 def coupling_data(spec: CouplingSpec, misalignment_deg: float | None = None,
                   torque_Nm: float | None = None, *, model: str | None = None,
                   rotations: int | None = None,
-                  relative_step: float = DEFAULT_RELATIVE_STEP,
+                  relative_step: float | None = None,
+                  differences: str | None = None,
                   turn_angles: int = DEFAULT_TURN_ANGLES, curve_points: int = DEFAULT_POINTS,
                   tolerance_mm: float | None = None, known: Sequence[Capacity] = (),
                   workers: int | None = None,
@@ -284,8 +285,12 @@ def coupling_data(spec: CouplingSpec, misalignment_deg: float | None = None,
     rotations : int, optional
         Rotations over one tooth pitch the stiffness is averaged over (accuracy knob);
         default :func:`~.stiffness.default_rotations`.
-    relative_step : float
-        Difference step, a share of the largest tooth deflection (accuracy knob).
+    relative_step : float, optional
+        Difference step, a share of the largest tooth deflection (accuracy knob; default
+        :data:`~.stiffness.DEFAULT_STEPS` of the scheme).
+    differences : {"central", "forward"}, optional
+        Difference scheme of the matrix (accuracy knob); default
+        :func:`~.stiffness.default_differences` of the model (forward for ``surface``).
     turn_angles : int
         Rotations of the turn at the allowable misalignment.
     curve_points : int
@@ -332,12 +337,15 @@ def coupling_data(spec: CouplingSpec, misalignment_deg: float | None = None,
                                           else rotations))
     cap = given.get(float(mis)) or capacity(spec, mis, model=model)
     grid = windup_torques(T, cap.capacity_Nm, curve_points)
-    tasks = [lambda: stiffness_from_sweep(sw, T, model=model, relative_step=relative_step),
+    tasks = [lambda: stiffness_from_sweep(sw, T, model=model, relative_step=relative_step,
+                                          differences=differences),
              lambda: allowable_loads(spec, T, model=model, angles=turn_angles,
                                      known=[*given.values(), cap]),
-             *(partial(mesh_windup_from_touch, sw, t, model) for t in grid)]
-    K, allowed, *curve = fork_map(lambda task: task(), tasks, workers=workers,
-                                  done=lambda n: step(1 + n, 1 + len(tasks)))
+             *(partial(mesh_windup_from_touch, sw, t, model) for t in grid if t != T)]
+    K, allowed, *others = fork_map(lambda task: task(), tasks, workers=workers,
+                                   done=lambda n: step(1 + n, 1 + len(tasks)))
+    rest = iter(others)  # the point at the torque is the matrix's operating point
+    curve = [K.operating_windup_rad if t == T else next(rest) for t in grid]
     torsion = torsion_from_curve(spec, grid, curve, T, float(K.matrix[5, 5]), cap.capacity_Nm)
     used = K.model
     return CouplingData(spec, float(mis), T, used, springs_name(spec, used), mass, torsion, K,

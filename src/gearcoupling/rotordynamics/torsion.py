@@ -75,9 +75,13 @@ def mesh_windup_from_touch(sw: SweepResult, torque_Nm: float, model: str | None)
     rotations (signed like the torque; 0 at zero torque)."""
     if torque_Nm == 0:
         return 0.0
-    res = load_from_sweep(sw, torque_Nm=torque_Nm, model=model)
+    return windup_beyond_touch(load_from_sweep(sw, torque_Nm=torque_Nm, model=model))
+
+
+def windup_beyond_touch(res) -> float:
+    """:func:`mesh_windup_from_touch` of a solved load result ``res`` (a ``LoadResult``)."""
     beyond = np.abs(res.windup_rad) - np.min(res.gap_angle_rad, axis=0)
-    return math.copysign(float(np.mean(beyond)), torque_Nm)
+    return math.copysign(float(np.mean(beyond)), res.torque_Nm)
 
 
 def windup_torques(torque_Nm: float, capacity_Nm: float | None,
@@ -106,4 +110,4 @@ def torsion_from_curve(spec, grid: NDArray[np.float64], mesh_windup_rad: ArrayLi
 
 
 __all__ = ["TorsionalStiffness", "mesh_windup_from_touch", "torsion_from_curve",
-           "windup_torques"]
+           "windup_beyond_touch", "windup_torques"]
