@@ -315,7 +315,7 @@ def loads(ctx: Context) -> Section:
         "tooth", plot_patches(res, j, count=s.patch_teeth),
         how + f" Rotation ψ = {res.angles_deg[j]:.3g}° (the largest tooth load); analytic "
         "maps on a 481 × 61 grid" if not load_model(ctx.model).pressure_grid else
-        how + f" Rotation ψ = {res.angles_deg[j]:.3g}°, re-solved with its pressure grid.",
+        how + f" Rotation ψ = {res.angles_deg[j]:.3g}°, its solved pressure grid.",
         name))
     q_graph(ctx, sec)
     return sec
