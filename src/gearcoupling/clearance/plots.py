@@ -73,7 +73,7 @@ def plot_clearance(result: SweepResult, *, ax=None):
     fig.suptitle(f"{result.spec_name}: clearance of every tooth at i = "
                  f"{result.misalignment_deg:g}°")
     if own:
-        fixed_layout(fig, 0.63, 0.15, 0.59, 0.68, wspace=0.108, hspace=0.13)
+        fixed_layout(fig, 0.72, 0.15, 0.59, 0.68, wspace=0.12, hspace=0.13)
     return fig
 
 

@@ -285,7 +285,7 @@ def plot_measuring_charts(charts: MeasuringCharts, ax=None):
             a.grid(True, lw=0.3)
     fig.suptitle(f"{charts.spec_name}: nominal measuring charts (evaluation ranges dotted)")
     if own:
-        fixed_layout(fig, 0.75, 0.15, 0.59, 0.66, wspace=0.18, hspace=0.261)
+        fixed_layout(fig, 0.83, 0.15, 0.59, 0.66, wspace=0.2, hspace=0.261)
     return fig
 
 
