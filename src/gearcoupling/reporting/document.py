@@ -76,13 +76,14 @@ def png_bytes(fig, dpi: int) -> bytes:
     """A matplotlib figure as PNG bytes (nothing written; the figure is released): RGB,
     since the figures are opaque, and zlib level 3 (a third faster than matplotlib's RGBA
     at level 6, and smaller)."""
+    import numpy as np
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from PIL import Image
 
     fig.set_dpi(dpi)
     canvas = FigureCanvasAgg(fig)
     canvas.draw()
-    rgba = memoryview(canvas.buffer_rgba())
+    rgba = np.asarray(canvas.buffer_rgba())
     buf = io.BytesIO()
     Image.frombuffer("RGBA", canvas.get_width_height(physical=True), rgba, "raw", "RGBA", 0,
                      1).convert("RGB").save(buf, format="png", compress_level=3)
