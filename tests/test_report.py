@@ -294,3 +294,32 @@ def test_the_capacity_curve_passes_through_the_design_point():
     assert mis[0] == 0.0 and mis[-1] == 2.064
     assert list(_through(grid, 3.0)) == [*grid, 3.0]
     assert list(_through(grid, 0.0)) == list(grid)
+
+
+@pytest.mark.parametrize("name", ["renzo-1967", "mill-spindle"])
+def test_fixed_layouts_keep_every_text_inside_the_figure(name):
+    # the report's figures place their axes by margins measured once (no layout engine):
+    # a larger coupling's longer tick labels must still fit, drawn at the report's dpi
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    from gearcoupling.clearance import plot_backlash_over_turn, plot_clearance
+    from gearcoupling.hob import measuring_charts, plot_measuring_charts
+    from gearcoupling.loading import plot_loads_over_turn
+    from gearcoupling.plots import sections_figure
+
+    spec = gc.load_spec(name)
+    sw = gc.sweep(spec, spec.design_misalignment_deg, np.arange(36) * 10.0)
+    res = gc.load_from_sweep(sw, torque_Nm=spec.load.torque_Nm or 1000.0, model="linear")
+    figs = {"sections": sections_figure(spec), "clearance": plot_clearance(sw),
+            "backlash": plot_backlash_over_turn(sw), "loads": plot_loads_over_turn(res),
+            "patches": plot_patches(res, 0), "charts": plot_measuring_charts(
+                measuring_charts(spec))}
+    for key, fig in figs.items():
+        fig.set_dpi(ReportSettings().dpi)
+        canvas = FigureCanvasAgg(fig)
+        canvas.draw()
+        drawn = fig.get_tightbbox(canvas.get_renderer())  # inches: every drawn artist
+        W, H = fig.get_size_inches()
+        px = 1.0 / fig.dpi
+        assert drawn.x0 >= -px and drawn.y0 >= -px, (key, drawn.bounds)
+        assert drawn.x1 <= W + px and drawn.y1 <= H + px, (key, drawn.bounds, (W, H))

@@ -25,7 +25,7 @@ import numpy as np
 from ..arguments import GAP_TOLERANCE_MM
 from ..geometry import map_polar, sleeve_model
 from ..io import atomic_path
-from ..plots import figure_axes
+from ..plots import figure_axes, fixed_layout
 from ..spec import MISALIGNMENT_RANGE_DEG, CouplingSpec
 from .design import binding_angle_deg, critical_misalignment_deg, min_backlash_rad
 from .flank_table import flank_table
@@ -51,6 +51,7 @@ def plot_clearance(result: SweepResult, *, ax=None):
     """Clearance of every tooth against the coupling rotation, per flank (2 x 2 panels)."""
     from matplotlib.collections import LineCollection
 
+    own = ax is None
     fig, axes = figure_axes(ax, (2, 2), figsize=(13, 8), sharex=True)
     colours = _colours("twilight", result.teeth)
     psi = result.angles_deg
@@ -71,7 +72,8 @@ def plot_clearance(result: SweepResult, *, ax=None):
         ax.set_xlabel("rotation ψ (deg); one line per tooth")
     fig.suptitle(f"{result.spec_name}: clearance of every tooth at i = "
                  f"{result.misalignment_deg:g}°")
-    fig.tight_layout()
+    if own:
+        fixed_layout(fig, 0.72, 0.15, 0.59, 0.68, wspace=0.12, hspace=0.13)
     return fig
 
 
@@ -157,7 +159,10 @@ def plot_clearance_map(result: SweepResult, spec: CouplingSpec, *, ax=None):
 def plot_backlash_over_turn(result: SweepResult, *, ax=None):
     """Backlash (free turning of the hub, µm at the pitch circle) against the rotation, with
     the aligned backlash for reference."""
-    fig, ax = figure_axes(ax, (1, 1), figsize=(9, 3.4), layout="constrained")
+    own = ax is None
+    fig, ax = figure_axes(ax, (1, 1), figsize=(9, 3.4))
+    if own:
+        fixed_layout(fig, 0.7, 0.05, 0.48, 0.24)
     order = np.argsort(result.angles_deg)
     ax.plot(result.angles_deg[order], result.backlash_mm[order] * 1e3, "-", lw=1.5,
             label=f"at i = {result.misalignment_deg:g}°")

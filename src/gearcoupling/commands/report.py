@@ -50,7 +50,7 @@ def register(sub) -> None:
                    help="hob outside diameter of the feed program (default: an illustrative "
                         "max(50, 20 module) mm)")
     knob = {"angles": "rotations over a turn of the sweep and loads (default 180)",
-            "capacity_count": "misalignments of the capacity curve (default 13)",
+            "capacity_count": "misalignments of the capacity curve (default 7)",
             "check_angles": "poses of the mesh interference check (default 36)",
             "surface_angles": "rotations over a tooth pitch for the surface model (default 6)"}
     for name, text in knob.items():

@@ -33,7 +33,7 @@ from numpy.typing import NDArray
 from ..arguments import count, real
 from ..geometry import FLANKS, HubModel, form_radius, hub_flank_model, hub_model, inv, tip_radius
 from ..io import write_csv_records
-from ..plots import figure_axes
+from ..plots import figure_axes, fixed_layout
 from ..spec import CouplingSpec, as_spec
 
 _EPS = 1e-9
@@ -259,6 +259,7 @@ def plot_measuring_charts(charts: MeasuringCharts, ax=None):
     -------
     matplotlib.figure.Figure
     """
+    own = ax is None
     fig, axes = figure_axes(ax, (2, 2), figsize=(11, 8))
     axes = list(np.ravel(axes))
     for row, flank in enumerate(FLANKS):
@@ -283,7 +284,8 @@ def plot_measuring_charts(charts: MeasuringCharts, ax=None):
             a.legend(fontsize=7, loc="best")
             a.grid(True, lw=0.3)
     fig.suptitle(f"{charts.spec_name}: nominal measuring charts (evaluation ranges dotted)")
-    fig.tight_layout()
+    if own:
+        fixed_layout(fig, 0.83, 0.15, 0.59, 0.66, wspace=0.2, hspace=0.261)
     return fig
 
 

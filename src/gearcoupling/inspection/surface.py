@@ -19,7 +19,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.interpolate import RectBivariateSpline
 
 from ..errors import ArgumentError, GeometryError
 from ..geometry import HubModel, hub_flank_model, hub_model
@@ -80,6 +79,8 @@ def flank_table(spec: CouplingSpec, grid: tuple[int, int] = (61, 41), tip_exclus
     z = np.linspace(-half_lead, half_lead, grid[0])
     r = np.linspace(r_lo, r_hi, grid[1])
     vals = _exact(m, z[:, None], r[None, :])
+    from scipy.interpolate import RectBivariateSpline  # lazy: the CLI imports inspection
+
     splines = tuple(RectBivariateSpline(z, r, v, kx=5, ky=5) for v in vals)
     rng = np.random.default_rng(seed)
     zt = rng.uniform(-half_lead, half_lead, 400)

@@ -8,6 +8,7 @@ from collections.abc import Sequence
 from numpy.typing import ArrayLike
 
 from ..errors import ArgumentError
+from ..plots import fixed_layout, new_figure
 
 
 def plot_interference(result, reference_mm: ArrayLike | None = None,
@@ -31,10 +32,8 @@ def plot_interference(result, reference_mm: ArrayLike | None = None,
     """
     rows = 3 if result.backlash_mm is not None else 2
     if ax is None:
-        from matplotlib.figure import Figure
-
-        fig = Figure(figsize=(9, 3.25 * rows), layout="tight")
-        axes = fig.subplots(rows, 1, sharex=True)
+        fig, axes = new_figure(rows, 1, figsize=(9, 3.25 * rows), sharex=True)
+        fixed_layout(fig, 0.88, 0.15, 0.59, 0.36, hspace=0.074)
     else:
         axes = list(ax)
         if len(axes) != rows:

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 from numpy.typing import ArrayLike
 
@@ -94,4 +96,15 @@ def _result(problem: LoadProblem, model: str, out: ModelOutput) -> LoadResult:
         torque_Nm=problem.torque_Nm, model=model, loaded_flank=problem.loaded_flank,
         angles_deg=np.asarray(sw.angles_deg), theta_deg=np.asarray(sw.theta_deg),
         windup_rad=sign * out.windup_rad, gap_angle_rad=problem.gap_rad,
-        mesh_stiffness_Nm_per_rad=out.mesh_stiffness_Nm_per_rad, **out.arrays)
+        mesh_stiffness_Nm_per_rad=out.mesh_stiffness_Nm_per_rad, **out.arrays,
+        pressure_fields=_fields(out.extra.get("fields")))
+
+
+def _fields(fields) -> tuple[dict[str, Any], ...] | None:
+    """What :func:`~.patchmap.patch_maps` draws of each rotation's solved pressure grid
+    (references, not copies: rotations rolled from one solved pose share it); None when
+    the model solves no grid or carried no load."""
+    if not fields or not all(fields):
+        return None
+    return tuple({"teeth": f["teeth"], "z_mm": f["field"].z_mm, "s_mm": f["field"].s_mm,
+                  "mask": f["field"].mask, "pressure_MPa": f["pressure_MPa"]} for f in fields)

@@ -6,8 +6,8 @@ the base circle ``s = (r² - r_b²) / (2 r_b)`` up (the surface model's grid). T
 contact laws' pressure distribution: a Hertz ellipse ``p0 sqrt(1 - (dz/b)² - (ds/a)²)``
 (semi-axes ``b`` along the face, ``a`` across the depth) in the elliptic regime, a strip
 ``p0 sqrt(1 - (dz/b)²)`` over the whole active profile in the line regime, cut at the face
-ends. The ``surface`` model's own pressure field is solved again at that rotation (the
-pressure grid is not kept in a :class:`LoadResult`).
+ends. The ``surface`` model's own pressure grid is the one it solved at that rotation
+(kept in :attr:`LoadResult.pressure_fields`).
 """
 
 from __future__ import annotations
@@ -17,13 +17,10 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from ..clearance import sweep
 from ..errors import ArgumentError
 from ..geometry import developed_arc
 from .contact import REGIMES, contact_model
 from .models.registry import load_model
-from .models.surface import solve_surface
-from .springs import tooth_compliance
 
 
 @dataclass(frozen=True)
@@ -144,11 +141,11 @@ def _analytic_maps(res, j: int, teeth: NDArray, grid: tuple[int, int]) -> list[P
 
 def _surface_maps(res, j: int, teeth: NDArray) -> list[PatchMap]:
     spec = res.spec
-    sw = sweep(spec, res.misalignment_deg, [float(res.angles_deg[j])])
-    out = solve_surface(spec, sw, torque_Nm=res.torque_Nm, loaded_flank=res.loaded_flank,
-                        compliance=tooth_compliance(spec), keep_fields=True)
-    fields = out["fields"][0]
-    gf, pressure, solved = fields["field"], fields["pressure_MPa"], list(fields["teeth"])
+    if res.pressure_fields is None:
+        raise ArgumentError("res", "a LoadResult without pressure_fields", "the result of "
+                            "a load with the surface model (it keeps its pressure grids)")
+    f = res.pressure_fields[j]
+    pressure, solved = f["pressure_MPa"], list(f["teeth"])
     cm = contact_model(spec)
     r_b, hf = spec.tooth.base_radius, cm.half_face
     face = np.linspace(-hf, hf, 101)
@@ -157,16 +154,16 @@ def _surface_maps(res, j: int, teeth: NDArray) -> list[PatchMap]:
     for k in teeth:
         if int(k) in solved:
             i = solved.index(int(k))
-            z, p = gf.z_mm[i], np.where(gf.mask[i], pressure[i], 0.0)
+            z, p = f["z_mm"][i], np.where(f["mask"][i], pressure[i], 0.0)
         elif len(solved):  # an unloaded tooth: an empty map over a solved tooth's grid
-            z, p = gf.z_mm[0], np.zeros_like(pressure[0])
+            z, p = f["z_mm"][0], np.zeros_like(pressure[0])
         else:
-            z, p = np.linspace(-hf, hf, 2), np.zeros((2, gf.s_mm.size))
+            z, p = np.linspace(-hf, hf, 2), np.zeros((2, f["s_mm"].size))
         maps.append(PatchMap(int(k), float(res.theta_deg[k, j]),
-                             float(out["normal_force_N"][k, 0]), "grid",
-                             bool(out["edge_contact"][k, 0]), hf, np.asarray(z, float),
-                             np.asarray(gf.s_mm, float), p, face, s_lo, s_hi,
-                             float(out["interior_pressure_MPa"][k, 0])))
+                             float(res.normal_force_N[k, j]), "grid",
+                             bool(res.edge_contact[k, j]), hf, np.asarray(z, float),
+                             np.asarray(f["s_mm"], float), p, face, s_lo, s_hi,
+                             float(res.interior_pressure_MPa[k, j])))
     return maps
 
 

@@ -13,7 +13,7 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 
 from ..errors import ArgumentError
-from ..plots import new_figure
+from ..plots import fixed_layout, import_matplotlib, new_figure
 from .models.registry import load_model
 from .patchmap import patch_extent, patch_maps
 from .summary import rotation_table
@@ -67,7 +67,8 @@ def plot_loads_over_turn(res, ax=None):
     the coupling puts on the machine (3 panels, ``ax``: 3 Axes)."""
     t = rotation_table(res)
     if ax is None:
-        fig, axes = new_figure(3, 1, figsize=(9, 8.4), sharex=True, layout="constrained")
+        fig, axes = new_figure(3, 1, figsize=(9, 8.4), sharex=True)
+        fixed_layout(fig, 0.7, 2.25, 0.48, 0.24, hspace=0.069)
     else:
         axes = list(np.ravel(np.asarray(ax, dtype=object)))
         if len(axes) != 3:
@@ -240,13 +241,21 @@ def plot_patches(res, rotation: int = 0, ax=None, *, count: int = 6):
     maps = patch_maps(res, rotation, count=count)
     cols = min(3, len(maps))
     rows = -(-len(maps) // cols)
+    cax, title_y = None, 0.98  # suptitle's default
     if ax is None:
-        fig, first = new_figure(figsize=(4.6 * cols + 1.2, 2.7 * rows + 3.4),
-                                layout="constrained")
-        first.remove()
-        grid = fig.add_gridspec(rows + 1, cols, height_ratios=[1.0] * rows + [1.15])
+        import_matplotlib()
+        from matplotlib.figure import Figure
+
+        W, H = 4.6 * cols + 1.2, 2.7 * rows + 3.4
+        fig = Figure(figsize=(W, H))
+        # a fixed layout, in inches from the edges; the colour bar in the right margin
+        grid = fig.add_gridspec(rows + 1, cols, height_ratios=[1.0] * rows + [1.15],
+                                left=0.6 / W, right=1.0 - 1.71 / W, bottom=0.48 / H,
+                                top=1.0 - 0.81 / H, wspace=0.066, hspace=0.31)
         panels = [fig.add_subplot(grid[i // cols, i % cols]) for i in range(len(maps))]
         overview = fig.add_subplot(grid[rows, :])
+        cax = fig.add_axes((1.0 - 0.935 / W, 1.22 / H, 0.3 / W, 1.0 - 2.79 / H))
+        title_y = 1.0 - 0.05 / H
     else:
         axes = list(np.ravel(np.asarray(ax, dtype=object)))
         if len(axes) != len(maps) + 1:
@@ -285,9 +294,9 @@ def plot_patches(res, rotation: int = 0, ax=None, *, count: int = 6):
     for a in panels[::cols]:
         a.set_ylabel("arc length s (mm)", fontsize=8)
     _overview(res, j, overview, cmap, norm, [m.tooth for m in maps])
-    fig.colorbar(ScalarMappable(norm=norm, cmap=cmap), ax=[*panels, overview],
-                 label="contact pressure (MPa)", shrink=0.8,
-                 extend="max" if peak > top else "neither")
+    fig.colorbar(ScalarMappable(norm=norm, cmap=cmap), label="contact pressure (MPa)",
+                 extend="max" if peak > top else "neither",
+                 **({"ax": [*panels, overview], "shrink": 0.8} if cax is None else {"cax": cax}))
     how = ("its pressure grid; p: interior pressure, peak: at a profile or face end"
            if load_model(res.model).pressure_grid else
            "its contact laws' patch: Hertz ellipse, or strip over the active profile")
@@ -295,7 +304,7 @@ def plot_patches(res, rotation: int = 0, ax=None, *, count: int = 6):
                  f"ψ = {res.angles_deg[j]:.3g}°, i = {res.misalignment_deg:.3g}°, "
                  f"T = {torque_text(res.torque_Nm)} N·m\n{res.model} model ({how}); "
                  "grey: active "
-                 "flank, dashed: face ends", fontsize=10)
+                 "flank, dashed: face ends", fontsize=10, y=title_y)
     return fig
 
 

@@ -29,7 +29,11 @@ class LoadResult:
     ``normal_force_N`` along the flank normal. ``deflection_mm`` is the closure
     ``R (dpsi - g_k)`` at the pitch circle. ``windup_rad`` is signed like the torque.
     ``contact_regime`` indexes :data:`REGIMES`; ``root_stress_MPa`` the larger root bending
-    stress of hub and sleeve tooth.
+    stress of hub and sleeve tooth. ``pressure_fields``: a model that solves a pressure
+    grid (``surface``) keeps each rotation's solved grid here for
+    :func:`~gearcoupling.loading.patch_maps` (a dict per rotation: the solved ``teeth``,
+    their cells ``z_mm`` and ``s_mm``, ``mask`` on the flank and ``pressure_MPa``), else
+    None.
     """
 
     spec: Any = field(repr=False)
@@ -55,6 +59,7 @@ class LoadResult:
     contact_regime: NDArray[np.int8]
     root_stress_MPa: NDArray[np.float64]
     mesh_stiffness_Nm_per_rad: NDArray[np.float64]  # (M,) dT/d(dpsi) at the load
+    pressure_fields: tuple[dict[str, Any], ...] | None = field(default=None, repr=False)
 
     @property
     def teeth(self) -> int:

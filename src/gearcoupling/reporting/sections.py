@@ -46,7 +46,7 @@ from ..loading import (
     write_capacity_csv,
 )
 from ..outputs import backlash_grid, backlash_range_deg, design_point, q_points, turn_sweep
-from ..plots import crown_profile, new_figure, sections_figure
+from ..plots import crown_profile, fixed_layout, new_figure, sections_figure
 from ..spec import CouplingSpec, check_misalignment_deg
 from ..viewer import ViewSettings, write_html
 from .capacity import StartedComparison, comparison_range
@@ -315,7 +315,7 @@ def loads(ctx: Context) -> Section:
         "tooth", plot_patches(res, j, count=s.patch_teeth),
         how + f" Rotation ψ = {res.angles_deg[j]:.3g}° (the largest tooth load); analytic "
         "maps on a 481 × 61 grid" if not load_model(ctx.model).pressure_grid else
-        how + f" Rotation ψ = {res.angles_deg[j]:.3g}°, re-solved with its pressure grid.",
+        how + f" Rotation ψ = {res.angles_deg[j]:.3g}°, its solved pressure grid.",
         name))
     q_graph(ctx, sec)
     return sec
@@ -466,7 +466,8 @@ def manufacturing(ctx: Context) -> Section:
     write_text(ctx.data_path("hob_program.nc"), prog.gcode())
     write_csv_records(ctx.data_path("hob_path.csv"), prog.rows(),
                       ["hob centre path, mm and degrees"])
-    fig, ax = new_figure(figsize=(9, 3.6), layout="constrained")
+    fig, ax = new_figure(figsize=(9, 3.6))
+    fixed_layout(fig, 0.7, 0.05, 0.48, 0.24)
     ax.plot(prog.table["z_mm"], prog.table["infeed_mm"] * 1e3, "-")
     ax.set_xlabel("hob centre Z (mm)")
     ax.set_ylabel("infeed from the midplane (µm)")

@@ -113,7 +113,8 @@ def _surface(problem: LoadProblem, progress: Progress = None) -> ModelOutput:
     spec, c = problem.spec, problem.compliance
     out = solve_surface(spec, problem.sweep, torque_Nm=problem.torque_Nm, compliance=c,
                         grid=problem.pressure_grid or DEFAULT_GRID,
-                        gap_offset_rad=problem.gap_offset_rad, progress=progress)
+                        gap_offset_rad=problem.gap_offset_rad, keep_fields=True,
+                        progress=progress)
     Fn = np.asarray(out["normal_force_N"])
     z, r = out["contact_z_mm"], out["contact_r_mm"]
     out.setdefault("contact_regime", np.where(Fn > 0, 2, 0))
@@ -172,7 +173,7 @@ class LoadModel:
         load varies by about 2 % over a pitch: ``benchmarks/bench_surface.py``).
     pressure_grid : bool
         The model solves the contact pressure on a grid over each loaded flank (its patch
-        maps re-solve the pose on that grid; its capacity and studies take
+        maps draw the grid it solved; its capacity and studies take
         ``pressure_grid``), else its patch maps draw the contact laws' patch.
     takes_mesh_stiffness : bool
         The model takes ``[load] mesh_stiffness_N_per_mm`` where the spec sets it
