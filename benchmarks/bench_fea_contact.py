@@ -132,7 +132,12 @@ def convergence(name: str, runs: dict) -> dict:
             ref["interior_pressure_MPa"] = [r["interior_pressure_MPa"] for _, r in rows]
         fig = {}
         for key, values in ref.items():
-            if len(rows) >= 3:
+            if key == "interior_pressure_MPa":  # the finest, never extrapolated: the patch's
+                # depth ends are edges where the pressure is singular (docs/fea.md)
+                fig[key] = values[-1]
+                print(f"\n{key} at {torque:g} N·m: finest {values[-1]:.6g} (not extrapolated; "
+                      f"{', '.join(f'{v:.0f}' for v in values)} from coarse to fine)", end="")
+            elif len(rows) >= 3:
                 fig[key], p = richardson([float(k) for k, _ in rows[-3:]], values[-3:])
                 how = "extrapolated" if fig[key] != values[-1] else "not extrapolated"
                 print(f"\n{key} at {torque:g} N·m: {how} {fig[key]:.6g} (finest "
