@@ -5,8 +5,8 @@ Run: ``python benchmarks/bench_fea_contact.py [--specs A B] [--random NAME ...]
 of ``benchmarks/bench_springs.py``'s data set by name (``springs-<i>-<crown>``, seed 2026,
 ``tests/random_specs.py``), loaded at the nominal tooth load of the templates,
 :data:`LOAD_PER_MODULE2` times the module squared; their ladder is module / (3/√2) and
-module / 3 (two sizes: a third, module / 3√2, took over 40 min on the shared 2-core
-machine, as mill-spindle's 1.89 mm would).
+module / 3, and ``--sizes`` adds a third, module / 3√2 (springs-24-circular's 0.354 mm:
+312 s with the contact decks' iterative solver).
 For each spec, :func:`gearcoupling.fe_contact` at the spec's
 torque on a ladder of contact-zone element sizes (ratio sqrt 2; the rest of the teeth at
 module / 4 or the contact size where that is coarser), each run also giving the half-torque
@@ -41,7 +41,7 @@ from gearcoupling.fea import tooth_compliance_table
 ROOT = Path(__file__).resolve().parent.parent
 GOLDEN = ROOT / "tests" / "golden" / "fe_contact_reference.json"
 SIZES = {"renzo-1967": (0.85, 0.6, 0.42), "industrial-m2": (0.7, 0.5, 0.35),
-         "mill-spindle": (3.78, 2.67)}  # module / (3/√2), / 3: two sizes (docstring)
+         "mill-spindle": (3.78, 2.67, 1.89)}  # module / (3/√2), / 3, / 3√2
 LOAD_PER_MODULE2 = 70.0  # N/mm²: a random spec's tooth load over its module squared
 
 
