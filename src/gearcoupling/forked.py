@@ -53,7 +53,6 @@ def worker_signals() -> None:
     signal.pthread_sigmask(signal.SIG_UNBLOCK, STOP_SIGNALS)  # blocked over the fork
 
 
-
 def _map_worker(func: Callable[[Any], Any], items: Sequence[Any], indices: Sequence[int],
                 conn) -> None:
     worker_signals()

@@ -179,12 +179,12 @@ def cyclic_equations(vm: VolumeMesh, cw: str, ccw: str, rotation: NDArray[np.flo
 
 
 def torque_deck(pair: VolumeMesh, spec: CouplingSpec, *, moment_Nmm: float, preturn_rad: float,
-                penalty: float, increment: float = 0.5, solver: str = CONTACT_SOLVER) -> str:
+                penalty: float, increment: float = 0.5) -> str:
     """The deck (module docstring): step 1 turns the sleeve by ``-preturn_rad`` in two
     increments (in one, its reaction moment moved 0.3 % on springs-12-end_round, and with it
     the mesh's first touch), step 2 applies ``-moment_Nmm`` about z to it instead, in
     increments of at most ``increment`` of the moment (each one printed: the wind-up
-    curve); ``solver``: ccx's equation solver."""
+    curve); ccx's equation solver :data:`CONTACT_SOLVER`."""
     E, nu = material(spec, "hub")
     ref, rot = len(pair.nodes) + 1, len(pair.nodes) + 2
     bore, outer = pair.node_set("H_BORE"), pair.node_set("S_OUTER")
@@ -203,10 +203,10 @@ def torque_deck(pair: VolumeMesh, spec: CouplingSpec, *, moment_Nmm: float, pret
               "*CONTACT PAIR, INTERACTION=SI, TYPE=SURFACE TO SURFACE",
               "S_H_T0_FLANK_CCW, S_S_T0_FLANK_CCW",
               "*BOUNDARY", "HFIX, 1, 3, 0.0", f"{ref}, 1, 3, 0.0", f"{rot}, 1, 2, 0.0",
-              "*STEP, INC=100", f"*STATIC, SOLVER={solver}", "0.5, 1.0", "*BOUNDARY",
+              "*STEP, INC=100", f"*STATIC, SOLVER={CONTACT_SOLVER}", "0.5, 1.0", "*BOUNDARY",
               f"{rot}, 3, 3, {inp_number(-preturn_rad)}",
               "*NODE PRINT, NSET=ROTN", "U, RF", "*END STEP",
-              "*STEP, INC=200", f"*STATIC, SOLVER={solver}",
+              "*STEP, INC=200", f"*STATIC, SOLVER={CONTACT_SOLVER}",
               f"{increment}, 1.0, 1e-4, {increment}",
               "*BOUNDARY, OP=NEW", "HFIX, 1, 3, 0.0", f"{ref}, 1, 3, 0.0", f"{rot}, 1, 2, 0.0",
               "*CLOAD", f"{rot}, 3, {inp_number(-moment_Nmm)}",

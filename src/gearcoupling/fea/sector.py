@@ -173,14 +173,15 @@ def _angle(value, name: str, lo: float, hi: float) -> float:
 
 def sector_deck(pair: VolumeMesh, spec: CouplingSpec, *, hub_axis: np.ndarray,
                 hub_cut_rotation: np.ndarray, turn_rad: float, penalty: float,
-                increment: float = 1.0, solver: str = CONTACT_SOLVER) -> str:
+                increment: float = 1.0) -> str:
     """The deck (module docstring) of a merged sector pair: the rigid hub bore turns by
     ``turn_rad`` about ``hub_axis (3,)``, the hub's cuts tied by ``hub_cut_rotation (3, 3)``
     (the sector angle about the hub axis), the sleeve's by the same angle about z; the
     step starts with ``increment`` of the turn (the solver cuts it where contact does not
-    converge); ``solver``: ccx's equation solver. Frictionless and elastic, the answer does
-    not depend on the path: on renzo-1967's one-tooth sector at 0° one increment gave the
-    load of four quarter increments within 5e-5 in 52 s instead of 89 s."""
+    converge; ccx's equation solver :data:`.reference.CONTACT_SOLVER`). Frictionless and
+    elastic, the answer does not depend on the path: on renzo-1967's one-tooth sector at 0°
+    one increment gave the load of four quarter increments within 5e-5 in 52 s instead of
+    89 s."""
     E, nu = material(spec, "hub")
     ref, rot = len(pair.nodes) + 1, len(pair.nodes) + 2
     bore, outer = pair.node_set("H_BORE"), pair.node_set("S_OUTER")
@@ -201,7 +202,7 @@ def sector_deck(pair: VolumeMesh, spec: CouplingSpec, *, hub_axis: np.ndarray,
         lines += ["*CONTACT PAIR, INTERACTION=SI, TYPE=SURFACE TO SURFACE",
                   f"S_H_T{k}_FLANK_CCW, S_S_T{k}_FLANK_CCW"]
     lines += ["*BOUNDARY", "SFIX, 1, 3, 0.0", f"{ref}, 1, 3, 0.0",
-              "*STEP, INC=200", f"*STATIC, SOLVER={solver}",
+              "*STEP, INC=200", f"*STATIC, SOLVER={CONTACT_SOLVER}",
               f"{increment}, 1.0, 1e-4, {increment}", "*BOUNDARY"]
     lines += [f"{rot}, {d + 1}, {d + 1}, {inp_number(turn_rad * hub_axis[d])}"
               for d in range(3)]

@@ -76,6 +76,11 @@ class Context:
     def data_dir(self) -> Path:
         return self.out / DATA_DIR
 
+    @property
+    def flank(self) -> str:
+        """The loaded flank: ``cw`` under a negative torque, else ``ccw``."""
+        return "cw" if (self.torque_Nm or 0.0) < 0 else "ccw"
+
     def data_path(self, name: str) -> Path:
         path = self.data_dir / name
         self.files.append(path)
@@ -355,7 +360,7 @@ def start_capacity(ctx: Context) -> None:
     they run while the sections before the capacity are built. The caller stops it in a
     ``finally`` (``ctx.capacity_curve.stop()``)."""
     known = comparison_range([ctx.spec], ctx.settings.capacity_count)
-    flank = "cw" if (ctx.torque_Nm or 0.0) < 0 else "ccw"
+    flank = ctx.flank
     mis = _through(known[0], ctx.misalignment_deg) if flank == "ccw" else known[0]
     ctx.capacity_curve = StartedComparison([ctx.spec], mis, model=ctx.model,
                                            known_range=known)
@@ -364,7 +369,7 @@ def start_capacity(ctx: Context) -> None:
 def capacity_section(ctx: Context) -> Section:
     spec = ctx.spec
     sec = Section("capacity", "Capacity per criterion against misalignment")
-    flank = "cw" if (ctx.torque_Nm or 0.0) < 0 else "ccw"
+    flank = ctx.flank
     if ctx.capacity_curve is None:
         start_capacity(ctx)
     comp = ctx.capacity_curve.result()

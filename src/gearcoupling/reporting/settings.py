@@ -54,8 +54,8 @@ class ReportSettings:
     viewer : bool
         Embed the 3D viewer (the ``viewer`` extra).
     datasheet : bool
-        The API 671 data sheet (with the default surface model about 16 s of CPU, the
-        report's costliest section).
+        The API 671 data sheet (with the default surface model about 15 s of CPU on
+        renzo-1967, the report's costliest section).
     dpi : int
         Figure resolution.
     """

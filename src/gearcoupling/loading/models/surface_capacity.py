@@ -229,7 +229,6 @@ def _surface_capacity(limits: _SurfaceLimits, name: str, guess_Nmm: NDArray, fir
     return best
 
 
-
 def _measured_slope(limits: _SurfaceLimits, name: str, j: int, T_Nmm: float) -> float:
     """``d ln ratio / d ln T`` of criterion ``name`` at rotation ``j`` near ``T``: from the
     two poses solved there nearest ``T`` (within 25 %; the worst tooth's share falls as
