@@ -189,9 +189,10 @@ def test_other_packages_are_reached_only_through_their_public_names():
     assert not wrong, wrong
 
 
-# the one first-party import made at the call: the compiled kernels import numba (heavy,
+# the first-party imports made at the call: the compiled kernels import numba (heavy,
 # optional) at their top, so importing them is the lazy import of numba
-LAZY_FIRST_PARTY = {("clearance/fast.py", "_compiled")}
+LAZY_FIRST_PARTY = {("clearance/fast.py", "_compiled"),
+                    ("loading/kernels/halfspace.py", "_contact_compiled")}
 
 
 def test_first_party_imports_sit_at_the_top_of_modules():
