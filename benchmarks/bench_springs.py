@@ -132,6 +132,74 @@ def fit(data: list[dict], ridge: float = 0.1) -> dict:
     return {"features": list(FEATURES), "parts": parts}
 
 
+#: the features (per part, by name) the correction's Gaussian process reads: all but the
+#: constant and the square of the height (the process is not linear in its inputs), the
+#: sleeve's without its crown (straight) and the pressure angle (the hub's holds it)
+GP_INPUTS = {"hub": ("height", "face_end", "face_end_height", "other_end", "tip_edge",
+                     "crown_thinning", "pressure_angle", "pressure_angle_height"),
+             "sleeve": ("height", "face_end", "face_end_height", "other_end", "tip_edge",
+                        "pressure_angle_height")}
+
+
+def correction_data(specs, tables, base: dict) -> tuple[np.ndarray, np.ndarray]:
+    """The correction's inputs ``(P, d)`` (:data:`GP_INPUTS`) and targets ``(P,)``, the log
+    of the FE pair far field over the base fit's (``base`` without a correction), at every
+    load point of every table."""
+    from gearcoupling.loading.kernels.fitted import FEATURES, PARTS, FittedCompliance
+
+    X, y = [], []
+    for spec, table in zip(specs, tables, strict=True):
+        springs = FittedCompliance(spec, fit=base)
+        Z, R = (a.ravel() for a in np.meshgrid(table.z_mm, table.r_mm, indexing="ij"))
+        X.append(np.hstack([springs.part_features(p, Z, R)[:, [FEATURES.index(n)
+                                                                for n in GP_INPUTS[p]]]
+                            for p in PARTS]))
+        y.append(np.log(table.far_field_mm_per_N.ravel()
+                        / springs.pair_compliance_mm_per_N(Z, R)))
+    return np.vstack(X), np.concatenate(y)
+
+
+def fit_correction(X: np.ndarray, y: np.ndarray) -> dict:
+    """A Gaussian process on ``y`` over the standardised ``X``: zero mean, squared-
+    exponential kernel with a length per input, white noise; the lengths, the variance and
+    the noise maximise the marginal likelihood (L-BFGS-B, exact gradient). Returns what
+    :func:`gearcoupling.loading.kernels.fitted.gp_mean` reads."""
+    from scipy.linalg import cho_factor, cho_solve
+    from scipy.optimize import minimize
+
+    mean, scale = X.mean(axis=0), X.std(axis=0)
+    Z = (X - mean) / scale
+    n, d = Z.shape
+    D2 = (Z[:, None, :] - Z[None, :, :]) ** 2  # (n, n, d)
+
+    def kernel(theta):
+        length, variance = np.exp(theta[:d]), math.exp(theta[d])
+        return variance * np.exp(-0.5 * (D2 @ length**-2)), length
+
+    def nll(theta):
+        Kf, length = kernel(theta)
+        noise = math.exp(theta[d + 1])
+        c = cho_factor(Kf + noise * np.eye(n), lower=True)
+        a = cho_solve(c, y)
+        W = np.outer(a, a) - cho_solve(c, np.eye(n))
+        WK = W * Kf
+        grad = np.concatenate([-0.5 * np.einsum("ij,ijk->k", WK, D2) / length**2,
+                               [-0.5 * np.sum(WK), -0.5 * noise * np.trace(W)]])
+        return 0.5 * y @ a + np.sum(np.log(np.diag(c[0]))), grad
+
+    start = np.r_[np.full(d, math.log(3.0)), math.log(0.01), math.log(1e-3)]
+    bounds = [(math.log(0.3), math.log(100.0))] * d + [(math.log(1e-4), 0.0),
+                                                      (math.log(1e-6), math.log(0.1))]
+    theta = minimize(nll, start, jac=True, method="L-BFGS-B", bounds=bounds).x
+    Kf, length = kernel(theta)
+    noise = math.exp(theta[d + 1])
+    weights = cho_solve(cho_factor(Kf + noise * np.eye(n), lower=True), y)
+    return {"inputs": {p: list(v) for p, v in GP_INPUTS.items()}, "mean": mean.tolist(),
+            "scale": scale.tolist(), "length": length.tolist(),
+            "variance": math.exp(theta[d]), "noise": noise, "points": Z.tolist(),
+            "weights": weights.tolist()}
+
+
 def spec_ranges(specs) -> dict:
     """The data set's range of what :attr:`FittedCompliance.outside` checks."""
     from gearcoupling.loading.kernels.fitted import FittedCompliance
@@ -183,6 +251,8 @@ def main() -> None:
         keep = [i for i in range(len(specs))
                 if not (a.holdout and i >= len(TEMPLATES) and i % a.holdout == 0)]
         fitted = fit([data[i] for i in keep])
+        fitted["correction"] = fit_correction(*correction_data(
+            [specs[i] for i in keep], [tables[i] for i in keep], fitted))
         fitted["spec_ranges"] = spec_ranges([specs[i] for i in keep])
         points = sum(tables[i].far_field_mm_per_N.size for i in keep)
         fitted["data_set"] = (f"bench_springs.py: {len(keep)} specs (the templates and seeded "

@@ -50,7 +50,7 @@ from __future__ import annotations
 
 import json
 import math
-from functools import cached_property
+from functools import cached_property, lru_cache
 from importlib import resources
 from typing import Any
 
@@ -108,8 +108,25 @@ def features(y_F: ArrayLike, to_face_ends: tuple[ArrayLike, ArrayLike], to_tip: 
                      a * h], axis=-1)
 
 
+def gp_mean(x: ArrayLike, gp: dict[str, Any]) -> NDArray[np.float64]:
+    """The mean ``(n,)`` of a Gaussian process with a squared-exponential kernel at inputs
+    ``x (n, d)``: ``variance exp(-|(x' - X) / length|^2 / 2) @ weights`` with ``x'`` the
+    inputs standardised by ``mean`` and ``scale`` and ``X (N, d)`` the standardised
+    ``points`` it was fitted on (the keys of ``gp``; ``benchmarks/bench_springs.py``)."""
+    length = np.asarray(gp["length"], dtype=float)
+    a = (np.asarray(x, dtype=float) - gp["mean"]) / gp["scale"] / length
+    b = np.asarray(gp["points"], dtype=float) / length
+    d2 = np.sum(a * a, axis=1)[:, None] + np.sum(b * b, axis=1)[None, :] - 2.0 * a @ b.T
+    # beyond a distance of 30 lengths a point adds nothing (exp(-450)); held there, exp
+    # stays clear of subnormal numbers (an order of magnitude slower)
+    k = np.exp(-0.5 * np.clip(d2, 0.0, 900.0))
+    return gp["variance"] * k @ np.asarray(gp["weights"], dtype=float)
+
+
+@lru_cache(maxsize=1)
 def load_fit() -> dict[str, Any]:
-    """The shipped coefficients and fitted ranges (``fitted.json`` beside this module)."""
+    """The shipped coefficients and fitted ranges (``fitted.json`` beside this module; read
+    once, shared: do not change it)."""
     text = resources.files("gearcoupling.loading.kernels").joinpath("fitted.json").read_text()
     return json.loads(text)
 
@@ -187,18 +204,45 @@ class FittedCompliance(CantileverCompliance):
         return self.bending(part, z_mm, r_mm) * np.exp(np.clip(f, lo, hi) @ a)
 
     def part_compliance_mm_per_N(self, part: str, z_mm: ArrayLike, r_mm: ArrayLike) -> NDArray:
-        """Normal far-field compliance of one part at hub flank points ``(z, r)`` (mm/N).
+        """Normal far-field compliance of one part at hub flank points ``(z, r)`` (mm/N),
+        with the pair's :meth:`correction`.
 
         Only the two parts' sum is fitted to FE: one part alone is not its FE far field
         (against the 40 tables, the hub's share up to 79 % of the pair's far field too high
         and the sleeve's up to 84 % too low, in opposite senses)."""
+        return self._uncorrected(part, z_mm, r_mm) * self.correction(z_mm, r_mm)
+
+    def _uncorrected(self, part: str, z_mm: ArrayLike, r_mm: ArrayLike) -> NDArray:
         c = self.fit["parts"][part]
         return (self.spread_bending(part, z_mm, r_mm)
                 - c["confinement"] * self.confinement(part, r_mm, c["confinement_length"]))
 
+    def correction(self, z_mm: ArrayLike, r_mm: ArrayLike) -> NDArray:
+        """The pair's factor on the parts' fit at hub flank points ``(z, r)``: ``exp`` of
+        the Gaussian-process mean of the fit's log error over the data set (module
+        docstring), 1 without one in the fit; it fades to 1 away from the data set."""
+        shape = np.broadcast_shapes(np.shape(z_mm), np.shape(r_mm))
+        if self._gp is None:
+            return np.ones(shape)
+        gp, columns = self._gp
+        x = np.concatenate([self.part_features(p, z_mm, r_mm)[..., columns[p]]
+                            for p in PARTS], axis=-1).reshape(-1, gp["mean"].size)
+        return np.exp(gp_mean(x, gp)).reshape(shape)
+
+    @cached_property
+    def _gp(self) -> tuple[dict[str, Any], dict[str, list[int]]] | None:
+        """The fit's correction as arrays, and the feature columns of its inputs per part."""
+        gp = self.fit.get("correction")
+        if gp is None:
+            return None
+        arrays = {k: np.asarray(v, dtype=float) if isinstance(v, list) else v
+                  for k, v in gp.items() if k != "inputs"}
+        return arrays, {p: [FEATURES.index(n) for n in gp["inputs"][p]] for p in PARTS}
+
     def normal_compliance_mm_per_N(self, z_mm: ArrayLike, r_mm: ArrayLike):
         """Hub and sleeve normal far-field compliances at the load (mm/N), broadcast."""
-        return tuple(self.part_compliance_mm_per_N(p, z_mm, r_mm) for p in PARTS)
+        factor = self.correction(z_mm, r_mm)
+        return tuple(self._uncorrected(p, z_mm, r_mm) * factor for p in PARTS)
 
     def pair_compliance_mm_per_N(self, z_mm: ArrayLike, r_mm: ArrayLike) -> NDArray:
         """The pair's far field (Renzo's measure, mm/N), at least :data:`FLOOR` of its
