@@ -16,7 +16,8 @@ load model adds up); the error over every spec and grid point; the springs' time
 ``--no-compute`` specs without a cached table are left out. ``--fit`` fits the coefficients
 of :mod:`gearcoupling.loading.kernels.fitted` to the data set first and writes them to
 ``src/gearcoupling/loading/kernels/fitted.json`` (the table then shows the new fit);
-``--holdout K`` fits on all but every K-th random spec and prints the error on those left out.
+``--holdout K`` fits on all but every K-th random spec and prints the error on those left out;
+``--golden`` writes the tables' far fields to ``tests/golden/fe_far_field.json``.
 """
 
 from __future__ import annotations
@@ -219,6 +220,19 @@ def spec_ranges(specs) -> dict:
     return {k: [min(v), max(v)] for k, v in vals.items()}
 
 
+GOLDEN = ROOT / "tests" / "golden" / "fe_far_field.json"
+
+
+def write_golden(specs, tables) -> None:
+    """The FE tables' load points and pair far fields (Renzo's measure, mm/N) per spec, for
+    ``tests/test_load_springs.py`` (which checks the shipped fit against them)."""
+    out = {spec.name: {"z_mm": t.z_mm.tolist(), "r_mm": t.r_mm.tolist(),
+                       "far_field_mm_per_N": t.far_field_mm_per_N.tolist()}
+           for spec, t in zip(specs, tables, strict=True)}
+    GOLDEN.write_text(json.dumps(out, indent=1) + "\n")
+    print(f"wrote {GOLDEN} ({len(out)} specs)")
+
+
 def describe(spec: gc.CouplingSpec) -> str:
     t = spec.tooth
     return (f"{t.teeth} teeth, m {t.module:.3g}, {math.degrees(t.pressure_angle):.1f}°, "
@@ -232,6 +246,8 @@ def main() -> None:
     ap.add_argument("--no-compute", action="store_true")
     ap.add_argument("--fit", action="store_true")
     ap.add_argument("--holdout", type=int, default=0)
+    ap.add_argument("--golden", action="store_true",
+                    help=f"write every table's far field to {GOLDEN.relative_to(ROOT)}")
     a = ap.parse_args()
     from gearcoupling.loading.kernels.fitted import FittedCompliance, load_fit
 
@@ -245,6 +261,8 @@ def main() -> None:
         if table is not None:
             specs.append(spec)
             tables.append(table)
+    if a.golden:
+        write_golden(specs, tables)
     fitted = None
     if a.fit or a.holdout:
         data = [part_records(s, t, FittedCompliance(s)) for s, t in zip(specs, tables, strict=True)]

@@ -1,9 +1,12 @@
 """The tooth springs by name (``[load] stiffness``): the registry, the default fit's range
-checks and its robustness over the supported range. Its accuracy against FE tables is in
-``tests/test_fea_stiffness.py`` (``test_default_springs_reproduce_the_fe_table``, real
-gmsh and CalculiX)."""
+checks, its robustness over the supported range and its accuracy against the stored FE
+tables it was fitted on; against a table computed in the session (real gmsh and CalculiX):
+``tests/test_fea_stiffness.py`` (``test_default_springs_reproduce_the_fe_table``)."""
 
 from __future__ import annotations
+
+import json
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -12,7 +15,7 @@ import gearcoupling as gc
 from gearcoupling.loading import FittedCompliance
 from gearcoupling.loading.springs import SPRINGS
 from gearcoupling.loadspec import STIFFNESS_SOURCES
-from random_specs import proportions_spec
+from random_specs import proportions_spec, springs_specs
 
 TEMPLATES = ("renzo-1967", "renzo-1967-vari-crown", "renzo-1967-end-round", "industrial-m2",
              "mill-spindle")
@@ -55,3 +58,23 @@ def test_the_fit_is_finite_and_positive_over_random_specs():
         c = springs.pair_compliance_mm_per_N(Z, R)
         assert np.all(np.isfinite(c)) and np.all(c > 0), (spec.name, c)
         assert 0 < springs.mesh_stiffness_N_per_mm < np.inf
+
+
+def test_the_default_springs_reproduce_every_stored_fe_far_field_within_10_percent():
+    """The pair far field of the 40 FE tables the fit was made on (the templates and the
+    seeded random specs of ``benchmarks/bench_springs.py``, stored by its ``--golden``)
+    against the shipped fit at each table's 3 x 3 load points: within 10 % at every point
+    (the issue's target; -6.6 ... +7.9 % measured). The parts' fit alone, before the
+    correction, missed it on 10 specs, up to +21.5 % (springs-35-circular)."""
+    stored = json.loads((Path(__file__).parent / "golden" / "fe_far_field.json").read_text())
+    by_name = {s.name: s for s in springs_specs(55)}
+    worst = {}
+    for name, t in stored.items():
+        spec = by_name[name] if name.startswith("springs-") else gc.load_spec(name)
+        Z, R = np.meshgrid(t["z_mm"], t["r_mm"], indexing="ij")
+        err = FittedCompliance(spec).pair_compliance_mm_per_N(Z, R) / np.asarray(
+            t["far_field_mm_per_N"]) - 1.0
+        worst[name] = float(err.flat[np.argmax(np.abs(err))])
+    assert len(worst) == 40
+    assert all(abs(e) <= 0.10 for e in worst.values()), {
+        k: round(v, 3) for k, v in worst.items() if abs(v) > 0.10}

@@ -131,6 +131,16 @@ def load_fit() -> dict[str, Any]:
     return json.loads(text)
 
 
+def _as_arrays(gp: dict[str, Any]) -> dict[str, Any]:
+    return {k: np.asarray(v, dtype=float) if isinstance(v, list) else v
+            for k, v in gp.items() if k != "inputs"}
+
+
+@lru_cache(maxsize=1)
+def _shipped_correction() -> dict[str, Any]:
+    return _as_arrays(load_fit()["correction"])
+
+
 class FittedCompliance(CantileverCompliance):
     """Far-field tooth-pair compliance of a spec from the shipped fit (module docstring);
     the same protocol as the cantilever and the FE table:
@@ -235,9 +245,9 @@ class FittedCompliance(CantileverCompliance):
         gp = self.fit.get("correction")
         if gp is None:
             return None
-        arrays = {k: np.asarray(v, dtype=float) if isinstance(v, list) else v
-                  for k, v in gp.items() if k != "inputs"}
+        arrays = _shipped_correction() if self.fit is load_fit() else _as_arrays(gp)
         return arrays, {p: [FEATURES.index(n) for n in gp["inputs"][p]] for p in PARTS}
+
 
     def normal_compliance_mm_per_N(self, z_mm: ArrayLike, r_mm: ArrayLike):
         """Hub and sleeve normal far-field compliances at the load (mm/N), broadcast."""
