@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import gearcoupling as gc
-from gearcoupling.clearance.result import CSV_COLUMNS
+from gearcoupling.clearance import CSV_COLUMNS
 from gearcoupling.io import (
     NonFiniteError,
     Table,
