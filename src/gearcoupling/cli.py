@@ -22,7 +22,7 @@ from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from typing import NoReturn
 
-from .commands import COMMANDS, CREATED, WRITING
+from .commands import CREATED, NAMES, WRITING, command_module
 from .errors import GearCouplingError, brief
 from .io import remove_stale_temporaries
 
@@ -41,14 +41,15 @@ class _Parser(argparse.ArgumentParser):
                   f"(see {self.prog} --help)\n")
 
 
-def build_parser() -> argparse.ArgumentParser:
+def build_parser(commands: Sequence[str] = NAMES) -> argparse.ArgumentParser:
+    """The parser of ``commands`` (default every command: the full help)."""
     parser = _Parser(
         prog="gearcoupling",
         description="Crowned-tooth gear couplings: exact geometry, parts, sweeps and viewer.",
     )
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
-    for module in COMMANDS:
-        module.register(sub)
+    for name in commands:
+        command_module(name).register(sub)
     return parser
 
 
@@ -159,7 +160,10 @@ def _interrupted(stop: KeyboardInterrupt, started: float) -> int:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; returns the exit status."""
-    parser = build_parser()
+    argv = sys.argv[1:] if argv is None else list(argv)
+    # a command's own parser (its module alone is imported); any other start (--help, a
+    # misspelt command) the full one
+    parser = build_parser([argv[0]] if argv and argv[0] in NAMES else NAMES)
     try:
         args = parser.parse_args(argv)
     except SystemExit as stop:  # --help, or an argument error already printed on one line

@@ -20,17 +20,11 @@ from typing import Any
 from ..clearance import sweep
 from ..errors import ArgumentError, BackendError, GearCouplingError
 from ..forked import can_fork, messages, start_workers, stop_workers, worker_signals
-from ..interference import check_interference
 from ..io import output_folder, remove_stale_temporaries, write_json
 from ..plots import import_matplotlib, plot_sections
 from ..spec import CouplingSpec, as_spec
-from ..viewer import write_html
-from .interference import write_interference
-from .load import write_load
-from .parts import write_parts, write_step_files
 from .spec import write_spec
 from .stages import remember, take_new
-from .sweep import write_sweep
 
 #: the steps in the order they are listed, each with what it writes
 STEPS: dict[str, str] = {
@@ -51,11 +45,13 @@ COST = {"spec": 0.0, "sections": 0.45, "parts": 0.85, "step": 1.75, "sweep": 1.7
 #: steps that run in one process, in this order (``step`` adds its files to ``parts.json``)
 TOGETHER = (("parts", "step"),)
 #: what a step loads that another step may load too: with two workers, what both need is
-#: loaded once before the fork, not once in each (matplotlib 0.3 s, trimesh 0.2 s, the
-#: compiled sweep kernels 0.4 s of CPU)
+#: loaded once before the fork, not once in each (matplotlib 0.3 s, trimesh and the parts
+#: 0.3 s, the compiled sweep kernels 0.4 s, the load models 0.2 s of CPU); what one
+#: chain alone needs its worker loads
 NEEDS = {"spec": (), "sections": ("figures",), "parts": ("meshes",), "step": (),
-         "sweep": ("figures", "kernels"), "load": ("figures", "kernels"),
-         "check": ("figures", "meshes", "kernels"), "viewer": ("figures", "meshes", "kernels")}
+         "sweep": ("figures", "kernels"), "load": ("figures", "kernels", "loads"),
+         "check": ("figures", "meshes", "kernels"),
+         "viewer": ("figures", "meshes", "kernels", "loads")}
 CHECK_ANGLES = 72
 RUN_ANGLES = 360
 
@@ -86,24 +82,39 @@ class RunResult:
 
 
 def _step(key: str, spec: CouplingSpec, out: Path) -> list[Path]:
+    """Run step ``key``; each imports its stage here, in the worker that runs it (the
+    parent loads only what every chain needs: :func:`_preload`)."""
     mis = spec.design_misalignment_deg
     if key == "spec":
         return write_spec(spec, out)
     if key == "sections":
         return [plot_sections(spec, out / "sections.png")]
     if key == "parts":
+        from .parts import write_parts
+
         return write_parts(spec, out)[0]
     if key == "step":
+        from .parts import write_step_files
+
         return write_step_files(spec, out)
     if key == "sweep":
+        from .sweep import write_sweep
+
         return write_sweep(spec, out, mis, RUN_ANGLES)[1]
     if key == "load":
         if spec.load.torque_Nm is None:
             raise SkipStep("no [load] torque_Nm in the spec")
+        from .load import write_load
+
         return write_load(spec, out, mis)[1]  # a turn of PHASES poses per pitch
     if key == "check":
+        from ..interference import check_interference
+        from .interference import write_interference
+
         angles = [360.0 * j / CHECK_ANGLES for j in range(CHECK_ANGLES)]
         return write_interference(spec, check_interference(spec, mis, angles), out)
+    from ..viewer import write_html
+
     return [write_html(spec, out / "viewer.html")]
 
 
@@ -169,6 +180,10 @@ def _preload(spec: CouplingSpec, split: list[list[str]]) -> None:
         import matplotlib.figure  # noqa: F401
     if "meshes" in both:
         import trimesh  # noqa: F401
+
+        from .. import parts  # noqa: F401
+    if "loads" in both:
+        from .. import loading  # noqa: F401
     if "kernels" in both:  # the compiled sweep kernels and the spec's flank table
         try:
             sweep(spec, spec.design_misalignment_deg, [0.0])

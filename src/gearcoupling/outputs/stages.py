@@ -7,7 +7,8 @@ Each stage is computed once per spec and arguments in a process and kept (:func:
 a report made in the process of a run, or after it (``gc.run`` then ``gc.report``),
 reuses what the run computed, and a report alone computes each stage once. The run's
 forked workers send the stages they computed back to the parent (:func:`take_new`,
-:func:`remember`). Results are shared, not copied: treat them as read-only.
+:func:`remember`). Results are shared, not copied: treat them as read-only. The load
+stages import :mod:`gearcoupling.loading` at the call (the run's parent needs it not).
 """
 
 from __future__ import annotations
@@ -26,14 +27,6 @@ from ..arguments import GAP_TOLERANCE_MM
 from ..clearance import SweepResult, backlash_curve, design_quantities, sweep
 from ..errors import ArgumentError
 from ..geometry import renzo_z0_mm
-from ..loading import (
-    capacity_from_sweep,
-    default_angles,
-    load_from_sweep,
-    load_model,
-    renzo_q,
-    resolve_model,
-)
 from ..spec import MISALIGNMENT_RANGE_DEG, CouplingSpec
 
 MEMO_SIZE = 64  # stage results kept per process (least recently used dropped)
@@ -145,6 +138,8 @@ def q_points(spec: CouplingSpec, top_deg: float | None = None) -> tuple[QPoint, 
     """Renzo's q graph at :func:`study_misalignments` (needs ``load.allowable_tooth_load``
     and ``load.mesh_stiffness``; empty without them): the linear model on the exact
     geometry, 25 rotations over a tooth pitch at each misalignment."""
+    from ..loading import capacity_from_sweep, default_angles, renzo_q
+
     ld = spec.load
     if ld.allowable_tooth_load_N is None or ld.mesh_stiffness_N_per_mm is None:
         return ()
@@ -180,6 +175,8 @@ def load_study(spec: CouplingSpec, torque_Nm: float, model: str | None,
     :func:`study_misalignments` (at the model's :attr:`~gearcoupling.loading.LoadModel.study`
     rotations and grid); ``progress(done, total)`` after each
     misalignment."""
+    from ..loading import default_angles, load_from_sweep, load_model, resolve_model
+
     mis = study_misalignments(spec, top_deg)
     torques = [0.5 * torque_Nm, torque_Nm, 2.0 * torque_Nm]
     # one curve per factor, also where the torques coincide (0 N·m: three flat curves)
