@@ -17,6 +17,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from .. import outputs
 from ..clearance import sweep
 from ..errors import ArgumentError, BackendError, GearCouplingError
 from ..forked import can_fork, messages, start_workers, stop_workers, worker_signals
@@ -82,40 +83,28 @@ class RunResult:
 
 
 def _step(key: str, spec: CouplingSpec, out: Path) -> list[Path]:
-    """Run step ``key``; each imports its stage here, in the worker that runs it (the
-    parent loads only what every chain needs: :func:`_preload`)."""
+    """Run step ``key``. Its writer comes from the package, whose names load on first use:
+    each step's stage is imported in the worker that runs it (the parent loads only what
+    every chain needs, :func:`_preload`)."""
     mis = spec.design_misalignment_deg
     if key == "spec":
         return write_spec(spec, out)
     if key == "sections":
         return [plot_sections(spec, out / "sections.png")]
     if key == "parts":
-        from .parts import write_parts
-
-        return write_parts(spec, out)[0]
+        return outputs.write_parts(spec, out)[0]
     if key == "step":
-        from .parts import write_step_files
-
-        return write_step_files(spec, out)
+        return outputs.write_step_files(spec, out)
     if key == "sweep":
-        from .sweep import write_sweep
-
-        return write_sweep(spec, out, mis, RUN_ANGLES)[1]
+        return outputs.write_sweep(spec, out, mis, RUN_ANGLES)[1]
     if key == "load":
         if spec.load.torque_Nm is None:
             raise SkipStep("no [load] torque_Nm in the spec")
-        from .load import write_load
-
-        return write_load(spec, out, mis)[1]  # a turn of PHASES poses per pitch
+        return outputs.write_load(spec, out, mis)[1]  # a turn of PHASES poses per pitch
     if key == "check":
-        from ..interference import check_interference
-        from .interference import write_interference
-
         angles = [360.0 * j / CHECK_ANGLES for j in range(CHECK_ANGLES)]
-        return write_interference(spec, check_interference(spec, mis, angles), out)
-    from ..viewer import write_html
-
-    return [write_html(spec, out / "viewer.html")]
+        return outputs.write_check(spec, out, mis, angles)
+    return outputs.write_viewer(spec, out)
 
 
 def _timed(key: str, spec: CouplingSpec, out: Path) -> tuple[str, list[Path], float, str | None]:
@@ -178,12 +167,12 @@ def _preload(spec: CouplingSpec, split: list[list[str]]) -> None:
         import_matplotlib()
         import matplotlib.backends.backend_agg
         import matplotlib.figure  # noqa: F401
-    if "meshes" in both:
+    if "meshes" in both:  # trimesh, and the parts through their writer's module
         import trimesh  # noqa: F401
 
-        from .. import parts  # noqa: F401
-    if "loads" in both:
-        from .. import loading  # noqa: F401
+        _ = outputs.write_parts
+    if "loads" in both:  # the load models through their writer's module
+        _ = outputs.write_load
     if "kernels" in both:  # the compiled sweep kernels and the spec's flank table
         try:
             sweep(spec, spec.design_misalignment_deg, [0.0])
