@@ -40,10 +40,10 @@ STEPS: dict[str, str] = {
 }
 #: CPU seconds of each step on renzo-1967 (this pipeline, the modules of :data:`NEEDS`
 #: loaded before the fork, a step's own modules in it: OpenCASCADE 0.7 s in ``step``, the
-#: load models in ``load``; a loaded machine: their ratios count): what the two workers
-#: balance (:func:`chains`)
+#: load models in ``load``, its study on the compiled contact solver; a loaded machine:
+#: their ratios count): what the two workers balance (:func:`chains`)
 COST = {"spec": 0.0, "sections": 0.4, "parts": 0.45, "step": 1.65, "sweep": 1.3,
-        "load": 5.05, "check": 1.75, "viewer": 0.55}
+        "load": 4.5, "check": 1.75, "viewer": 0.55}
 #: steps that run in one process, in this order (``step`` adds its files to ``parts.json``)
 TOGETHER = (("parts", "step"),)
 #: what a step loads that another step may load too: with two workers, what both need is
