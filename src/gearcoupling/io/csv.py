@@ -16,16 +16,13 @@ from .atomic import atomic_path
 
 
 def _cell(column: str, v: Any, digits: int, finite: bool) -> Any:
-    if type(v) is float:  # the common case first (the same text as below)
-        if finite and not math.isfinite(v):
-            raise GearCouplingError(f"refusing to write a non-finite {column} = {v} to CSV")
-        return f"{v:.{digits}g}"
-    if v is None:
-        return ""
-    if isinstance(v, bool) or (not isinstance(v, float | int) and not hasattr(v, "dtype")):
-        return str(v).lower() if isinstance(v, bool) else v
-    if isinstance(v, int):
-        return v
+    if type(v) is not float:  # a Python float, the common case, goes straight to the number
+        if v is None:
+            return ""
+        if isinstance(v, bool) or (not isinstance(v, float | int) and not hasattr(v, "dtype")):
+            return str(v).lower() if isinstance(v, bool) else v
+        if isinstance(v, int):
+            return v
     x = float(v)
     if finite and not math.isfinite(x):
         raise GearCouplingError(f"refusing to write a non-finite {column} = {x} to CSV")
@@ -50,27 +47,22 @@ def write_csv_rows(path: str | os.PathLike, columns: Sequence[str],
 
 
 def _column(column: str, values: Any, digits: int, finite: bool) -> list[Any]:
-    """The cells of one column as :func:`_cell` makes them, a float or integer array at
-    once."""
-    a = np.asarray(values)
-    if a.dtype.kind == "f":
-        if finite and not np.all(np.isfinite(a)):
-            bad = a[~np.isfinite(a)][0]
-            raise GearCouplingError(f"refusing to write a non-finite {column} = {bad} to CSV")
-        form = f".{digits}g"
-        return [format(x, form) for x in a.tolist()]
-    if a.dtype.kind in "iu":
-        return [format(float(x), f".{digits}g") for x in a.tolist()]  # as _cell's numpy ints
-    return [_cell(column, v, digits, finite) for v in values]
+    """The cells of one column as :func:`_cell` makes them, a float array at once."""
+    if not (isinstance(values, np.ndarray) and values.dtype.kind == "f"):
+        return [_cell(column, v, digits, finite) for v in values]
+    if finite and not np.all(np.isfinite(values)):
+        bad = values[~np.isfinite(values)][0]
+        raise GearCouplingError(f"refusing to write a non-finite {column} = {bad} to CSV")
+    form = f".{digits}g"
+    return [format(x, form) for x in values.tolist()]
 
 
 def write_csv_columns(path: str | os.PathLike, columns: Sequence[str],
                       data: Sequence[Any], *, comments: Iterable[str] = (),
                       digits: int = 9, finite: bool = False) -> Path:
     """:func:`write_csv_rows` of a table given by columns: ``data[i]`` the values of
-    ``columns[i]``, all of one length (a numpy array of floats or integers is formatted at
-    once). The same file as the rows would give (numpy integers as numbers with
-    ``digits`` digits)."""
+    ``columns[i]``, all of one length (a numpy array of floats is formatted at once): the
+    same file as the rows would give."""
     cells = [_column(c, v, digits, finite) for c, v in zip(columns, data, strict=True)]
     if len({len(c) for c in cells}) > 1:
         raise GearCouplingError(f"CSV columns of unequal length: {[len(c) for c in cells]}")
