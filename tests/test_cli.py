@@ -159,3 +159,33 @@ def gc_spec():
     import gearcoupling as gc
 
     return gc.load_spec("industrial-m2")
+
+
+def test_the_program_exits_with_the_status_its_handlers_run_and_its_output_is_whole():
+    """``console`` (the installed program, ``python -m gearcoupling``) leaves out the
+    interpreter's teardown: the status, the exit handlers and the piped output stay."""
+    import os
+    import subprocess
+    import sys
+
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(sys.path)}
+
+    def program(*argv: str) -> subprocess.CompletedProcess:
+        code = ("import atexit, sys\n"
+                "atexit.register(lambda: print('handler ran', flush=True))\n"
+                f"sys.argv = ['gearcoupling', *{list(argv)!r}]\n"
+                "from gearcoupling.cli import console\nconsole()\n")
+        return subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                              env=env, timeout=300)
+
+    ok = program("spec", "renzo-1967", "--json")
+    assert ok.returncode == 0, ok.stderr
+    text, handler = ok.stdout.rsplit("}", 1)
+    assert json.loads(text + "}")["derived"]["pitch_radius_mm"] == pytest.approx(63.5)
+    assert handler.strip() == "handler ran"
+    bad = program("spec", "no-such-template")
+    assert bad.returncode == 2 and "gearcoupling: error:" in bad.stderr
+    assert bad.stdout.strip() == "handler ran"
+    module = subprocess.run([sys.executable, "-m", "gearcoupling", "templates"],
+                            capture_output=True, text=True, env=env, timeout=300)
+    assert module.returncode == 0 and "renzo-1967" in module.stdout.split()

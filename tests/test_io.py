@@ -5,10 +5,20 @@ from __future__ import annotations
 import json
 import math
 
+import numpy as np
 import pytest
 
 import gearcoupling as gc
-from gearcoupling.io import NonFiniteError, Table, read_toml, set_dotted, write_json
+from gearcoupling.clearance import CSV_COLUMNS
+from gearcoupling.io import (
+    NonFiniteError,
+    Table,
+    read_toml,
+    set_dotted,
+    write_csv_columns,
+    write_csv_rows,
+    write_json,
+)
 
 
 def test_json_writes_infinity_as_inf_and_refuses_nan_without_writing(tmp_path):
@@ -61,3 +71,25 @@ def test_the_resolved_file_reads_back_to_the_same_spec(name):
     spec = gc.load_spec(name)
     again = gc.spec_from_dict(spec.to_dict(), name=spec.name)
     assert again.to_dict() == spec.to_dict()
+
+
+def test_a_table_by_columns_is_the_file_its_rows_make(tmp_path):
+    # floats (inf, nan, tiny, huge), numpy and Python integers, strings, booleans, None
+    columns = ("x", "n", "k", "name", "flag", "empty")
+    x = np.array([0.1, -1.0 / 3.0, math.inf, math.nan, 1e-300, 12345678901.5])
+    n = np.arange(6, dtype=np.int64) * 1_000_003
+    data = [x, n, list(range(6)), ["cw", "a,b", 'q"t', "", "ccw", "x"],
+            [True, False] * 3, [None] * 6]
+    rows = [tuple(col[i] for col in data) for i in range(6)]
+    by_rows = write_csv_rows(tmp_path / "rows.csv", columns, rows, comments=["mm"])
+    by_columns = write_csv_columns(tmp_path / "cols.csv", columns, data, comments=["mm"])
+    assert by_columns.read_bytes() == by_rows.read_bytes()
+    with pytest.raises(gc.GearCouplingError, match="non-finite x"):
+        write_csv_columns(tmp_path / "bad.csv", columns, data, finite=True)
+    assert not (tmp_path / "bad.csv").exists()
+
+
+def test_sweep_csv_by_columns_is_the_file_of_its_rows(tmp_path):
+    res = gc.sweep("renzo-1967", 1.0, np.arange(0.0, 360.0, 7.5))
+    by_rows = write_csv_rows(tmp_path / "rows.csv", CSV_COLUMNS, res.rows())
+    assert res.write_csv(tmp_path / "sweep.csv").read_bytes() == by_rows.read_bytes()

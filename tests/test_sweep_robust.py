@@ -263,3 +263,25 @@ def test_sweep_command_at_6_deg_on_the_issue_example(tmp_path):
     assert "NaN" not in summary
     assert json.loads(summary)["min_backlash_mm"] < -0.5
     assert (out / "sweep_clearance_map.png").stat().st_size > 10_000
+
+
+def test_the_contact_path_draws_each_place_once_with_the_colour_drawn_last():
+    """A tooth at a turning angle another tooth had gives the same point: the figure keeps
+    one per place, the one drawn last (its colour covered the others), in drawing order."""
+    from gearcoupling.clearance import plots
+
+    spec = gc.load_spec("renzo-1967")
+    res = sweep(spec, 1.0, np.arange(0.0, 360.0, 5.0))
+    fig = plots.plot_contact_path(res, spec)
+    for f in range(2):
+        touch = np.isfinite(res.normal_clearance_mm[f])
+        z, r = res.contact_z_mm[f][touch], res.contact_r_mm[f][touch]
+        theta = res.theta_deg[touch]
+        last = {}
+        for i, place in enumerate(zip(z.tolist(), r.tolist(), strict=True)):
+            last[place] = i  # the index drawn last at each place
+        order = sorted(last.values())
+        scatter = fig.axes[f].collections[-1]
+        assert len(order) <= z.size // 2  # the teeth repeat each other's points
+        np.testing.assert_array_equal(scatter.get_offsets(), np.stack([z, r], axis=1)[order])
+        np.testing.assert_array_equal(scatter.get_array(), theta[order])

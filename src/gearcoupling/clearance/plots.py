@@ -21,6 +21,7 @@ import math
 from pathlib import Path
 
 import numpy as np
+from numpy.typing import NDArray
 
 from ..arguments import GAP_TOLERANCE_MM
 from ..geometry import map_polar, sleeve_model
@@ -91,10 +92,8 @@ def plot_contact_path(result: SweepResult, spec: CouplingSpec, *, ax=None):
         ax.fill_between(z, lo, hi, color="0.92", label="hub flank")
         ax.axhline(sm.r_form, color="0.5", ls="--", lw=0.8, label="sleeve flank starts")
         ax.axhline(spec.tooth.pitch_radius, color="0.5", ls=":", lw=0.8, label="pitch circle")
-        th = result.theta_deg
-        touch = np.isfinite(result.normal_clearance_mm[f])  # "no contact" has no point
-        sc = ax.scatter(result.contact_z_mm[f][touch], result.contact_r_mm[f][touch],
-                        c=th[touch], cmap="twilight", s=4, vmin=0, vmax=360)
+        pz, pr, th = _last_of_each_point(result, f)
+        sc = ax.scatter(pz, pr, c=th, cmap="twilight", s=4, vmin=0, vmax=360)
         j = np.argmin(result.normal_clearance_mm[f], axis=0)
         cols = np.arange(result.angles_deg.size)
         ax.plot(result.contact_z_mm[f][j, cols], result.contact_r_mm[f][j, cols], "k.",
@@ -108,6 +107,19 @@ def plot_contact_path(result: SweepResult, spec: CouplingSpec, *, ax=None):
     fig.colorbar(sc, ax=axes, shrink=0.8)
     fig.suptitle(f"{result.spec_name}: contact path at i = {result.misalignment_deg:g}°")
     return fig
+
+
+def _last_of_each_point(result: SweepResult, f: int) -> tuple[NDArray, NDArray, NDArray]:
+    """Contact points ``z, r`` of flank ``f`` with the tooth's ``theta_deg``, one per
+    place: of points at one place only the one drawn last, which covers the others. Where
+    the teeth turn through the same angles (renzo-1967: 360 rotations, 50 teeth) each
+    point repeats once per tooth with the same colour; one of each halves the drawing."""
+    touch = np.isfinite(result.normal_clearance_mm[f])  # "no contact" has no point
+    z, r = result.contact_z_mm[f][touch], result.contact_r_mm[f][touch]
+    th = result.theta_deg[touch]
+    _, first = np.unique(np.stack([z, r], axis=1)[::-1], axis=0, return_index=True)
+    keep = np.sort(z.size - 1 - first)
+    return z[keep], r[keep], th[keep]
 
 
 def clearance_field(spec: CouplingSpec, misalignment_deg: float, theta_deg: float, nz: int = 121,

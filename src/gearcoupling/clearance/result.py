@@ -11,7 +11,7 @@ from numpy.typing import NDArray
 
 from ..errors import ArgumentError, GeometryError
 from ..geometry import FLANKS, renzo_z0_mm
-from ..io import write_csv_rows
+from ..io import write_csv_columns
 from ..tables import dataframe
 from .kernel import KINDS, NONE
 
@@ -175,7 +175,24 @@ class SweepResult:
 
     def write_csv(self, path):
         """Write :meth:`rows` under :data:`CSV_COLUMNS` atomically; returns the path."""
-        return write_csv_rows(path, CSV_COLUMNS, self.rows())
+        return write_csv_columns(path, CSV_COLUMNS, self.columns())
+
+    def columns(self) -> list:
+        """The columns of :meth:`rows`, each flattened in their order (angle, tooth,
+        flank): floats as arrays, tooth, flank and kind as lists."""
+        shape = (2, self.teeth, self.angles_deg.size)
+
+        def flat(a):  # (flank, tooth, angle) -> rows
+            return np.broadcast_to(a, shape).transpose(2, 1, 0).ravel()
+
+        names = np.asarray(KINDS)
+        return [flat(self.theta_deg[None].astype(float)),
+                flat(np.arange(self.teeth)[None, :, None]).tolist(),
+                [FLANKS[f] for f in flat(np.arange(2)[:, None, None]).tolist()],
+                *(flat(np.asarray(a, dtype=float)) for a in (
+                    self.clearance_mm, self.normal_clearance_mm, self.pitch_clearance_mm,
+                    self.contact_z_mm, self.contact_r_mm)),
+                names[flat(self.contact_kind)].tolist()]
 
     def to_dataframe(self):
         """:meth:`rows` as a pandas DataFrame with the columns of ``sweep.csv``

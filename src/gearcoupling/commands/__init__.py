@@ -1,48 +1,24 @@
-"""CLI commands; each module has ``register(subparsers)``. Add new commands to COMMANDS."""
+"""CLI commands; each module has ``register(subparsers)``. Add new commands to NAMES.
 
-from . import (
-    capacity,
-    charts,
-    check,
-    compare,
-    datasheet,
-    fea,
-    fea_contact,
-    generate,
-    hob,
-    load,
-    report,
-    run,
-    sections,
-    spec,
-    stiffness,
-    study,
-    sweep,
-    templates,
-    view,
-)
+A command's module is imported when the command runs (or for the full ``--help``), so
+``gearcoupling run`` loads no report, study or FE code before its work starts.
+"""
+
+import importlib
+from types import ModuleType
+
 from .common import CREATED, WRITING
 
-COMMANDS = [
-    spec,
-    sections,
-    run,
-    templates,
-    check,
-    view,
-    generate,
-    sweep,
-    load,
-    capacity,
-    datasheet,
-    fea,
-    fea_contact,
-    stiffness,
-    study,
-    hob,
-    charts,
-    compare,
-    report,
-]
+#: the commands, in the order ``--help`` lists them (module ``fea_contact`` is
+#: ``fea-contact``)
+NAMES = ("spec", "sections", "run", "templates", "check", "view", "generate", "sweep",
+         "load", "capacity", "datasheet", "fea", "fea-contact", "stiffness", "study", "hob",
+         "charts", "compare", "report")
 
-__all__ = ["COMMANDS", "CREATED", "WRITING"]
+
+def command_module(name: str) -> ModuleType:
+    """The module of the command ``name`` (one of :data:`NAMES`)."""
+    return importlib.import_module(f".{name.replace('-', '_')}", __name__)
+
+
+__all__ = ["CREATED", "NAMES", "WRITING", "command_module"]

@@ -14,7 +14,6 @@ from ..arguments import MAXIMA, parse_count, parse_number
 from ..arguments import torque_Nm as check_torque_Nm
 from ..errors import ArgumentError, brief
 from ..io import default_output_dir, output_folder, parse_override
-from ..reporting import FAIL
 from ..spec import CouplingSpec, check_misalignment_deg, load_spec
 
 MAX_ANGLES = MAXIMA["angles"]  # rotation angles per turn (memory grows with it)
@@ -180,16 +179,3 @@ def progress(description: str, total: int):
         except BaseException:  # an error or an interruption: its one line says it all
             bar.live.transient = True
             raise
-
-
-def print_findings(title: str, verdicts) -> int:
-    """Print ``title`` and one line per check (``pass`` or ``FAIL`` with the margin, ``not
-    judged`` with the reason); returns the exit status: 1 when a check fails (a finding,
-    as the README says), else 0."""
-    print(title)
-    for v in verdicts:
-        mark = "FAIL" if v.verdict == FAIL else v.verdict
-        limit = f" (limit {v.limit})" if v.limit not in ("", "–") else ""
-        why = f"; {v.reason.split(';')[0]}" if v.reason else ""  # the margin, or why not
-        print(f"  {mark}: {v.check}: {v.value}{limit}{why}")
-    return 1 if any(v.verdict == FAIL for v in verdicts) else 0

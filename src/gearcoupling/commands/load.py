@@ -14,11 +14,11 @@ from .common import (
     misalignment_deg,
     output_dir,
     positive_length,
-    print_findings,
     progress,
     spec_from_args,
     torque,
 )
+from .findings import print_findings
 
 
 def register(sub) -> None:

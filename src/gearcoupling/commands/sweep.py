@@ -13,10 +13,10 @@ from .common import (
     misalignment_deg,
     output_dir,
     positive_length,
-    print_findings,
     progress,
     spec_from_args,
 )
+from .findings import print_findings
 
 
 def register(sub) -> None:

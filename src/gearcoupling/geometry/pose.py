@@ -19,6 +19,8 @@ def rot_z(a: ArrayLike) -> NDArray[np.float64]:
     """Rotation matrices about ``z``: ``(..., 3, 3)``."""
     a = np.asarray(a, dtype=float)
     c, s = np.cos(a), np.sin(a)
+    if a.ndim == 0:  # one matrix (the poses of a check: thousands), without the stacking
+        return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
     o, z = np.ones_like(a), np.zeros_like(a)
     return np.stack([np.stack([c, -s, z], -1), np.stack([s, c, z], -1),
                      np.stack([z, z, o], -1)], -2)
@@ -28,6 +30,8 @@ def rot_x(a: ArrayLike) -> NDArray[np.float64]:
     """Rotation matrices about ``x``: ``(..., 3, 3)``."""
     a = np.asarray(a, dtype=float)
     c, s = np.cos(a), np.sin(a)
+    if a.ndim == 0:
+        return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
     o, z = np.ones_like(a), np.zeros_like(a)
     return np.stack([np.stack([o, z, z], -1), np.stack([z, c, -s], -1),
                      np.stack([z, s, c], -1)], -2)

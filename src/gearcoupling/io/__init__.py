@@ -9,7 +9,7 @@ from .atomic import (
     safe_name,
     write_text,
 )
-from .csv import write_csv_records, write_csv_rows
+from .csv import write_csv_columns, write_csv_records, write_csv_rows
 from .files import as_path, not_a_file, output_folder, require_file, writable_file
 from .inp import inp_element_lines, inp_id_lines, inp_node_lines, inp_number
 from .json import NonFiniteError, plain, write_json
@@ -41,6 +41,7 @@ __all__ = [
     "set_dotted",
     "unknown_key",
     "writable_file",
+    "write_csv_columns",
     "write_csv_records",
     "write_csv_rows",
     "write_json",

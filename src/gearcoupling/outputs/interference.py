@@ -8,7 +8,12 @@ from pathlib import Path
 import numpy as np
 
 from ..clearance import SweepResult, sweep
-from ..interference import InterferenceResult, plot_interference, posed_meshes
+from ..interference import (
+    InterferenceResult,
+    check_interference,
+    plot_interference,
+    posed_meshes,
+)
 from ..io import atomic_path, plain, write_json
 from ..spec import CouplingSpec
 
@@ -53,3 +58,11 @@ def write_interference(spec: CouplingSpec, result: InterferenceResult, out: Path
                write_json(out / "interference.json", summary),
                _plot(result, reference, out / "interference.png", backlash)]
     return written + _worst_meshes(result, int(result.worst(1)[0]), out)
+
+
+def write_check(spec: CouplingSpec, out: Path, misalignment_deg: float,
+                angles_deg) -> list[Path]:
+    """:func:`~gearcoupling.interference.check_interference` at the rotations
+    ``angles_deg`` with its defaults, written by :func:`write_interference`."""
+    return write_interference(spec, check_interference(spec, misalignment_deg, angles_deg),
+                              out)

@@ -21,7 +21,7 @@ from ..loading import (
 )
 from ..plots import save_figure
 from ..spec import CouplingSpec
-from .stages import load_study, q_points
+from .load_stages import load_study, q_points
 from .sweep import turn_angles
 
 

@@ -17,20 +17,15 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from .. import outputs
 from ..clearance import sweep
 from ..errors import ArgumentError, BackendError, GearCouplingError
 from ..forked import can_fork, messages, start_workers, stop_workers, worker_signals
-from ..interference import check_interference
 from ..io import output_folder, remove_stale_temporaries, write_json
 from ..plots import import_matplotlib, plot_sections
 from ..spec import CouplingSpec, as_spec
-from ..viewer import write_html
-from .interference import write_interference
-from .load import write_load
-from .parts import write_parts, write_step_files
 from .spec import write_spec
 from .stages import remember, take_new
-from .sweep import write_sweep
 
 #: the steps in the order they are listed, each with what it writes
 STEPS: dict[str, str] = {
@@ -44,18 +39,21 @@ STEPS: dict[str, str] = {
     "viewer": "static viewer HTML",
 }
 #: CPU seconds of each step on renzo-1967 (this pipeline, the modules of :data:`NEEDS`
-#: loaded before the fork; a loaded machine: their ratios count): what the two workers
-#: balance (:func:`chains`)
-COST = {"spec": 0.0, "sections": 0.45, "parts": 0.85, "step": 1.75, "sweep": 1.7,
-        "load": 6.15, "check": 2.0, "viewer": 0.6}
+#: loaded before the fork, a step's own modules in it: OpenCASCADE 0.7 s in ``step``, the
+#: load models in ``load``, its study on the compiled contact solver; a loaded machine:
+#: their ratios count): what the two workers balance (:func:`chains`)
+COST = {"spec": 0.0, "sections": 0.4, "parts": 0.45, "step": 1.65, "sweep": 1.3,
+        "load": 4.5, "check": 1.75, "viewer": 0.55}
 #: steps that run in one process, in this order (``step`` adds its files to ``parts.json``)
 TOGETHER = (("parts", "step"),)
 #: what a step loads that another step may load too: with two workers, what both need is
-#: loaded once before the fork, not once in each (matplotlib 0.3 s, trimesh 0.2 s, the
-#: compiled sweep kernels 0.4 s of CPU)
+#: loaded once before the fork, not once in each (matplotlib 0.3 s, trimesh and the parts
+#: 0.3 s, the compiled sweep kernels 0.4 s, the load models 0.2 s of CPU); what one
+#: chain alone needs its worker loads
 NEEDS = {"spec": (), "sections": ("figures",), "parts": ("meshes",), "step": (),
-         "sweep": ("figures", "kernels"), "load": ("figures", "kernels"),
-         "check": ("figures", "meshes", "kernels"), "viewer": ("figures", "meshes", "kernels")}
+         "sweep": ("figures", "kernels"), "load": ("figures", "kernels", "loads"),
+         "check": ("figures", "meshes", "kernels"),
+         "viewer": ("figures", "meshes", "kernels", "loads")}
 CHECK_ANGLES = 72
 RUN_ANGLES = 360
 
@@ -86,25 +84,28 @@ class RunResult:
 
 
 def _step(key: str, spec: CouplingSpec, out: Path) -> list[Path]:
+    """Run step ``key``. Its writer comes from the package, whose names load on first use:
+    each step's stage is imported in the worker that runs it (the parent loads only what
+    every chain needs, :func:`_preload`)."""
     mis = spec.design_misalignment_deg
     if key == "spec":
         return write_spec(spec, out)
     if key == "sections":
         return [plot_sections(spec, out / "sections.png")]
     if key == "parts":
-        return write_parts(spec, out)[0]
+        return outputs.write_parts(spec, out)[0]
     if key == "step":
-        return write_step_files(spec, out)
+        return outputs.write_step_files(spec, out)
     if key == "sweep":
-        return write_sweep(spec, out, mis, RUN_ANGLES)[1]
+        return outputs.write_sweep(spec, out, mis, RUN_ANGLES)[1]
     if key == "load":
         if spec.load.torque_Nm is None:
             raise SkipStep("no [load] torque_Nm in the spec")
-        return write_load(spec, out, mis)[1]  # a turn of PHASES poses per pitch
+        return outputs.write_load(spec, out, mis)[1]  # a turn of PHASES poses per pitch
     if key == "check":
         angles = [360.0 * j / CHECK_ANGLES for j in range(CHECK_ANGLES)]
-        return write_interference(spec, check_interference(spec, mis, angles), out)
-    return [write_html(spec, out / "viewer.html")]
+        return outputs.write_check(spec, out, mis, angles)
+    return outputs.write_viewer(spec, out)
 
 
 def _timed(key: str, spec: CouplingSpec, out: Path) -> tuple[str, list[Path], float, str | None]:
@@ -167,8 +168,12 @@ def _preload(spec: CouplingSpec, split: list[list[str]]) -> None:
         import_matplotlib()
         import matplotlib.backends.backend_agg
         import matplotlib.figure  # noqa: F401
-    if "meshes" in both:
+    if "meshes" in both:  # trimesh, and the parts through their writer's module
         import trimesh  # noqa: F401
+
+        _ = outputs.write_parts
+    if "loads" in both:  # the load models through their writer's module
+        _ = outputs.write_load
     if "kernels" in both:  # the compiled sweep kernels and the spec's flank table
         try:
             sweep(spec, spec.design_misalignment_deg, [0.0])

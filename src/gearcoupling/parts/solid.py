@@ -78,19 +78,19 @@ def _edge(o, pts: NDArray, kind: str, centre: NDArray | None, tol: float, spline
     gp, build = o["gp"], o["build"]
     if spline is not None:
         return build.BRepBuilderAPI_MakeEdge(_bspline(o, *spline)).Edge()
-    p = [gp.gp_Pnt(*map(float, q)) for q in pts]
+    ends = [gp.gp_Pnt(*pts[i].tolist()) for i in (0, -1)]
     if kind in _LINES or (len(pts) == 2 and kind not in _CIRCLES):
-        return build.BRepBuilderAPI_MakeEdge(p[0], p[-1]).Edge()
+        return build.BRepBuilderAPI_MakeEdge(*ends).Edge()
     if kind in _CIRCLES and centre is not None:
         c = np.asarray(centre, dtype=float)
         rad = np.linalg.norm(pts[0, :2] - c[:2])
         half = 0.5 * (pts[0, :2] + pts[-1, :2]) - c[:2]
         mid = np.append(c[:2] + rad * half / np.linalg.norm(half), pts[0, 2])
-        arc = o["gc"].GC_MakeArcOfCircle(p[0], gp.gp_Pnt(*map(float, mid)), p[-1]).Value()
+        arc = o["gc"].GC_MakeArcOfCircle(ends[0], gp.gp_Pnt(*mid.tolist()), ends[1]).Value()
         return build.BRepBuilderAPI_MakeEdge(arc).Edge()
-    arr = o["col"].HArray1_gp_Pnt(1, len(p))
-    for i, q in enumerate(p, start=1):
-        arr.SetValue(i, q)
+    arr = o["col"].HArray1_gp_Pnt(1, len(pts))
+    for i, q in enumerate(np.asarray(pts, dtype=float).tolist(), start=1):
+        arr.SetValue(i, gp.gp_Pnt(*q))
     interp = o["geomapi"].GeomAPI_Interpolate(arr, False, 1e-3 * tol)
     interp.Perform()
     if not interp.IsDone():
@@ -103,12 +103,13 @@ def _bspline(o, poles: NDArray, knots: NDArray, mults: NDArray):
 
     col, gp = o["col"], o["gp"]
     p = col.Array1_gp_Pnt(1, len(poles))
-    for i, q in enumerate(poles, start=1):
-        p.SetValue(i, gp.gp_Pnt(*map(float, q)))
+    for i, q in enumerate(np.asarray(poles, dtype=float).tolist(), start=1):
+        p.SetValue(i, gp.gp_Pnt(*q))
     k = col.Array1_double(1, len(knots))
     m = col.Array1_int(1, len(knots))
-    for i, (kv, mv) in enumerate(zip(knots, mults, strict=True), start=1):
-        k.SetValue(i, float(kv))
+    for i, (kv, mv) in enumerate(zip(np.asarray(knots, dtype=float).tolist(),
+                                     np.asarray(mults).tolist(), strict=True), start=1):
+        k.SetValue(i, kv)
         m.SetValue(i, int(mv))
     return Geom_BSplineCurve(p, k, m, DEGREE)
 

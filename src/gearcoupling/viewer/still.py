@@ -84,7 +84,7 @@ def still_png(scene: CouplingScene, size_px: tuple[int, int] = SIZE_PX) -> bytes
     w, h = size_px
     fig = Figure(figsize=(w / 100, h / 100), dpi=100)
     ax = fig.add_axes((0.0, 0.0, 1.0, 1.0))
-    ax.add_collection(PolyCollection(list(xy[order]), facecolors=np.clip(shade[order], 0, 1),
+    ax.add_collection(PolyCollection(xy[order], facecolors=np.clip(shade[order], 0, 1),
                                      edgecolors="face", linewidths=0.4, antialiased=False))
     ax.set_xlim(-w / h, w / h)
     ax.set_ylim(-1.0, 1.0)
