@@ -213,11 +213,13 @@ class FittedCompliance(CantileverCompliance):
         root, _ = self._heights(part, 0.0)
         return r, np.maximum(np.abs(r - root), 1e-3 * self.module)
 
-    def spread_bending(self, part: str, z_mm: ArrayLike, r_mm: ArrayLike) -> NDArray:
-        """The first, positive term of :meth:`part_compliance_mm_per_N` (mm/N)."""
-        f = self.part_features(part, z_mm, r_mm)[..., self.columns]
+    def spread_bending(self, part: str, z_mm: ArrayLike, r_mm: ArrayLike,
+                       features: NDArray | None = None) -> NDArray:
+        """The first, positive term of :meth:`part_compliance_mm_per_N` (mm/N);
+        ``features``: the part's :meth:`part_features` at these points, if known."""
+        f = self.part_features(part, z_mm, r_mm) if features is None else features
         a, lo, hi = self.coefficients[part]
-        return self.bending(part, z_mm, r_mm) * np.exp(np.clip(f, lo, hi) @ a)
+        return self.bending(part, z_mm, r_mm) * np.exp(np.clip(f[..., self.columns], lo, hi) @ a)
 
     def part_compliance_mm_per_N(self, part: str, z_mm: ArrayLike, r_mm: ArrayLike) -> NDArray:
         """Normal far-field compliance of one part at hub flank points ``(z, r)`` (mm/N),
@@ -226,22 +228,20 @@ class FittedCompliance(CantileverCompliance):
         Only the two parts' sum is fitted to FE: one part alone is not its FE far field
         (against the 40 tables, the hub's share up to 79 % of the pair's far field too high
         and the sleeve's up to 84 % too low, in opposite senses)."""
-        return self._uncorrected(part, z_mm, r_mm) * self.correction(z_mm, r_mm)
+        return self.normal_compliance_mm_per_N(z_mm, r_mm)[PARTS.index(part)]
 
-    def _uncorrected(self, part: str, z_mm: ArrayLike, r_mm: ArrayLike) -> NDArray:
-        c = self.fit["parts"][part]
-        return (self.spread_bending(part, z_mm, r_mm)
-                - c["confinement"] * self.confinement(part, r_mm, c["confinement_length"]))
-
-    def correction(self, z_mm: ArrayLike, r_mm: ArrayLike) -> NDArray:
+    def correction(self, z_mm: ArrayLike, r_mm: ArrayLike,
+                   features: dict[str, NDArray] | None = None) -> NDArray:
         """The pair's factor on the parts' fit at hub flank points ``(z, r)``: ``exp`` of
         the Gaussian-process mean of the fit's log error over the data set (module
-        docstring), 1 without one in the fit; it fades to 1 away from the data set."""
+        docstring), 1 without one in the fit; it fades to 1 away from the data set.
+        ``features``: each part's :meth:`part_features` at these points, if known."""
         shape = np.broadcast_shapes(np.shape(z_mm), np.shape(r_mm))
         if self._gp is None:
             return np.ones(shape)
         gp, columns = self._gp
-        x = np.concatenate([self.part_features(p, z_mm, r_mm)[..., columns[p]]
+        f = features or {p: self.part_features(p, z_mm, r_mm) for p in PARTS}
+        x = np.concatenate([np.broadcast_to(f[p], (*shape, len(FEATURES)))[..., columns[p]]
                             for p in PARTS], axis=-1).reshape(-1, gp["mean"].size)
         return np.exp(gp_mean(x, gp)).reshape(shape)
 
@@ -254,11 +254,17 @@ class FittedCompliance(CantileverCompliance):
         arrays = _shipped_correction() if self.fit is load_fit() else _as_arrays(gp)
         return arrays, {p: [FEATURES.index(n) for n in gp["inputs"][p]] for p in PARTS}
 
-
     def normal_compliance_mm_per_N(self, z_mm: ArrayLike, r_mm: ArrayLike):
         """Hub and sleeve normal far-field compliances at the load (mm/N), broadcast."""
-        factor = self.correction(z_mm, r_mm)
-        return tuple(self._uncorrected(p, z_mm, r_mm) * factor for p in PARTS)
+        f = {p: self.part_features(p, z_mm, r_mm) for p in PARTS}
+        factor = self.correction(z_mm, r_mm, f)
+        out = []
+        for p in PARTS:
+            c = self.fit["parts"][p]
+            base = (self.spread_bending(p, z_mm, r_mm, f[p])
+                    - c["confinement"] * self.confinement(p, r_mm, c["confinement_length"]))
+            out.append(base * factor)
+        return tuple(out)
 
     def pair_compliance_mm_per_N(self, z_mm: ArrayLike, r_mm: ArrayLike) -> NDArray:
         """The pair's far field (Renzo's measure, mm/N), at least :data:`FLOOR` of its
