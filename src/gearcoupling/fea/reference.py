@@ -10,10 +10,12 @@ diameter is a rigid body whose rotation node carries the moment ``T / N``. The h
 meshed turned to the sweep's exact first touch (a rotation of its nodes), and step 1 turns
 the sleeve (displacement control) on to just past it, so the contact is closed when step 2
 releases it and applies the moment. The hub ccw flank (slave) meets the sleeve ccw flank
-(master) through a stiff linear penalty law. The analysis is linear (no large
-rotations): a turn by the whole first touch in step 1, as an earlier form of the deck made,
-is a linearised rotation that moves the sleeve flanks slightly toward the hub (a second
-order error, 0.15-0.7 % of the answers on renzo-1967), which meshing the pose removes.
+(master) through a stiff linear penalty law. The analysis is linear (small strain): a
+finite turn of the rigid surface by ``theta`` reads as a compression of about
+``theta**2 / 2`` that shrinks the sleeve and moves its flanks toward the hub. An earlier
+form of the deck turned by the whole 1.03 x first touch in step 1, which moved the wind-up
+beyond first touch by 0.15-0.24 % on renzo-1967 and 1.6-3.2 % on industrial-m2
+(docs/fea.md); meshing the pose leaves only the small remainder.
 
 Measured per run: the wind-up (the sleeve's rotation against the fixed bore) and the part
 beyond the exact first touch, the tooth's tangential load (its contact moment / pitch
