@@ -253,8 +253,7 @@ def _result(spec, T, size, touch, pair, res, pressure) -> FEContactResult:
                   "contact_change_tolerance": CONTACT_CHANGE_TOLERANCE})
 
 
-def load_curve(res, T: float, teeth: int, meshed_at_rad: float = 0.0
-               ) -> list[tuple[float, float]]:
+def load_curve(res, T: float, teeth: int, meshed_at_rad: float) -> list[tuple[float, float]]:
     """``(torque_Nm, windup_rad)`` at the end of step 1 (its reaction moment) and at every
     increment of step 2 (time 1 + share of ``T``); the wind-up from the unturned pose, of a
     pair meshed turned by ``meshed_at_rad``."""
