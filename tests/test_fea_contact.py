@@ -131,15 +131,17 @@ def test_cyclic_equations_hold_for_a_rigid_rotation_and_not_for_a_shift():
 def test_aligned_reference_carries_the_torque_and_converges(tmp_path):
     # industrial-m2 on the coarsest mesh (1 mm, module / 2: the largest size the mesher
     # takes, and the smallest spec with a reference) through the command line: the tooth
-    # load equals T / (N R) (equilibrium of the pitch); the wind-up beyond first touch is
-    # within 10 % of the Richardson-extrapolated figure of the converged runs
+    # load equals T / (N R) (equilibrium of the pitch: 2e-5 measured; 1.6e-3 low when the
+    # deck turned the sleeve by the whole first touch in its linear first step); the
+    # wind-up beyond first touch is within 10 % of the Richardson-extrapolated figure of the
+    # converged runs
     T = 400.0
     assert main(["fea-contact", "industrial-m2", "--torque", str(T), "--size", "1.0",
                  "-o", str(tmp_path)]) == 0
     res = json.loads(next(tmp_path.rglob("fea_contact.json")).read_text())
     spec = gc.load_spec("industrial-m2")
     assert res["tooth_load_N"] == pytest.approx(1e3 * T / (spec.tooth.teeth
-                                                           * spec.tooth.pitch_radius), rel=5e-3)
+                                                           * spec.tooth.pitch_radius), rel=5e-4)
     ref = GOLDEN["industrial-m2"][f"{T:g}"]
     assert res["windup_from_first_touch_rad"] == pytest.approx(
         ref["windup_from_first_touch_rad"], rel=0.10)
