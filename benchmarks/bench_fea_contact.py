@@ -5,8 +5,8 @@ Run: ``python benchmarks/bench_fea_contact.py [--specs A B] [--random NAME ...]
 of ``benchmarks/bench_springs.py``'s data set by name (``springs-<i>-<crown>``, seed 2026,
 ``tests/random_specs.py``), loaded at the nominal tooth load of the templates,
 :data:`LOAD_PER_MODULE2` times the module squared; their ladder is module / (3/√2) and
-module / 3, and ``--sizes`` adds a third, module / 3√2 (springs-24-circular's 0.354 mm:
-312 s with the contact decks' iterative solver).
+module / 3. ``--sizes`` solves those sizes instead of the ladder; the runs already in
+``--runs`` are kept, so a third size, module / 3√2, joins a stored ladder.
 For each spec, :func:`gearcoupling.fe_contact` at the spec's
 torque on a ladder of contact-zone element sizes (ratio sqrt 2; the rest of the teeth at
 module / 4 or the contact size where that is coarser), each run also giving the half-torque
