@@ -6,8 +6,8 @@ spec's torque and half of it, bodies included; renzo-1967, industrial-m2, mill-s
 and the random springs-24-circular over three meshes, the random springs-12-end_round the
 finer of two; industrial-m2, mill-spindle and springs-24-circular solved with the deck
 meshed at first touch, renzo-1967 and springs-12-end_round with the previous one, within
-0.25 % of it there; ``python benchmarks/bench_fea_contact.py --from-golden``), and the most loaded tooth
-against a CalculiX sector at 1° and 2° at equal wind-up (FE / model; ``python
+0.25 % of it there; ``python benchmarks/bench_fea_contact.py --from-golden``), and the
+most loaded tooth against a CalculiX sector at 1° and 2° at equal wind-up (FE / model; ``python
 benchmarks/bench_fea_sector.py``), for the FE springs with the bodies as the sector has
 them (its cyclic cuts repeat its loads round the ring; ``python benchmarks/bench_bodies.py
 --stored``, docs/load.md "The bodies"; the uniform body of the coupling's torque gave
