@@ -207,3 +207,24 @@ def test_compiled_small_grid_solver_equals_the_batched_transforms(seed, monkeypa
     assert fast.approach_mm == pytest.approx(batched.approach_mm, rel=1e-8)
     p_max = np.max(batched.pressure_MPa)
     assert np.max(np.abs(fast.pressure_MPa - batched.pressure_MPa)) <= 1e-8 * p_max
+
+
+def test_a_compiled_search_that_does_not_settle_hands_over_to_the_batched_one(monkeypatch):
+    """A compiled grid search that has not converged in COMPILED_MAX_ITER iterations (a cell
+    going in and out of contact at the tolerance: industrial-m2's load study did) is solved
+    by the batched search instead: here every one (limit 1), and the answer is the batched
+    path's own."""
+    if halfspace.compiled() is None:
+        pytest.skip("numba not importable or GEARCOUPLING_NUMBA=0")
+    x = (np.arange(12) - 6) * 0.3
+    gap = x[:, None] ** 2 / 40 + x[None, :8] ** 2 / 10
+    hs = half_space((12, 8), 0.3, 0.3, E_STAR)
+    gaps = np.stack([gap, gap + 2e-4])
+    monkeypatch.setattr(halfspace, "COMPILED_MAX_ITER", 1)
+    handed = solve_contact(hs, gaps, load_N=400.0, spring_mm_per_N=[1e-5, 2e-5],
+                           tolerance=1e-10)
+    monkeypatch.setattr(halfspace, "COMPILED_MAX_CELLS", 0)
+    batched = solve_contact(hs, gaps, load_N=400.0, spring_mm_per_N=[1e-5, 2e-5],
+                            tolerance=1e-10)
+    np.testing.assert_array_equal(handed.pressure_MPa, batched.pressure_MPa)
+    assert handed.approach_mm == batched.approach_mm

@@ -56,6 +56,7 @@ SINGLE_PRECISION_NOISE = 5e-7  # transform error in single precision / largest d
 SINGLE_PRECISION_ITER = 200  # iterations of one grid solve before it goes on in double
 EXACT_BELOW = 1e-5  # solves to this or tighter end on double-precision displacements
 SPRING_EVERY = 10  # iterations between updates of position-dependent springs
+COMPILED_MAX_ITER = 200  # a compiled grid search longer than this hands over to the batched one
 COMPILED_MAX_CELLS = 200  # grids up to this many cells take the compiled search (compiled(),
 # docs/load-surface.md: the studies' 12 x 8 grids 1.3x faster; 24 x 16 and up slower)
 
@@ -487,7 +488,9 @@ def _per_grid_loads(grids: _Grids, W: NDArray[np.float64], p: NDArray[np.float64
     kern = compiled() if grids.compliance.uniform and np.prod(grids.hs.shape) <= \
         COMPILED_MAX_CELLS else None
     if kern is not None:
-        return _per_grid_loads_compiled(kern, grids, W, p, tolerance)
+        out = _per_grid_loads_compiled(kern, grids, W, p, tolerance)
+        if out is not None:
+            return out
     A, m, g0 = grids.area, grids.m, grids.g0
     B = W.shape[0]
     loaded = W > 0
@@ -631,19 +634,21 @@ def _start_pressure(grids: _Grids, W: NDArray[np.float64], p: NDArray[np.float64
 
 def _per_grid_loads_compiled(kern, grids: _Grids, W: NDArray[np.float64],
                              p: NDArray[np.float64], tolerance: float
-                             ) -> tuple[NDArray, NDArray, int, float, NDArray]:
+                             ) -> tuple[NDArray, NDArray, int, float, NDArray] | None:
     """:func:`_per_grid_loads` by the compiled kernel (:func:`compiled`), for a uniform
     compliance on a small grid: each grid's search in double precision, the displacement
-    by the direct sum over the contact (module :mod:`._contact_compiled`)."""
+    by the direct sum over the contact (module :mod:`._contact_compiled`). None where a
+    grid has not converged in :data:`COMPILED_MAX_ITER` iterations (a cell going in and
+    out of contact at the tolerance: the batched search, which ends on rounding, takes it)."""
     loaded = W > 0
     p = np.ascontiguousarray(_start_pressure(grids, W, p)[0])
+    limit = min(int(grids.max_iter), COMPILED_MAX_ITER)
     u, its, res = kern.per_grid_cg(
         offset_influence(grids.hs), np.ascontiguousarray(grids.g0),
         np.ascontiguousarray(grids.m), np.ascontiguousarray(W, dtype=float), p,
-        grids.scale, grids.gmin, float(tolerance), int(grids.max_iter), grids.area,
-        grids.tau_self)
-    if np.any(its > grids.max_iter):
-        raise grids.too_many(grids.max_iter + 1, float(np.max(res)))
+        grids.scale, grids.gmin, float(tolerance), limit, grids.area, grids.tau_self)
+    if np.any(its > limit):
+        return None
     grids.update(p, tolerance)  # uniform: the springs move the approaches, not the contact
     every = np.flatnonzero(loaded)
     behind = grids.compliance.displacement(p[every], every)
