@@ -36,13 +36,20 @@ def write_csv_rows(path: str | os.PathLike, columns: Sequence[str],
     ``columns``, then ``rows`` (sequences in column order). Floats with ``digits``
     significant digits (``inf`` for infinity, or refused with ``finite``), booleans
     ``true``/``false``, None empty."""
+    return _write(path, columns, ([_cell(c, v, digits, finite)
+                                   for c, v in zip(columns, row, strict=True)]
+                                  for row in rows), comments)
+
+
+def _write(path: str | os.PathLike, columns: Sequence[str], rows: Iterable[Sequence[Any]],
+           comments: Iterable[str]) -> Path:
+    """``# comment`` lines, the header and the formatted ``rows``, atomically."""
     with atomic_path(path) as tmp, open(tmp, "w", newline="") as fh:
         for line in comments:
             fh.write(f"# {line}\n")
         w = csv.writer(fh, lineterminator="\n")
         w.writerow(columns)
-        w.writerows([_cell(c, v, digits, finite) for c, v in zip(columns, row, strict=True)]
-                    for row in rows)
+        w.writerows(rows)
     return Path(path)
 
 
@@ -66,13 +73,7 @@ def write_csv_columns(path: str | os.PathLike, columns: Sequence[str],
     cells = [_column(c, v, digits, finite) for c, v in zip(columns, data, strict=True)]
     if len({len(c) for c in cells}) > 1:
         raise GearCouplingError(f"CSV columns of unequal length: {[len(c) for c in cells]}")
-    with atomic_path(path) as tmp, open(tmp, "w", newline="") as fh:
-        for line in comments:
-            fh.write(f"# {line}\n")
-        w = csv.writer(fh, lineterminator="\n")
-        w.writerow(columns)
-        w.writerows(zip(*cells, strict=True))
-    return Path(path)
+    return _write(path, columns, zip(*cells, strict=True), comments)
 
 
 def write_csv_records(path: str | os.PathLike, rows: Iterable[dict[str, Any]],

@@ -438,7 +438,8 @@ class _Grids:
 
     def __init__(self, hs: HalfSpace, g0, m, compliance: GridCompliance, tolerance,
                  max_iter):
-        self.hs, self.g0, self.m = hs, g0, m
+        # contiguous once: the compiled search takes them as they are, split after split
+        self.hs, self.g0, self.m = hs, np.ascontiguousarray(g0), np.ascontiguousarray(m)
         self.compliance = compliance
         self.tolerance, self.max_iter = tolerance, max_iter
         self.area = hs.cell_area
@@ -644,8 +645,7 @@ def _per_grid_loads_compiled(kern, grids: _Grids, W: NDArray[np.float64],
     p = np.ascontiguousarray(_start_pressure(grids, W, p)[0])
     limit = min(int(grids.max_iter), COMPILED_MAX_ITER)
     u, its, res = kern.per_grid_cg(
-        offset_influence(grids.hs), np.ascontiguousarray(grids.g0),
-        np.ascontiguousarray(grids.m), np.ascontiguousarray(W, dtype=float), p,
+        offset_influence(grids.hs), grids.g0, grids.m, np.ascontiguousarray(W, dtype=float), p,
         grids.scale, grids.gmin, float(tolerance), limit, grids.area, grids.tau_self)
     if np.any(its > limit):
         return None
