@@ -25,6 +25,7 @@ from .mesh import (
 from .reference import FEContactResult, fe_contact
 from .sector import FESectorResult, fe_contact_sector
 from .stiffness import (
+    TABLE_FACE_SHARE,
     ComplianceTable,
     compute_compliance_table,
     pitch_point_compliance,
@@ -37,6 +38,7 @@ from .write import region_ids, write_inp, write_mesh
 
 __all__ = [
     "CUT_DISTANCE_PITCHES",
+    "TABLE_FACE_SHARE",
     "DEFAULT_SECTOR_TEETH",
     "BodyInfluenceTable",
     "ComplianceTable",

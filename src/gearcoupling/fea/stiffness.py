@@ -63,6 +63,8 @@ FAR_SIZE = 3.0
 """Element size on the teeth away from the loaded one, in loaded-tooth sizes."""
 FLANK_SIZE = 0.35
 """Element size on the loaded flank where the load patches lie, in loaded-tooth sizes."""
+TABLE_FACE_SHARE = 0.8
+"""The table's load points reach this share of the hub half face (:func:`load_grid`)."""
 LOADED_ZONE = 0.5
 """Distance (modules) from the loaded tooth's flanks and fillets kept at the tooth size."""
 LOADED_FLANK = {"hub": "CCW", "sleeve": "CCW"}  # the sleeve ccw flank meets the hub ccw flank
@@ -197,10 +199,11 @@ def _fixed_sets(vm: VolumeMesh) -> list[str]:
 
 
 def load_grid(spec: CouplingSpec, hub: VolumeMesh, sleeve: VolumeMesh, nz: int = 3, nr: int = 3):
-    """Load points: ``|z|`` from 0 to 0.8 of the hub half face; ``r`` across the radii that
-    both loaded flanks cover at every such z (10 % in from each end of that band)."""
+    """Load points: ``|z|`` from 0 to :data:`TABLE_FACE_SHARE` of the hub half face; ``r``
+    across the radii that both loaded flanks cover at every such z (10 % in from each end of
+    that band)."""
     hf = 0.5 * spec.hub.face_width
-    z = np.linspace(0.0, 0.8 * hf, nz)
+    z = np.linspace(0.0, TABLE_FACE_SHARE * hf, nz)
     lo, hi = -np.inf, np.inf
     for vm in (hub, sleeve):
         k = _loaded_tooth(vm)
@@ -378,7 +381,7 @@ def compute_compliance_table(spec: CouplingSpec, *, size_mm: float | None = None
     size = check_size(spec, "hub", size_mm)
     check_size(spec, "sleeve", size_mm)
     patch = max(size, m / 4.0) if patch_mm is None else float(patch_mm)
-    z_window = (-patch, 0.8 * 0.5 * spec.hub.face_width + patch)
+    z_window = (-patch, TABLE_FACE_SHARE * 0.5 * spec.hub.face_width + patch)
     meshes = {}
     for part in ("hub", "sleeve"):
         meshes[part] = _loaded_sector(spec, part, sector, size, z_window)

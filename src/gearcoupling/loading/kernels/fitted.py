@@ -63,7 +63,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ...fea import rectangle_halfspace_work_mm_per_N
+from ...fea import TABLE_FACE_SHARE, rectangle_halfspace_work_mm_per_N
 from ...geometry import hub_model
 from ...spec import CouplingSpec
 from .cantilever import CantileverCompliance
@@ -235,12 +235,19 @@ class FittedCompliance(CantileverCompliance):
         """The pair's factor on the parts' fit at hub flank points ``(z, r)``: ``exp`` of
         the Gaussian-process mean of the fit's log error over the data set (module
         docstring), 1 without one in the fit; it fades to 1 away from the data set.
+        Beyond the tables' last load point along the face (:data:`TABLE_FACE_SHARE` of
+        the hub half face) it is held at its value there: the process has no data
+        there, and its extrapolation leaned on the spec's other features.
         ``features``: each part's :meth:`part_features` at these points, if known."""
         shape = np.broadcast_shapes(np.shape(z_mm), np.shape(r_mm))
         if self._gp is None:
             return np.ones(shape)
         gp, columns = self._gp
-        f = features or {p: self.part_features(p, z_mm, r_mm) for p in PARTS}
+        z_last = TABLE_FACE_SHARE * self.half_face_hub
+        if features is None or np.any(np.abs(np.asarray(z_mm)) > z_last):
+            z = np.clip(np.asarray(z_mm, dtype=float), -z_last, z_last)
+            features = {p: self.part_features(p, z, r_mm) for p in PARTS}
+        f = features
         x = np.concatenate([np.broadcast_to(f[p], (*shape, len(FEATURES)))[..., columns[p]]
                             for p in PARTS], axis=-1).reshape(-1, gp["mean"].size)
         return np.exp(gp_mean(x, gp)).reshape(shape)
