@@ -78,3 +78,23 @@ def test_the_default_springs_reproduce_every_stored_fe_far_field_within_10_perce
     assert len(worst) == 40
     assert all(abs(e) <= 0.10 for e in worst.values()), {
         k: round(v, 3) for k, v in worst.items() if abs(v) > 0.10}
+
+
+@pytest.mark.parametrize("name", ["renzo-1967", "springs-47-none"])
+def test_the_correction_is_held_beyond_the_tables_last_load_point(name):
+    """The correction has data only up to the FE tables' last load point along the face
+    (0.8 of the hub half face): beyond it, it keeps its value there instead of the
+    Gaussian process's extrapolation, which had moved the capacity at a misalignment up to
+    13 % from the FE table's springs (springs-47-none at 1°). Inside, it is the process's
+    own mean, which varies along the face."""
+    spec = ({s.name: s for s in springs_specs(55)}[name] if name.startswith("springs-")
+            else gc.load_spec(name))
+    springs = FittedCompliance(spec)
+    z_last = gc.fea.TABLE_FACE_SHARE * springs.half_face_hub
+    r = np.linspace(springs.r_table[0], springs.r_table[-1], 4)
+    beyond = np.linspace(z_last, springs.half_face_hub, 5)
+    Z, R = np.meshgrid(np.concatenate([-beyond, beyond]), r, indexing="ij")
+    at_last = springs.correction(np.full_like(Z, z_last), R)
+    np.testing.assert_allclose(springs.correction(Z, R), at_last, rtol=1e-12)
+    inside = springs.correction(np.linspace(0.0, z_last, 5)[:, None], r[None, :])
+    assert np.ptp(inside) > 1e-3
