@@ -43,6 +43,7 @@ from pathlib import Path
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import numpy as np
+from bench_fea_sector import pose_spec
 from scipy.optimize import brentq
 
 import gearcoupling as gc
@@ -59,14 +60,15 @@ from gearcoupling.loading.body import (
 from gearcoupling.loading.sector_check import loads_at_windup
 
 ROOT = Path(__file__).resolve().parent.parent
-SPECS = {"renzo-1967": 3.6, "industrial-m2": 7.1}  # turning angle (°) of bench_fea_sector
+SPECS = {"renzo-1967": 3.6, "industrial-m2": 7.1,  # turning angle (°) of bench_fea_sector
+         "springs-24-circular": 5.8}
 ANGLES = (0.0, 1.0, 2.0)
 PARTS = ("hub", "sleeve")
 PERIOD = 5
 
 
 def fe_spec(name: str) -> gc.CouplingSpec:
-    spec = gc.load_spec(name)
+    spec = pose_spec(name)
     return replace(spec, load=replace(spec.load, stiffness="fe"))
 
 
@@ -332,7 +334,7 @@ def sector_reference(runs: dict, sector_runs: Path) -> None:
         tab = BodyInfluenceTable.from_dict(runs[name]["table"])
         t = fe["teeth"][c]
         for springs in ("fe-fit", "fe"):
-            spec = gc.load_spec(name)
+            spec = pose_spec(name)
             spec = replace(spec, load=replace(spec.load, stiffness=springs, torque_Nm=float(T)))
             _, W0 = loads_at_windup(spec, float(mis), float(rot), fe["windup_rad"],
                                     model=model)

@@ -25,6 +25,7 @@ from pathlib import Path
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import numpy as np
+from bench_fea_contact import golden_file, reference_spec
 
 import gearcoupling as gc
 from gearcoupling.loading.sector_check import loads_at_windup
@@ -40,9 +41,17 @@ POSES = [("renzo-1967", 1.0, 3.6, 2259.7, 0.85, "surface", "fe-fit"),
          ("industrial-m2", 1.0, 7.1, 400.0, 1.0, "surface", "fe-fit"),
          ("industrial-m2", 1.0, 7.1, 200.0, 1.0, "surface", "fe-fit"),
          ("industrial-m2", 2.0, 7.1, 400.0, 1.0, "surface", "fe-fit"),
-         ("industrial-m2", 2.0, 7.1, 200.0, 1.0, "surface", "fe-fit")]
+         ("industrial-m2", 2.0, 7.1, 200.0, 1.0, "surface", "fe-fit"),
+         # a random spec of the aligned references (bench_fea_contact.py) where the default
+         # and the FE table's springs differ most at a misalignment among the small ones
+         ("springs-24-circular", 2.0, 5.8, 114.0, 0.6, "surface", "fe-fit")]
 SPRINGS = ("fe-fit", "fe", "cantilever")
 MODELS = ("surface", "compliance", "linear")
+
+
+def pose_spec(name: str) -> gc.CouplingSpec:
+    """A template, or a random spec of the aligned references (``bench_fea_contact.py``)."""
+    return reference_spec(name, golden_file()["specs"])
 
 
 def key(pose, sector: int) -> str:
@@ -61,7 +70,7 @@ def fe_runs(poses, sectors, store: Path, solve: bool = True) -> dict:
         for k in sectors:
             if key(pose, k) in runs:
                 continue
-            spec = with_springs(gc.load_spec(name), springs)
+            spec = with_springs(pose_spec(name), springs)
             work = store.parent / f"fe_sector-{key(pose, k)}".replace("|", "_")
             chk = gc.sector_check(spec, mis, rotation_deg=rot, torque_Nm=T, model=model,
                                   sector=k, size_mm=size, workdir=work)
@@ -105,7 +114,7 @@ def models_at_windup(pose, run: dict) -> None:
           f"{min(fe['gap_angle_rad']) * 1e6:.1f} µrad):\n")
     print("| model | springs | torque for this wind-up N·m | compared loads N | FE / model |")
     print("|---|---|---|---|---|")
-    spec = gc.load_spec(name)
+    spec = pose_spec(name)
     for model in MODELS:
         for springs in SPRINGS if model != "linear" else ("template C",):
             s = with_springs(spec, "cantilever" if model == "linear" else springs)

@@ -33,7 +33,9 @@ like the cantilever's, times a correction (:meth:`FittedCompliance.correction`):
 the mean of a Gaussian process fitted to the log error the parts' fit leaves at the data
 set's load points (squared-exponential kernel over 14 of the features, both parts',
 standardised; lengths, variance and noise by maximum marginal likelihood, the noise at
-least (2 %)²; :func:`gp_mean`). Away from the data set it fades to a factor of 1. The
+least (2 %)²; :func:`gp_mean`). Away from the data set it fades to a factor of 1; along
+the face it is held beyond the tables' last load points (0.8 of the hub half face) at its
+value there, where a misaligned patch runs to the face end. The
 coefficients ``a_i``, ``b``, ``l`` and the correction are fitted to FE tables of the
 bundled templates and of seeded random specs over the supported range and shipped as
 ``fitted.json`` (``benchmarks/bench_springs.py --fit`` regenerates the data set, fits and
