@@ -122,9 +122,10 @@ def test_an_interrupt_during_a_fork_is_not_lost():
         other.start()
         sent = []
 
-        def ctrl_c_at_fork():
+        def ctrl_c_at_fork():  # once: the first fork
             if not sent:
-                sent.append(os.kill(os.getpid(), signal.SIGINT))
+                sent.append(signal.SIGINT)
+                os.kill(os.getpid(), signal.SIGINT)
                 select.select([taken], [], [])
 
         os.register_at_fork(after_in_parent=ctrl_c_at_fork)
