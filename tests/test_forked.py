@@ -3,7 +3,6 @@ process, a worker's error raised in the parent, no worker outliving an interrupt
 runs in a fresh interpreter: forking needs a process without other threads, and a test
 run before may have left one (fork_map then works in this process)."""
 
-import os
 import subprocess
 import sys
 import textwrap
@@ -137,6 +136,25 @@ def test_an_interrupt_during_a_fork_is_not_lost():
         else:
             raise AssertionError("the interrupt was lost")
         assert time.monotonic() - t0 < 15.0
+        try:
+            child = os.waitpid(-1, os.WNOHANG)
+        except ChildProcessError:  # no child, running or unreaped
+            pass
+        else:
+            raise AssertionError(f"a worker left: {child}")
+    """)
+
+
+def test_a_map_dropped_unstopped_leaves_no_worker():
+    """A started map dropped without :meth:`stop` (an interrupt between its start and the
+    caller's ``try``) kills and reaps its workers then."""
+    _fresh("""
+        import os, time
+        from gearcoupling.forked import ForkedMap
+
+        started = ForkedMap(time.sleep, [30.0, 30.0], 2)
+        assert len(started.procs) == 2, started.procs
+        del started
         try:
             child = os.waitpid(-1, os.WNOHANG)
         except ChildProcessError:  # no child, running or unreaped

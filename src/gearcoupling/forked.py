@@ -84,7 +84,8 @@ def held_signals() -> Iterator[None]:
     noted: list[int] = []
     holding = True
     main = threading.current_thread() is threading.main_thread()  # where handlers run
-    old = {s: h for s in STOP_SIGNALS if main and callable(h := signal.getsignal(s))}
+    old: dict[int, Callable[[int, Any], Any]] = {
+        s: h for s in STOP_SIGNALS if main and callable(h := signal.getsignal(s))}
 
     def note(signum: int, frame: Any) -> None:
         if holding:
@@ -103,8 +104,8 @@ def held_signals() -> Iterator[None]:
         holding = False
         for s, handler in old.items():
             signal.signal(s, handler)
-        for s in dict.fromkeys(noted):
-            signal.raise_signal(s)
+        for signum in dict.fromkeys(noted):
+            signal.raise_signal(signum)
 
 
 def start_workers(target: Callable[..., None], args: Sequence[tuple],
