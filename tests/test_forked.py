@@ -6,6 +6,8 @@ run before may have left one (fork_map then works in this process)."""
 import subprocess
 import sys
 import textwrap
+import time
+from pathlib import Path
 
 import pytest
 
@@ -67,6 +69,9 @@ def test_an_interrupt_kills_and_reaps_the_workers(tmp_path):
         from pathlib import Path
         from gearcoupling.forked import fork_map
 
+        # Python's Ctrl-C handler even where pytest was started with SIGINT ignored (a
+        # background job of a script), which Python then leaves ignored
+        signal.signal(signal.SIGINT, signal.default_int_handler)
         folder, parent = Path(sys.argv[1]), os.getpid()
 
         def slow(x):
@@ -94,6 +99,110 @@ def test_an_interrupt_kills_and_reaps_the_workers(tmp_path):
                 continue
             raise AssertionError(f"worker {pid} alive")
     """, str(tmp_path))
+
+
+def test_an_interrupt_during_a_fork_is_not_lost():
+    """Ctrl-C arriving as the parent returns from forking a worker, while a second thread
+    runs (the CLI's signal watcher, a library's): that thread takes it (the main one
+    holds it) and Python's handler then runs in an after-fork hook (here one that waits
+    for it; logging's is another), which drops its exception. It is raised once the
+    workers have started, and both are killed and reaped: no child left, not even a
+    zombie."""
+    _fresh("""
+        import os, select, signal, socket, threading, time
+        from gearcoupling.forked import fork_map
+
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+        taken, written = socket.socketpair()  # written by the C handler: a thread took it
+        written.setblocking(False)
+        signal.set_wakeup_fd(written.fileno(), warn_on_full_buffer=False)
+        other = threading.Thread(target=threading.Event().wait, daemon=True)
+        other.fork_safe = True  # holds no lock: fork_map still forks
+        other.start()
+        sent = []
+
+        def ctrl_c_at_fork():  # once: the first fork
+            if not sent:
+                sent.append(signal.SIGINT)
+                os.kill(os.getpid(), signal.SIGINT)
+                select.select([taken], [], [])
+
+        os.register_at_fork(after_in_parent=ctrl_c_at_fork)
+        t0 = time.monotonic()
+        try:
+            fork_map(time.sleep, [30.0, 30.0], 2)
+        except KeyboardInterrupt:
+            pass
+        else:
+            raise AssertionError("the interrupt was lost")
+        assert time.monotonic() - t0 < 15.0
+        try:
+            child = os.waitpid(-1, os.WNOHANG)
+        except ChildProcessError:  # no child, running or unreaped
+            pass
+        else:
+            raise AssertionError(f"a worker left: {child}")
+    """)
+
+
+def test_a_map_dropped_unstopped_leaves_no_worker():
+    """A started map dropped without :meth:`stop` (an interrupt between its start and the
+    caller's ``try``) kills and reaps its workers then."""
+    _fresh("""
+        import os, time
+        from gearcoupling.forked import ForkedMap
+
+        started = ForkedMap(time.sleep, [30.0, 30.0], 2)
+        assert len(started.procs) == 2, started.procs
+        del started
+        try:
+            child = os.waitpid(-1, os.WNOHANG)
+        except ChildProcessError:  # no child, running or unreaped
+            pass
+        else:
+            raise AssertionError(f"a worker left: {child}")
+    """)
+
+
+def _running(pid: int) -> bool:
+    """Whether process ``pid`` runs (a zombie has ended: its reaper may be slow)."""
+    try:
+        return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0] not in "ZX"
+    except (FileNotFoundError, ProcessLookupError):
+        return False
+
+
+ORPHANED = """
+    import os, signal, sys, time
+    from pathlib import Path
+    from gearcoupling.forked import fork_map
+
+    folder = Path(sys.argv[1])
+
+    def slow_start():
+        (folder / f"{os.getpid()}.pid").touch()
+        time.sleep(1.0)
+
+    os.register_at_fork(after_in_child=slow_start,
+                        after_in_parent=lambda: os.kill(os.getpid(), signal.SIGKILL))
+    fork_map(lambda x: (folder / f"item{x}").touch(), [0, 1], 2)
+"""
+
+
+def test_a_worker_whose_parent_ended_before_it_started_ends(tmp_path):
+    """The parent killed (SIGKILL: no cleanup) at once after forking a worker that starts
+    slowly (a loaded machine), before the worker asked to die with it: the worker ends
+    instead of running its item as an orphan."""
+    parent = subprocess.run([sys.executable, "-c", textwrap.dedent(ORPHANED), str(tmp_path)],
+                            capture_output=True, text=True, timeout=120)
+    assert parent.returncode == -9, parent.stderr
+    pids = [int(p.stem) for p in tmp_path.glob("*.pid")]
+    assert len(pids) == 1, pids
+    t0 = time.monotonic()
+    while _running(pids[0]):
+        assert time.monotonic() - t0 < 60.0, f"the orphaned worker {pids[0]} still runs"
+        time.sleep(0.05)
+    assert not list(tmp_path.glob("item*")), sorted(p.name for p in tmp_path.iterdir())
 
 
 def test_forked_capacity_points_equal_those_of_one_process():

@@ -9,6 +9,7 @@ import os
 import signal
 import threading
 from collections.abc import Callable, Iterator, Sequence
+from contextlib import contextmanager
 from typing import Any, TypeVar, cast
 
 from .errors import BackendError
@@ -34,14 +35,19 @@ def default_workers() -> int:
 
 def die_with_parent() -> None:
     """Ask Linux to kill this process when its parent ends, however it ends (a no-op
-    elsewhere): a worker never outlives the process that started it."""
+    elsewhere): a worker never outlives the process that started it. A parent that
+    ended before the request (a signal at once after the fork) is not waited for: the
+    worker ends at once."""
     try:
         import ctypes
 
         libc = ctypes.CDLL(None, use_errno=True)
         libc.prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
     except (OSError, AttributeError):  # pragma: no cover - not Linux
-        pass
+        return
+    parent = multiprocessing.parent_process()
+    if parent is not None and os.getppid() != parent.pid:  # an orphan already
+        os.kill(os.getpid(), signal.SIGKILL)
 
 
 def worker_signals() -> None:
@@ -68,25 +74,57 @@ def _map_worker(func: Callable[[Any], Any], items: Sequence[Any], indices: Seque
         conn.close()
 
 
+@contextmanager
+def held_signals() -> Iterator[None]:
+    """SIGINT and SIGTERM held over the block, then acted on by their handlers: blocked in
+    this thread (and so in the processes forked here, until :func:`worker_signals`) and,
+    where another thread takes one (a library's, the CLI's signal watcher), only noted by
+    the Python handlers meanwhile. Acted on at once, an interrupt could raise in code that
+    drops exceptions (an after-fork hook, a ``__del__``) and be lost."""
+    noted: list[int] = []
+    holding = True
+    main = threading.current_thread() is threading.main_thread()  # where handlers run
+    old: dict[int, Callable[[int, Any], Any]] = {
+        s: h for s in STOP_SIGNALS if main and callable(h := signal.getsignal(s))}
+
+    def note(signum: int, frame: Any) -> None:
+        if holding:
+            noted.append(signum)
+        else:  # the block is over: the handler of before
+            old[signum](signum, frame)
+
+    mask = signal.pthread_sigmask(signal.SIG_BLOCK, ())  # kept: the next could raise
+    try:
+        for s in old:
+            signal.signal(s, note)
+        signal.pthread_sigmask(signal.SIG_BLOCK, STOP_SIGNALS)
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, mask)  # the blocked ones are noted now
+        holding = False
+        for s, handler in old.items():
+            signal.signal(s, handler)
+        for signum in dict.fromkeys(noted):
+            signal.raise_signal(signum)
+
+
 def start_workers(target: Callable[..., None], args: Sequence[tuple],
                   procs: list[tuple[Any, multiprocessing.connection.Connection]]) -> None:
     """Fork one process per ``args`` entry running ``target(*entry, send)``, appending
     each with the end of its pipe to read to ``procs`` as it starts (the caller's
     ``finally`` stops them: :func:`stop_workers`, also when a signal comes in here).
-    SIGINT and SIGTERM are held while they start: one arriving during a fork would reach
-    an after-fork hook, which drops its exception (the workers unblock them,
-    :func:`worker_signals`); it is raised here once they are started."""
+    SIGINT and SIGTERM are held while they start (:func:`held_signals`): one arriving
+    during a fork would reach an after-fork hook, which drops its exception; it is
+    raised here once they are started."""
     ctx = multiprocessing.get_context("fork")
-    mask = signal.pthread_sigmask(signal.SIG_BLOCK, STOP_SIGNALS)
-    try:
+    with held_signals():
         for entry in args:
             recv, send = ctx.Pipe(duplex=False)
             proc = ctx.Process(target=target, args=(*entry, send), daemon=True)
             proc.start()
             send.close()
+            del send  # its __del__ runs here, where a signal is held, not after
             procs.append((proc, recv))
-    finally:
-        signal.pthread_sigmask(signal.SIG_SETMASK, mask)
 
 
 def messages(procs: Sequence[tuple[Any, multiprocessing.connection.Connection]]
@@ -114,12 +152,15 @@ def messages(procs: Sequence[tuple[Any, multiprocessing.connection.Connection]]
 
 def stop_workers(procs: Sequence[tuple[Any, multiprocessing.connection.Connection]]
                  ) -> None:
-    """Kill the workers still running and reap them all."""
-    for proc, recv in procs:
-        if proc.is_alive():
-            proc.kill()
-        proc.join()
-        recv.close()
+    """Kill the workers still running and reap them all, holding SIGINT and SIGTERM
+    meanwhile (:func:`held_signals`: a second Ctrl-C does not leave one running)."""
+    with held_signals():
+        for proc, _ in procs:
+            if proc.is_alive():
+                proc.kill()
+        for proc, recv in procs:
+            proc.join()
+            recv.close()
 
 
 def fork_map(func: Callable[[Any], T], items: Sequence[Any], workers: int = 2,
@@ -175,4 +216,8 @@ class ForkedMap:
         return [found[i] for i in range(len(self.items))]
 
     def stop(self) -> None:
-        stop_workers(self.procs)
+        if self.procs:
+            stop_workers(self.procs)
+            self.procs = []
+
+    __del__ = stop
