@@ -38,8 +38,8 @@ from .write import region_ids, write_inp, write_mesh
 
 __all__ = [
     "CUT_DISTANCE_PITCHES",
-    "TABLE_FACE_SHARE",
     "DEFAULT_SECTOR_TEETH",
+    "TABLE_FACE_SHARE",
     "BodyInfluenceTable",
     "ComplianceTable",
     "FEContactResult",
