@@ -7,11 +7,12 @@ and the random springs-24-circular over three meshes, the random springs-12-end_
 finer of two; industrial-m2, mill-spindle and springs-24-circular solved with the deck
 meshed at first touch, renzo-1967 and springs-12-end_round with the previous one, within
 0.25 % of it there; ``python benchmarks/bench_fea_contact.py --from-golden``), and the
-most loaded tooth against a CalculiX sector at 1° and 2° at equal wind-up (FE / model; ``python
+most loaded tooth against a CalculiX sector at 1° and 2° at equal wind-up (renzo-1967,
+industrial-m2, and springs-24-circular at 2°; FE / model; ``python
 benchmarks/bench_fea_sector.py``), for the FE springs with the bodies as the sector has
 them (its cyclic cuts repeat its loads round the ring; ``python benchmarks/bench_bodies.py
 --stored``, docs/load.md "The bodies"; the uniform body of the coupling's torque gave
-0.68–0.87).
+0.68–1.00).
 A model and spring not on the ladder are named as such, never given a borrowed figure.
 """
 
@@ -44,8 +45,8 @@ TOOTH_LOAD_RATIO: dict[tuple[str, str], tuple[float, float]] = {
     ("surface", "cantilever"): (1.69, 1.78),
     ("compliance", "fe"): (0.81, 1.05),
     ("surface", "fe"): (0.92, 1.05),
-    ("compliance", "fe-fit"): (0.93, 0.99),
-    ("surface", "fe-fit"): (0.97, 1.01),
+    ("compliance", "fe-fit"): (0.86, 0.99),
+    ("surface", "fe-fit"): (0.95, 1.06),
 }
 
 
