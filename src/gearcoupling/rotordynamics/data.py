@@ -94,7 +94,8 @@ class CouplingData:
         At the operating misalignment (``None``: no criterion limits it).
     allowable : AllowableLoads
     seconds : float
-        Wall time of :func:`coupling_data`.
+        Wall time from the start of :func:`coupling_data` to its result (in the report the
+        sections built meanwhile count).
     """
 
     spec: CouplingSpec = field(repr=False)
