@@ -20,7 +20,7 @@ from ..inspection import check_limits, grade_limits, load_points
 from ..io import output_folder, require_file, write_text
 from ..spec import CouplingSpec, as_spec
 from . import sections as sec
-from .datasheet import datasheet
+from .datasheet import datasheet, start_datasheet
 from .document import Note, Section, Table, render
 from .pdf import print_pdf
 from .settings import ReportSettings
@@ -65,6 +65,13 @@ def _steps(settings: ReportSettings) -> list[tuple[str, Callable[[sec.Context], 
     if settings.viewer:
         steps.append(("3D view", sec.view3d))
     return steps
+
+
+def _computed_order(steps: list[tuple[str, Callable[[sec.Context], Section]]]
+                    ) -> list[tuple[str, Callable[[sec.Context], Section]]]:
+    """The steps in the order they are computed: the data sheet last, so that the sections
+    after it in the report are built while its workers run."""
+    return sorted(steps, key=lambda item: item[1] is datasheet)
 
 
 def report(spec: CouplingSpec, out: str | os.PathLike, *, pdf: bool = False,
@@ -127,19 +134,30 @@ def _build(ctx: sec.Context, pdf: bool, progress: Callable[[int, int], None] | N
                                            ctx.misalignment_deg, ctx.torque_Nm, ctx.model)
     steps = _steps(s)
     total = len(steps) + 1 + (1 if pdf else 0)
-    built: list[Section] = []
+    built: dict[str, Section] = {}
     seconds: dict[str, float] = {}
+    files: dict[str, list[Path]] = {}
     sec.start_capacity(ctx)  # its workers run while the sections before it are built
     try:
-        for n, (name, step) in enumerate(steps):
-            t = time.perf_counter()
+        for n, (name, step) in enumerate(_computed_order(steps)):
+            t, ahead = time.perf_counter(), len(ctx.files)
             section = step(ctx)
-            section.seconds = seconds[name] = time.perf_counter() - t
-            built.append(section)
+            section.seconds = seconds[name] = (time.perf_counter() - t
+                                               + seconds.get(name, 0.0))
+            built[name], files[name] = section, ctx.files[ahead:]
+            if step is sec.capacity_section and s.datasheet:
+                t = time.perf_counter()  # its start counts as the data sheet's time
+                start_datasheet(ctx)  # its workers run while the sections after it are built
+                seconds["data sheet"] = time.perf_counter() - t
             if progress is not None:
                 progress(n + 1, total)
     finally:
         ctx.capacity_curve.stop()
+        if not (ctx.datasheet_run is None or isinstance(ctx.datasheet_run, str)):
+            ctx.datasheet_run.stop()
+    ctx.files[:] = [p for name, _ in steps for p in files[name]]  # in the report's order
+    seconds = {name: seconds[name] for name, _ in steps}
+    sections = [built[name] for name, _ in steps]
     verdicts = _verdicts(ctx)
     cls, text = overall(verdicts)
     head = Section("verdict", "Verdict against the spec's limits", [
@@ -147,14 +165,14 @@ def _build(ctx: sec.Context, pdf: bool, progress: Callable[[int, int], None] | N
               "not judged where the spec sets no limit or an input is missing (the reason "
               "says which key or option sets it).", verdict_column=4)])
     wall = time.perf_counter() - t0
-    built.append(_provenance(ctx, seconds, wall))
+    sections.append(_provenance(ctx, seconds, wall))
     html_path = folder / "report.html"
     title = f"Gear coupling design report: {spec.name}"
     when = datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC")
     sub = (f"i = {mis:g}°, " + (f"T = {torque:.4g} N·m" if torque is not None else "no torque")
            + f", {model} load model · gearcoupling {__version__} · {when}")
     ctx.files.append(html_path)
-    write_text(html_path, render(title, sub, (cls, text), [head, *built]))
+    write_text(html_path, render(title, sub, (cls, text), [head, *sections]))
     if progress is not None:
         progress(len(steps) + 1, total)
     pdf_path = None

@@ -5,25 +5,44 @@ from __future__ import annotations
 
 from ..errors import SpecError
 from ..io import write_csv_rows
-from ..rotordynamics import DOFS, CouplingData, coupling_data, plot_allowable_loads, plot_windup
+from ..rotordynamics import (
+    DOFS,
+    CouplingData,
+    StartedCouplingData,
+    plot_allowable_loads,
+    plot_windup,
+)
 from .document import Note, Row, Section, Table
 from .sections import Context
 
 PARTS = ("hub", "sleeve", "coupling")
 
 
+def start_datasheet(ctx: Context) -> None:
+    """Start the data sheet's work (forked workers where the machine has two cores), after
+    the capacity section, whose curve it reuses (``known=``): it runs while the sections
+    after it are built. A data sheet that is not made leaves its reason instead
+    (``ctx.datasheet_run`` a string). The caller stops it in a ``finally``."""
+    if ctx.torque_Nm is None or ctx.torque_Nm == 0:
+        ctx.datasheet_run = ("Not made: the stiffness and the loads are those of loaded teeth; "
+                             "give [load] torque_Nm or --torque.")
+        return
+    try:
+        ctx.datasheet_run = StartedCouplingData(ctx.spec, ctx.misalignment_deg, ctx.torque_Nm,
+                                                model=ctx.model,
+                                                known=ctx.found.get("capacity_curve", ()))
+    except SpecError as err:
+        ctx.datasheet_run = f"Not made: {err}"
+
+
 def datasheet(ctx: Context) -> Section:
     sec = Section("datasheet", "Coupling data sheet for rotordynamics, after API 671")
-    if ctx.torque_Nm is None or ctx.torque_Nm == 0:
-        sec.blocks.append(Note("Not made: the stiffness and the loads are those of loaded "
-                               "teeth; give [load] torque_Nm or --torque.", "skip"))
+    if ctx.datasheet_run is None:
+        start_datasheet(ctx)
+    if isinstance(ctx.datasheet_run, str):
+        sec.blocks.append(Note(ctx.datasheet_run, "skip"))
         return sec
-    try:
-        data = coupling_data(ctx.spec, ctx.misalignment_deg, ctx.torque_Nm, model=ctx.model,
-                             known=ctx.found.get("capacity_curve", ()))
-    except SpecError as err:
-        sec.blocks.append(Note(f"Not made: {err}", "skip"))
-        return sec
+    data = ctx.datasheet_run.result()
     ctx.found["datasheet"] = data
     for path in data.write(ctx.data_dir):
         ctx.files.append(path)

@@ -71,6 +71,7 @@ class Context:
     found: dict[str, Any] = field(default_factory=dict)
     scan_points: Any = None  # the scan's (n, 3) points in mm, read before any work
     capacity_curve: Any = None  # the capacity curve, started before the first section
+    datasheet_run: Any = None  # the data sheet, started after the capacity section
 
     @property
     def data_dir(self) -> Path:

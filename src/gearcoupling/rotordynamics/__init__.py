@@ -11,6 +11,7 @@ from .data import (
     FILES,
     MAX_TORQUE_NM,
     CouplingData,
+    StartedCouplingData,
     check_inputs,
     coupling_data,
 )
@@ -41,6 +42,7 @@ __all__ = [
     "AllowableLoads",
     "CouplingData",
     "MassProperties",
+    "StartedCouplingData",
     "StiffnessMatrix",
     "TorsionalStiffness",
     "allowable_loads",

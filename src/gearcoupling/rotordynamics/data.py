@@ -9,6 +9,7 @@ docs/rotordynamics.md.
 
 from __future__ import annotations
 
+import copy
 import math
 import time
 from collections.abc import Callable, Sequence
@@ -19,7 +20,7 @@ from typing import Any
 
 from ..clearance import sweep
 from ..errors import ArgumentError
-from ..forked import default_workers, fork_map
+from ..forked import ForkedMap, default_workers
 from ..io import write_csv_rows, write_json
 from ..loading import (
     Capacity,
@@ -93,7 +94,8 @@ class CouplingData:
         At the operating misalignment (``None``: no criterion limits it).
     allowable : AllowableLoads
     seconds : float
-        Wall time of :func:`coupling_data`.
+        Wall time from the start of :func:`coupling_data` to its result (in the report the
+        sections built meanwhile count).
     """
 
     spec: CouplingSpec = field(repr=False)
@@ -302,12 +304,13 @@ def coupling_data(spec: CouplingSpec, misalignment_deg: float | None = None,
         report's capacity curve: the capacity at the misalignment and the points of the
         allowable misalignment's search are taken from them where they have the angle.
     workers : {1, 2}, optional
-        The matrix, the allowable misalignment and the wind-up curve's torques computed in
-        this process (1) or over two forked ones (2; the default where the machine has two
-        cores and forking is safe, :func:`~gearcoupling.forked.default_workers`).
+        Two chains, the matrix with the wind-up curve's torques and the allowable
+        misalignment, computed in this process (1) or in two forked ones (2; the default
+        where the machine has two cores and forking is safe,
+        :func:`~gearcoupling.forked.default_workers`); the same numbers either way.
     progress : callable, optional
-        ``progress(done, total)`` after the masses and after each of the matrix, the
-        allowable misalignment and the wind-up curve's torques (in the order they end).
+        ``progress(done, total)`` after the masses and after each chain (in the order they
+        end).
 
     Examples
     --------
@@ -316,41 +319,90 @@ def coupling_data(spec: CouplingSpec, misalignment_deg: float | None = None,
     >>> data.stiffness.matrix.shape  # doctest: +SKIP
     (6, 6)
     """
-    t0 = time.perf_counter()
-    spec = as_spec(spec)
-    mis = (spec.design_misalignment_deg if misalignment_deg is None else
-           check_misalignment_deg(misalignment_deg, "misalignment_deg", ArgumentError))
-    T = check_inputs(spec, torque_Nm)
-    model = resolve_model(spec, model)
-    given = known_capacities(spec, model, known)
-    workers = default_workers() if workers is None else workers
-    if workers not in (1, 2) or isinstance(workers, bool):
-        raise ArgumentError("workers", workers, "1 or 2")
+    started = StartedCouplingData(spec, misalignment_deg, torque_Nm, model=model,
+                                  rotations=rotations, relative_step=relative_step,
+                                  differences=differences, turn_angles=turn_angles,
+                                  curve_points=curve_points, tolerance_mm=tolerance_mm,
+                                  known=known, workers=workers)
+    try:
+        return started.result(progress)
+    finally:
+        started.stop()
 
-    def step(done: int, total: int) -> None:
+
+class StartedCouplingData:
+    """:func:`coupling_data` started now, its two chains in forked workers where it forks,
+    and collected later by :meth:`result`; :meth:`stop` in a ``finally`` kills the workers
+    still running (the report builds other sections meanwhile). Arguments as
+    :func:`coupling_data`; the masses are computed here, before the workers start (a bad
+    tolerance fails first).
+
+    The chains: the matrix, then the wind-up curve's torques on the matrix's sweep (each
+    solve starts from the last pose of the one before: every other torque from the
+    matrix's operating point, the others, on a copy of the sweep, from a cold start);
+    and the allowable misalignment with its turn. The matrix and the curve cost about as
+    much as the allowable misalignment, so the two workers end together.
+    """
+
+    def __init__(self, spec: CouplingSpec, misalignment_deg: float | None = None,
+                 torque_Nm: float | None = None, *, model: str | None = None,
+                 rotations: int | None = None, relative_step: float | None = None,
+                 differences: str | None = None, turn_angles: int = DEFAULT_TURN_ANGLES,
+                 curve_points: int = DEFAULT_POINTS, tolerance_mm: float | None = None,
+                 known: Sequence[Capacity] = (), workers: int | None = None):
+        self.t0 = time.perf_counter()
+        spec = as_spec(spec)
+        mis = (spec.design_misalignment_deg if misalignment_deg is None else
+               check_misalignment_deg(misalignment_deg, "misalignment_deg", ArgumentError))
+        T = check_inputs(spec, torque_Nm)
+        model = resolve_model(spec, model)
+        given = known_capacities(spec, model, known)
+        workers = default_workers() if workers is None else workers
+        if workers not in (1, 2) or isinstance(workers, bool):
+            raise ArgumentError("workers", workers, "1 or 2")
+        self.mass = mass_properties(spec, tolerance_mm)
+        sw = sweep(spec, mis, pitch_rotations(spec, default_rotations(model) if rotations is None
+                                              else rotations))
+        windup_torques(T, None, curve_points)  # the number of points checked before any work
+        cap = given.get(float(mis)) or capacity(spec, mis, model=model)
+        self.grid = windup_torques(T, cap.capacity_Nm, curve_points)
+        self.spec, self.mis, self.T, self.cap = spec, float(mis), T, cap
+        matrix = partial(_matrix_and_curve, sw, T, model, relative_step, differences, self.grid)
+        allowable = partial(allowable_loads, spec, T, model=model, angles=turn_angles,
+                            known=[*given.values(), cap])
+        self.map = ForkedMap(lambda task: task(), [matrix, allowable], workers)
+
+    def result(self, progress: Callable[[int, int], Any] | None = None) -> CouplingData:
         if progress is not None:
-            progress(done, total)
+            progress(1, 3)  # the masses
+        (K, curve), allowed = self.map.results(None if progress is None else
+                                               (lambda n: progress(1 + n, 3)))
+        torsion = torsion_from_curve(self.spec, self.grid, curve, self.T,
+                                     float(K.matrix[5, 5]), self.cap.capacity_Nm)
+        used = K.model
+        return CouplingData(self.spec, self.mis, self.T, used, springs_name(self.spec, used),
+                            self.mass, torsion, K, self.cap.capacity_Nm, allowed,
+                            time.perf_counter() - self.t0)
 
-    mass = mass_properties(spec, tolerance_mm)
-    step(1, 3 + curve_points)  # the masses; then the tasks below
-    sw = sweep(spec, mis, pitch_rotations(spec, default_rotations(model) if rotations is None
-                                          else rotations))
-    cap = given.get(float(mis)) or capacity(spec, mis, model=model)
-    grid = windup_torques(T, cap.capacity_Nm, curve_points)
-    tasks = [lambda: stiffness_from_sweep(sw, T, model=model, relative_step=relative_step,
-                                          differences=differences),
-             lambda: allowable_loads(spec, T, model=model, angles=turn_angles,
-                                     known=[*given.values(), cap]),
-             *(partial(mesh_windup_from_touch, sw, t, model) for t in grid if t != T)]
-    K, allowed, *others = fork_map(lambda task: task(), tasks, workers=workers,
-                                   done=lambda n: step(1 + n, 1 + len(tasks)))
-    rest = iter(others)  # the point at the torque is the matrix's operating point
-    curve = [K.operating_windup_rad if t == T else next(rest) for t in grid]
-    torsion = torsion_from_curve(spec, grid, curve, T, float(K.matrix[5, 5]), cap.capacity_Nm)
-    used = K.model
-    return CouplingData(spec, float(mis), T, used, springs_name(spec, used), mass, torsion, K,
-                        cap.capacity_Nm, allowed, time.perf_counter() - t0)
+    def stop(self) -> None:
+        self.map.stop()
+
+
+def _matrix_and_curve(sw, T: float, model: str, relative_step: float | None,
+                      differences: str | None, grid) -> tuple[StiffnessMatrix, list[float]]:
+    """The stiffness matrix at ``T`` and the teeth's wind-up at the torques ``grid``: at
+    ``T`` the matrix's operating point; the others on ``sw`` after the matrix, every other
+    one (from the first) warm-started from the one before, the rest on a copy of ``sw``
+    (its own chain of warm starts, from cold)."""
+    K = stiffness_from_sweep(sw, T, model=model, relative_step=relative_step,
+                             differences=differences)
+    others = [t for t in grid if t != T]
+    fresh = copy.copy(sw)  # another key for the surface model's last pose
+    found = {k: mesh_windup_from_touch(sw if k % 2 == 0 else fresh, t, model)
+             for k, t in sorted(enumerate(others), key=lambda kt: kt[0] % 2)}
+    rest = iter(found[k] for k in range(len(others)))
+    return K, [K.operating_windup_rad if t == T else next(rest) for t in grid]
 
 
 __all__ = ["DATASHEET_COLUMNS", "FILES", "MAX_TORQUE_NM", "NOT_MODELLED",
-           "CouplingData", "check_inputs", "coupling_data"]
+           "CouplingData", "StartedCouplingData", "check_inputs", "coupling_data"]
