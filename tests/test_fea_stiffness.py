@@ -1,6 +1,10 @@
 """The real CalculiX solver on gmsh meshes: a cantilever against Timoshenko, the tooth
 compliance table (physical trends, cache, protocol), solver errors with their log."""
 
+import subprocess
+import sys
+import textwrap
+
 import numpy as np
 import pytest
 
@@ -210,6 +214,43 @@ def test_failed_solver_run_keeps_its_log(tmp_path):
     with solver_dir() as ok:
         (ok / "x").write_text("x")
     assert not ok.exists()
+
+
+def test_a_ctrl_c_while_the_solver_starts_kills_and_reaps_it(tmp_path):
+    """A SIGINT arriving as ``Popen`` returns, ccx already started (injected at the end of
+    ``Popen.__init__``, in a fresh interpreter where it is the only child): the interrupt
+    still comes out of :func:`run_ccx`, and the solver is killed and reaped, not left
+    running unregistered (raised inside ``Popen``, it used to be)."""
+    code = textwrap.dedent("""
+        import os, signal, subprocess, sys
+        from gearcoupling.fea.ccx import RUNNING, run_ccx
+
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+        start = subprocess.Popen.__init__
+
+        def started_then_ctrl_c(self, *args, **kwargs):
+            start(self, *args, **kwargs)
+            os.kill(os.getpid(), signal.SIGINT)  # Python runs its handler here
+
+        subprocess.Popen.__init__ = started_then_ctrl_c
+        deck = "*NODE\\n1, 0, 0, 0\\n*STEP\\n*STATIC\\n*END STEP\\n"
+        try:
+            run_ccx(deck, sys.argv[1], "job")
+        except KeyboardInterrupt:
+            pass
+        else:
+            raise AssertionError("the interrupt was lost")
+        assert not RUNNING, RUNNING
+        try:
+            child = os.waitpid(-1, os.WNOHANG)
+        except ChildProcessError:  # no child, running or unreaped
+            pass
+        else:
+            raise AssertionError(f"the solver was left: {child}")
+    """)
+    out = subprocess.run([sys.executable, "-c", code, str(tmp_path)], capture_output=True,
+                         text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
 
 
 def test_missing_solver_names_the_package(monkeypatch, tmp_path):

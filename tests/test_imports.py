@@ -61,7 +61,7 @@ LAYERS = {
     "export": {"io", "errors", "geometry", "spec", "parts"},
     "clearance": {"io", "errors", "geometry", "spec", "plots", "tables"},
     "interference": {"io", "errors", "geometry", "spec", "plots", "parts", "clearance"},
-    "fea": {"io", "errors", "geometry", "spec", "parts", "export", "clearance"},
+    "fea": {"io", "errors", "forked", "geometry", "spec", "parts", "export", "clearance"},
     "loading": {"io", "errors", "geometry", "spec", "loadspec", "plots", "clearance",
                 "fea", "tables"},
     "study": {"__init__", "io", "loadspec", "errors", "geometry", "spec", "plots", "clearance",

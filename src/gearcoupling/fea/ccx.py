@@ -18,6 +18,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import BackendError
+from ..forked import held_signals
 from .backends import ccx_path
 
 
@@ -83,6 +84,37 @@ def _stopped() -> BackendError:
     return BackendError("ccx not run: the command was interrupted (stop_solvers)")
 
 
+@contextmanager
+def _started(args: list[str], cwd: Path, env: dict[str, str]) -> Iterator[subprocess.Popen]:
+    """``Popen(args)`` registered in :data:`RUNNING` while the block runs (and killed at
+    once if the solvers are stopped meanwhile). A SIGINT or SIGTERM while it starts is held
+    until it is registered (:func:`~gearcoupling.forked.held_signals`; noted, not blocked:
+    ccx would inherit the mask) and then kills it: raised inside ``Popen``, it would leave
+    the solver running unknown to anyone."""
+    proc = None
+    try:
+        with held_signals(block=False):
+            proc = subprocess.Popen(args, cwd=cwd, stdout=subprocess.PIPE,
+                                    stderr=subprocess.PIPE, text=True, env=env)
+            with _LOCK:
+                RUNNING.add(proc)
+                if _STOPPED.is_set():  # stopped while it started: it goes at once
+                    proc.kill()
+    except BaseException:  # a signal held while it started
+        if proc is not None:
+            proc.kill()
+            proc.communicate()
+            with _LOCK:
+                RUNNING.discard(proc)
+        raise
+    try:
+        with proc:
+            yield proc
+    finally:
+        with _LOCK:
+            RUNNING.discard(proc)
+
+
 def run_ccx(deck: str, workdir: str | Path, job: str = "job", *,
             timeout_s: float = 3600.0, threads: int = 2) -> CcxResult:
     """Write ``<workdir>/<job>.inp`` and run ``ccx`` on it.
@@ -100,12 +132,7 @@ def run_ccx(deck: str, workdir: str | Path, job: str = "job", *,
     t0 = time.perf_counter()
     if _STOPPED.is_set():
         raise _stopped()
-    with subprocess.Popen([exe, "-i", job], cwd=work, stdout=subprocess.PIPE,
-                          stderr=subprocess.PIPE, text=True, env=env) as proc:
-        with _LOCK:
-            RUNNING.add(proc)
-            if _STOPPED.is_set():  # stopped while it started: it goes at once
-                proc.kill()
+    with _started([exe, "-i", job], work, env) as proc:
         try:
             stdout, stderr = proc.communicate(timeout=timeout_s)
         except subprocess.TimeoutExpired as err:
@@ -117,9 +144,6 @@ def run_ccx(deck: str, workdir: str | Path, job: str = "job", *,
         except BaseException:  # an interruption: the solver goes with the caller
             proc.kill()
             raise
-        finally:
-            with _LOCK:
-                RUNNING.discard(proc)
     log.write_text(stdout + "\n" + stderr)
     if _STOPPED.is_set():
         raise _stopped()
