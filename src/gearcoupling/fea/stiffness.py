@@ -198,12 +198,13 @@ def _fixed_sets(vm: VolumeMesh) -> list[str]:
     return base + (["CUT"] if vm.teeth is not None else [])
 
 
-def load_grid(spec: CouplingSpec, hub: VolumeMesh, sleeve: VolumeMesh, nz: int = 3, nr: int = 3):
-    """Load points: ``|z|`` from 0 to :data:`TABLE_FACE_SHARE` of the hub half face; ``r``
-    across the radii that both loaded flanks cover at every such z (10 % in from each end of
-    that band)."""
+def load_grid(spec: CouplingSpec, hub: VolumeMesh, sleeve: VolumeMesh, nz: int = 3, nr: int = 3,
+              face_share: float = TABLE_FACE_SHARE):
+    """Load points: ``|z|`` from 0 to ``face_share`` of the hub half face; ``r`` across the
+    radii that both loaded flanks cover at every such z (10 % in from each end of that
+    band)."""
     hf = 0.5 * spec.hub.face_width
-    z = np.linspace(0.0, TABLE_FACE_SHARE * hf, nz)
+    z = np.linspace(0.0, face_share * hf, nz)
     lo, hi = -np.inf, np.inf
     for vm in (hub, sleeve):
         k = _loaded_tooth(vm)
@@ -369,10 +370,15 @@ def _loaded_sector(spec: CouplingSpec, part: str, sector: int, size: float,
 def compute_compliance_table(spec: CouplingSpec, *, size_mm: float | None = None,
                              sector: int = DEFAULT_SECTOR_TEETH, nz: int = 3, nr: int = 3,
                              patch_mm: float | None = None, workdir=None,
-                             progress: Callable[[int, int], None] | None = None
-                             ) -> ComplianceTable:
+                             progress: Callable[[int, int], None] | None = None,
+                             face_share: float = TABLE_FACE_SHARE) -> ComplianceTable:
     """Mesh hub and sleeve sectors and solve the load cases with ccx (no cache);
-    ``progress(done, 4)`` after each mesh and each solve."""
+    ``progress(done, 4)`` after each mesh and each solve; ``face_share``: the last load
+    point's share of the hub half face (``benchmarks/bench_springs.py --face-end`` puts its
+    patch flush with the face end)."""
+    if not 0.0 < face_share <= 1.0:
+        raise ArgumentError("face_share", face_share, "a share of the hub half face, above 0 "
+                            "and at most 1")
     if sector is None or int(sector) < 1 or int(sector) % 2 == 0:
         raise ArgumentError("sector", sector, "an odd number of teeth (the middle one is loaded), "
                         "e.g. 3")
@@ -381,13 +387,13 @@ def compute_compliance_table(spec: CouplingSpec, *, size_mm: float | None = None
     size = check_size(spec, "hub", size_mm)
     check_size(spec, "sleeve", size_mm)
     patch = max(size, m / 4.0) if patch_mm is None else float(patch_mm)
-    z_window = (-patch, TABLE_FACE_SHARE * 0.5 * spec.hub.face_width + patch)
+    z_window = (-patch, face_share * 0.5 * spec.hub.face_width + patch)
     meshes = {}
     for part in ("hub", "sleeve"):
         meshes[part] = _loaded_sector(spec, part, sector, size, z_window)
         if progress:
             progress(len(meshes), 4)
-    z, r = load_grid(spec, meshes["hub"], meshes["sleeve"], nz, nr)
+    z, r = load_grid(spec, meshes["hub"], meshes["sleeve"], nz, nr, face_share)
     comp, near, stress, times = {}, {}, {}, {}
     # both parts at once, one solver thread each (2 cores)
     with solver_dir(workdir) as work, ThreadPoolExecutor(2) as pool:
