@@ -290,7 +290,7 @@ def main() -> None:
                     help=f"write every table's far field to {GOLDEN.relative_to(ROOT)}")
     ap.add_argument("--face-end", nargs="+", default=[], metavar="NAME",
                     help="only: these specs' tables again with their last row flush with the "
-                         "face end (minutes each), the springs against them")
+                         "face end (15-60 s each here), the springs against them")
     a = ap.parse_args()
     from gearcoupling.loading.kernels.fitted import FittedCompliance, load_fit
 

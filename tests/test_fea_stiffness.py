@@ -94,7 +94,7 @@ def test_a_one_tooth_sector_is_refused_for_the_near_field_split(tmp_path):
         compute_compliance_table(load_spec("industrial-m2"), size_mm=1.0, sector=1, nz=2, nr=2)
 
 
-@pytest.mark.parametrize("share", [0.0, 1.2, float("nan")])
+@pytest.mark.parametrize("share", [0.0, 1.2, float("nan"), "0.9"])
 def test_a_face_share_off_the_face_is_refused_before_meshing(share):
     from gearcoupling.fea import compute_compliance_table
 

@@ -376,7 +376,7 @@ def compute_compliance_table(spec: CouplingSpec, *, size_mm: float | None = None
     ``progress(done, 4)`` after each mesh and each solve; ``face_share``: the last load
     point's share of the hub half face (``benchmarks/bench_springs.py --face-end`` puts its
     patch flush with the face end)."""
-    if not 0.0 < face_share <= 1.0:
+    if not (isinstance(face_share, (int, float)) and 0.0 < face_share <= 1.0):
         raise ArgumentError("face_share", face_share, "a share of the hub half face, above 0 "
                             "and at most 1")
     if sector is None or int(sector) < 1 or int(sector) % 2 == 0:
