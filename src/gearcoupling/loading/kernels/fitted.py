@@ -47,8 +47,8 @@ point (the parts' fit alone: −11.9 … +21.5 %), the whole compliance within �
 on random specs left out of the fit (``--holdout 2``, 3, 4) within −12.8 … +12.1 %
 (8/6/4 specs) where they lie inside the ranges of the rest, about as the parts' fit alone
 (−12.3 … +12.5 %). Along the face the tables reach 0.8 of the half face; at the face end
-itself (a load patch flush with it, ``bench_springs.py --face-end``) the fit is 17–25 %
-stiff on three specs. The ranges (``fitted.json``, ``spec_ranges``): 14–260 teeth, module
+itself (a load patch flush with it, ``bench_springs.py --face-end``) the fit is 13–42 %
+stiff on ten specs. The ranges (``fitted.json``, ``spec_ranges``): 14–260 teeth, module
 0.22–48.7 mm, pressure angle 14.6–29.0°, face / module 3.5–19.3, tooth depth / module
 1.14–2.33, and the rim, ring and fillet ratios of the data set. Where a spec lies outside
 them (:attr:`FittedCompliance.outside`), the fit is still evaluated (each feature held at
