@@ -12,10 +12,10 @@ the sleeve (displacement control) on to just past it, so the contact is closed w
 releases it and applies the moment. The hub ccw flank (slave) meets the sleeve ccw flank
 (master) through a stiff linear penalty law. The analysis is linear (small strain): a
 finite turn of the rigid surface by ``theta`` reads as a compression of about
-``theta**2 / 2`` that shrinks the sleeve and moves its flanks toward the hub. An earlier
-form of the deck turned by the whole 1.03 x first touch in step 1, which moved the wind-up
-beyond first touch by 0.15-0.24 % on renzo-1967 and 1.6-3.2 % on industrial-m2
-(docs/fea.md); meshing the pose leaves only the small remainder.
+``theta**2 / 2`` that shrinks the sleeve and moves its flanks toward the hub: step 1
+turning by the whole first touch would move the wind-up beyond it by 0.15-0.24 % on
+renzo-1967 and 1.6-3.2 % on industrial-m2 (docs/fea.md); meshing the pose leaves only the
+small remainder.
 
 Measured per run: the wind-up (the sleeve's rotation against the fixed bore) and the part
 beyond the exact first touch, the tooth's tangential load (its contact moment / pitch

@@ -251,8 +251,7 @@ class FittedCompliance(CantileverCompliance):
         if features is None or np.any(np.abs(np.asarray(z_mm)) > z_last):
             z = np.clip(np.asarray(z_mm, dtype=float), -z_last, z_last)
             features = {p: self.part_features(p, z, r_mm) for p in PARTS}
-        f = features
-        x = np.concatenate([np.broadcast_to(f[p], (*shape, len(FEATURES)))[..., columns[p]]
+        x = np.concatenate([np.broadcast_to(features[p], (*shape, len(FEATURES)))[..., columns[p]]
                             for p in PARTS], axis=-1).reshape(-1, gp["mean"].size)
         return np.exp(gp_mean(x, gp)).reshape(shape)
 
