@@ -1,13 +1,13 @@
 """The default tooth springs against the FE tooth-spring tables they reproduce.
 
 Run: ``python benchmarks/bench_springs.py [--random 30] [--seed 2026] [--no-compute] [--fit]
-[--holdout K] [--face-end NAME ...]``.
+[--holdout K]``.
 
 The data set: the five bundled templates and ``--random`` seeded random specs whose teeth,
 module, pressure angle, face width, tooth proportions, fillets, rim and bore and crown
 are drawn over the supported range (``tests/random_specs.py``,
 ``proportions_spec``). For each, the FE tooth-spring table
-(:func:`gearcoupling.fea.tooth_compliance_table`, default settings: a 3 x 3 grid of load
+(:func:`gearcoupling.fea.tooth_compliance_table`, default settings: 3 radii x 4 rows of load
 points, real gmsh and CalculiX; cached in ``$GEARCOUPLING_CACHE`` or the user's cache, so a
 second run only reads) and the default springs (:class:`gearcoupling.loading.FittedCompliance`)
 at the same load points. Printed: per spec, the largest error of the pair far field over
@@ -18,9 +18,7 @@ of :mod:`gearcoupling.loading.kernels.fitted` to the data set first and writes t
 ``src/gearcoupling/loading/kernels/fitted.json`` (the table then shows the new fit);
 ``--holdout K`` fits on all but every K-th random spec and prints the error on those left out;
 ``--no-correction`` leaves the Gaussian-process correction out of the fit; ``--golden`` writes
-the tables' far fields to ``tests/golden/fe_far_field.json``; ``--face-end NAME ...``
-computes the named specs' tables again with the last row's load patch flush with the face
-end (beyond the data set's 0.8 of the half face) and prints the springs' error there.
+the tables' far fields to ``tests/golden/fe_far_field.json``.
 """
 
 from __future__ import annotations
@@ -242,35 +240,6 @@ def write_golden(specs, tables) -> None:
     print(f"wrote {GOLDEN} ({len(out)} specs)")
 
 
-def face_end(specs, tables, names) -> None:
-    """Each named spec's FE table computed again with its last load point's patch flush
-    with the face end (``face_share``; not cached): the default springs, and the standard
-    table (held constant beyond its last row), against it row by row."""
-    from gearcoupling.fea import compute_compliance_table
-    from gearcoupling.loading.kernels.fitted import FittedCompliance
-
-    print("\n## Toward the face end: FE tables whose last row's patch is flush with it\n")
-    print("| spec | row: z / half face | default springs error, min … max | standard table "
-          "(held beyond 0.8) error | FE s |")
-    print("|---|---|---|---|---|")
-    for spec, table in zip(specs, tables, strict=True):
-        if spec.name not in names:
-            continue
-        half = 0.5 * spec.hub.face_width
-        share = 1.0 - table.info["patch_mm"] / half
-        t0 = time.perf_counter()
-        flush = compute_compliance_table(spec, face_share=share)
-        seconds = time.perf_counter() - t0
-        Z, R = np.meshgrid(flush.z_mm, flush.r_mm, indexing="ij")
-        fe = flush.far_field_mm_per_N
-        errors = [100 * (c / fe - 1) for c in (
-            FittedCompliance(spec).pair_compliance_mm_per_N(Z, R),
-            table.pair_compliance_mm_per_N(Z, R))]
-        for i, z in enumerate(flush.z_mm):
-            cells = " | ".join(f"{e[i].min():+.1f} … {e[i].max():+.1f} %" for e in errors)
-            print(f"| {spec.name} | {z / half:.3f} | {cells} | {seconds:.0f} |", flush=True)
-
-
 def describe(spec: gc.CouplingSpec) -> str:
     t = spec.tooth
     return (f"{t.teeth} teeth, m {t.module:.3g}, {math.degrees(t.pressure_angle):.1f}°, "
@@ -288,9 +257,6 @@ def main() -> None:
                     help="with --fit or --holdout: the parts' fit alone (what the correction buys)")
     ap.add_argument("--golden", action="store_true",
                     help=f"write every table's far field to {GOLDEN.relative_to(ROOT)}")
-    ap.add_argument("--face-end", nargs="+", default=[], metavar="NAME",
-                    help="only: these specs' tables again with their last row flush with the "
-                         "face end (15-60 s each here), the springs against them")
     a = ap.parse_args()
     from gearcoupling.loading.kernels.fitted import FittedCompliance, load_fit
 
@@ -304,9 +270,6 @@ def main() -> None:
         if table is not None:
             specs.append(spec)
             tables.append(table)
-    if a.face_end:
-        face_end(specs, tables, set(a.face_end))
-        return
     if a.golden:
         write_golden(specs, tables)
     fitted = None

@@ -94,14 +94,6 @@ def test_a_one_tooth_sector_is_refused_for_the_near_field_split(tmp_path):
         compute_compliance_table(load_spec("industrial-m2"), size_mm=1.0, sector=1, nz=2, nr=2)
 
 
-@pytest.mark.parametrize("share", [0.0, 1.2, float("nan"), "0.9"])
-def test_a_face_share_off_the_face_is_refused_before_meshing(share):
-    from gearcoupling.fea import compute_compliance_table
-
-    with pytest.raises(ArgumentError, match=r"face_share.*at most 1"):
-        compute_compliance_table(load_spec("industrial-m2"), face_share=share)
-
-
 @pytest.mark.parametrize("a, b", [(1.0, 1.0), (2.0, 0.7), (0.3, 5.0)])
 def test_rectangle_halfspace_work_matches_the_integral_of_the_boussinesq_kernel(a, b):
     """Uniform pressure on an a x b rectangle (total force P): the work is

@@ -215,7 +215,8 @@ def _mesh_in_gmsh(gmsh, spec: CouplingSpec,
     t0 = time.perf_counter()
     gmsh.model.mesh.generate(2)  # coarse surface mesh, only to sample every face
     names = classify_surfaces(gmsh, spec, part, labelled, surfaces)
-    fillet_r = _radius_range(gmsh, [s for s in surfaces if "_FILLET_" in names[s][0]])
+    fillets = [s for s in surfaces if "_FILLET_" in names[s][0]]
+    fillet_r = _radius_range(gmsh, fillets)
     gmsh.model.mesh.clear()
     teeth_faces = [s for s in surfaces if names[s][0].startswith("T")]
     flanks = [s for s in surfaces if names[s][0].endswith("_FLANK_CCW")]
@@ -232,7 +233,9 @@ def _mesh_in_gmsh(gmsh, spec: CouplingSpec,
                    0.0 if axial is None else axial[1])  # on any tooth
     fs = fillet_size(spec, part, coarsest)
     if fs < coarsest and fillet_r is not None:  # follow a small fillet, last
-        top = _min_field(f, [top, _radial_band(f, fs, *fillet_r)])
+        near = (_radial_band(f, fs, *fillet_r) if periodic and teeth is not None
+                else _threshold(f, fillets, fs, body, 0.0, 2.0 * (body - fs)))
+        top = _min_field(f, [top, near])
     f.setAsBackgroundMesh(top)
     for key in ("MeshSizeExtendFromBoundary", "MeshSizeFromPoints", "MeshSizeFromCurvature"):
         gmsh.option.setNumber(f"Mesh.{key}", 0)

@@ -58,13 +58,14 @@ from .mesh import DEFAULT_SECTOR_TEETH, LoadedTooth, check_size, mesh_part, size
 from .volume import VolumeMesh
 
 CACHE_ENV = "GEARCOUPLING_CACHE"
-VERSION = 4  # bump when the set-up changes: old cache entries are then ignored
+VERSION = 5  # bump when the set-up changes: old cache entries are then ignored
 FAR_SIZE = 3.0
 """Element size on the teeth away from the loaded one, in loaded-tooth sizes."""
 FLANK_SIZE = 0.35
 """Element size on the loaded flank where the load patches lie, in loaded-tooth sizes."""
 TABLE_FACE_SHARE = 0.8
-"""The table's load points reach this share of the hub half face (:func:`load_grid`)."""
+"""The table's evenly spaced load rows reach this share of the hub half face; one more row
+lies at the face end (:func:`load_rows_mm`)."""
 LOADED_ZONE = 0.5
 """Distance (modules) from the loaded tooth's flanks and fillets kept at the tooth size."""
 LOADED_FLANK = {"hub": "CCW", "sleeve": "CCW"}  # the sleeve ccw flank meets the hub ccw flank
@@ -198,13 +199,29 @@ def _fixed_sets(vm: VolumeMesh) -> list[str]:
     return base + (["CUT"] if vm.teeth is not None else [])
 
 
-def load_grid(spec: CouplingSpec, hub: VolumeMesh, sleeve: VolumeMesh, nz: int = 3, nr: int = 3,
-              face_share: float = TABLE_FACE_SHARE):
-    """Load points: ``|z|`` from 0 to ``face_share`` of the hub half face; ``r`` across the
-    radii that both loaded flanks cover at every such z (10 % in from each end of that
-    band)."""
+def default_patch_mm(spec: CouplingSpec, size_mm: float | None = None) -> float:
+    """Half the side of the table's square load patch: the loaded tooth's element size
+    (:func:`~gearcoupling.fea.mesh.check_size`), at least module / 4."""
+    return max(check_size(spec, "hub", size_mm), spec.tooth.module / 4.0)
+
+
+def load_rows_mm(spec: CouplingSpec, patch_mm: float, nz: int = 3) -> NDArray[np.float64]:
+    """``|z|`` of the table's load rows ``(nz,)`` or ``(nz + 1,)`` (mm): ``nz`` evenly from
+    mid-face to :data:`TABLE_FACE_SHARE` of the hub half face, and one whose patch (half
+    side ``patch_mm``) is flush with the face end, where a misaligned patch runs and the
+    tooth is softest, if that lies beyond the last by half a patch at least."""
     hf = 0.5 * spec.hub.face_width
-    z = np.linspace(0.0, face_share * hf, nz)
+    z = np.linspace(0.0, TABLE_FACE_SHARE * hf, nz)
+    flush = hf - patch_mm
+    return np.append(z, flush) if flush >= z[-1] + 0.5 * patch_mm else z
+
+
+def load_grid(spec: CouplingSpec, hub: VolumeMesh, sleeve: VolumeMesh, nz: int = 3, nr: int = 3,
+              patch_mm: float | None = None):
+    """Load points: ``|z|`` the rows of :func:`load_rows_mm`; ``r`` across the radii that
+    both loaded flanks cover at every such z (10 % in from each end of that band)."""
+    hf = 0.5 * spec.hub.face_width
+    z = load_rows_mm(spec, default_patch_mm(spec) if patch_mm is None else patch_mm, nz)
     lo, hi = -np.inf, np.inf
     for vm in (hub, sleeve):
         k = _loaded_tooth(vm)
@@ -370,15 +387,10 @@ def _loaded_sector(spec: CouplingSpec, part: str, sector: int, size: float,
 def compute_compliance_table(spec: CouplingSpec, *, size_mm: float | None = None,
                              sector: int = DEFAULT_SECTOR_TEETH, nz: int = 3, nr: int = 3,
                              patch_mm: float | None = None, workdir=None,
-                             progress: Callable[[int, int], None] | None = None,
-                             face_share: float = TABLE_FACE_SHARE) -> ComplianceTable:
+                             progress: Callable[[int, int], None] | None = None
+                             ) -> ComplianceTable:
     """Mesh hub and sleeve sectors and solve the load cases with ccx (no cache);
-    ``progress(done, 4)`` after each mesh and each solve; ``face_share``: the last load
-    point's share of the hub half face (``benchmarks/bench_springs.py --face-end`` puts its
-    patch flush with the face end)."""
-    if not (isinstance(face_share, (int, float)) and 0.0 < face_share <= 1.0):
-        raise ArgumentError("face_share", face_share, "a share of the hub half face, above 0 "
-                            "and at most 1")
+    ``progress(done, 4)`` after each mesh and each solve."""
     if sector is None or int(sector) < 1 or int(sector) % 2 == 0:
         raise ArgumentError("sector", sector, "an odd number of teeth (the middle one is loaded), "
                         "e.g. 3")
@@ -386,14 +398,14 @@ def compute_compliance_table(spec: CouplingSpec, *, size_mm: float | None = None
     m = spec.tooth.module
     size = check_size(spec, "hub", size_mm)
     check_size(spec, "sleeve", size_mm)
-    patch = max(size, m / 4.0) if patch_mm is None else float(patch_mm)
-    z_window = (-patch, face_share * 0.5 * spec.hub.face_width + patch)
+    patch = default_patch_mm(spec, size) if patch_mm is None else float(patch_mm)
+    z_window = (-patch, load_rows_mm(spec, patch, nz)[-1] + patch)
     meshes = {}
     for part in ("hub", "sleeve"):
         meshes[part] = _loaded_sector(spec, part, sector, size, z_window)
         if progress:
             progress(len(meshes), 4)
-    z, r = load_grid(spec, meshes["hub"], meshes["sleeve"], nz, nr, face_share)
+    z, r = load_grid(spec, meshes["hub"], meshes["sleeve"], nz, nr, patch)
     comp, near, stress, times = {}, {}, {}, {}
     # both parts at once, one solver thread each (2 cores)
     with solver_dir(workdir) as work, ThreadPoolExecutor(2) as pool:

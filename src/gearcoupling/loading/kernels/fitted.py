@@ -67,7 +67,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ...fea import TABLE_FACE_SHARE, rectangle_halfspace_work_mm_per_N
+from ...fea import default_patch_mm, load_rows_mm, rectangle_halfspace_work_mm_per_N
 from ...geometry import hub_model
 from ...spec import CouplingSpec
 from .cantilever import CantileverCompliance
@@ -180,6 +180,8 @@ class FittedCompliance(CantileverCompliance):
         self.patch = {p: rectangle_halfspace_work_mm_per_N(
             1.0, side, side, getattr(self.materials, p).youngs_modulus_MPa,
             getattr(self.materials, p).poisson_ratio) for p in PARTS}
+        #: ``|z|`` of the FE table's last load row (mm; :func:`~gearcoupling.fea.load_rows_mm`)
+        self.last_row_mm = float(load_rows_mm(spec, default_patch_mm(spec))[-1])
         #: the columns of :data:`FEATURES` the fit uses (``fit["features"]``, by name)
         self.columns = [FEATURES.index(name) for name in self.fit["features"]]
         #: per part: coefficients (F,), the features' fitted low and high ends (F,),
@@ -239,15 +241,15 @@ class FittedCompliance(CantileverCompliance):
         """The pair's factor on the parts' fit at hub flank points ``(z, r)``: ``exp`` of
         the Gaussian-process mean of the fit's log error over the data set (module
         docstring), 1 without one in the fit; it fades to 1 away from the data set.
-        Beyond the tables' last load point along the face (:data:`TABLE_FACE_SHARE` of
-        the hub half face) it is held at its value there: the process has no data
-        there, and its extrapolation leaned on the spec's other features.
+        Beyond the tables' last load row along the face (:attr:`last_row_mm`, the patch
+        flush with the face end) it is held at its value there, as the table is: the
+        process has no data there.
         ``features``: each part's :meth:`part_features` at these points, if known."""
         shape = np.broadcast_shapes(np.shape(z_mm), np.shape(r_mm))
         if self._gp is None:
             return np.ones(shape)
         gp, columns = self._gp
-        z_last = TABLE_FACE_SHARE * self.half_face_hub
+        z_last = self.last_row_mm
         if features is None or np.any(np.abs(np.asarray(z_mm)) > z_last):
             z = np.clip(np.asarray(z_mm, dtype=float), -z_last, z_last)
             features = {p: self.part_features(p, z, r_mm) for p in PARTS}
