@@ -1,7 +1,7 @@
 """The default tooth springs against the FE tooth-spring tables they reproduce.
 
 Run: ``python benchmarks/bench_springs.py [--random 30] [--seed 2026] [--no-compute] [--fit]
-[--holdout K]``.
+[--holdout K] [--spline]``.
 
 The data set: the five bundled templates and ``--random`` seeded random specs whose teeth,
 module, pressure angle, face width, tooth proportions, fillets, rim and bore and crown
@@ -18,7 +18,8 @@ of :mod:`gearcoupling.loading.kernels.fitted` to the data set first and writes t
 ``src/gearcoupling/loading/kernels/fitted.json`` (the table then shows the new fit);
 ``--holdout K`` fits on all but every K-th random spec and prints the error on those left out;
 ``--no-correction`` leaves the Gaussian-process correction out of the fit; ``--golden`` writes
-the tables' far fields to ``tests/golden/fe_far_field.json``.
+the tables' far fields to ``tests/golden/fe_far_field.json``; ``--spline`` prints what the
+correction's spline costs and buys against the Gaussian process it interpolates.
 """
 
 from __future__ import annotations
@@ -240,6 +241,46 @@ def write_golden(specs, tables) -> None:
     print(f"wrote {GOLDEN} ({len(out)} specs)")
 
 
+def spline_table(specs, grids=((9, 9), (17, 17), (33, 33), (65, 65)), points: int = 4000):
+    """The correction's spline (:data:`~gearcoupling.loading.kernels.fitted.CORRECTION_GRID`)
+    against the Gaussian process itself at ``points`` random flank points per spec (a little
+    beyond the face and the flank too): the largest relative error and the time to build it,
+    per knot grid; and the springs' time per call with each."""
+    from gearcoupling.loading.kernels import fitted
+
+    print("\n## The correction's spline: knots against error and cost\n")
+    print("| knots (z x r) | largest error against the process | build ms per spec |")
+    print("|---|---|---|")
+    shipped = fitted.CORRECTION_GRID
+    try:
+        for grid in grids:
+            fitted.CORRECTION_GRID = grid
+            worst, build = 0.0, 0.0
+            for i, spec in enumerate(specs):
+                springs = fitted.FittedCompliance(spec)
+                t0 = time.perf_counter()
+                springs.correction(0.0, springs.R)
+                build += time.perf_counter() - t0
+                rng = np.random.default_rng(i)
+                Z = rng.uniform(-1.05, 1.05, points) * springs.half_face_hub
+                R = rng.uniform(springs.r_table[0] - 0.1, springs.r_table[-1] + 0.1, points)
+                err = springs.correction(Z, R) / springs.exact_correction(Z, R) - 1.0
+                worst = max(worst, float(np.abs(err).max()))
+            print(f"| {grid[0]} x {grid[1]} | {worst:.1e} | {1e3 * build / len(specs):.1f} |")
+    finally:
+        fitted.CORRECTION_GRID = shipped
+    springs = fitted.FittedCompliance(specs[0])
+    Z, R = np.meshgrid(np.linspace(0.0, springs.half_face_hub, 40),
+                       np.linspace(springs.r_table[0], springs.r_table[-1], 24), indexing="ij")
+    for label, fn in (("spline", springs.correction), ("process", springs.exact_correction)):
+        fn(Z, R)
+        t0 = time.perf_counter()
+        for _ in range(50):
+            fn(Z, R)
+        print(f"{specs[0].name}, 960 points: the correction by the {label} "
+              f"{1e3 * (time.perf_counter() - t0) / 50:.2f} ms a call")
+
+
 def describe(spec: gc.CouplingSpec) -> str:
     t = spec.tooth
     return (f"{t.teeth} teeth, m {t.module:.3g}, {math.degrees(t.pressure_angle):.1f}°, "
@@ -257,8 +298,14 @@ def main() -> None:
                     help="with --fit or --holdout: the parts' fit alone (what the correction buys)")
     ap.add_argument("--golden", action="store_true",
                     help=f"write every table's far field to {GOLDEN.relative_to(ROOT)}")
+    ap.add_argument("--spline", action="store_true",
+                    help="only: the correction's spline against the process (no FE tables)")
     a = ap.parse_args()
     from gearcoupling.loading.kernels.fitted import FittedCompliance, load_fit
+
+    if a.spline:
+        spline_table(dataset_specs(a.random, a.seed))
+        return
 
     specs, tables = [], []
     for spec in dataset_specs(a.random, a.seed):

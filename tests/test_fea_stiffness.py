@@ -41,6 +41,19 @@ def test_compliance_grows_with_load_height_and_toward_the_face_end(table):
     assert np.all(t.sleeve_mm_per_N[:, 0] > t.sleeve_mm_per_N[:, 1])
 
 
+def test_the_last_row_is_flush_with_the_face_end_and_softest(table):
+    """Three rows evenly to 0.8 of the hub half face and a fourth whose load patch ends at
+    the face end, where a misaligned patch runs: there the tooth has support on one side
+    only, so both parts are softer than at 0.8 at every radius."""
+    t, _ = table
+    half = 0.5 * load_spec("industrial-m2").hub.face_width
+    np.testing.assert_allclose(t.z_mm, [0.0, 0.4 * half, 0.8 * half,
+                                        half - t.info["patch_mm"]], rtol=1e-12)
+    assert np.all(t.hub_mm_per_N[3] > t.hub_mm_per_N[2])
+    assert np.all(t.sleeve_mm_per_N[3] > t.sleeve_mm_per_N[2])
+    assert np.all(t.far_field_mm_per_N[3] > 1.1 * t.far_field_mm_per_N[2])
+
+
 def test_mesh_stiffness_is_of_the_order_of_iso_6336(table):
     """ISO 6336 single-pair stiffness c' ~ 14 N/(mm µm) of face width for external spur
     gears under a line load; coupling teeth are shorter (addendum m) but the sleeve tooth is
@@ -306,7 +319,7 @@ def test_stiffness_cli_writes_the_table_from_the_cache(table, tmp_path):
     argv = ["stiffness", "industrial-m2", "--cache", str(cache), "-o", str(tmp_path)]
     assert main(argv) == 0
     rows = list(csv.DictReader((tmp_path / "stiffness.csv").read_text().splitlines()))
-    assert len(rows) == 9
+    assert len(rows) == t.hub_mm_per_N.size == 12  # 4 rows along the face x 3 radii
     for row, (h, s) in zip(rows, zip(t.hub_mm_per_N.ravel(), t.sleeve_mm_per_N.ravel(),
                                      strict=True), strict=True):
         assert float(row["pair_um_per_N"]) == pytest.approx(1e3 * (h + s), rel=1e-5)

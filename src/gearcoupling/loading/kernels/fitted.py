@@ -73,6 +73,9 @@ from ...spec import CouplingSpec
 from .cantilever import CantileverCompliance
 
 PARTS = ("hub", "sleeve")
+CORRECTION_GRID = (33, 33)
+"""Knots of the correction's spline per spec: along ``|z|`` (mid-face to the FE tables'
+last load row) and ``r`` (the flank's radii) (:meth:`FittedCompliance.correction`)."""
 FLOOR = 0.05  # the pair's far field, at least this share of its bending at the pitch point
 FEATURES = ("one", "height", "height_squared", "face_end", "face_end_height", "other_end",
             "tip_edge", "crown_thinning", "pressure_angle", "pressure_angle_height")
@@ -236,26 +239,50 @@ class FittedCompliance(CantileverCompliance):
         and the sleeve's up to 84 % too low, in opposite senses)."""
         return self.normal_compliance_mm_per_N(z_mm, r_mm)[PARTS.index(part)]
 
-    def correction(self, z_mm: ArrayLike, r_mm: ArrayLike,
-                   features: dict[str, NDArray] | None = None) -> NDArray:
+    def correction(self, z_mm: ArrayLike, r_mm: ArrayLike) -> NDArray:
         """The pair's factor on the parts' fit at hub flank points ``(z, r)``: ``exp`` of
         the Gaussian-process mean of the fit's log error over the data set (module
         docstring), 1 without one in the fit; it fades to 1 away from the data set.
         Beyond the tables' last load row along the face (:attr:`last_row_mm`, the patch
         flush with the face end) it is held at its value there, as the table is: the
-        process has no data there.
-        ``features``: each part's :meth:`part_features` at these points, if known."""
+        process has no data there. Evaluated by a bicubic spline of the log of
+        :meth:`exact_correction` on :data:`CORRECTION_GRID` knots over ``|z|`` and ``r``
+        (the process costs 8 µs a point; docs/load.md has the spline's error)."""
+        shape = np.broadcast_shapes(np.shape(z_mm), np.shape(r_mm))
+        spline = self._correction_spline
+        if spline is None:
+            return np.ones(shape)
+        z = np.minimum(np.abs(np.broadcast_to(np.asarray(z_mm, dtype=float), shape)),
+                       self.last_row_mm)
+        r = np.clip(np.broadcast_to(np.asarray(r_mm, dtype=float), shape),
+                    self.r_table[0], self.r_table[-1])
+        return np.exp(spline(z.ravel(), r.ravel(), grid=False)).reshape(shape)
+
+    def exact_correction(self, z_mm: ArrayLike, r_mm: ArrayLike) -> NDArray:
+        """:meth:`correction` from the Gaussian process itself, at every point."""
         shape = np.broadcast_shapes(np.shape(z_mm), np.shape(r_mm))
         if self._gp is None:
             return np.ones(shape)
         gp, columns = self._gp
-        z_last = self.last_row_mm
-        if features is None or np.any(np.abs(np.asarray(z_mm)) > z_last):
-            z = np.clip(np.asarray(z_mm, dtype=float), -z_last, z_last)
-            features = {p: self.part_features(p, z, r_mm) for p in PARTS}
+        z = np.clip(np.asarray(z_mm, dtype=float), -self.last_row_mm, self.last_row_mm)
+        features = {p: self.part_features(p, z, r_mm) for p in PARTS}
         x = np.concatenate([np.broadcast_to(features[p], (*shape, len(FEATURES)))[..., columns[p]]
                             for p in PARTS], axis=-1).reshape(-1, gp["mean"].size)
         return np.exp(gp_mean(x, gp)).reshape(shape)
+
+    @cached_property
+    def _correction_spline(self):
+        """The bicubic spline of :meth:`correction` (scipy ``RectBivariateSpline``), None
+        without a correction in the fit."""
+        if self._gp is None:
+            return None
+        from scipy.interpolate import RectBivariateSpline
+
+        nz, nr = CORRECTION_GRID
+        z = np.linspace(0.0, self.last_row_mm, nz)
+        r = np.linspace(self.r_table[0], self.r_table[-1], nr)
+        log = np.log(self.exact_correction(z[:, None], r[None, :]))
+        return RectBivariateSpline(z, r, log, kx=3, ky=3)
 
     @cached_property
     def _gp(self) -> tuple[dict[str, Any], dict[str, list[int]]] | None:
@@ -269,7 +296,7 @@ class FittedCompliance(CantileverCompliance):
     def normal_compliance_mm_per_N(self, z_mm: ArrayLike, r_mm: ArrayLike):
         """Hub and sleeve normal far-field compliances at the load (mm/N), broadcast."""
         f = {p: self.part_features(p, z_mm, r_mm) for p in PARTS}
-        factor = self.correction(z_mm, r_mm, f)
+        factor = self.correction(z_mm, r_mm)
         out = []
         for p in PARTS:
             c = self.fit["parts"][p]
