@@ -241,7 +241,7 @@ def write_golden(specs, tables) -> None:
     print(f"wrote {GOLDEN} ({len(out)} specs)")
 
 
-def spline_table(specs, grids=((9, 9), (17, 17), (33, 33), (65, 65)), points: int = 4000):
+def spline_table(specs, grids=((9, 9), (17, 17), (25, 25), (33, 33)), points: int = 4000):
     """The correction's spline (:data:`~gearcoupling.loading.kernels.fitted.CORRECTION_GRID`)
     against the Gaussian process itself at ``points`` random flank points per spec (a little
     beyond the face and the flank too): the largest relative error and the time to build it,

@@ -206,14 +206,19 @@ def default_patch_mm(spec: CouplingSpec, size_mm: float | None = None) -> float:
 
 
 def load_rows_mm(spec: CouplingSpec, patch_mm: float, nz: int = 3) -> NDArray[np.float64]:
-    """``|z|`` of the table's load rows ``(nz,)`` or ``(nz + 1,)`` (mm): ``nz`` evenly from
+    """``|z|`` of the table's load rows ``(nz + 1,)`` or ``(nz,)`` (mm): ``nz`` evenly from
     mid-face to :data:`TABLE_FACE_SHARE` of the hub half face, and one whose patch (half
     side ``patch_mm``) is flush with the face end, where a misaligned patch runs and the
-    tooth is softest, if that lies beyond the last by half a patch at least."""
+    tooth is softest. Where that lies within half a patch of the last even row (a short
+    face), it replaces that row."""
     hf = 0.5 * spec.hub.face_width
     z = np.linspace(0.0, TABLE_FACE_SHARE * hf, nz)
     flush = hf - patch_mm
-    return np.append(z, flush) if flush >= z[-1] + 0.5 * patch_mm else z
+    if flush >= z[-1] + 0.5 * patch_mm:
+        return np.append(z, flush)
+    if flush > z[-2] + 0.5 * patch_mm:
+        z[-1] = flush
+    return z
 
 
 def load_grid(spec: CouplingSpec, hub: VolumeMesh, sleeve: VolumeMesh, nz: int = 3, nr: int = 3,

@@ -73,9 +73,10 @@ from ...spec import CouplingSpec
 from .cantilever import CantileverCompliance
 
 PARTS = ("hub", "sleeve")
-CORRECTION_GRID = (33, 33)
-"""Knots of the correction's spline per spec: along ``|z|`` (mid-face to the FE tables'
-last load row) and ``r`` (the flank's radii) (:meth:`FittedCompliance.correction`)."""
+CORRECTION_GRID = (25, 25)
+"""Knots of the correction's spline per spec: along ``|z|`` from mid-face to the FE tables'
+last load row, closer toward it (``sin``), and across the flank's radii, closer toward
+both ends (``cos``) (:meth:`FittedCompliance.correction`)."""
 FLOOR = 0.05  # the pair's far field, at least this share of its bending at the pitch point
 FEATURES = ("one", "height", "height_squared", "face_end", "face_end_height", "other_end",
             "tip_edge", "crown_thinning", "pressure_angle", "pressure_angle_height")
@@ -247,7 +248,7 @@ class FittedCompliance(CantileverCompliance):
         flush with the face end) it is held at its value there, as the table is: the
         process has no data there. Evaluated by a bicubic spline of the log of
         :meth:`exact_correction` on :data:`CORRECTION_GRID` knots over ``|z|`` and ``r``
-        (the process costs 8 µs a point; docs/load.md has the spline's error)."""
+        (the process costs 3 µs a point; docs/load.md has the spline's error)."""
         shape = np.broadcast_shapes(np.shape(z_mm), np.shape(r_mm))
         spline = self._correction_spline
         if spline is None:
@@ -279,8 +280,9 @@ class FittedCompliance(CantileverCompliance):
         from scipy.interpolate import RectBivariateSpline
 
         nz, nr = CORRECTION_GRID
-        z = np.linspace(0.0, self.last_row_mm, nz)
-        r = np.linspace(self.r_table[0], self.r_table[-1], nr)
+        z = self.last_row_mm * np.sin(0.5 * np.pi * np.linspace(0.0, 1.0, nz))
+        lo, hi = self.r_table[0], self.r_table[-1]
+        r = lo + 0.5 * (hi - lo) * (1.0 - np.cos(np.pi * np.linspace(0.0, 1.0, nr)))
         log = np.log(self.exact_correction(z[:, None], r[None, :]))
         return RectBivariateSpline(z, r, log, kx=3, ky=3)
 
