@@ -181,8 +181,8 @@ def compare(names=("renzo-1967", "industrial-m2")) -> None:
             t = tooth_compliance_table(spec, nz=2, nr=3, cache=cache)
         secs = time.perf_counter() - t0
         R = spec.tooth.pitch_radius
-        hub = float(t._interp(t.hub_mm_per_N, 0.0, R))
-        sl = float(t._interp(t.sleeve_mm_per_N, 0.0, R))
+        hub = float(t.interpolate(t.hub_mm_per_N, 0.0, R))
+        sl = float(t.interpolate(t.sleeve_mm_per_N, 0.0, R))
         pair = hub + sl
         cant = _cantilever_pair(spec)
         iso = ISO_C_PRIME * 1e3 * b

@@ -205,9 +205,9 @@ def test_fe_far_field_springs_reproduce_the_reference_windup(fe_table_industrial
     Wind-up beyond first touch = teeth (the model) + bodies (closed form). With
     ``[load] stiffness = "fe"`` (the FE table's far field: its compliance less the
     half-space work of its own patch loads) the surface model lands within 8 % of the
-    converged CalculiX reference at both torques (measured with the table of version 4
-    against the reference solved with the deck meshed at first touch: −4.3 % and −3.9 %),
-    and so does the compliance model with its half-space line law (−7.3 % and −6.6 %: the
+    converged CalculiX reference at both torques (measured with the table of version 5
+    against the reference solved with the deck meshed at first touch: −4.1 % and −3.7 %),
+    and so does the compliance model with its half-space line law (−7.2 % and −6.4 %: the
     ladder's band, docs/load.md). With the
     whole FE compliance, which already holds the local deformation under the patch that the
     half-space adds again (the local part counted twice), it is more than 40 % too soft;

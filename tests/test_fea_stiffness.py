@@ -353,11 +353,10 @@ def test_fe_springs_keep_the_nominal_root_stress_criterion(table):
 def test_default_springs_reproduce_the_fe_table(table):
     """The default springs (``fe-fit``: the shipped fit of FE tables, no solver) against
     this session's FE table of industrial-m2 at every load point of its grid: the far field
-    within 10 %, the issue's target (the fit's error table in docs/load.md gives -5.3 % at
-    worst on this spec; the parts' fit alone, before its correction, -6.3 %) and the whole
-    compliance, far + half-space near field, within 4 % (what a load model adds up); the
-    cantilever, the default springs before the fit, is 1.8-4.2 times the far field
-    (the least at the face-end corner of the grid)."""
+    within 10 %, the issue's target (the fit's error table in docs/load.md gives -4.9 % at
+    worst on this spec) and the whole compliance, far + half-space near field, within 4 %
+    (what a load model adds up); the cantilever, the default springs before the fit, is
+    1.4-5.0 times the far field (the least at the face-end corner of the grid)."""
     from gearcoupling.loading import CantileverCompliance, FittedCompliance
 
     t, _ = table
@@ -368,4 +367,4 @@ def test_default_springs_reproduce_the_fe_table(table):
     np.testing.assert_allclose(fit, t.far_field_mm_per_N, rtol=0.10)
     np.testing.assert_allclose(fit + near, t.far_field_mm_per_N + near, rtol=0.04)
     cantilever = CantileverCompliance(spec).pair_compliance_mm_per_N(Z, R)
-    assert np.all(cantilever > 1.5 * t.far_field_mm_per_N)
+    assert np.all(cantilever > 1.25 * t.far_field_mm_per_N)

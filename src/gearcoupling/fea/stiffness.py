@@ -130,7 +130,9 @@ class ComplianceTable:
     near_field_mm_per_N: NDArray[np.float64]
     info: dict = field(default_factory=dict)
 
-    def _interp(self, values, z_mm, r_mm) -> NDArray[np.float64]:
+    def interpolate(self, values, z_mm, r_mm) -> NDArray[np.float64]:
+        """``values (nz, nr)`` at hub flank points ``(z, r)``: bilinear in ``(|z|, r)``,
+        held constant outside the table."""
         from scipy.interpolate import RegularGridInterpolator
 
         z, r = np.broadcast_arrays(np.abs(np.asarray(z_mm, float)), np.asarray(r_mm, float))
@@ -150,13 +152,13 @@ class ComplianceTable:
         bending, shear and the body under the tooth, without the local deformation the load
         models' contact adds (broadcast; bilinear in ``(|z|, r)``, held constant outside the
         table)."""
-        return self._interp(self.far_field_mm_per_N, z_mm, r_mm)
+        return self.interpolate(self.far_field_mm_per_N, z_mm, r_mm)
 
     @property
     def mesh_stiffness_N_per_mm(self) -> float:
         """Renzo's C of one tooth pair: 1 / the whole FE compliance (with the local
         deformation under the patch) at mid-face and the pitch radius."""
-        return float(1.0 / self._interp(self.hub_mm_per_N + self.sleeve_mm_per_N, 0.0,
+        return float(1.0 / self.interpolate(self.hub_mm_per_N + self.sleeve_mm_per_N, 0.0,
                                         self.pitch_radius_mm))
 
     def to_dict(self) -> dict:
@@ -493,8 +495,8 @@ def tooth_compliance_table(spec: CouplingSpec, *, size_mm: float | None = None,
 def pitch_point_compliance(table: ComplianceTable) -> dict:
     """Hub, sleeve and pair compliance (µm/N) and C (N/mm) at mid-face, pitch radius."""
     R = table.pitch_radius_mm
-    hub = float(table._interp(table.hub_mm_per_N, 0.0, R))
-    sleeve = float(table._interp(table.sleeve_mm_per_N, 0.0, R))
+    hub = float(table.interpolate(table.hub_mm_per_N, 0.0, R))
+    sleeve = float(table.interpolate(table.sleeve_mm_per_N, 0.0, R))
     far = float(table.pair_compliance_mm_per_N(0.0, R))
     return {"hub_um_per_N": 1e3 * hub, "sleeve_um_per_N": 1e3 * sleeve,
             "pair_um_per_N": 1e3 * (hub + sleeve), "pair_far_field_um_per_N": 1e3 * far,

@@ -33,27 +33,28 @@ like the cantilever's, times a correction (:meth:`FittedCompliance.correction`):
 the mean of a Gaussian process fitted to the log error the parts' fit leaves at the data
 set's load points (squared-exponential kernel over 14 of the features, both parts',
 standardised; lengths, variance and noise by maximum marginal likelihood, the noise at
-least (2 %)²; :func:`gp_mean`). Away from the data set it fades to a factor of 1; along
-the face it is held beyond the tables' last load points (0.8 of the hub half face) at its
-value there, where a misaligned patch runs to the face end. The
+least (2 %)²; :func:`gp_mean`), evaluated by a spline per spec. Away from the data set it
+fades to a factor of 1; along the face it is held beyond the tables' last load row, whose
+patch is flush with the face end. The
 coefficients ``a_i``, ``b``, ``l`` and the correction are fitted to FE tables of the
 bundled templates and of seeded random specs over the supported range and shipped as
 ``fitted.json`` (``benchmarks/bench_springs.py --fit`` regenerates the data set, fits and
 prints the error at every load point of every table; docs/load.md has the table).
 
 Accuracy and range (docs/load.md, "Tooth springs", has the table per spec): against the 40
-FE tables it was fitted on, the pair's far field is within −6.6 … +7.9 % at every load
-point (the parts' fit alone: −11.9 … +21.5 %), the whole compliance within −2.7 … +2.8 %;
-on random specs left out of the fit (``--holdout 2``, 3, 4) within −12.8 … +12.1 %
-(8/6/4 specs) where they lie inside the ranges of the rest, about as the parts' fit alone
-(−12.3 … +12.5 %). Along the face the tables reach 0.8 of the half face; at the face end
-itself (a load patch flush with it, ``bench_springs.py --face-end``) the fit is 13–42 %
-stiff on ten specs. The ranges (``fitted.json``, ``spec_ranges``): 14–260 teeth, module
-0.22–48.7 mm, pressure angle 14.6–29.0°, face / module 3.5–19.3, tooth depth / module
-1.14–2.33, and the rim, ring and fillet ratios of the data set. Where a spec lies outside
-them (:attr:`FittedCompliance.outside`), the fit is still evaluated (each feature held at
-the nearest edge of its fitted range) and the result and the report name what lies
-outside.
+FE tables it was fitted on (4 rows along the face, the last at the face end), the pair's
+far field is within −7.4 … +7.7 % at every load point (the parts' fit alone: −21.9 …
++22.9 %, most at the face end), the whole compliance within −2.9 … +2.6 %; on random specs
+left out of the fit (``--holdout 2``, 3, 4) within −15.8 … +20.2 % (8/6/4 specs) where they
+lie inside the ranges of the rest, the whole compliance within 7.5 %. Between the
+tables' rows, against FE solved there on four specs, within −8.4 … +4.7 %. The ranges
+(``fitted.json``, ``spec_ranges``): 14–260 teeth, module 0.22–48.7 mm, pressure angle
+14.6–29.0°, face / module 3.5–19.3, tooth depth / module 1.14–2.33, and the rim, ring
+and fillet ratios of the data set. Where a spec lies outside them
+(:attr:`FittedCompliance.outside`), the fit is still evaluated (each feature held at the
+nearest edge of its fitted range) and the result and the report name what lies outside.
+The load models read it held along the face at 0.8 of the half face
+(:class:`gearcoupling.loading.springs.HeldAlongFace`).
 """
 
 from __future__ import annotations
