@@ -78,8 +78,8 @@ class HeldAlongFace(_Delegate):
     under a patch (the FE table's last row), but a rigid tooth on one spring cannot move
     its load inward as the tooth does there: read there, the default carried 9.6 % less
     than a CalculiX sector on renzo-1967 at 2° (the unsafe side); held at
-    :data:`~gearcoupling.fea.TABLE_FACE_SHARE` of the half face, 4.0–11 % more on the
-    poses that reach it (docs/load.md, "The face end")."""
+    :data:`~gearcoupling.fea.TABLE_FACE_SHARE` of the half face, 3.6 % and 11 % more on
+    the two poses that reach it (docs/load.md, "The face end")."""
 
     def __init__(self, springs: Any, z_hold_mm: float):
         super().__init__(springs)
