@@ -315,6 +315,37 @@ def test_a_killed_writer_leaves_a_temporary_that_the_next_write_removes(tmp_path
     assert sorted(p.name for p in tmp_path.iterdir()) == [live.name, "other.txt"]
 
 
+def test_a_signal_while_the_temporary_is_made_leaves_none_behind(tmp_path, monkeypatch):
+    """A SIGTERM that lands just after the temporary file exists, before the writer knows
+    its name, is held until it does and then raised where the writer removes it: the study
+    interrupted on CI left ``.chunk-000003.parquet.<pid>.<random>.parquet`` (0 bytes)."""
+    import tempfile
+
+    from gearcoupling.io import atomic_path
+
+    made = tempfile.mkstemp
+
+    def mkstemp(*args, **kwargs):
+        out = made(*args, **kwargs)
+        signal.raise_signal(signal.SIGTERM)
+        return out
+
+    class Stopped(Exception):
+        pass
+
+    def stop(signum, frame):
+        raise Stopped
+
+    monkeypatch.setattr(tempfile, "mkstemp", mkstemp)
+    old = signal.signal(signal.SIGTERM, stop)
+    try:
+        with pytest.raises(Stopped), atomic_path(tmp_path / "chunk.parquet") as tmp:
+            tmp.write_text("never written")
+    finally:
+        signal.signal(signal.SIGTERM, old)
+    assert list(tmp_path.iterdir()) == []
+
+
 def test_viewer_ports_are_tried_a_bounded_number_of_times():
     from gearcoupling.viewer.server import free_port
 

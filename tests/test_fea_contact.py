@@ -246,12 +246,13 @@ def test_misaligned_sector_carries_what_the_fe_spring_model_predicts(fe_table_in
                                                                      monkeypatch, tmp_path):
     """industrial-m2 at 1°, 400 N·m: a five-tooth sector (1 mm, cyclic cuts) turned by the surface
     model's wind-up plus the bodies'. Its middle tooth, two pitches from either cut,
-    carries 0.80-1.05 of the model's load: the accuracy ladder's band for the surface model
-    with FE springs is 0.80-0.87 (docs/load.md; benchmarks/bench_fea_sector.py; 0.84 at
-    this pose, on a mesh that at 0° is 9 % stiffer than the converged one; the bodies'
-    torsion counted per tooth instead of for the whole coupling would move the model about
-    20 % the other way). The cantilever-spring model at the same wind-up carries less than
-    1/1.4 of it (too soft, as at 0°: 1.8 measured), the default model and springs no less
+    carries 0.75-1.05 of the model's load: with the uniform body the surface model with FE
+    springs gives 0.77-0.90 on the stored sectors (docs/fea.md; benchmarks/
+    bench_fea_sector.py; 0.796 at this pose, the table read along the fit's shape, 0.846
+    read linearly; on a mesh that at 0° is 9 % stiffer than the converged one; with the
+    sector's own bodies 0.994, docs/load.md "The bodies"). The cantilever-spring model at
+    the same wind-up carries less than 1/1.4 of it (too soft, as at 0°: 1.8 measured), the
+    default model and springs no less
     than the sector's load less 5 % (the unsafe side), and the rigid body's reaction
     balances the contact loads. The smallest deck the check takes: five teeth (the fewest
     with one two pitches from either cut) at 1 mm (module / 2, the coarsest size)."""
@@ -265,7 +266,7 @@ def test_misaligned_sector_carries_what_the_fe_spring_model_predicts(fe_table_in
     chk = json.loads(next(tmp_path.rglob("fea_contact.json")).read_text())
     fe, spec = chk["fe"], gc.load_spec("industrial-m2")
     assert chk["compared"] == [2] and len(fe["teeth"]) == 5
-    assert 0.80 < chk["ratio"][0] < 1.05
+    assert 0.75 < chk["ratio"][0] < 1.05
     R = spec.tooth.pitch_radius
     assert fe["sector_torque_Nm"] == pytest.approx(1e-3 * R * sum(fe["tangential_force_N"]),
                                                    rel=0.01)
@@ -273,7 +274,7 @@ def test_misaligned_sector_carries_what_the_fe_spring_model_predicts(fe_table_in
     _, W = loads_at_windup(cantilever, 1.0, 7.1, fe["windup_rad"], model="surface")
     assert fe["tangential_force_N"][2] > 1.4 * W[fe["teeth"][2]]
     # the default (surface, fe-fit) on the safe side: never carrying less than the sector
-    # by more than 5 % (it carries more: FE / model 0.80 here)
+    # by more than 5 % (it carries more: FE / model 0.79 here)
     _, W = loads_at_windup(spec, 1.0, 7.1, fe["windup_rad"])
     assert fe["tangential_force_N"][2] < 1.05 * W[fe["teeth"][2]]
 

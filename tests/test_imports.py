@@ -47,7 +47,7 @@ LAYERS = {
     "errors": set(),
     "arguments": {"errors"},
     "numeric": set(),
-    "io": {"errors"},
+    "io": {"errors", "forked"},
     "browser": {"errors"},
     "forked": {"errors"},
     "tables": {"errors"},

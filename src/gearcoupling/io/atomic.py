@@ -14,6 +14,7 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
 
+from ..forked import held_signals
 from .files import writable_file
 
 
@@ -31,17 +32,21 @@ def atomic_path(path: str | os.PathLike, field: str = "path") -> Iterator[Path]:
     target = writable_file(path, field)
     target.parent.mkdir(parents=True, exist_ok=True)
     remove_stale_temporaries(target.parent)
-    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.{os.getpid()}.",
-                               suffix=target.suffix or ".tmp", dir=target.parent)
-    os.close(fd)
-    tmp_path = Path(tmp)
+    tmp_path = None
     try:
+        # a SIGINT or SIGTERM between making the temporary and knowing its name would
+        # leave it behind: held until then, raised here, where the finally removes it
+        with held_signals(block=False):
+            fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.{os.getpid()}.",
+                                       suffix=target.suffix or ".tmp", dir=target.parent)
+            os.close(fd)
+            tmp_path = Path(tmp)
         yield tmp_path
         os.chmod(tmp_path, 0o666 & ~_umask())  # mkstemp made it private; use the usual mode
         writable_file(target, field)  # nothing special put there while the body ran
         os.replace(tmp_path, target)
     finally:
-        if tmp_path.exists():
+        if tmp_path is not None and tmp_path.exists():
             tmp_path.unlink()
 
 

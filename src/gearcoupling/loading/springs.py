@@ -117,7 +117,8 @@ SPRINGS: dict[str, Springs] = {s.name: s for s in (
     Springs("fe-fit", _fitted_held, True,
             "the FE tooth table's far field by the shipped fit (no solver at run time)"),
     Springs("fe", _table_held, True,
-            "the FE tooth table's far field (gmsh and CalculiX, once per spec, cached)"),
+            "the FE tooth table's far field (gmsh and CalculiX, once per spec, cached), "
+            "read along the fit's shape between its load points"),
     Springs("cantilever", _cantilever, False,
             "tapered Timoshenko cantilevers with Weber's foundation (Wei)"),
 )}
