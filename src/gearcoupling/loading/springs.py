@@ -51,6 +51,8 @@ class _Delegate:
         self.springs = springs
 
     def __getattr__(self, name: str) -> Any:
+        if name == "springs":  # not set yet (a copy or an unpickled one): no recursion
+            raise AttributeError(name)
         return getattr(self.springs, name)
 
 
