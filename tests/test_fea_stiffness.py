@@ -1,13 +1,10 @@
 """The real CalculiX solver on gmsh meshes: a cantilever against Timoshenko, the tooth
 compliance table (physical trends, cache, protocol), solver errors with their log."""
 
-import subprocess
-import sys
-import textwrap
-
 import numpy as np
 import pytest
 
+from fresh_python import run_fresh
 from gearcoupling import load_spec
 from gearcoupling.cli import main
 from gearcoupling.errors import ArgumentError, BackendError
@@ -234,7 +231,7 @@ def test_a_ctrl_c_while_the_solver_starts_kills_and_reaps_it(tmp_path):
     ``Popen.__init__``, in a fresh interpreter where it is the only child): the interrupt
     still comes out of :func:`run_ccx`, and the solver is killed and reaped, not left
     running unregistered (raised inside ``Popen``, it used to be)."""
-    code = textwrap.dedent("""
+    run_fresh("""
         import os, signal, subprocess, sys
         from gearcoupling.fea.ccx import RUNNING, run_ccx
 
@@ -254,16 +251,8 @@ def test_a_ctrl_c_while_the_solver_starts_kills_and_reaps_it(tmp_path):
         else:
             raise AssertionError("the interrupt was lost")
         assert not RUNNING, RUNNING
-        try:
-            child = os.waitpid(-1, os.WNOHANG)
-        except ChildProcessError:  # no child, running or unreaped
-            pass
-        else:
-            raise AssertionError(f"the solver was left: {child}")
-    """)
-    out = subprocess.run([sys.executable, "-c", code, str(tmp_path)], capture_output=True,
-                         text=True, timeout=120)
-    assert out.returncode == 0, out.stderr
+        assert_no_child_left("the solver")
+    """, str(tmp_path))
 
 
 def test_missing_solver_names_the_package(monkeypatch, tmp_path):

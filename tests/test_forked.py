@@ -11,20 +11,14 @@ from pathlib import Path
 
 import pytest
 
+from fresh_python import run_fresh
 from gearcoupling.forked import can_fork
 
 pytestmark = pytest.mark.skipif(not can_fork(), reason="needs the fork start method")
 
 
-def _fresh(code: str, *args: str) -> str:
-    out = subprocess.run([sys.executable, "-c", textwrap.dedent(code), *args],
-                         capture_output=True, text=True, timeout=120)
-    assert out.returncode == 0, out.stderr
-    return out.stdout
-
-
 def test_fork_map_keeps_the_order_and_runs_in_two_workers():
-    _fresh("""
+    run_fresh("""
         import os
         from gearcoupling.forked import fork_map
 
@@ -42,7 +36,7 @@ def test_fork_map_keeps_the_order_and_runs_in_two_workers():
 
 
 def test_a_workers_error_is_raised_in_the_parent():
-    _fresh("""
+    run_fresh("""
         from gearcoupling.errors import ArgumentError
         from gearcoupling.forked import fork_map
 
@@ -64,7 +58,7 @@ def test_an_interrupt_kills_and_reaps_the_workers(tmp_path):
     """Ctrl-C reaches the parent as soon as both workers run (even while the second is
     still being started: the signals are held over the fork); both are killed and
     reaped."""
-    _fresh("""
+    run_fresh("""
         import os, signal, sys, time
         from pathlib import Path
         from gearcoupling.forked import fork_map
@@ -108,7 +102,7 @@ def test_an_interrupt_during_a_fork_is_not_lost():
     for it; logging's is another), which drops its exception. It is raised once the
     workers have started, and both are killed and reaped: no child left, not even a
     zombie."""
-    _fresh("""
+    run_fresh("""
         import os, select, signal, socket, threading, time
         from gearcoupling.forked import fork_map
 
@@ -136,31 +130,21 @@ def test_an_interrupt_during_a_fork_is_not_lost():
         else:
             raise AssertionError("the interrupt was lost")
         assert time.monotonic() - t0 < 15.0
-        try:
-            child = os.waitpid(-1, os.WNOHANG)
-        except ChildProcessError:  # no child, running or unreaped
-            pass
-        else:
-            raise AssertionError(f"a worker left: {child}")
+        assert_no_child_left("a worker")
     """)
 
 
 def test_a_map_dropped_unstopped_leaves_no_worker():
     """A started map dropped without :meth:`stop` (an interrupt between its start and the
     caller's ``try``) kills and reaps its workers then."""
-    _fresh("""
+    run_fresh("""
         import os, time
         from gearcoupling.forked import ForkedMap
 
         started = ForkedMap(time.sleep, [30.0, 30.0], 2)
         assert len(started.procs) == 2, started.procs
         del started
-        try:
-            child = os.waitpid(-1, os.WNOHANG)
-        except ChildProcessError:  # no child, running or unreaped
-            pass
-        else:
-            raise AssertionError(f"a worker left: {child}")
+        assert_no_child_left("a worker")
     """)
 
 
@@ -206,7 +190,7 @@ def test_a_worker_whose_parent_ended_before_it_started_ends(tmp_path):
 
 
 def test_forked_capacity_points_equal_those_of_one_process():
-    _fresh("""
+    run_fresh("""
         import gearcoupling as gc
         from gearcoupling.errors import ArgumentError
 
