@@ -43,7 +43,7 @@ prints the error at every load point of every table; docs/load.md has the table)
 
 Accuracy and range (docs/load.md, "Tooth springs", has the table per spec): against the 40
 FE tables it was fitted on (4 rows along the face, the last at the face end), the pair's
-far field is within −7.4 … +7.7 % at every load point (the parts' fit alone: −21.9 …
+far field is within −7.4 … +7.8 % at every load point (the parts' fit alone: −21.9 …
 +22.9 %, most at the face end), the whole compliance within −2.9 … +2.6 %; on random specs
 left out of the fit (``--holdout 2``, 3, 4) within −15.8 … +20.2 % (8/6/4 specs) where they
 lie inside the ranges of the rest, the whole compliance within 7.5 %. Between the
