@@ -109,9 +109,9 @@ def test_the_correction_is_held_beyond_the_tables_last_load_point(name):
 def test_the_correction_spline_follows_the_process(name):
     """The correction is evaluated by a bicubic spline of the Gaussian process's log on
     25 x 25 knots per spec (a springs call on 960 points of renzo-1967 takes 0.8 ms with
-    it, 7.7 ms with the process): within 1e-3 of the process at 2000 random flank points, a little beyond
-    the face and the flank too (1e-4 at worst over the data set; ``bench_springs.py
-    --spline`` has the table per knot grid)."""
+    it, 7.7 ms with the process): within 1e-3 of the process at 2000 random flank points,
+    a little beyond the face and the flank too (1e-4 at worst over the data set;
+    ``bench_springs.py --spline`` has the table per knot grid)."""
     spec = ({s.name: s for s in springs_specs(55)}[name] if name.startswith("springs-")
             else gc.load_spec(name))
     springs = FittedCompliance(spec)
