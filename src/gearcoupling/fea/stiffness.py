@@ -223,12 +223,12 @@ def load_rows_mm(spec: CouplingSpec, patch_mm: float, nz: int = 3) -> NDArray[np
     return z
 
 
-def load_grid(spec: CouplingSpec, hub: VolumeMesh, sleeve: VolumeMesh, nz: int = 3, nr: int = 3,
-              patch_mm: float | None = None):
+def load_grid(spec: CouplingSpec, hub: VolumeMesh, sleeve: VolumeMesh, nz: int, nr: int,
+              patch_mm: float):
     """Load points: ``|z|`` the rows of :func:`load_rows_mm`; ``r`` across the radii that
     both loaded flanks cover at every such z (10 % in from each end of that band)."""
     hf = 0.5 * spec.hub.face_width
-    z = load_rows_mm(spec, default_patch_mm(spec) if patch_mm is None else patch_mm, nz)
+    z = load_rows_mm(spec, patch_mm, nz)
     lo, hi = -np.inf, np.inf
     for vm in (hub, sleeve):
         k = _loaded_tooth(vm)
