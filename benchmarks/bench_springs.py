@@ -376,6 +376,22 @@ def main() -> None:
                       f"{100 * e.min():+.1f} … {100 * e.max():+.1f} %, rms "
                       f"{100 * np.sqrt(np.mean(e**2)):.1f} %; within 10 %: "
                       f"{np.mean(np.abs(e) <= 0.1) * 100:.0f} % of the points")
+    face_end(tables)
+
+
+def face_end(tables) -> None:
+    """How much softer the tables' face-end row is than their last even row (the pair's
+    far field, every radius), over the tables that have both."""
+    from gearcoupling.fea import TABLE_FACE_SHARE
+
+    ratios = [t.far_field_mm_per_N[-1] / t.far_field_mm_per_N[-2] for t in tables
+              if len(t.z_mm) > 3 and np.isclose(
+                  t.z_mm[-2], TABLE_FACE_SHARE * (t.z_mm[-1] + t.info["patch_mm"]))]
+    if ratios:
+        r = np.concatenate(ratios)
+        print(f"\nthe face-end row's far field against the row at {TABLE_FACE_SHARE:g} of the "
+              f"half face: {r.min():.2f} … {r.max():.2f} times, median {np.median(r):.2f} "
+              f"({len(ratios)} tables)")
 
 
 if __name__ == "__main__":
