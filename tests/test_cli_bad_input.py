@@ -642,6 +642,30 @@ def test_study_interrupted_stops_its_scheduler_and_workers(sig, group, tmp_path)
     _check_interrupted(code, err, sig, out, sent, {})
 
 
+@pytest.mark.slow
+@pytest.mark.needs_dask
+@pytest.mark.parametrize("sig, group", [(signal.SIGTERM, False), (signal.SIGINT, True)],
+                         ids=["SIGTERM", "Ctrl-C"])
+def test_study_interrupted_while_its_cluster_starts_stops(sig, group, tmp_path):
+    """The signal goes when the first worker process exists and the manifest does not
+    (the cluster is starting). Before, SIGINT was ignored in that window (so that the
+    workers inherited it ignored): a Ctrl-C was lost and the whole study ran (exit 0).
+    Now it is noted, raised once the cluster exists, and the cluster closed; the workers
+    inherit it blocked instead."""
+    (tmp_path / "s.toml").write_text(STUDY_28)
+    out = tmp_path / "out"
+    box: list[int] = []
+
+    def starting() -> bool:
+        return bool(box) and len(_session_alive(box[0])) > 1 and out.is_dir() and not (
+            out / "study_manifest.json").exists()
+
+    code, err, sent = _interrupt(["study", "s.toml", "--workers", "2", "-o", str(out)],
+                                 tmp_path, sig, starting, group=group, started=box)
+    _check_interrupted(code, err, sig, out, sent, {})
+    assert not (out / "study_manifest.json").exists()
+
+
 # --- issue 28, items 6, 8, 12, 14: inputs read before any work, nothing left on failure --
 
 SCANS = {"empty.stl": b"", "binary.stl": bytes(range(256)) * 40,

@@ -8,7 +8,7 @@ import multiprocessing.connection
 import os
 import signal
 import threading
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Collection, Iterator, Sequence
 from contextlib import contextmanager
 from typing import Any, TypeVar, cast
 
@@ -75,14 +75,16 @@ def _map_worker(func: Callable[[Any], Any], items: Sequence[Any], indices: Seque
 
 
 @contextmanager
-def held_signals(block: bool = True) -> Iterator[None]:
+def held_signals(block: bool | Collection[int] = True) -> Iterator[None]:
     """SIGINT and SIGTERM held over the block, then acted on by their handlers: blocked in
-    this thread (and so in the processes forked here, until :func:`worker_signals`) and,
+    this thread (and so in the threads made and the processes forked here, until
+    :func:`worker_signals`) and,
     where another thread takes one (a library's, the CLI's signal watcher), only noted by
     the Python handlers meanwhile. Acted on at once, an interrupt could raise in code that
     drops exceptions (an after-fork hook, a ``__del__``) and be lost, or in the middle of
     starting a process, which would then run on unknown to the caller. ``block=False``:
-    only noted, for a program started here that must not inherit them blocked (exec)."""
+    only noted, for a program started here that must not inherit them blocked (exec); a
+    collection of signals: those blocked, all noted."""
     noted: list[int] = []
     holding = True
     main = threading.current_thread() is threading.main_thread()  # where handlers run
@@ -99,8 +101,9 @@ def held_signals(block: bool = True) -> Iterator[None]:
     try:
         for s in old:
             signal.signal(s, note)
-        if block:
-            signal.pthread_sigmask(signal.SIG_BLOCK, STOP_SIGNALS)
+        blocked = STOP_SIGNALS if block is True else set(block or ())
+        if blocked:
+            signal.pthread_sigmask(signal.SIG_BLOCK, blocked)
         yield
     finally:
         signal.pthread_sigmask(signal.SIG_SETMASK, mask)  # the blocked ones are noted now

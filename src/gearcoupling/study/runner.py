@@ -13,14 +13,14 @@ import logging
 import os
 import re
 import signal
-from collections.abc import Callable, Iterator
-from contextlib import contextmanager
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 from ..arguments import count, flag, real
 from ..errors import ArgumentError, BackendError
+from ..forked import held_signals
 from ..io import atomic_path, output_folder, write_json
 from ..tables import import_pandas
 from .evaluate import evaluate_chunk
@@ -146,27 +146,35 @@ def connect(scheduler: str | None, workers: int | None, timeout_s: float = CONNE
     # critical logs only: a failed sample is a row's "error" and a lost worker an exception
     # here, while the cluster's teardown after an interruption logs warnings and errors
     # (tasks cancelled, heartbeats to a closed scheduler) that are not the user's business
-    with _ctrl_c_not_inherited():
-        cluster = distributed.LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                                           dashboard_address=":0",
-                                           silence_logs=logging.CRITICAL)
-    return distributed.Client(cluster)
+    return _local_client(distributed, n)
 
 
-@contextmanager
-def _ctrl_c_not_inherited() -> Iterator[None]:
-    """SIGINT ignored while the local workers start, so that they ignore it too (an ignored
-    signal stays ignored in a child): Ctrl-C in a terminal reaches the whole process group,
-    and this process, not each worker, stops the study and its cluster."""
+def _local_client(distributed, workers: int):
+    """A Client of a new LocalCluster of ``workers`` processes, started with SIGINT
+    blocked in this thread: the threads that start the workers are made here and the
+    workers inherit the mask, so Ctrl-C in a terminal, which reaches the whole process
+    group, stops the study through this process, not each worker on its own.
+
+    A SIGINT or SIGTERM meanwhile is noted (:func:`~gearcoupling.forked.held_signals`)
+    and raised once the cluster exists, which is then closed (as on any failure before
+    the Client exists). Before, SIGINT was ignored here during the start: a Ctrl-C then
+    was lost, and a SIGTERM stopped the start half way. multiprocessing's resource
+    tracker is started first: starting it unblocks SIGINT in the thread that does (the
+    loop thread, whose mask every worker would then inherit)."""
+    from multiprocessing import resource_tracker
+
+    resource_tracker.ensure_running()
+    cluster = None
     try:
-        old = signal.signal(signal.SIGINT, signal.SIG_IGN)
-    except ValueError:  # not the main thread: signals are not this call's business
-        yield
-        return
-    try:
-        yield
-    finally:
-        signal.signal(signal.SIGINT, old)
+        with held_signals(block={signal.SIGINT}):
+            cluster = distributed.LocalCluster(n_workers=workers, threads_per_worker=1,
+                                               processes=True, dashboard_address=":0",
+                                               silence_logs=logging.CRITICAL)
+        return distributed.Client(cluster)
+    except BaseException:
+        if cluster is not None:
+            cluster.close()
+        raise
 
 
 def _close(client, own_cluster: bool) -> None:
