@@ -11,7 +11,9 @@ import argparse
 import json
 import math
 import os
+import sys
 import time
+from functools import partial
 from pathlib import Path
 
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
@@ -264,14 +266,92 @@ def _ross_rotor() -> None:
           f"two-inertia {closed / 2 / math.pi:.2f} Hz | {wn / closed - 1:+.2%} |")
 
 
+#: random specs of the springs data set (tests/random_specs.py, ``bench_springs.py --random
+#: 55``) with other tooth counts: 360 rotations hold 2, 5, 6, 12, 360 and 360 poses per
+#: pitch of them (180, 72, 60, 30, 37 and 31 teeth)
+TURN_EXTRA = ("springs-34-vari_crown", "springs-01-circular", "springs-18-end_round",
+              "springs-23-circular", "springs-14-vari_crown", "springs-24-circular")
+TURN_PHASES = (4, 6, 8, 12, 18, 24, 36)
+TURN_REFERENCE = 72  # every phase count above divides it: their rotations are its
+
+
+def turn() -> None:
+    """The turn at the allowable misalignment against its rotations per tooth pitch: each
+    load's largest value over the turn (and the mean) against a turn of
+    :data:`TURN_REFERENCE` per pitch, and the CPU of the turn. With ideal teeth a turn of
+    ``P`` per pitch holds ``P`` distinct poses; 360 rotations a turn hold 360 / gcd(360,
+    N) of them per pitch (36 on 50 teeth, 180 on 38, 6 on 300)."""
+    from gearcoupling.loading import turn_phases
+    from gearcoupling.rotordynamics.allowable import allowable_loads
+
+    print("\n## The turn at the allowable misalignment: rotations per tooth pitch (largest "
+          "change of a load's max or mean over the turn against a turn of "
+          f"{TURN_REFERENCE} per pitch, the forces' against the largest slip force; CPU "
+          "seconds of the turn)\n")
+    print("| spec | teeth | allowable | " + " | ".join(f"{n} per pitch" for n in TURN_PHASES)
+          + " | 360 rotations (per pitch) |")
+    print("|---|---|---|" + "---|" * (len(TURN_PHASES) + 1))
+    sys.path.insert(0, str(ROOT / "tests"))
+    from random_specs import springs_specs
+
+    extra = {s.name: s for s in springs_specs(55) if s.name in TURN_EXTRA}
+    for spec in [*map(gc.load_spec, gc.template_names()), *extra.values()]:
+        name = spec.name
+        # a random spec has no torque: half its capacity at the design angle
+        T = spec.load.torque_Nm or 0.5 * gc.capacity(spec, spec.design_misalignment_deg
+                                                     ).capacity_Nm
+        a = allowable_loads(spec, T, angles=8)  # the angle: its search, a short turn
+        loads = partial(_turn_loads, spec, a.misalignment_deg, T)
+        ref, _ = loads(turn_phases(spec, TURN_REFERENCE))
+        cells = []
+        for angles in [*(turn_phases(spec, n) for n in TURN_PHASES),
+                       np.arange(360) * 1.0]:
+            got, cpu = loads(angles)
+            err = _turn_change(got, ref)
+            cells.append(f"{100 * err:.3f} % ({cpu:.1f} s)")
+        per = 360 // math.gcd(360, spec.tooth.teeth)
+        cells[-1] += f" ({per})"
+        print(f"| {name} | {spec.tooth.teeth} | {a.misalignment_deg:.3g}° | "
+              + " | ".join(cells) + " |", flush=True)
+
+
+def _turn_loads(spec, misalignment_deg: float, torque_Nm: float, angles
+                ) -> tuple[dict[str, np.ndarray], float]:
+    """The loads of the data sheet's turn at ``angles`` (magnitudes) and its CPU seconds."""
+    from gearcoupling.loading import machine_loads
+
+    t0 = time.process_time()
+    res = gc.load(spec, misalignment_deg, angles, torque_Nm=torque_Nm)
+    ml = machine_loads(res)
+    slip = spec.load.friction * np.sum(res.normal_force_N, axis=0)
+    out = {k: np.abs(np.asarray(v, float)) for k, v in (
+        ("moment", ml["tilting_moment_Nm"]), ("axial", ml["axial_force_N"]),
+        ("radial", ml["radial_force_N"]), ("slip", slip))}
+    return out, time.process_time() - t0
+
+
+def _turn_change(got: dict, ref: dict) -> float:
+    """The largest change of the max and the mean of each load over the turn: the moment's
+    against its own, the forces' against the reference's largest slip force (the radial
+    force and the thrust cancel between opposite teeth of an even count: near zero)."""
+    force = float(np.max(ref["slip"]))
+    out = 0.0
+    for k in ref:
+        scale_max = float(np.max(ref[k])) if k == "moment" else force
+        scale_mean = float(np.mean(ref[k])) if k == "moment" else force
+        out = max(out, abs(np.max(got[k]) - np.max(ref[k])) / scale_max,
+                  abs(np.mean(got[k]) - np.mean(ref[k])) / scale_mean)
+    return out
+
+
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--quick", action="store_true", help="no STEP solids, no ROSS rotor")
     p.add_argument("--only", choices=("timing", "breakdown", "convergence", "schemes",
-                                      "validation"))
+                                      "validation", "turn"))
     a = p.parse_args()
     sections = {"timing": timing, "breakdown": breakdown, "convergence": convergence,
-                "schemes": schemes, "validation": lambda: validation(a.quick)}
+                "schemes": schemes, "validation": lambda: validation(a.quick), "turn": turn}
     for name, run in sections.items():
         if a.only in (None, name):
             run()

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from ..loading import model_names
+from ..loading import PHASES, model_names
 from ..rotordynamics import (
     DEFAULT_STEPS,
     DIFFERENCES,
@@ -54,9 +54,9 @@ def register(sub) -> None:
                    help="difference step as a share of the largest tooth deflection, "
                         "1e-4 to 0.2 (default: " + ", ".join(
                             f"{v:g} {k}" for k, v in DEFAULT_STEPS.items()) + ")")
-    p.add_argument("--angles", type=count(4, 3600), default=360, metavar="N",
+    p.add_argument("--angles", type=count(4, 3600), default=None, metavar="N",
                    help="rotations over the turn at the allowable misalignment, 4-3600 "
-                        "(default 360)")
+                        f"(default {PHASES} per tooth pitch)")
     p.add_argument("--ross", type=ross_file, default=None, metavar="FILE",
                    help="also write the ROSS coupling element to FILE (.toml or .json, "
                         "ROSS's formats; the rotordynamics extra)")

@@ -15,6 +15,7 @@ import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from functools import partial
+from itertools import zip_longest
 from pathlib import Path
 from typing import Any
 
@@ -33,7 +34,7 @@ from ..loading import (
 )
 from ..spec import CouplingSpec, as_spec, check_misalignment_deg
 from ..tables import dataframe
-from .allowable import DEFAULT_TURN_ANGLES, AllowableLoads, allowable_loads, known_capacities
+from .allowable import AllowableLoads, allowable_loads, known_capacities
 from .mass import MassProperties, mass_properties
 from .ross import coupling_element
 from .stiffness import (
@@ -269,7 +270,7 @@ def coupling_data(spec: CouplingSpec, misalignment_deg: float | None = None,
                   rotations: int | None = None,
                   relative_step: float | None = None,
                   differences: str | None = None,
-                  turn_angles: int = DEFAULT_TURN_ANGLES, curve_points: int = DEFAULT_POINTS,
+                  turn_angles: int | None = None, curve_points: int = DEFAULT_POINTS,
                   tolerance_mm: float | None = None, known: Sequence[Capacity] = (),
                   workers: int | None = None,
                   progress: Callable[[int, int], Any] | None = None) -> CouplingData:
@@ -293,8 +294,10 @@ def coupling_data(spec: CouplingSpec, misalignment_deg: float | None = None,
     differences : {"central", "forward"}, optional
         Difference scheme of the matrix (accuracy knob); default
         :func:`~.stiffness.default_differences` of the model (forward for ``surface``).
-    turn_angles : int
-        Rotations of the turn at the allowable misalignment.
+    turn_angles : int, optional
+        Rotations of the turn at the allowable misalignment (accuracy knob); default
+        :data:`~gearcoupling.loading.PHASES` per tooth pitch
+        (:func:`~.allowable.allowable_loads`).
     curve_points : int
         Torques on the wind-up curve.
     tolerance_mm : float, optional
@@ -304,10 +307,10 @@ def coupling_data(spec: CouplingSpec, misalignment_deg: float | None = None,
         report's capacity curve: the capacity at the misalignment and the points of the
         allowable misalignment's search are taken from them where they have the angle.
     workers : {1, 2}, optional
-        Two chains, the matrix with the wind-up curve's torques and the allowable
-        misalignment, computed in this process (1) or in two forked ones (2; the default
-        where the machine has two cores and forking is safe,
-        :func:`~gearcoupling.forked.default_workers`); the same numbers either way.
+        Two chains, the matrix and the allowable misalignment, each with half the wind-up
+        curve's torques (:class:`StartedCouplingData`), computed in this process (1) or
+        in two forked ones (2; the default where the machine has two cores and forking is
+        safe, :func:`~gearcoupling.forked.default_workers`); the same numbers either way.
     progress : callable, optional
         ``progress(done, total)`` after the masses and after each chain (in the order they
         end).
@@ -337,17 +340,19 @@ class StartedCouplingData:
     :func:`coupling_data`; the masses are computed here, before the workers start (a bad
     tolerance fails first).
 
-    The chains: the matrix, then the wind-up curve's torques on the matrix's sweep (each
-    solve starts from the last pose of the one before: every other torque from the
-    matrix's operating point, the others, on a copy of the sweep, from a cold start);
-    and the allowable misalignment with its turn. The matrix and the curve cost about as
-    much as the allowable misalignment, so the two workers end together.
+    The chains: the matrix, then every other torque of the wind-up curve on the matrix's
+    sweep (each solve starts from the last pose of the one before, the first from the
+    matrix's operating point); and the allowable misalignment with its turn, then the
+    other torques on a copy of the sweep (their own chain of warm starts, from cold).
+    Each chain's solves are those of one process in the same order, so ``workers=1`` and
+    ``workers=2`` give the same numbers to the last bit; the two chains cost about the
+    same (docs/rotordynamics.md, "Speed and knobs").
     """
 
     def __init__(self, spec: CouplingSpec, misalignment_deg: float | None = None,
                  torque_Nm: float | None = None, *, model: str | None = None,
                  rotations: int | None = None, relative_step: float | None = None,
-                 differences: str | None = None, turn_angles: int = DEFAULT_TURN_ANGLES,
+                 differences: str | None = None, turn_angles: int | None = None,
                  curve_points: int = DEFAULT_POINTS, tolerance_mm: float | None = None,
                  known: Sequence[Capacity] = (), workers: int | None = None):
         self.t0 = time.perf_counter()
@@ -367,16 +372,21 @@ class StartedCouplingData:
         cap = given.get(float(mis)) or capacity(spec, mis, model=model)
         self.grid = windup_torques(T, cap.capacity_Nm, curve_points)
         self.spec, self.mis, self.T, self.cap = spec, float(mis), T, cap
-        matrix = partial(_matrix_and_curve, sw, T, model, relative_step, differences, self.grid)
-        allowable = partial(allowable_loads, spec, T, model=model, angles=turn_angles,
-                            known=[*given.values(), cap])
+        others = [t for t in self.grid if t != T]
+        matrix = partial(_matrix_and_curve, sw, T, model, relative_step, differences,
+                         others[0::2])
+        allowable = partial(_allowable_and_curve, partial(
+            allowable_loads, spec, T, model=model, angles=turn_angles,
+            known=[*given.values(), cap]), copy.copy(sw), others[1::2], model)
         self.map = ForkedMap(lambda task: task(), [matrix, allowable], workers)
 
     def result(self, progress: Callable[[int, int], Any] | None = None) -> CouplingData:
         if progress is not None:
             progress(1, 3)  # the masses
-        (K, curve), allowed = self.map.results(None if progress is None else
-                                               (lambda n: progress(1 + n, 3)))
+        (K, even), (allowed, odd) = self.map.results(None if progress is None else
+                                                     (lambda n: progress(1 + n, 3)))
+        found = iter([w for pair in zip_longest(even, odd) for w in pair if w is not None])
+        curve = [K.operating_windup_rad if t == self.T else next(found) for t in self.grid]
         torsion = torsion_from_curve(self.spec, self.grid, curve, self.T,
                                      float(K.matrix[5, 5]), self.cap.capacity_Nm)
         used = K.model
@@ -388,20 +398,28 @@ class StartedCouplingData:
         self.map.stop()
 
 
+def _curve(sw, torques: Sequence[float], model: str) -> list[float]:
+    """The teeth's wind-up from first touch at ``torques`` on ``sw``, each solve starting
+    from the last pose solved on it."""
+    return [mesh_windup_from_touch(sw, t, model) for t in torques]
+
+
 def _matrix_and_curve(sw, T: float, model: str, relative_step: float | None,
-                      differences: str | None, grid) -> tuple[StiffnessMatrix, list[float]]:
-    """The stiffness matrix at ``T`` and the teeth's wind-up at the torques ``grid``: at
-    ``T`` the matrix's operating point; the others on ``sw`` after the matrix, every other
-    one (from the first) warm-started from the one before, the rest on a copy of ``sw``
-    (its own chain of warm starts, from cold)."""
+                      differences: str | None, torques: Sequence[float]
+                      ) -> tuple[StiffnessMatrix, list[float]]:
+    """The stiffness matrix at ``T``, then the wind-up at ``torques`` on ``sw`` (the first
+    warm-started from the matrix's operating point)."""
     K = stiffness_from_sweep(sw, T, model=model, relative_step=relative_step,
                              differences=differences)
-    others = [t for t in grid if t != T]
-    fresh = copy.copy(sw)  # another key for the surface model's last pose
-    found = {k: mesh_windup_from_touch(sw if k % 2 == 0 else fresh, t, model)
-             for k, t in sorted(enumerate(others), key=lambda kt: kt[0] % 2)}
-    rest = iter(found[k] for k in range(len(others)))
-    return K, [K.operating_windup_rad if t == T else next(rest) for t in grid]
+    return K, _curve(sw, torques, model)
+
+
+def _allowable_and_curve(allowable: Callable[[], AllowableLoads], sw,
+                         torques: Sequence[float], model: str
+                         ) -> tuple[AllowableLoads, list[float]]:
+    """The allowable misalignment with its turn, then the wind-up at ``torques`` on ``sw``
+    (a copy of the matrix's sweep: its own chain of warm starts, from cold)."""
+    return allowable(), _curve(sw, torques, model)
 
 
 __all__ = ["DATASHEET_COLUMNS", "FILES", "MAX_TORQUE_NM", "NOT_MODELLED",
