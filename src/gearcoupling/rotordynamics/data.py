@@ -307,8 +307,8 @@ def coupling_data(spec: CouplingSpec, misalignment_deg: float | None = None,
         report's capacity curve: the capacity at the misalignment and the points of the
         allowable misalignment's search are taken from them where they have the angle.
     workers : {1, 2}, optional
-        Two chains, the matrix and the allowable misalignment, each with half the wind-up
-        curve's torques (:class:`StartedCouplingData`), computed in this process (1) or
+        Two chains, the matrix and the allowable misalignment, with the wind-up curve's
+        torques (:class:`StartedCouplingData`), computed in this process (1) or
         in two forked ones (2; the default where the machine has two cores and forking is
         safe, :func:`~gearcoupling.forked.default_workers`); the same numbers either way.
     progress : callable, optional
@@ -342,11 +342,12 @@ class StartedCouplingData:
 
     The chains: the matrix, then every other torque of the wind-up curve on the matrix's
     sweep (each solve starts from the last pose of the one before, the first from the
-    matrix's operating point); and the allowable misalignment with its turn, then the
-    other torques on a copy of the sweep (their own chain of warm starts, from cold).
-    Each chain's solves are those of one process in the same order, so ``workers=1`` and
-    ``workers=2`` give the same numbers to the last bit; the two chains cost about the
-    same (docs/rotordynamics.md, "Speed and knobs").
+    matrix's operating point); and the allowable misalignment with its turn. The other
+    torques, on a copy of the sweep (their own chain of warm starts, from cold), follow
+    the allowable misalignment when ``known`` capacities shorten its search (the
+    report), else the matrix's torques: the two chains then cost about the same. Each
+    sweep's solves are the same in the same order either way, so ``workers=1`` and
+    ``workers=2`` give the same numbers to the last bit.
     """
 
     def __init__(self, spec: CouplingSpec, misalignment_deg: float | None = None,
@@ -373,18 +374,23 @@ class StartedCouplingData:
         self.grid = windup_torques(T, cap.capacity_Nm, curve_points)
         self.spec, self.mis, self.T, self.cap = spec, float(mis), T, cap
         others = [t for t in self.grid if t != T]
+        halves = [(sw, others[0::2]), (copy.copy(sw), others[1::2])]
+        # given capacities (the report's curve) leave the allowable misalignment's search
+        # short: the second half of the curve goes with it, else with the matrix
+        split = 1 if given else 2
         matrix = partial(_matrix_and_curve, sw, T, model, relative_step, differences,
-                         others[0::2])
+                         halves[:split])
         allowable = partial(_allowable_and_curve, partial(
             allowable_loads, spec, T, model=model, angles=turn_angles,
-            known=[*given.values(), cap]), copy.copy(sw), others[1::2], model)
+            known=[*given.values(), cap]), halves[split:], model)
         self.map = ForkedMap(lambda task: task(), [matrix, allowable], workers)
 
     def result(self, progress: Callable[[int, int], Any] | None = None) -> CouplingData:
         if progress is not None:
             progress(1, 3)  # the masses
-        (K, even), (allowed, odd) = self.map.results(None if progress is None else
-                                                     (lambda n: progress(1 + n, 3)))
+        (K, first), (allowed, second) = self.map.results(
+            None if progress is None else (lambda n: progress(1 + n, 3)))
+        even, odd = list(first) + list(second)
         found = iter([w for pair in zip_longest(even, odd) for w in pair if w is not None])
         curve = [K.operating_windup_rad if t == self.T else next(found) for t in self.grid]
         torsion = torsion_from_curve(self.spec, self.grid, curve, self.T,
@@ -398,28 +404,26 @@ class StartedCouplingData:
         self.map.stop()
 
 
-def _curve(sw, torques: Sequence[float], model: str) -> list[float]:
-    """The teeth's wind-up from first touch at ``torques`` on ``sw``, each solve starting
-    from the last pose solved on it."""
-    return [mesh_windup_from_touch(sw, t, model) for t in torques]
+def _curves(halves, model: str) -> list[list[float]]:
+    """The teeth's wind-up from first touch at each ``(sweep, torques)`` of ``halves``, each
+    solve starting from the last pose solved on its sweep."""
+    return [[mesh_windup_from_touch(sw, t, model) for t in torques] for sw, torques in halves]
 
 
 def _matrix_and_curve(sw, T: float, model: str, relative_step: float | None,
-                      differences: str | None, torques: Sequence[float]
-                      ) -> tuple[StiffnessMatrix, list[float]]:
-    """The stiffness matrix at ``T``, then the wind-up at ``torques`` on ``sw`` (the first
-    warm-started from the matrix's operating point)."""
+                      differences: str | None, halves
+                      ) -> tuple[StiffnessMatrix, list[list[float]]]:
+    """The stiffness matrix at ``T`` on ``sw``, then the wind-up curve's ``halves``
+    (:func:`_curves`; the first on ``sw``, from the matrix's operating point)."""
     K = stiffness_from_sweep(sw, T, model=model, relative_step=relative_step,
                              differences=differences)
-    return K, _curve(sw, torques, model)
+    return K, _curves(halves, model)
 
 
-def _allowable_and_curve(allowable: Callable[[], AllowableLoads], sw,
-                         torques: Sequence[float], model: str
-                         ) -> tuple[AllowableLoads, list[float]]:
-    """The allowable misalignment with its turn, then the wind-up at ``torques`` on ``sw``
-    (a copy of the matrix's sweep: its own chain of warm starts, from cold)."""
-    return allowable(), _curve(sw, torques, model)
+def _allowable_and_curve(allowable: Callable[[], AllowableLoads], halves, model: str
+                         ) -> tuple[AllowableLoads, list[list[float]]]:
+    """The allowable misalignment with its turn, then the wind-up curve's ``halves``."""
+    return allowable(), _curves(halves, model)
 
 
 __all__ = ["DATASHEET_COLUMNS", "FILES", "MAX_TORQUE_NM", "NOT_MODELLED",
