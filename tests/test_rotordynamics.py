@@ -397,15 +397,19 @@ def test_zero_torque_is_refused(renzo):
 
 
 @pytest.mark.slow
-def test_data_sheet_is_the_same_in_one_process_and_over_two(renzo):
+@pytest.mark.parametrize("given", [False, True], ids=["alone", "known capacity"])
+def test_data_sheet_is_the_same_in_one_process_and_over_two(renzo, given):
     """The surface model starts each solve on a sweep from the last one on it, so the
-    numbers depend on which solves follow which: the two chains (the matrix with the
-    wind-up curve, the allowable misalignment) run the same solves in the same order in
-    one process as in two forked ones, and every number agrees to the last bit. Small
-    knobs (one rotation, three curve torques, a torque the critical angle still carries:
-    no capacity search) keep it to a few seconds."""
+    numbers depend on which solves follow which: the two chains (the matrix with half the
+    wind-up curve, the allowable misalignment; the curve's other half joins the first
+    alone, the second with known capacities, as in the report) run the same solves in the
+    same order in one process as in two forked ones, and every number agrees to the last
+    bit. Small knobs (one rotation, three curve torques, a torque the critical angle still
+    carries: no capacity search) keep it to a few seconds."""
     knobs = dict(model="surface", rotations=1, curve_points=3, turn_angles=8)
-    one, two = (coupling_data(renzo, 1.0, 200.0, workers=w, **knobs) for w in (1, 2))
+    known = [gc.capacity(renzo, 1.0, model="surface")] if given else []
+    one, two = (coupling_data(renzo, 1.0, 200.0, workers=w, known=known, **knobs)
+                for w in (1, 2))
     a, b = one.as_dict(), two.as_dict()
     a.pop("seconds"), b.pop("seconds")
     assert json.dumps(a) == json.dumps(b)

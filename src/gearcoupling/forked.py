@@ -78,13 +78,13 @@ def _map_worker(func: Callable[[Any], Any], items: Sequence[Any], indices: Seque
 def held_signals(block: bool | Collection[int] = True) -> Iterator[None]:
     """SIGINT and SIGTERM held over the block, then acted on by their handlers: blocked in
     this thread (and so in the threads made and the processes forked here, until
-    :func:`worker_signals`) and,
-    where another thread takes one (a library's, the CLI's signal watcher), only noted by
-    the Python handlers meanwhile. Acted on at once, an interrupt could raise in code that
-    drops exceptions (an after-fork hook, a ``__del__``) and be lost, or in the middle of
-    starting a process, which would then run on unknown to the caller. ``block=False``:
-    only noted, for a program started here that must not inherit them blocked (exec); a
-    collection of signals: those blocked, all noted."""
+    :func:`worker_signals`) and, where another thread takes one (a library's, the CLI's
+    signal watcher), only noted by the Python handlers meanwhile. Acted on at once, an
+    interrupt could raise in code that drops exceptions (an after-fork hook, a
+    ``__del__``) and be lost, or in the middle of starting a process, which would then
+    run on unknown to the caller. ``block=False``: only noted, for a program started here
+    that must not inherit them blocked (exec); a collection of signals: those blocked,
+    all noted."""
     noted: list[int] = []
     holding = True
     main = threading.current_thread() is threading.main_thread()  # where handlers run

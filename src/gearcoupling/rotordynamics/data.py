@@ -15,7 +15,6 @@ import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from functools import partial
-from itertools import zip_longest
 from pathlib import Path
 from typing import Any
 
@@ -391,7 +390,9 @@ class StartedCouplingData:
         (K, first), (allowed, second) = self.map.results(
             None if progress is None else (lambda n: progress(1 + n, 3)))
         even, odd = list(first) + list(second)
-        found = iter([w for pair in zip_longest(even, odd) for w in pair if w is not None])
+        rest: list[float] = [0.0] * (len(even) + len(odd))
+        rest[0::2], rest[1::2] = even, odd
+        found = iter(rest)
         curve = [K.operating_windup_rad if t == self.T else next(found) for t in self.grid]
         torsion = torsion_from_curve(self.spec, self.grid, curve, self.T,
                                      float(K.matrix[5, 5]), self.cap.capacity_Nm)
