@@ -86,6 +86,31 @@ def test_sections_shows_a_progress_bar(tmp_path, capsys):
     assert got.out.strip() == str(tmp_path / "sections.png")
 
 
+@pytest.mark.parametrize("where", ["starting", "running"])
+def test_an_interruption_leaves_no_bar_behind(where, monkeypatch, capsys):
+    """A Ctrl-C that lands while the progress bar starts (before its first update) or
+    while it runs: stderr (a pipe here) gets no frame of the bar, only the command's one
+    line (a finished bar stays: test_sections_shows_a_progress_bar). Before, one landing
+    while it started left the bar's last frame beside that line (seen once in the suite:
+    ``capacity  0/13 0:00:00 -:--:--``)."""
+    from rich.progress import Progress
+
+    from gearcoupling.commands.common import progress
+
+    original = Progress.add_task
+
+    def added_then_interrupted(self, *args, **kwargs):
+        original(self, *args, **kwargs)
+        raise KeyboardInterrupt  # the signal lands just after the bar's task exists
+
+    if where == "starting":
+        monkeypatch.setattr(Progress, "add_task", added_then_interrupted)
+    with pytest.raises(KeyboardInterrupt), progress("work", 3) as update:
+        update(1, 3)
+        raise KeyboardInterrupt
+    assert capsys.readouterr().err.strip() == ""  # rich ends a transient bar with a newline
+
+
 def test_templates_lists_every_template(capsys):
     import gearcoupling as gc
 

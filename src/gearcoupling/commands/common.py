@@ -166,16 +166,16 @@ def progress(description: str, total: int):
         TimeRemainingColumn,
     )
 
+    # transient until the work is done: an error or an interruption, also one that comes
+    # while the bar starts, leaves no bar behind (a pipe would get its last frame): the
+    # command's one line says it all
     with Progress(TextColumn("{task.description}"), BarColumn(), TextColumn("{task.completed}/"
                   "{task.total}"), TimeElapsedColumn(), TimeRemainingColumn(),
-                  console=Console(stderr=True), transient=False, auto_refresh=False) as bar:
+                  console=Console(stderr=True), transient=True, auto_refresh=False) as bar:
         task = bar.add_task(description, total=total)
 
         def update(done: int, total: int) -> None:
             bar.update(task, completed=done, total=total, refresh=True)
 
-        try:
-            yield update
-        except BaseException:  # an error or an interruption: its one line says it all
-            bar.live.transient = True
-            raise
+        yield update
+        bar.live.transient = False  # done: the bar stays, a pipe gets its last frame
