@@ -451,7 +451,7 @@ def test_the_default_turn_holds_the_loads_of_one_three_times_as_fine(data, renzo
     move within a pitch: the max and the mean of each over the turn agree with a turn of
     3 x PHASES a pitch within 0.05 % (of the moment; of the largest slip force for the
     forces, which cancel between opposite teeth), measured within 0.01 % against 72 a
-    pitch on even tooth counts, 0.13 % on odd ones (benchmarks/bench_rotordynamics.py
+    pitch on even tooth counts, up to 0.13 % on odd ones (benchmarks/bench_rotordynamics.py
     --only turn)."""
     a = data.allowable
     assert np.allclose(a.angles_deg, turn_phases(renzo))
