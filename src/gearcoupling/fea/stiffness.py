@@ -212,7 +212,8 @@ def load_rows_mm(spec: CouplingSpec, patch_mm: float, nz: int = 3) -> NDArray[np
     mid-face to :data:`TABLE_FACE_SHARE` of the hub half face, and one whose patch (half
     side ``patch_mm``) is flush with the face end, where a misaligned patch runs and the
     tooth is softest. Where that lies within half a patch of the last even row (a short
-    face), it replaces that row."""
+    face), it replaces that row; within half a patch of the row before that too, the even
+    rows stay as they are."""
     hf = 0.5 * spec.hub.face_width
     z = np.linspace(0.0, TABLE_FACE_SHARE * hf, nz)
     flush = hf - patch_mm
