@@ -3,8 +3,12 @@
 ``tests/golden/sweep_kernel.npz`` holds, per template and misalignment (0, 1, 3, 6°), the
 minima of tooth 0's cw flank (:func:`~gearcoupling.clearance.tooth_map.flank_minima`,
 ``periodic=False``, default tolerance) at :data:`THETA_DEG`, computed with the kernel of
-main on 2026-11-23 (commit 6466353, before the sweep-speed changes). Regenerate only after
-an intended change of the kernel's results: ``PYTHONPATH=src python tests/golden_sweep_kernel.py``
+main on 2026-11-23 (commit 6466353, before the sweep-speed changes); and per extreme spec
+(:data:`EXTREMES`: root-fillet contact, 16 mm of interference, end_round pieces, heavy
+binding) at 1° and 6° all four measures of :func:`~gearcoupling.clearance.kernel.minimise`
+at :data:`EXTREME_THETA_DEG`, computed with the compiled kernel of main at 9c2938a, which
+equalled the numpy path then kept beside it within 1e-9 mm. Regenerate only after an
+intended change of the kernel's results: ``PYTHONPATH=src python tests/golden_sweep_kernel.py``
 and review why the values moved.
 """
 
@@ -15,7 +19,11 @@ from pathlib import Path
 
 import numpy as np
 
+import gearcoupling as gc
+from gearcoupling.clearance.flank_table import flank_table
+from gearcoupling.clearance.kernel import MEASURES, Minimum, minimise
 from gearcoupling.clearance.tooth_map import flank_minima
+from gearcoupling.geometry.sleeve import sleeve_model
 from gearcoupling.spec import load_spec
 
 FILE = Path(__file__).parent / "golden" / "sweep_kernel.npz"
@@ -24,6 +32,10 @@ TEMPLATES = ("renzo-1967", "renzo-1967-end-round", "renzo-1967-vari-crown", "ind
 MISALIGNMENTS_DEG = (0.0, 1.0, 3.0, 6.0)
 THETA_DEG = np.linspace(0.0, 360.0, 97)[:-1] + 0.37  # 96 turning angles, off the symmetries
 KEYS = ("clearance", "normal", "pitch", "pitch_normal", "z", "r", "kind")
+EXTREMES = ("above-fillet", "straight-120", "m3.6-N232", "m4.6-N293")
+EXTREME_DEG = (1.0, 6.0)
+EXTREME_THETA_DEG = np.linspace(0.0, 360.0, 25)[:-1] + 0.37
+FIELDS = ("value_mm", "z_mm", "r_mm", "t", "kind", "rate")
 
 
 def minima(name: str, mis_deg: float) -> dict[str, np.ndarray]:
@@ -33,9 +45,31 @@ def minima(name: str, mis_deg: float) -> dict[str, np.ndarray]:
     return {k: out[k] for k in KEYS}
 
 
+def extreme_spec(name: str):
+    """The extreme spec ``name`` (:data:`EXTREMES`; the dicts of ``test_sweep_robust``)."""
+    from test_sweep_robust import ABOVE_FILLET, ISSUE_EXAMPLE, STALLED
+
+    return gc.spec_from_dict({"above-fillet": ABOVE_FILLET, "straight-120": ISSUE_EXAMPLE,
+                              "m3.6-N232": STALLED["m3.6-N232"],
+                              "m4.6-N293": STALLED["m4.6-N293-straight-then-round"]}[name])
+
+
+def extreme_minima(spec, mis_deg: float, measures: tuple[str, ...] = MEASURES,
+                   table=None) -> dict[str, Minimum]:
+    """:func:`minimise` of ``spec`` at ``mis_deg`` and :data:`EXTREME_THETA_DEG`."""
+    return minimise(flank_table(spec) if table is None else table, sleeve_model(spec),
+                    math.radians(mis_deg), np.radians(EXTREME_THETA_DEG),
+                    pitch_radius=spec.tooth.pitch_radius, measures=measures)
+
+
 def main() -> None:
     data = {f"{name}|{deg:g}|{k}": v for name in TEMPLATES for deg in MISALIGNMENTS_DEG
             for k, v in minima(name, deg).items()}
+    for name in EXTREMES:
+        spec = extreme_spec(name)
+        for deg in EXTREME_DEG:
+            for m, res in extreme_minima(spec, deg).items():
+                data.update({f"{name}|{deg:g}|{m}|{f}": getattr(res, f) for f in FIELDS})
     np.savez_compressed(FILE, **data)
     print(f"wrote {FILE} ({len(data)} arrays)")
 

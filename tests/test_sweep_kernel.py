@@ -8,10 +8,9 @@ import math
 import numpy as np
 import pytest
 
-import gearcoupling as gc
 from gearcoupling.clearance import sweep
 from gearcoupling.clearance.flank_table import exact_alpha, flank_table
-from gearcoupling.clearance.kernel import minimise
+from gearcoupling.clearance.kernel import MEASURES, minimise
 from gearcoupling.clearance.reference import brute_force, exact_gap
 from gearcoupling.geometry.hub import hub_flank_model, hub_model
 from gearcoupling.geometry.pose import hub_to_sleeve, map_polar, rot_z
@@ -157,44 +156,22 @@ def test_map_does_not_depend_on_the_coarse_grid(name, deg):
         assert np.max(np.abs(getattr(a, key) - getattr(b, key))) < 1e-6, key
 
 
-def _extreme_specs():
-    from test_sweep_robust import ABOVE_FILLET, ISSUE_EXAMPLE, STALLED
-
-    return {"above-fillet": gc.spec_from_dict(ABOVE_FILLET),
-            "straight-120": gc.spec_from_dict(ISSUE_EXAMPLE),
-            "m3.6-N232": gc.spec_from_dict(STALLED["m3.6-N232"]),
-            "m4.6-N293": gc.spec_from_dict(STALLED["m4.6-N293-straight-then-round"]),
-            "industrial-m2": load_spec("industrial-m2")}
-
-
 @pytest.mark.parametrize("deg", [1.0, 6.0])
-@pytest.mark.parametrize("name", ["above-fillet", "straight-120", "m3.6-N232", "m4.6-N293",
-                                  "industrial-m2", "industrial-m2-chebyshev"])
-def test_compiled_kernel_equals_numpy_path(name, deg, monkeypatch):
-    """The compiled kernel (``clearance._compiled``) against the numpy path, each measure
-    alone and all four, on the extremes: root-fillet contact, interference of 16 mm
-    (where the gaps to the involute and to the fillet differ at the fillet start),
-    end_round pieces, heavy binding, and a table kept in Chebyshev form (``_power``
-    None: Clenshaw, not Horner). Values within 1e-9 mm; radius and turning rate where the
-    two found the same point."""
-    from gearcoupling.clearance import kernel
+def test_chebyshev_and_power_form_tables_give_one_answer(deg):
+    """A table kept in Chebyshev form in ``t`` (``_power`` None: Clenshaw's recurrence, as
+    where the power form could lose more than 1e-12 mm to rounding) and the same table in
+    powers (Horner's rule) give the same minima, each measure alone and all four, within
+    1e-9 mm; radius and turning rate where the two found the same point."""
+    from golden_sweep_kernel import extreme_minima
 
-    compiled = kernel.kernels()
-    if compiled is None:
-        pytest.skip("numba not importable or GEARCOUPLING_NUMBA=0")
-    spec = _extreme_specs()[name.removesuffix("-chebyshev")]
-    table = flank_table(spec)
-    if name.endswith("-chebyshev"):
-        table = dataclasses.replace(table)
-        table.__dict__["_power"] = None  # before _plane_matrices reads it
-    theta = np.radians(np.linspace(0.0, 360.0, 25)[:-1] + 0.37)
-    args = (table, sleeve_model(spec), math.radians(deg), theta)
-    for measures in [kernel.MEASURES, *((m,) for m in kernel.MEASURES)]:
-        kw = dict(pitch_radius=spec.tooth.pitch_radius, measures=measures)
-        got = minimise(*args, **kw)
-        monkeypatch.setattr(kernel, "kernels", lambda: None)
-        ref = minimise(*args, **kw)
-        monkeypatch.setattr(kernel, "kernels", lambda: compiled)
+    spec = load_spec("industrial-m2")
+    power = flank_table(spec)
+    assert power._power is not None
+    chebyshev = dataclasses.replace(power)
+    chebyshev.__dict__["_power"] = None  # before _plane_matrices reads it
+    for measures in [MEASURES, *((m,) for m in MEASURES)]:
+        got = extreme_minima(spec, deg, measures, table=chebyshev)
+        ref = extreme_minima(spec, deg, measures, table=power)
         for m in measures:
             a, b = got[m], ref[m]
             assert np.array_equal(np.isfinite(a.value_mm), np.isfinite(b.value_mm)), m

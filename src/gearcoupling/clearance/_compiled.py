@@ -1,15 +1,16 @@
 """The clearance kernel compiled (numba): one turning angle after another, a row at a time.
 
-Imported only through :func:`.fast.kernels`. :func:`minimise_rows` takes the steps of
-:func:`.kernel.minimise` - coarse planes, second minima, the z search of
-:class:`.kernel.ZSearch`, each measure's fold over its branches - for each turning angle,
-every (virtual measure, turning angle) row on its own with scalar state: no numpy call per
-step, nothing allocated per point. The z search evaluates the same planes as the numpy
-path. Inside a plane the minimum over ``t`` is solved to convergence with the slopes
-along ``t`` in closed form: Newton steps for the active interval's crossings (to 1e-11
+Imported only through :func:`.fast.kernels`; the one implementation of the search
+(:func:`.kernel.minimise` packs its arguments). :func:`minimise_rows` takes, for each
+turning angle, every (virtual measure, turning angle) row on its own with scalar state -
+no numpy call per step, nothing allocated per point: the coarse planes, a second coarse
+minimum, the search over ``z`` (:func:`search`), each measure's fold over its branches.
+Inside a plane the minimum over ``t`` is solved to convergence with the slopes along
+``t`` in closed form: Newton steps for the active interval's crossings (to 1e-11
 relative), for an interior minimum the minimum of the cubic through the ends, then
-secant steps on the exact slope (to 1e-7 in ``t``). The two paths agree to rounding
-(``tests/test_sweep_frozen.py``, ``tests/test_sweep_kernel.py``; docs/sweep-speed.md).
+secant steps on the exact slope (to 1e-7 in ``t``). Tested against the exact reference
+(:mod:`.reference`) and its frozen outputs (``tests/test_sweep_frozen.py``;
+docs/sweep-speed.md).
 
 Two flat arrays carry everything, so that a call passes two arrays: ``tab`` (read only)
 holds the constants of :func:`.kernel._compiled_arrays` at the indices below, the table's
@@ -53,9 +54,10 @@ ENTRIES = 160  # the planes of this turning angle (_entry), the coarse ones firs
 EZ, VALID, EV, ET, EK, EPL = 0, 1, 9, 17, 25, 33  # an entry: z, which rows are known, their
 # value, t and kind, then the plane
 MAX_DYN = 64  # planes kept beyond the coarse ones (then one more, kept for nothing)
-D_SLOPE = 1e-6  # shortest interval searched inside, / 8 (as the numpy path's step)
+D_SLOPE = 1e-6  # shortest interval searched inside, / 8
 REL = 1e-11  # crossings, relative to the target
-# the branches (virtual measures) each measure folds, -1 padded (kernel._FOLD)
+# the branches (virtual measures) each measure folds, -1 padded: the whole flank (0, 1),
+# the pitch line (2, 3), the lower (4, 5) and the upper (6, 7) end of the profile
 FOLD = ((0, 4, 6), (1, 5, 7), (2, -1, -1), (3, -1, -1))
 
 
@@ -203,10 +205,19 @@ def fillet(tab, p):
 @_jit
 def gaps(tab, p):
     """The gaps of a :func:`point` (:func:`involute`; above ``r_fillet`` :func:`fillet`,
-    as ``_Sleeve.gaps``)."""
+    the circumferential gap ``rq (aq + sigma(rq)/2)``, the normal ``r_b (aq + sigma/2)``)."""
     if tab[RHO] > 0.0 and p[0] * p[0] + p[1] * p[1] > tab[RFIL] * tab[RFIL]:
         return fillet(tab, p)
     return involute(tab, p)
+
+
+@_jit
+def gap_field(tab, rq, aq, circ, normal):
+    """:func:`gaps` of the points at sleeve radii ``rq (n,)``, polar angles ``aq (n,)``
+    into ``circ``, ``normal`` (``tab``: the sleeve's constants only)."""
+    for i in range(rq.size):
+        g = gaps(tab, (rq[i] * math.cos(aq[i]), rq[i] * math.sin(aq[i]), 0.0, 0.0, 0.0, 0.0))
+        circ[i], normal[i] = g[0], g[1]
 
 
 @_jit
@@ -236,9 +247,11 @@ def cross(tab, ws, po, ct, st, use_z, target, a, b, fa, fb, dfa):
 
 @_jit
 def interval(tab, ws, po, ct, st):
-    """The active interval of the plane (``_Planes.active_interval``): ``(feasible,
-    t_lo, k_lo, p_lo, t_a, k_a, p_a, t_hi, k_hi, p_hi)``, with the :func:`point` at each
-    end."""
+    """The active interval of the plane: ``(feasible, t_lo, k_lo, p_lo, t_a, k_a, p_a,
+    t_hi, k_hi, p_hi)``, with the :func:`point` at each end. ``[t_lo, t_a]`` faces the
+    involute, ``[t_a, t_hi]`` the root fillet (empty unless the hub reaches it); the
+    interval is cut where the sleeve flank begins (its tip edge, ``r_form``) and at the
+    sleeve face ends (the tip chamfer recedes at 45° and never holds the minimum)."""
     r_form, r_fil, hf = tab[RFORM], tab[RFIL], tab[SHF]
     p_lo = p0 = point(tab, ws, po, ct, st, 0.0)
     p_hi = p1 = point(tab, ws, po, ct, st, 1.0)
@@ -313,9 +326,11 @@ def slope_root(tab, ws, po, ct, st, mi, a, b, fa, fb, ga, gb):
 
 @_jit
 def over_t(tab, ws, po, ct, st, want0, want1):
-    """``_Planes.minimum_over_t`` of the plane at ``po``: the whole-flank rows 0, 1 and
-    the profile-end rows 4-7 of ``ws[V:], ws[T:], ws[K:]``; ``want0``, ``want1``: search
-    the interior of the circumferential, normal gap."""
+    """Minima over the active interval (:func:`interval`) of the plane at ``po``: the
+    whole-flank rows 0, 1 (circumferential, normal) and the profile-end rows 4-7 (both
+    gaps at the lower end, then at the upper end alone: branches minimised apart over
+    ``z``) into ``ws[V:], ws[T:], ws[K:]``; ``want0``, ``want1``: search the interior of
+    the circumferential, normal gap (else only the ends count)."""
     feasible, t_lo, k_lo, p_lo, t_a, k_a, p_a, t_hi, k_hi, p_hi = interval(tab, ws, po, ct, st)
     if not feasible:
         for vm in (0, 1, 4, 5, 6, 7):
@@ -325,7 +340,10 @@ def over_t(tab, ws, po, ct, st, want0, want1):
     fb = fb_min = fh  # at the upper end of [t_lo, t_a]: the slope and the minimum there
     if t_a != t_hi:
         fb = fb_min = gaps(tab, p_a)
-    if t_lo < t_a < t_hi:  # the fillet start: as _Sleeve.at_fillet_start
+    # the fillet start: the lower of the gaps to the involute and to the fillet (they
+    # differ off the sleeve surface, in deep interference; the lower is the limit of the
+    # fillet part's minimum)
+    if t_lo < t_a < t_hi:
         fb = fb_min = involute(tab, p_a)
         if tab[RHO] > 0.0:
             fil = fillet(tab, p_a)
@@ -353,7 +371,8 @@ def over_t(tab, ws, po, ct, st, want0, want1):
 
 @_jit
 def pitch_line(tab, ws, po, ct, st):
-    """``_Planes.pitch_line``: rows 2, 3 of ``ws[V:], ws[T:], ws[K:]``."""
+    """Both gaps on the pitch circle ``r = R`` of the plane (rows 2, 3 of ``ws[V:],
+    ws[T:], ws[K:]``; inf where it does not face the sleeve flank)."""
     nt = int(tab[NT])
     t = (tab[RPITCH] - ws[po + nt]) / ws[po + nt + 1]
     p = point(tab, ws, po, ct, st, min(max(t, 0.0), 1.0))
@@ -390,10 +409,9 @@ def keep(ws, eo, vm):
 @_jit
 def evaluate(tab, ws, z, vm, ct, st):
     """Minimum of virtual measure ``vm`` in the plane ``z``: ``(value, t, kind)``. Each plane
-    is kept with the rows found in it (as in the numpy path, rows of a turning angle
-    evaluate the same planes: the profile ends come with the whole flank, and a row whose
-    values equal another's takes the same steps); a row already found is read, else found
-    in the plane kept."""
+    is kept with the rows found in it (rows of a turning angle evaluate the same planes:
+    the profile ends come with the whole flank, and a row whose values equal another's
+    takes the same steps); a row already found is read, else found in the plane kept."""
     e = find(tab, ws, z)
     if e < 0:
         e = int(ws[GRID] + ws[NDYN])
@@ -454,7 +472,9 @@ def _clip(x, lo, hi):
 
 @_jit
 def coarse_parabola(tab, ws, vm, ct, st):
-    """``ZSearch.coarse_parabola`` of the row."""
+    """Smooth minima: a step to the vertex of the coarse parabola, bracketed by
+    ``+-delta``, ``delta = sqrt(tol / g'')``, so that a bracket around the true minimum
+    closes at once."""
     a_z, a_v, b_z, b_v, best_z, best_v = ws[AZ], ws[AV], ws[BZB], ws[BVB], ws[BZ], ws[BV]
     if not (a_z < best_z and best_z < b_z and math.isfinite(a_v) and math.isfinite(b_v)):
         return
@@ -469,7 +489,8 @@ def coarse_parabola(tab, ws, vm, ct, st):
 
 @_jit
 def parabola_step(tab, ws, jb, vm, ct, st):
-    """``ZSearch.parabola_step`` of the row, on the level at ``ws[ALLZ:], ws[ALLV:]``."""
+    """Smooth minima: the vertex of the parabola through the best point of the level at
+    ``ws[ALLZ:], ws[ALLV:]`` and its neighbours, bracketed by ``+-sqrt(tol / g'')``."""
     if not (jb >= 1 and jb <= 4):
         return
     x0, x1, x2 = ws[ALLZ + jb - 1], ws[ALLZ + jb], ws[ALLZ + jb + 1]
@@ -485,7 +506,9 @@ def parabola_step(tab, ws, jb, vm, ct, st):
 
 @_jit
 def v_step(tab, ws, jb, vm, ct, st):
-    """``ZSearch.v_step`` of the row, on the level at ``ws[ALLZ:], ws[ALLV:]``."""
+    """Corner minima (an end of the active interval switches kind): the secants of the
+    two branches either side of the best point of the level intersected and bracketed by
+    ``+-eps``, ``eps = tol / slope``."""
     if not (jb >= 2 and jb <= 3):
         return
     z0, z1, z2, z3 = ws[ALLZ + jb - 2], ws[ALLZ + jb - 1], ws[ALLZ + jb + 1], ws[ALLZ + jb + 2]
@@ -510,7 +533,9 @@ def form_gap(tab, ws, z, ct, st):
 
 @_jit
 def corner_step(tab, ws, vm, ct, st):
-    """``ZSearch.corner_step`` of the row: the form circle meets the sleeve tip edge."""
+    """Corner minima where the lower end switches from the hub form circle to the sleeve
+    tip edge: ``rq(z, t=0) = r_form`` solved in the bracket (secant), bracketed by
+    ``+-eps``, ``eps = tol / (2 slope)``."""
     if vm == 2 or vm == 3:
         return
     za, zb = ws[AZ], ws[BZB]
@@ -538,7 +563,9 @@ def corner_step(tab, ws, vm, ct, st):
 
 @_jit
 def local_newton(tab, ws, vm, ct, st):
-    """``ZSearch.local_newton`` of the row."""
+    """Smooth minima next to a kink that spoiled the coarse parabola: a parabola from
+    the best point and two close neighbours (+-1e-3 of the half face), then a triple
+    around its vertex, ``+-sqrt(tol / g'')``."""
     hf = tab[HF]
     a_z, b_z, x1, y1 = ws[AZ], ws[BZB], ws[BZ], ws[BV]
     h = min(1e-3 * hf, 0.25 * min(x1 - a_z, b_z - x1))
@@ -557,7 +584,8 @@ def local_newton(tab, ws, vm, ct, st):
 
 @_jit
 def nested_grids(tab, ws, max_levels, vm, ct, st):
-    """``ZSearch.nested_grids`` of the row (4 planes a level); the first level tries
+    """Nested grids of 4 planes in the bracket, with a corner and a parabola step at each
+    level, until the bracket cannot hide more than the tolerance; the first level tries
     :func:`local_newton` and :func:`corner_step` first."""
     tol, hf = tab[TOL], tab[HF]
     for level in range(max_levels):
@@ -590,7 +618,7 @@ def nested_grids(tab, ws, max_levels, vm, ct, st):
 
 @_jit
 def final_parabola(tab, ws, vm, ct, st):
-    """``ZSearch.final_parabola`` of the row."""
+    """A last parabolic step through the bracket (smooth minima)."""
     x0, x1, x2 = ws[AZ], ws[BZ], ws[BZB]
     y0, y1, y2 = ws[AV], ws[BV], ws[BVB]
     if not (math.isfinite(y1) and math.isfinite(y0) and math.isfinite(y2) and x0 < x1 and x1 < x2):
@@ -605,8 +633,9 @@ def final_parabola(tab, ws, vm, ct, st):
 
 @_jit
 def settle(tab, ws, vm, ct, st):
-    """``ZSearch.settle`` of the row: a minimum that crept to a face end sits on it; the
-    minimum is evaluated exactly where it lies."""
+    """A minimum that crept to a face end sits on it (the value moves by slope * 1e-8
+    hf); the minimum is evaluated exactly where it lies (coarse values are upper bounds;
+    a refined value is kept where lower)."""
     hf = tab[HF]
     bz = ws[BZ]
     near_end = abs(bz) >= hf * (1.0 - 1e-8)
@@ -621,8 +650,12 @@ def settle(tab, ws, vm, ct, st):
 
 @_jit
 def search(tab, ws, j, max_levels, vm, ct, st):
-    """``ZSearch`` of the row of virtual measure ``vm`` from its coarse plane ``j``: the
-    best point in the state ``ws[BV:BVB + 1]``."""
+    """The search over ``z`` of the row of virtual measure ``vm`` from its coarse plane
+    ``j``, its bracket the neighbouring planes: parabolic steps bracketed by
+    ``+-sqrt(tol / g'')``, a local parabola for minima beside a kink, corner steps, nested
+    grids, until the bracket cannot hide more than the tolerance. The best point in the
+    state ``ws[BV:BVB + 1]`` (value, ``z``, ``t``, kind, whether evaluated; the bracket
+    ``a_z, a_v, b_z, b_v``)."""
     grid = int(ws[GRID])
     eo, el, er = _entry(tab, j), _entry(tab, max(j - 1, 0)), _entry(tab, min(j + 1, grid - 1))
     ws[BV], ws[BZ], ws[BT], ws[BK], ws[EX] = (ws[eo + EV + vm], ws[eo + EZ], ws[eo + ET + vm],
@@ -639,7 +672,9 @@ def search(tab, ws, j, max_levels, vm, ct, st):
 
 @_jit
 def second_minimum(tab, ws, vm):
-    """``second_minima`` of row ``vm`` in the coarse planes: ``(j, j2, second)``."""
+    """The best coarse plane ``j`` of row ``vm``, and a second coarse local minimum
+    ``j2`` nearly as low (two nearly equal minima, e.g. tip edge and form circle on a
+    swing tooth), refined too where ``second``: ``(j, j2, second)``."""
     grid = int(ws[GRID])
     cv, step = _entry(tab, 0) + EV + vm, _entry(tab, 1) - _entry(tab, 0)
     j = 0
@@ -681,7 +716,9 @@ def coarse_grid(tab, ws, pitch, whole, ct, st):
 
 @_jit
 def at_minimum(tab, ws, z, t, ct, st):
-    """Radius and turning rate (``kernel.turning_rate``) of the flank point ``(z, t)``."""
+    """Radius and turning rate of the flank point ``(z, t)``: the rate of change of its
+    sleeve polar angle per unit hub turn, ``(|q|^2 cos i - (q . k_h) zq) / rq^2`` (turning
+    the hub by ``d`` about its tilted axis ``k_h`` moves ``q`` by ``d k_h x q``)."""
     e = find(tab, ws, z)
     if e >= 0:
         po = _entry(tab, e) + EPL
