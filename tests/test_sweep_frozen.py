@@ -1,8 +1,9 @@
 """The sweep kernel against its frozen outputs (``tests/golden_sweep_kernel.py``): a
 speed-up must not move any minimum by more than 1e-9 mm.
 
-These are regression pins (outputs of an earlier kernel), not an independent reference;
-the kernel against theory and a brute-force exact search is in ``test_sweep_kernel.py``.
+These are regression pins (outputs of the kernel, frozen before a speed-up), not an
+independent reference; the kernel against theory and a brute-force exact search is in
+``test_sweep_kernel.py``.
 
 The minimum *values* are well conditioned and are compared directly. *Where* a minimum
 lies is not: along a flat valley of the gap a change of 1e-12 mm in the value (a

@@ -98,7 +98,7 @@ def test_active_interval_wholly_above_the_sleeve_fillet_start():
     po = compiled._entry(tab, 0) + compiled.EPL
     above = 0
     for z in np.linspace(-table.half_face, table.half_face, 17):
-        compiled.plane_at(tab, ws, po, z)
+        compiled.plane_at(tab, ws, po, z, np.bool_(False))
         for theta in np.radians(np.arange(0.0, 360.0, 2.0)):
             feasible, t_lo, _, p_lo, t_a, _, _, t_hi, _, _ = compiled.interval(
                 tab, ws, po, math.cos(theta), math.sin(theta))

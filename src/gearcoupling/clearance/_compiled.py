@@ -1,26 +1,38 @@
 """The clearance kernel compiled (numba): one turning angle after another, a row at a time.
 
 Imported only through :func:`.fast.kernels`; the one implementation of the search
-(:func:`.kernel.minimise` packs its arguments). :func:`minimise_rows` takes, for each
-turning angle, every (virtual measure, turning angle) row on its own with scalar state -
-no numpy call per step, nothing allocated per point: the coarse planes, a second coarse
-minimum, the search over ``z`` (:func:`search`), each measure's fold over its branches.
-Inside a plane the minimum over ``t`` is solved to convergence with the slopes along
-``t`` in closed form: Newton steps for the active interval's crossings (to 1e-11
-relative), for an interior minimum the minimum of the cubic through the ends, then
-secant steps on the exact slope (to 1e-7 in ``t``). Tested against the exact reference
-(:mod:`.reference`) and its frozen outputs (``tests/test_sweep_frozen.py``;
-docs/sweep-speed.md).
+(:func:`.kernel.minimise` packs its arguments). :func:`minimise_rows` takes the turning
+angles in turn, every (virtual measure, turning angle) row on its own with scalar state -
+no numpy call per step, nothing allocated per point:
+
+- **afresh** (:func:`afresh`; at the first angle, after a step above :data:`MAX_TURN`, or
+  where a minimum was lost): the coarse planes, the best and a second coarse minimum
+  searched over ``z`` (:func:`search`), each result then converged by :func:`track`;
+- **followed** (:func:`follow`): each minimum from the place its last two places put it,
+  by Newton steps on the slope along ``z`` (in closed form: :func:`slope`), corners by
+  the tangents either side (:func:`track`); then :func:`safeguard` checks the coarse
+  planes for another minimum, evaluating only those whose kept values and rate bounds
+  (:func:`keep_coarse`) leave one possible. A profile-end row that cannot hold its
+  measure's minimum is not followed at that angle (:func:`above_best`).
+
+Each measure folds its branches. Inside a plane the minimum over ``t`` is solved to
+convergence with the slopes along ``t`` in closed form: Newton steps for the active
+interval's crossings (to 1e-11 relative), for an interior minimum the minimum of the
+cubic through the ends, then secant steps on the exact slope (to 1e-7 in ``t``). Tested
+against the exact reference (:mod:`.reference`), against fresh searches at every angle
+(``tests/test_sweep_kernel.py``) and against its frozen outputs
+(``tests/test_sweep_frozen.py``; docs/sweep-speed.md).
 
 Two flat arrays carry everything, so that a call passes two arrays: ``tab`` (read only)
 holds the constants of :func:`.kernel._compiled_arrays` at the indices below, the table's
 piece edges and its plane matrices ``(pieces, nt + 1, nz)``; ``ws`` is the work space:
-the search state of a row, scratch, and the planes of the turning angle with the rows
-found in them (:func:`evaluate`; a plane at offset ``po``: the ``nt`` coefficients of
-``y`` in ``t``, ``r_form``, the span ``r_tip - r_form`` and ``z``). :func:`minimise_rows`
-passes views of them without reference counting (:func:`_unmanaged`). Integer and
-boolean constants are passed as ``np.int64``/``np.bool_``: a literal argument would
-compile a function once per value.
+the search state of a row, scratch, the minima followed, and the planes of the turning
+angle with the rows found in them (:func:`evaluate`; a plane at offset ``po``: the ``nt``
+coefficients of ``y`` in ``t``, ``r_form``, the span ``r_tip - r_form`` and ``z``, then
+their derivatives in ``z`` and whether they are there), then the coarse planes' values
+kept over the turning angles. :func:`minimise_rows` passes views of them without
+reference counting (:func:`_unmanaged`). Integer and boolean constants are passed as
+``np.int64``/``np.bool_``: a literal argument would compile a function once per value.
 """
 
 from __future__ import annotations
@@ -47,15 +59,36 @@ SAVED = 9  # the state of the first search while the second runs
 ZS, VS, TS, KS = 18, 26, 34, 42  # up to 8 planes evaluated together
 V, T, K = 50, 58, 66  # the 8 virtual measures' minima in a plane
 ALLZ, ALLV = 74, 80  # a nested grid level with its bracket ends
-TZ = 86  # T_j(x) of the plane's z, j < MAX_NZ
-GRID, NDYN = 150, 151  # coarse planes; planes evaluated at this turning angle beyond them
-MAX_NZ = GRID - TZ
-ENTRIES = 160  # the planes of this turning angle (_entry), the coarse ones first
-EZ, VALID, EV, ET, EK, EPL = 0, 1, 9, 17, 25, 33  # an entry: z, which rows are known, their
-# value, t and kind, then the plane
+MAX_NZ = 64
+TZ, TZD = 86, 150  # T_j(x) of the plane's z and its derivative dT_j/dz, j < MAX_NZ
+GRID, NDYN, THETA = 214, 215, 216  # coarse planes; planes evaluated at this turning angle
+# beyond them; the turning angle
+BASINS = 220  # per virtual measure two minima followed over the turning angles:
+B_LIVE, B_Z, B_V, B_T, B_K, B_C, B_ZS, B_ZSP, B_TH, B_THP, B_ZL = range(11)  # followed (1)
+# or not; z, value, t, kind; the curvature d2/dz2 there (nan: unknown); where the minimum
+# lies by the last step (Newton's, else the tangents') and that of the previous turning
+# angle; the turning angles; z at the previous turning angle
+BSTRIDE = 11
+MODE = BASINS + 16 * BSTRIDE  # per virtual measure: 1 where its minima are followed
+COUNTS = MODE + 8  # counts over a call: rows searched afresh, minima lost, planes
+# evaluated, of them by the safeguard, searches started by it, plane evaluations tracking
+AFRESH, LOST, PLANES, GUARD, GUARD_SEARCH, TRACKED = range(6)
+GT, CT = COUNTS + 8, COUNTS + 16  # the 8 rows' slopes along t in a plane: of the gap and
+# of the crossing's condition (rq r_form at the sleeve tip edge, zq at a sleeve face end)
+ENTRIES = COUNTS + 24  # the planes of this turning angle (_entry), the coarse ones first
+EZ, VALID, EV, ET, EK, ED, EGT, ECT, EPL = 0, 1, 9, 17, 25, 33, 41, 49, 57  # an entry: z,
+# which rows are known, their value, t, kind, slope d/dz and slopes along t, the plane
+L_TH, L_V, L_D, L_RHO = 0, 8, 16, 24  # a coarse plane's last values (:func:`keep_coarse`):
+# per row the turning angle, value, bound on its rate and the angle span the bound holds
+L_FACE = 32  # whether the plane stays within the sleeve face (whole flank, pitch point)
+L_RMAX = 34  # a bound on the sleeve radius of its points
+LSTRIDE = 35
 MAX_DYN = 64  # planes kept beyond the coarse ones (then one more, kept for nothing)
 D_SLOPE = 1e-6  # shortest interval searched inside, / 8
 REL = 1e-11  # crossings, relative to the target
+MAX_TURN = 0.1  # turning angle step (rad) beyond which a row is searched afresh
+WINDOW = 0.1  # turning angles (rad) either side over which a coarse plane's bound holds
+MAX_TRACK = 12  # planes of one followed minimum before it is searched afresh
 # the branches (virtual measures) each measure folds, -1 padded: the whole flank (0, 1),
 # the pitch line (2, 3), the lower (4, 5) and the upper (6, 7) end of the profile
 FOLD = ((0, 4, 6), (1, 5, 7), (2, -1, -1), (3, -1, -1))
@@ -63,7 +96,7 @@ FOLD = ((0, 4, 6), (1, 5, 7), (2, -1, -1), (3, -1, -1))
 
 def workspace_size(grid: int, nt: int) -> int:
     """Length of ``ws`` for ``grid`` coarse planes and ``nt`` coefficients in ``t``."""
-    return ENTRIES + (grid + MAX_DYN + 1) * (EPL + nt + 3)
+    return ENTRIES + (grid + MAX_DYN + 1) * (EPL + 2 * nt + 7) + grid * LSTRIDE
 
 
 @intrinsic
@@ -84,13 +117,20 @@ def _unmanaged(typingctx, arr):
 @_jit
 def _entry(tab, e):
     """Offset of plane entry ``e`` in ``ws``."""
-    return ENTRIES + e * (EPL + int(tab[NT]) + 3)
+    return ENTRIES + e * (EPL + 2 * int(tab[NT]) + 7)
+
+
+@_jit
+def _lazy(tab, ws, g):
+    """Offset of coarse plane ``g``'s last values in ``ws``."""
+    return _entry(tab, int(ws[GRID]) + MAX_DYN + 1) + g * LSTRIDE
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy", fastmath={"contract", "reassoc"})
-def plane_at(tab, ws, po, z):
+def plane_at(tab, ws, po, z, deriv):
     """Put the plane ``z`` at ``ws[po:]``: Chebyshev series in ``z`` (the sums
-    reassociated, so vectorised: the same values to rounding)."""
+    reassociated, so vectorised: the same values to rounding); with ``deriv`` also their
+    derivatives in ``z`` at ``ws[po + nt + 3:]`` (:func:`with_slopes`)."""
     nt, nz, pieces = int(tab[NT]), int(tab[NZ]), int(tab[PIECES])
     k = 0
     for j in range(1, pieces):
@@ -114,39 +154,74 @@ def plane_at(tab, ws, po, z):
             acc += tab[mi + j] * ws[TZ + j]
         ws[po + i] = acc
     r_form = ws[po + nt]
+    dtip = 0.0
     if tab[SPHERE] != 0.0:
         tip = math.sqrt(max(tab[TIPR] * tab[TIPR] - z * z, 0.0))
+        dtip = -z / max(tip, TINY)
     else:
         tip = tab[TIPR]
     ws[po + nt + 1] = tip - r_form
     ws[po + nt + 2] = z
+    pd = po + nt + 3
+    ws[pd + nt + 2] = 1.0 if deriv else 0.0
+    if not deriv:
+        return
+    # T_j'(x) = j U_(j-1)(x): U_0 = 1, U_1 = 2 x, U_(n+1) = 2 x U_n - U_(n-1)
+    scale = 2.0 / (hi - lo)
+    ws[TZD] = 0.0
+    u0, u1 = 1.0, 2.0 * x
+    for j in range(1, nz):
+        ws[TZD + j] = j * u0 * scale
+        u0, u1 = u1, 2.0 * x * u1 - u0
+    for i in range(nt + 1):
+        mi = m0 + i * nz
+        acc = 0.0
+        for j in range(nz):
+            acc += tab[mi + j] * ws[TZD + j]
+        ws[pd + i] = acc
+    ws[pd + nt + 1] = dtip - ws[pd + nt]
+
+
+@_jit
+def with_slopes(tab, ws, po):
+    """The plane at ``po`` with its derivatives in ``z`` (computed where missing)."""
+    nt = int(tab[NT])
+    if ws[po + 2 * nt + 5] == 0.0:
+        plane_at(tab, ws, po, ws[po + nt + 2], np.bool_(True))
+
+
+@_jit
+def series(tab, ws, b, s):
+    """``y`` and ``dy/ds`` of the series in ``s = 2 t - 1`` with the ``nt`` coefficients
+    at ``ws[b:]``: by Horner's rule (power form), else by the Chebyshev recurrences of
+    ``T_k(s)`` and ``T_k'(s)``."""
+    nt = int(tab[NT])
+    if tab[POWER] != 0.0:  # even and odd powers apart: two chains in s^2 at once
+        u = s * s
+        ke, ko = (nt - 1, nt - 2) if nt % 2 else (nt - 2, nt - 1)
+        e, de, o, do = ws[b + ke], 0.0, ws[b + ko], 0.0
+        for k in range(ke - 2, -1, -2):
+            de = de * u + e
+            e = e * u + ws[b + k]
+        for k in range(ko - 2, 0, -2):
+            do = do * u + o
+            o = o * u + ws[b + k]
+        return e + s * o, o + 2.0 * s * (de + s * do)
+    t0, t1, d0, d1 = 1.0, s, 0.0, 1.0
+    y, dy = ws[b] + ws[b + 1] * s, ws[b + 1]
+    for k in range(2, nt):
+        t0, t1, d0, d1 = t1, 2.0 * s * t1 - t0, d1, 2.0 * t1 + 2.0 * s * d1 - d0
+        y += ws[b + k] * t1
+        dy += ws[b + k] * d1
+    return y, dy
 
 
 @_jit
 def point(tab, ws, po, ct, st, t):
     """The flank point at height ``t`` in the sleeve frame and its rate along ``t``:
-    ``(qx, qy, zq, dqx, dqy, dzq)``. ``y`` by Horner's rule in ``s = 2 t - 1`` (power
-    form), else by the Chebyshev recurrences of ``T_k(s)`` and ``T_k'(s)``."""
+    ``(qx, qy, zq, dqx, dqy, dzq)``."""
     nt = int(tab[NT])
-    s = 2.0 * t - 1.0
-    if tab[POWER] != 0.0:  # even and odd powers apart: two chains in s^2 at once
-        u = s * s
-        ke, ko = (nt - 1, nt - 2) if nt % 2 else (nt - 2, nt - 1)
-        e, de, o, do = ws[po + ke], 0.0, ws[po + ko], 0.0
-        for k in range(ke - 2, -1, -2):
-            de = de * u + e
-            e = e * u + ws[po + k]
-        for k in range(ko - 2, 0, -2):
-            do = do * u + o
-            o = o * u + ws[po + k]
-        y, dy = e + s * o, o + 2.0 * s * (de + s * do)
-    else:
-        t0, t1, d0, d1 = 1.0, s, 0.0, 1.0
-        y, dy = ws[po] + ws[po + 1] * s, ws[po + 1]
-        for k in range(2, nt):
-            t0, t1, d0, d1 = t1, 2.0 * s * t1 - t0, d1, 2.0 * t1 + 2.0 * s * d1 - d0
-            y += ws[po + k] * t1
-            dy += ws[po + k] * d1
+    y, dy = series(tab, ws, po, 2.0 * t - 1.0)
     dy *= 2.0
     ci, si = tab[CI], tab[SI]
     span = ws[po + nt + 1]
@@ -157,6 +232,26 @@ def point(tab, ws, po, ct, st, t):
     u, du = x * st + y * ct, dx * st + dy * ct
     v, dv = u * (ci - 1.0) - z * si, du * (ci - 1.0)
     return v * st + x, v * ct + y, u * si + z * ci, dv * st + dx, dv * ct + dy, du * si
+
+
+@_jit
+def point_dz(tab, ws, po, ct, st, t):
+    """:func:`point` with its rate along ``z`` at fixed ``t`` instead (the plane's
+    derivatives: :func:`with_slopes`)."""
+    nt = int(tab[NT])
+    pd = po + nt + 3
+    s = 2.0 * t - 1.0
+    y = series(tab, ws, po, s)[0]
+    dy = series(tab, ws, pd, s)[0]
+    ci, si = tab[CI], tab[SI]
+    r = ws[po + nt] + t * ws[po + nt + 1]
+    dr = ws[pd + nt] + t * ws[pd + nt + 1]
+    z = ws[po + nt + 2]
+    x = math.sqrt(r * r - y * y)
+    dx = (r * dr - y * dy) / x
+    u, du = x * st + y * ct, dx * st + dy * ct
+    v, dv = u * (ci - 1.0) - z * si, du * (ci - 1.0) - si
+    return v * st + x, v * ct + y, u * si + z * ci, dv * st + dx, dv * ct + dy, du * si + ci
 
 
 @_jit
@@ -335,6 +430,7 @@ def over_t(tab, ws, po, ct, st, want0, want1):
     if not feasible:
         for vm in (0, 1, 4, 5, 6, 7):
             ws[V + vm], ws[T + vm], ws[K + vm] = np.inf, t_lo, NONE
+            ws[GT + vm], ws[CT + vm] = 0.0, 0.0
         return
     fa, fh = gaps(tab, p_lo), gaps(tab, p_hi)
     fb = fb_min = fh  # at the upper end of [t_lo, t_a]: the slope and the minimum there
@@ -356,17 +452,32 @@ def over_t(tab, ws, po, ct, st, want0, want1):
                                        fa[2 + mi], fb[2 + mi])
                 ti = (root, ti[1]) if mi == 0 else (ti[0], root)
                 fi = (val, fi[1]) if mi == 0 else (fi[0], val)
+    c_lo, c_hi = crossing_slope(p_lo, k_lo), crossing_slope(p_hi, k_hi)
     for mi in range(2):
-        v, t, k = fa[mi], t_lo, k_lo
+        v, t, k, gt, cs = fa[mi], t_lo, k_lo, fa[2 + mi], c_lo
         if fb_min[mi] < v:
-            v, t, k = fb_min[mi], t_a, k_a
+            v, t, k, gt, cs = fb_min[mi], t_a, k_a, 0.0, 0.0
         if fh[mi] < v:
-            v, t, k = fh[mi], t_hi, k_hi
+            v, t, k, gt, cs = fh[mi], t_hi, k_hi, fh[2 + mi], c_hi
         if fi[mi] < v:
-            v, t, k = fi[mi], ti[mi], INTERIOR
-        ws[V + mi], ws[T + mi], ws[K + mi] = v, t, k
+            v, t, k, gt, cs = fi[mi], ti[mi], INTERIOR, 0.0, 0.0
+        ws[V + mi], ws[T + mi], ws[K + mi], ws[GT + mi], ws[CT + mi] = v, t, k, gt, cs
         ws[V + 4 + mi], ws[T + 4 + mi], ws[K + 4 + mi] = fa[mi], t_lo, k_lo
+        ws[GT + 4 + mi], ws[CT + 4 + mi] = fa[2 + mi], c_lo
         ws[V + 6 + mi], ws[T + 6 + mi], ws[K + 6 + mi] = fh[mi], t_hi, k_hi
+        ws[GT + 6 + mi], ws[CT + 6 + mi] = fh[2 + mi], c_hi
+
+
+@_jit
+def crossing_slope(p, k):
+    """The slope along ``t`` of the condition of an end of kind ``k`` at the
+    :func:`point` ``p``: ``rq drq/dt`` at the sleeve tip edge, ``dzq/dt`` at a sleeve face
+    end (0 elsewhere)."""
+    if k == SLEEVE_TIP:
+        return p[0] * p[3] + p[1] * p[4]
+    if k == SLEEVE_FACE:
+        return p[5]
+    return 0.0
 
 
 @_jit
@@ -378,9 +489,10 @@ def pitch_line(tab, ws, po, ct, st):
     p = point(tab, ws, po, ct, st, min(max(t, 0.0), 1.0))
     rq, zq = radius_z(p)[:2]
     ok = t >= 0 and t <= 1 and rq >= tab[RFORM] and abs(zq) <= tab[SHF]
-    circ, normal = gaps(tab, p)[:2]
+    circ, normal, dcirc, dnormal = gaps(tab, p)
     ws[V + 2], ws[V + 3] = (circ, normal) if ok else (np.inf, np.inf)
     ws[T + 2], ws[T + 3] = t, t
+    ws[GT + 2], ws[GT + 3] = dcirc, dnormal
     ws[K + 2] = ws[K + 3] = INTERIOR if ok else NONE
 
 
@@ -403,15 +515,19 @@ def find(tab, ws, z):
 def keep(ws, eo, vm):
     """Copy row ``vm``'s minimum from ``ws[V:], ws[T:], ws[K:]`` into the entry at ``eo``."""
     ws[eo + EV + vm], ws[eo + ET + vm], ws[eo + EK + vm] = ws[V + vm], ws[T + vm], ws[K + vm]
+    ws[eo + EGT + vm], ws[eo + ECT + vm] = ws[GT + vm], ws[CT + vm]
     ws[eo + VALID + vm] = 1.0
 
 
 @_jit
-def evaluate(tab, ws, z, vm, ct, st):
-    """Minimum of virtual measure ``vm`` in the plane ``z``: ``(value, t, kind)``. Each plane
-    is kept with the rows found in it (rows of a turning angle evaluate the same planes:
-    the profile ends come with the whole flank, and a row whose values equal another's
-    takes the same steps); a row already found is read, else found in the plane kept."""
+def evaluate(tab, ws, z, vm, ct, st, deriv):
+    """Minimum of virtual measure ``vm`` in the plane ``z``: ``(value, t, kind, entry
+    offset)``. Each plane is kept with the rows found in it (rows of a turning angle
+    evaluate the same planes: the profile ends come with the whole flank, and a row whose
+    values equal another's takes the same steps); a row already found is read, else found
+    in the plane kept (a new plane with its derivatives in ``z`` where ``deriv``). The
+    rows found in a coarse plane are kept beyond the turning angle too
+    (:func:`keep_coarse`)."""
     e = find(tab, ws, z)
     if e < 0:
         e = int(ws[GRID] + ws[NDYN])
@@ -421,11 +537,12 @@ def evaluate(tab, ws, z, vm, ct, st):
         ws[eo + EZ] = z
         for q in range(8):
             ws[eo + VALID + q] = 0.0
-        plane_at(tab, ws, eo + EPL, z)
+        plane_at(tab, ws, eo + EPL, z, deriv)
+        ws[COUNTS + PLANES] += 1.0
     else:
         eo = _entry(tab, e)
         if ws[eo + VALID + vm] != 0.0:
-            return ws[eo + EV + vm], ws[eo + ET + vm], ws[eo + EK + vm]
+            return ws[eo + EV + vm], ws[eo + ET + vm], ws[eo + EK + vm], eo
     if vm == 2 or vm == 3:
         pitch_line(tab, ws, eo + EPL, ct, st)
         keep(ws, eo, np.int64(2))
@@ -436,7 +553,9 @@ def evaluate(tab, ws, z, vm, ct, st):
             keep(ws, eo, q)
         if vm < 2:
             keep(ws, eo, vm)
-    return ws[V + vm], ws[T + vm], ws[K + vm]
+    if e < int(ws[GRID]):
+        keep_coarse(tab, ws, e, vm, ct, st)
+    return ws[V + vm], ws[T + vm], ws[K + vm], eo
 
 
 @_jit
@@ -444,7 +563,8 @@ def points(tab, ws, m, vm, ct, st):
     """Evaluate the planes ``ws[ZS:ZS + m]`` and keep the best where it improves the
     state: ``(index of the best, better)``."""
     for i in range(m):
-        ws[VS + i], ws[TS + i], ws[KS + i] = evaluate(tab, ws, ws[ZS + i], vm, ct, st)
+        ws[VS + i], ws[TS + i], ws[KS + i] = evaluate(tab, ws, ws[ZS + i], vm, ct, st,
+                                                      np.bool_(False))[:3]
     jj = 0
     for i in range(1, m):
         if ws[VS + i] < ws[VS + jj]:
@@ -527,7 +647,7 @@ def form_gap(tab, ws, z, ct, st):
     """``rq - r_form`` at the hub form circle (``t = 0``) in the plane ``z`` (put in the
     spare entry)."""
     po = _entry(tab, int(ws[GRID]) + MAX_DYN) + EPL
-    plane_at(tab, ws, po, z)
+    plane_at(tab, ws, po, z, np.bool_(False))
     return radius_z(point(tab, ws, po, ct, st, 0.0))[0] - tab[RFORM]
 
 
@@ -643,7 +763,7 @@ def settle(tab, ws, vm, ct, st):
         ws[BZ] = math.copysign(hf, bz)
         ws[EX] = 0.0
     if ws[EX] == 0.0:
-        ve, te, ke = evaluate(tab, ws, ws[BZ], vm, ct, st)
+        ve, te, ke = evaluate(tab, ws, ws[BZ], vm, ct, st, np.bool_(False))[:3]
         if ve <= ws[BV] + 1e-7 * tab[TOL] or near_end:
             ws[BV], ws[BT], ws[BK] = ve, te, ke
 
@@ -696,22 +816,490 @@ def second_minimum(tab, ws, vm):
 
 
 @_jit
-def coarse_grid(tab, ws, pitch, whole, ct, st):
-    """The coarse planes' minima over ``t`` (of the whole flank and its ends where
-    ``whole``, of the pitch line where ``pitch``); the planes kept beyond them dropped."""
+def abs_cos_max(a, b):
+    """The largest ``|cos|`` on ``[a, b]`` (``b - a < pi``)."""
+    if math.floor(b / math.pi) > math.floor(a / math.pi):
+        return 1.0
+    return max(abs(math.cos(a)), abs(math.cos(b)))
+
+
+@_jit
+def abs_sin_max(a, b):
+    """The largest ``|sin|`` on ``[a, b]`` (``b - a < pi``)."""
+    return abs_cos_max(a - 0.5 * math.pi, b - 0.5 * math.pi)
+
+
+@_jit
+def keep_coarse(tab, ws, g, vm, ct, st):
+    """Keep the rows just found in coarse plane ``g`` (those of ``vm``'s group) beyond
+    this turning angle: each row's value with a bound ``D`` on its rate over the turning
+    angle and the angle span ``rho`` (at most :data:`WINDOW`) over which that bound
+    holds, so that at an angle ``theta`` its value is at least ``value - D |theta -
+    theta_g|`` while ``|theta - theta_g| < rho`` (:func:`safeguard`).
+
+    The gaps depend on the point's sleeve-frame ``(qx, qy)`` only. Turning by ``d theta``
+    moves a hub point there by ``v (cos theta, -sin theta) + v' (sin theta, cos theta)``
+    (``|v| <= r (1 - cos i) + |z| sin i``, ``|v'| <= r (1 - cos i)``); with ``phi = theta +
+    aq`` the gaps' gradients give the rates ``|(delta - tan alpha) cos phi - sin phi|``
+    (circumferential, ``delta`` the gap angle, ``alpha`` the sleeve's pressure angle at
+    the point) and ``|sin(phi + alpha)|`` (normal) per unit ``|v|``, bounded over the
+    window's ``phi`` and the flank's ``alpha``. The lower end may instead lie on the
+    sleeve tip edge (``rq = r_form``), which it follows: there the gaps change with the
+    tangential motion alone, the point's and that of the shift along the profile, at most
+    ``|v| (|sin phi| + tan beta |cos phi|) + |v'| (1 + tan beta)`` (``beta`` the hub
+    profile's angle to the radial); a minimum over the active interval, or at its lower
+    end, takes the larger bound. The bound holds where the plane stays within the sleeve
+    face (``rho = 0`` else), off the root fillet and, where no point faces the sleeve
+    flank, until one may."""
+    lo = _lazy(tab, ws, g)
+    eo = _entry(tab, g)
+    po = eo + EPL
+    nt = int(tab[NT])
+    ci, si = tab[CI], tab[SI]
+    z = ws[po + nt + 2]
+    rt = ws[po + nt] + ws[po + nt + 1]
+    v_r = rt * (1.0 - ci)
+    v_z = v_r + abs(z) * si
+    rate = v_r + v_z
+    r_b, r_fil, r_form = tab[RB], tab[RFIL], tab[RFORM]
+    tan_lo = math.sqrt(max(r_form * r_form - r_b * r_b, 0.0)) / r_b
+    tan_hi = math.sqrt(max(max(r_fil, rt) ** 2 - r_b * r_b, 0.0)) / r_b
+    tan_beta = math.sqrt(max(tab[TIPR] ** 2 - r_b * r_b, 0.0)) / r_b + 0.05
+    margin = WINDOW + abs(tab[C0]) + 0.05  # the window and the points' polar angles
+    phi_lo, phi_hi = ws[THETA] - margin, ws[THETA] + margin
+    cos_m, sin_m = abs_cos_max(phi_lo, phi_hi), abs_sin_max(phi_lo, phi_hi)
+    sin_n = abs_sin_max(phi_lo + math.atan(tan_lo), phi_hi + math.atan(tan_hi))
+    pitch = vm == 2 or vm == 3
+    rq1 = -1.0  # the sleeve radius at the profile's top (the pitch point), where needed
+    for q in range(8):
+        if (q == 2 or q == 3) != pitch or ws[eo + VALID + q] == 0.0:
+            continue
+        val = ws[eo + EV + q]
+        ws[lo + L_TH + q], ws[lo + L_V + q] = ws[THETA], val
+        span = WINDOW
+        if ws[lo + L_FACE + (1 if pitch else 0)] == 0.0:
+            span = 0.0
+        delta = abs(val) / r_form + 0.01 if math.isfinite(val) else 0.01
+        if delta > 0.2:
+            span = 0.0
+        if q % 2:
+            d = v_z * sin_n + v_r
+        else:
+            d = v_z * ((tan_hi + delta) * cos_m + sin_m) + v_r * math.sqrt(
+                1.0 + (tan_hi + delta) ** 2)
+        if not (q == 2 or q == 3 or q >= 6):  # the lower end on the tip edge's crossing
+            d = max(d, v_z * (sin_m + tan_beta * cos_m) + v_r * (1.0 + tan_beta))
+        if not math.isfinite(val) or (tab[RHO] > 0.0 and ws[lo + L_RMAX] >= r_fil):
+            if rq1 < 0.0:
+                t1 = 1.0
+                if pitch:
+                    t1 = min(max((tab[RPITCH] - ws[po + nt]) / ws[po + nt + 1], 0.0), 1.0)
+                p1 = point(tab, ws, po, ct, st, t1)
+                rq1 = math.sqrt(p1[0] * p1[0] + p1[1] * p1[1])
+            if not math.isfinite(val):  # none faces the sleeve flank until rq1 reaches it
+                span = min(span, max(r_form - rq1, 0.0) / max(rate, TINY))
+            if tab[RHO] > 0.0 and ws[lo + L_RMAX] >= r_fil:
+                span = min(span, max(r_fil - rq1, 0.0) / max(rate, TINY))
+        ws[lo + L_D + q] = d
+        ws[lo + L_RHO + q] = span if rate > 0.0 else np.inf
+
+
+@_jit
+def init_coarse(tab, ws, zg):
+    """The coarse planes (with their derivatives in ``z``), none of their rows known yet,
+    and what of them holds at every turning angle: whether the plane stays within the
+    sleeve face (whole flank, pitch point) and a bound on its points' sleeve radius."""
+    nt = int(tab[NT])
+    ci, si, shf = tab[CI], tab[SI], tab[SHF]
+    ws[GRID] = zg.size
+    for g in range(zg.size):
+        eo = _entry(tab, g)
+        ws[eo + EZ] = zg[g]
+        plane_at(tab, ws, eo + EPL, zg[g], np.bool_(True))
+        lo = _lazy(tab, ws, g)
+        for q in range(L_FACE):
+            ws[lo + q] = np.nan
+        rt = ws[eo + EPL + nt] + ws[eo + EPL + nt + 1]
+        z = abs(zg[g])
+        ws[lo + L_FACE] = 1.0 if z * ci + rt * si < shf else 0.0
+        ws[lo + L_FACE + 1] = 1.0 if z * ci + tab[RPITCH] * si < shf else 0.0
+        # |q| = |p| and |zq| >= |z| cos i - r sin i
+        ws[lo + L_RMAX] = math.sqrt(rt * rt + z * z - max(z * ci - rt * si, 0.0) ** 2)
+
+
+@_jit
+def new_angle(tab, ws, theta):
+    """Start turning angle ``theta``: no plane evaluated at it yet."""
+    ws[THETA] = theta
     ws[NDYN] = 0.0
     for g in range(int(ws[GRID])):
         eo = _entry(tab, g)
         for q in range(8):
             ws[eo + VALID + q] = 0.0
-        if whole:
-            over_t(tab, ws, eo + EPL, ct, st, np.bool_(True), np.bool_(True))
-            for q in (0, 1, 4, 5, 6, 7):
-                keep(ws, eo, q)
-        if pitch:
-            pitch_line(tab, ws, eo + EPL, ct, st)
-            keep(ws, eo, np.int64(2))
-            keep(ws, eo, np.int64(3))
+
+
+@_jit
+def row_at(tab, ws, z, vm, ct, st):
+    """Row ``vm``'s minimum in the plane ``z`` with its slope along ``z``: ``(value, t,
+    kind, slope)``; the slope nan where it is not known in closed form (the root fillet)."""
+    ws[COUNTS + TRACKED] += 1.0
+    v, t, k, eo = evaluate(tab, ws, z, vm, ct, st, np.bool_(True))
+    if ws[eo + VALID + vm] != 2.0:  # the slope of this row not found yet
+        d = slope(tab, ws, eo, vm, t, k, ct, st)
+        for q in range(vm % 2, 8, 2):  # and of the rows of the gap with the same minimum
+            if ws[eo + VALID + q] == 1.0 and ws[eo + ET + q] == t and ws[eo + EK + q] == k \
+                    and (q == 2 or q == 3) == (vm == 2 or vm == 3):
+                ws[eo + ED + q], ws[eo + VALID + q] = d, 2.0
+        ws[eo + ED + vm], ws[eo + VALID + vm] = d, 2.0
+    return v, t, k, ws[eo + ED + vm]
+
+
+@_jit
+def slope(tab, ws, eo, vm, t, k, ct, st):
+    """``d/dz`` of row ``vm``'s minimum in the plane of entry ``eo``, found at ``(t, k)``:
+    the gap's partial derivative in ``z`` at an interior minimum or a fixed end (``t`` = 0,
+    1); at a crossing (sleeve tip edge, sleeve face end) and on the pitch line plus the
+    gap's slope along ``t`` times ``dt/dz`` of the crossing's condition (the slopes along
+    ``t`` as :func:`over_t` and :func:`pitch_line` found them)."""
+    if k == NONE or k == SLEEVE_FILLET or k == FACE_END:
+        return np.nan
+    po = eo + EPL
+    with_slopes(tab, ws, po)
+    nt = int(tab[NT])
+    pz = point_dz(tab, ws, po, ct, st, t)
+    gz = gaps(tab, pz)[2 + vm % 2]
+    gt = ws[eo + EGT + vm]
+    if vm == 2 or vm == 3:
+        pd = po + nt + 3
+        return gz - gt * (ws[pd + nt] + t * ws[pd + nt + 1]) / ws[po + nt + 1]
+    if k == SLEEVE_TIP:
+        return gz - gt * (pz[0] * pz[3] + pz[1] * pz[4]) / ws[eo + ECT + vm]
+    if k == SLEEVE_FACE:
+        return gz - gt * pz[5] / ws[eo + ECT + vm]
+    return gz
+
+
+@_jit
+def track(tab, ws, vm, z0, step, curv, kind, ct, st):
+    """The minimum of row ``vm`` near ``z0`` over ``z``: ``(found, z, value, t, kind,
+    curvature, place)`` (curvature nan where not known; place: where the minimum lies by
+    the last Newton step or the tangents, not evaluated).
+
+    From ``z0`` Newton steps on the slope (:func:`row_at`), the curvature from the last
+    two planes of one kind (``curv`` of the minimum of ``kind`` to begin with), else
+    steps of ``step`` growing fourfold; once planes either side of the minimum are known
+    (slopes of opposite signs), a step leaving them falls back to their middle, and where
+    their kinds differ (a corner: an end of the active interval switches kind) the step
+    goes to where their tangents meet. Found when the tangents cannot hide a value lower
+    by ``eps`` = 1e-3 of the tolerance, or the Newton step's decrease is below it, or a
+    face end holds a slope pointing out of the face (the Newton step's decrease counts only
+    within one piece of the table, :func:`one_piece`). Not found where a plane faces no
+    sleeve flank, a slope is not known, the slopes are not those of one minimum, or
+    after :data:`MAX_TRACK` planes."""
+    hf = tab[HF]
+    eps = max(1e-3 * tab[TOL], 1e-14)
+    fail = (False, 0.0, np.inf, 0.0, float(NONE), np.nan, 0.0)
+    z = min(max(z0, -hf), hf)
+    v, t, k, d = row_at(tab, ws, z, vm, ct, st)
+    if not (math.isfinite(v) and math.isfinite(d)):
+        return fail
+    zb, vb, tb, kb, db = z, v, t, k, d
+    zl, vl, dl, kl, zh, vh, dh, kh = np.nan, 0.0, 0.0, -1.0, np.nan, 0.0, 0.0, -1.0
+    if d < 0.0:
+        zl, vl, dl, kl = z, v, d, k
+    elif d > 0.0:
+        zh, vh, dh, kh = z, v, d, k
+    c, ck = (curv, kind) if curv > 0.0 else (np.nan, -1.0)
+    ca = cb = z  # the planes the curvature was measured between
+    zp, dp, kp = z, d, k
+    h = max(step, 1e-9 * hf)
+    for _ in range(MAX_TRACK):
+        newton = c > 0.0 and ck == kb
+        if db == 0.0 or (zb >= hf and db <= 0.0) or (zb <= -hf and db >= 0.0):
+            return True, zb, vb, tb, kb, c if newton else np.nan, zb
+        both = math.isfinite(zl) and math.isfinite(zh)
+        zx = np.nan
+        if both:
+            zx = (vh - vl + dl * zl - dh * zh) / (dl - dh)
+            if vb - (vl + dl * (zx - zl)) <= eps:
+                place = min(max(zb - db / c, zl), zh) if newton and kl == kh else zx
+                return True, zb, vb, tb, kb, c if newton else np.nan, place
+        if newton and db * db <= 2.0 * c * eps and one_piece(
+                tab, min(ca, cb, zb, zb - db / c), max(ca, cb, zb, zb - db / c)):
+            return True, zb, vb, tb, kb, c, zb - db / c
+        if newton:
+            zn = zb - db / c
+        else:
+            zn = zb - math.copysign(h, db)
+            h *= 4.0
+        if both:
+            if kl != kh and zl < zx < zh:
+                zn = zx
+            elif not (zl < zn < zh):
+                zn = 0.5 * (zl + zh)
+        zn = min(max(zn, -hf), hf)
+        if zn == zb:
+            return fail
+        v, t, k, d = row_at(tab, ws, zn, vm, ct, st)
+        if not (math.isfinite(v) and math.isfinite(d)):
+            return fail
+        if k == kp and zn != zp:
+            c, ck, ca, cb = (d - dp) / (zn - zp), k, zn, zp
+            if not c > 0.0:
+                c, ck = np.nan, -1.0
+        zp, dp, kp = zn, d, k
+        if d < 0.0 and not zn <= zl:
+            zl, vl, dl, kl = zn, v, d, k
+        elif d > 0.0 and not zn >= zh:
+            zh, vh, dh, kh = zn, v, d, k
+        if zl >= zh:
+            return fail  # a slope pointing down past one pointing up: not one minimum
+        if v < vb or (v == vb and abs(d) < abs(db)):
+            zb, vb, tb, kb, db = zn, v, t, k, d
+    return fail
+
+
+@_jit
+def one_piece(tab, z0, z1):
+    """Whether ``[z0, z1]`` lies inside one piece of the table wider than a tenth of the
+    face (the narrow pieces carry a curvature jump inside, the others at their edges):
+    there the flank is smooth and a Newton step's curvature holds."""
+    pieces, hf = int(tab[PIECES]), tab[HF]
+    for j in range(pieces):
+        lo, hi = tab[EDGES + j], tab[EDGES + j + 1]
+        if (j == 0 or z0 > lo) and (j == pieces - 1 or z1 < hi) and z0 >= lo and z1 <= hi:
+            return hi - lo >= 0.2 * hf
+    return False
+
+
+@_jit
+def across_edge(tab, ws, vm, found, z, v, t, k, c, place, near_edge, ct, st):
+    """A minimum within ``near_edge`` of a piece edge of the table may have a twin just
+    across it (the pieces meet within the table's error, not exactly): the lower of the
+    two, :func:`track` from across the edge (the arguments: the minimum found)."""
+    for j in range(1, int(tab[PIECES])):
+        e = tab[EDGES + j]
+        if abs(z - e) <= near_edge:
+            other = e + math.copysign(abs(z - e) + 1e-6 * near_edge, e - z)
+            r = track(tab, ws, vm, other, near_edge, np.nan, -1.0, ct, st)
+            if r[0] and r[2] < v:
+                return r
+    return found, z, v, t, k, c, place
+
+
+@_jit
+def basin(vm, b):
+    """Offset of followed minimum ``b`` (0, 1) of row ``vm`` in ``ws``."""
+    return BASINS + (2 * vm + b) * BSTRIDE
+
+
+@_jit
+def set_basin(ws, bo, found, z, v, t, k, c, place):
+    """Put a minimum found at this turning angle in the slot at ``bo``."""
+    theta = ws[THETA]
+    same = ws[bo + B_LIVE] != 0.0 and ws[bo + B_TH] != theta
+    ws[bo + B_ZSP], ws[bo + B_THP] = (ws[bo + B_ZS], ws[bo + B_TH]) if same else (place, np.nan)
+    ws[bo + B_ZL] = ws[bo + B_Z] if same else np.nan
+    ws[bo + B_LIVE] = 1.0 if found else 0.0
+    ws[bo + B_Z], ws[bo + B_V], ws[bo + B_T], ws[bo + B_K] = z, v, t, k
+    ws[bo + B_C], ws[bo + B_ZS], ws[bo + B_TH] = c, place, theta
+
+
+@_jit
+def follow(tab, ws, vm, ct, st):
+    """Follow row ``vm``'s minima to this turning angle, each from its last place moved on
+    as its last two places moved (:func:`track`); False where the best one is lost (a
+    second one lost is dropped, and one found farther from where it was expected than
+    four times its move or a quarter of a coarse spacing is lost). A row facing no sleeve
+    flank has none to follow."""
+    theta = ws[THETA]
+    hf = tab[HF]
+    spacing = 2.0 * hf / (ws[GRID] - 1.0)
+    for b in range(2):
+        bo = basin(vm, b)
+        if ws[bo + B_LIVE] == 0.0:
+            if b == 0 and math.isfinite(ws[bo + B_V]):
+                return False
+            continue
+        z = ws[bo + B_ZS]
+        move = 0.0
+        if math.isfinite(ws[bo + B_THP]) and ws[bo + B_TH] != ws[bo + B_THP]:
+            move = (z - ws[bo + B_ZSP]) * (theta - ws[bo + B_TH]) / (ws[bo + B_TH]
+                                                                     - ws[bo + B_THP])
+        z0 = shared_start(ws, vm, ws[bo + B_Z], theta)
+        found, zn, v, t, k, c, place = track(tab, ws, vm, z + move if math.isnan(z0) else z0,
+                                             max(abs(move), 1e-6 * hf), ws[bo + B_C],
+                                             ws[bo + B_K], ct, st)
+        # a minimum far from where its last two places put it is another one
+        found = found and abs(zn - z - move) <= max(4.0 * abs(move), 0.25 * spacing)
+        if found:
+            found, zn, v, t, k, c, place = across_edge(tab, ws, vm, found, zn, v, t, k, c,
+                                                       place, 0.01 * spacing, ct, st)
+        if not found:
+            ws[COUNTS + LOST] += 1.0
+            if b == 0:
+                return False
+            ws[bo + B_LIVE] = 0.0
+            continue
+        set_basin(ws, bo, True, zn, v, t, k, c, place)
+    order(tab, ws, vm)
+    return True
+
+
+@_jit
+def shared_start(ws, vm, z_last, theta):
+    """Where a row followed before ``vm`` at this turning angle (of its group: whole
+    flank, pitch line), whose minimum lay at ``z_last`` too at the last one, found it now
+    (its plane is kept: a row whose minimum is another's takes no plane of its own); nan
+    where none."""
+    for u in range(vm):
+        if (u == 2 or u == 3) != (vm == 2 or vm == 3):
+            continue
+        for b in range(2):
+            bo = basin(u, b)
+            if ws[bo + B_LIVE] != 0.0 and ws[bo + B_TH] == theta and ws[bo + B_ZL] == z_last:
+                return ws[bo + B_Z]
+    return np.nan
+
+
+@_jit
+def order(tab, ws, vm):
+    """The better minimum of row ``vm`` first (of those followed or found at this turning
+    angle); a second one at the first's place dropped."""
+    b0, b1 = basin(vm, 0), basin(vm, 1)
+    if ws[b1 + B_LIVE] == 0.0 and ws[b1 + B_TH] != ws[THETA]:
+        return
+    if ws[b1 + B_LIVE] != 0.0 and ws[b0 + B_LIVE] != 0.0 and \
+            abs(ws[b1 + B_Z] - ws[b0 + B_Z]) <= 1e-9 * tab[HF]:
+        ws[b1 + B_LIVE] = 0.0
+        return
+    if ws[b1 + B_V] < ws[b0 + B_V]:
+        for q in range(BSTRIDE):
+            ws[b0 + q], ws[b1 + q] = ws[b1 + q], ws[b0 + q]
+
+
+@_jit
+def searched(tab, ws, j, max_levels, vm, ct, st):
+    """:func:`search` from coarse plane ``j``, its minimum then converged by
+    :func:`track`: ``(followed, z, value, t, kind, curvature, place)`` (not followed
+    where :func:`track` did not converge: the search's own minimum)."""
+    search(tab, ws, j, max_levels, vm, ct, st)
+    z, v, t, k = ws[BZ], ws[BV], ws[BT], ws[BK]
+    if not math.isfinite(v):
+        return False, z, v, t, k, np.nan, z
+    found, zn, vn, tn, kn, c, place = track(tab, ws, vm, z, 1e-4 * tab[HF], np.nan, -1.0,
+                                            ct, st)
+    if found and vn <= v:
+        return True, zn, vn, tn, kn, c, place
+    return False, z, v, t, k, np.nan, z
+
+
+@_jit
+def afresh(tab, ws, vm, max_levels, ct, st):
+    """Row ``vm`` searched afresh: every coarse plane, the best and a second coarse
+    minimum nearly as low (:func:`second_minimum`) searched (:func:`searched`), both kept
+    to be followed."""
+    ws[COUNTS + AFRESH] += 1.0
+    for g in range(int(ws[GRID])):
+        evaluate(tab, ws, ws[_entry(tab, g)], vm, ct, st, np.bool_(False))
+    j, j2, second = second_minimum(tab, ws, vm)
+    for b in range(2):
+        ws[basin(vm, b) + B_LIVE] = 0.0
+    found, z, v, t, k, c, place = searched(tab, ws, j, max_levels, vm, ct, st)
+    set_basin(ws, basin(vm, 0), found, z, v, t, k, c, place)
+    if second:
+        found, z, v, t, k, c, place = searched(tab, ws, j2, max_levels, vm, ct, st)
+        set_basin(ws, basin(vm, 1), found, z, v, t, k, c, place)
+    order(tab, ws, vm)
+    ws[MODE + vm] = 1.0 if ws[basin(vm, 0) + B_LIVE] != 0.0 or not math.isfinite(
+        ws[basin(vm, 0) + B_V]) else 0.0
+
+
+@_jit
+def near(tab, ws, vm, z):
+    """Whether ``z`` is within 1.5 coarse spacings of a minimum of row ``vm``."""
+    h = 2.0 * tab[HF] / (ws[GRID] - 1.0)
+    for b in range(2):
+        bo = basin(vm, b)
+        if (b == 0 or ws[bo + B_LIVE] != 0.0) and math.isfinite(ws[bo + B_V]) and \
+                abs(z - ws[bo + B_Z]) <= 1.5 * h:
+            return True
+    return False
+
+
+@_jit
+def above(tab, ws, g, vm):
+    """A bound from above on coarse plane ``g``'s value of row ``vm`` at this turning
+    angle (inf where none holds)."""
+    if g < 0 or g >= int(ws[GRID]):
+        return np.inf
+    eo = _entry(tab, g)
+    if ws[eo + VALID + vm] != 0.0:
+        return ws[eo + EV + vm]
+    lo = _lazy(tab, ws, g)
+    age = abs(ws[THETA] - ws[lo + L_TH + vm])
+    if not age < ws[lo + L_RHO + vm]:
+        return np.inf
+    return ws[lo + L_V + vm] + ws[lo + L_D + vm] * age
+
+
+@_jit
+def safeguard(tab, ws, vm, max_levels, ct, st):
+    """Row ``vm``'s minima its followed ones miss: a coarse plane away from
+    them (more than 1.5 spacings) that is a local minimum of the coarse planes and within
+    a quarter of their range above the best (as a second coarse minimum searched afresh,
+    :func:`second_minimum`) is searched and followed from then on. A plane is evaluated
+    only where its bounds (:func:`keep_coarse`) leave that possible: its value at least
+    ``value - D age`` could be at or below the threshold and at or below both
+    neighbours' values at most ``value + D age``."""
+    grid = int(ws[GRID])
+    best = ws[basin(vm, 0) + B_V]
+    top = -np.inf
+    for g in range(grid):
+        val = ws[_lazy(tab, ws, g) + L_V + vm]
+        if math.isfinite(val) and val > top:
+            top = val
+    limit = np.inf
+    if math.isfinite(best):
+        limit = best + 0.25 * max(top - best, 0.0) + tab[TOL]
+    for g in range(grid):
+        eo = _entry(tab, g)
+        z = ws[eo + EZ]
+        if near(tab, ws, vm, z):
+            continue
+        if ws[eo + VALID + vm] == 0.0:  # not evaluated at this turning angle yet
+            lo = _lazy(tab, ws, g)
+            age = abs(ws[THETA] - ws[lo + L_TH + vm])
+            if age < ws[lo + L_RHO + vm]:
+                val = ws[lo + L_V + vm]
+                if not math.isfinite(val):
+                    continue  # facing no sleeve flank until its span ends
+                low = val - ws[lo + L_D + vm] * age
+                if low > limit or low > above(tab, ws, g - 1, vm) or \
+                        low > above(tab, ws, g + 1, vm):
+                    continue
+            ws[COUNTS + GUARD] += 1.0
+            evaluate(tab, ws, z, vm, ct, st, np.bool_(False))
+        v = ws[eo + EV + vm]
+        if not v <= limit:
+            continue
+        for n in (g - 1, g + 1):  # a neighbour evaluated where its bound cannot tell
+            if v <= above(tab, ws, g - 1, vm) and v <= above(tab, ws, g + 1, vm) and \
+                    0 <= n < grid:
+                evaluate(tab, ws, ws[_entry(tab, n)], vm, ct, st, np.bool_(False))
+        if v <= above(tab, ws, g - 1, vm) and v <= above(tab, ws, g + 1, vm):
+            ws[COUNTS + GUARD_SEARCH] += 1.0
+            found, zn, vn, tn, kn, c, place = searched(tab, ws, g, max_levels, vm, ct, st)
+            b1 = basin(vm, 1)
+            if ws[b1 + B_LIVE] == 0.0 or vn < ws[b1 + B_V]:
+                ws[b1 + B_LIVE] = 0.0
+                set_basin(ws, b1, found, zn, vn, tn, kn, c, place)
+                if not found and vn < best:
+                    ws[MODE + vm] = 0.0  # the best not followed: afresh next time
+                order(tab, ws, vm)
+                best = ws[basin(vm, 0) + B_V]
+                if math.isfinite(best):
+                    limit = best + 0.25 * max(top - best, 0.0) + tab[TOL]
 
 
 @_jit
@@ -724,7 +1312,7 @@ def at_minimum(tab, ws, z, t, ct, st):
         po = _entry(tab, e) + EPL
     else:
         po = _entry(tab, int(ws[GRID]) + MAX_DYN) + EPL
-        plane_at(tab, ws, po, z)
+        plane_at(tab, ws, po, z, np.bool_(False))
     nt = int(tab[NT])
     qx, qy, zq = point(tab, ws, po, ct, st, t)[:3]
     ci, si = tab[CI], tab[SI]
@@ -734,45 +1322,70 @@ def at_minimum(tab, ws, z, t, ct, st):
 
 
 @_jit
+def above_best(tab, ws, vm):
+    """Whether profile-end row ``vm`` (4-7) cannot hold its measure's minimum at this
+    turning angle: its last minimum, less its largest rate bound over the coarse planes
+    times the angle since (every plane facing the sleeve flank and within its bound's
+    span), lies above the whole-flank row's minimum found at this angle (which the
+    whole-flank row never exceeds: it includes the profile ends)."""
+    best = ws[basin(vm % 2, 0) + B_V]
+    bo = basin(vm, 0)
+    age = abs(ws[THETA] - ws[bo + B_TH])
+    if ws[basin(vm % 2, 0) + B_TH] != ws[THETA] or not math.isfinite(best):
+        return False
+    rate = 0.0
+    for g in range(int(ws[GRID])):
+        lo = _lazy(tab, ws, g)
+        if not (math.isfinite(ws[lo + L_V + vm]) and abs(ws[THETA] - ws[lo + L_TH + vm])
+                < ws[lo + L_RHO + vm]):
+            return False
+        rate = max(rate, ws[lo + L_D + vm])
+    for b in range(2):
+        bo = basin(vm, b)
+        if (b == 0 or ws[bo + B_LIVE] != 0.0) and not ws[bo + B_V] - rate * age > best:
+            return False
+    return True
+
+
+@_jit
 def minimise_rows(tab, ws, zg, theta, wanted, measures, max_levels, out):
     """Minima of ``measures (M,)`` (indices of ``kernel.MEASURES``) at every turning
     angle ``theta (n,)``, into ``out (6, M, n)``: value, ``z``, ``r``, ``t``, kind, rate.
-    ``wanted`` are the virtual measures they fold, ``zg`` the coarse planes."""
+    ``wanted`` are the virtual measures they fold, ``zg`` the coarse planes.
+
+    Each row is searched afresh (:func:`afresh`) at the first angle and where the step
+    from the last is above :data:`MAX_TURN` or a followed minimum was lost; else its
+    minima are followed (:func:`follow`) and checked for others (:func:`safeguard`)."""
     tab, ws = _unmanaged(tab), _unmanaged(ws)
     hf = tab[HF]
-    ws[GRID] = zg.size
-    whole = pitch = False
-    for vm in wanted:
-        if vm == 2 or vm == 3:
-            pitch = True
-        else:
-            whole = True
-    for g in range(zg.size):
-        eo = _entry(tab, g)
-        ws[eo + EZ] = zg[g]
-        plane_at(tab, ws, eo + EPL, zg[g])
-    best = np.empty((8, 4))  # per virtual measure: value, z, t, kind
+    init_coarse(tab, ws, zg)
+    for q in range(8):
+        ws[COUNTS + q] = 0.0
+    for vm in range(8):
+        ws[MODE + vm] = 0.0
+        for b in range(2):
+            bo = basin(vm, b)
+            for q in range(BSTRIDE):
+                ws[bo + q] = np.nan
+            ws[bo + B_LIVE], ws[bo + B_V] = 0.0, np.inf
     for i in range(theta.size):
         ct, st = math.cos(theta[i]), math.sin(theta[i])
-        coarse_grid(tab, ws, pitch, whole, ct, st)
+        new_angle(tab, ws, theta[i])
         for vm in wanted:
-            j, j2, second = second_minimum(tab, ws, vm)
-            search(tab, ws, j, max_levels, vm, ct, st)
-            if second:  # the better of the two searches
-                for q in range(9):
-                    ws[SAVED + q] = ws[q]
-                search(tab, ws, j2, max_levels, vm, ct, st)
-                if not ws[BV] < ws[SAVED + BV]:
-                    for q in range(9):
-                        ws[q] = ws[SAVED + q]
-            best[vm, 0], best[vm, 1], best[vm, 2], best[vm, 3] = ws[BV], ws[BZ], ws[BT], ws[BK]
+            near = ws[MODE + vm] != 0.0 and abs(theta[i] - ws[basin(vm, 0) + B_TH]) <= MAX_TURN
+            if near and vm >= 4 and above_best(tab, ws, vm):
+                continue
+            if near and follow(tab, ws, vm, ct, st):
+                safeguard(tab, ws, vm, max_levels, ct, st)
+            else:
+                afresh(tab, ws, vm, max_levels, ct, st)
         for mi in range(measures.size):
             fold = FOLD[measures[mi]]
-            b = fold[0]
+            b = basin(fold[0], 0)
             for vm in fold[1:]:
-                if vm >= 0 and best[vm, 0] < best[b, 0]:
-                    b = vm
-            v, z, t, k = best[b, 0], best[b, 1], best[b, 2], best[b, 3]
+                if vm >= 0 and ws[basin(vm, 0) + B_V] < ws[b + B_V]:
+                    b = basin(vm, 0)
+            v, z, t, k = ws[b + B_V], ws[b + B_Z], ws[b + B_T], ws[b + B_K]
             if k != NONE and abs(abs(z) - hf) <= 1e-12 * hf:
                 k = FACE_END
             r, rate = at_minimum(tab, ws, z, t, ct, st)

@@ -112,12 +112,15 @@ def minimise(table: FlankTable, sm: SleeveModel, misalignment: float, theta, *,
     wanted = sorted({vm for m in measures for vm in compiled.FOLD[MEASURES.index(m)] if vm >= 0})
     tab, ws = _compiled_arrays(compiled, table, sm, misalignment, pitch_radius, tolerance_mm,
                                grid)
+    order = np.argsort(theta, kind="stable")  # neighbours in turn: each follows the last
     out = np.empty((6, len(measures), n))
     compiled.minimise_rows(tab, ws, np.linspace(-table.half_face, table.half_face, grid),
-                           theta, np.array(wanted, np.int64),
+                           theta[order], np.array(wanted, np.int64),
                            np.array([MEASURES.index(m) for m in measures], np.int64),
                            max_levels, out)
-    v, z, r, t, k, rate = out
+    res = np.empty_like(out)
+    res[:, :, order] = out
+    v, z, r, t, k, rate = res
     return {m: Minimum(v[j], z[j], r[j], t[j], k[j].astype(np.int8), rate[j])
             for j, m in enumerate(measures)}
 
@@ -142,7 +145,7 @@ def _compiled_arrays(compiled, table: FlankTable, sm: SleeveModel, misalignment:
               float(table.tip_kind != "cylinder"), float(table._power is not None),
               rows - 1, nz, pieces]
     tab = np.concatenate([consts, table.edges, mats.ravel()])
-    return tab, np.empty(compiled.workspace_size(grid, rows - 1))
+    return tab, np.full(compiled.workspace_size(grid, rows - 1), np.nan)
 
 
 def sleeve_gaps(sm: SleeveModel, rq, aq) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
