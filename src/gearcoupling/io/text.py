@@ -20,11 +20,14 @@ target                    what the text may hold there
 :func:`csv_comment`       :func:`csv_cell` rules for each comma-separated part, after
                           ``#``
 :func:`plot_text`         printable characters, ``$`` escaped (no matplotlib mathtext)
+:func:`markdown_text`     printable characters, markdown punctuation backslash-escaped,
+                          ``& < >`` as entities (the viewer's markdown renders raw HTML)
 ========================  ===========================================================
 """
 
 from __future__ import annotations
 
+import html
 import re
 from collections.abc import Callable
 from xml.sax.saxutils import escape as _xml_escape
@@ -32,6 +35,7 @@ from xml.sax.saxutils import escape as _xml_escape
 INP_LINE = 132  # characters CalculiX reads of a line
 VTK_HEADER = 255  # characters of the legacy VTK header line (256 with its newline)
 _GCODE_SYNTAX = frozenset("();%")
+_MARKDOWN = re.compile(r"([\\`*_{}\[\]()#+\-.!|~:@])")  # ``:`` ``@``: no autolinks
 #: a cell a spreadsheet would take as a formula, and a CSV quote: at the start of a field
 _FORMULA = re.compile(r'(^|,)(?=[=+\-@"])')
 
@@ -120,3 +124,10 @@ def plot_text(text: object) -> str:
     """Text for a matplotlib title, label or legend entry: unprintable characters escaped
     and ``$`` as ``\\$``, so that a name is drawn as given (never parsed as mathtext)."""
     return escaped(text).replace("$", r"\$")
+
+
+def markdown_text(text: object) -> str:
+    """Text for markdown (the viewer's panel, which renders raw HTML): unprintable
+    characters escaped, markdown punctuation backslash-escaped and ``& < >`` as entities,
+    so the text is shown as given and never becomes markup or an HTML element."""
+    return html.escape(_MARKDOWN.sub(r"\\\1", escaped(text)), quote=False)
