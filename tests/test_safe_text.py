@@ -55,7 +55,7 @@ MARKUP_NAME = "[bold red]x[/bold red] [link=file:///etc/passwd]y[/link]"  # rich
 NUL_NAME = "a\x00b"
 #: one of each kind of character a name must not hold
 UNPRINTABLE = [GCODE_NAME, NUL_NAME, ESC_NAME, "a\x7fb", "a\x85b", "a\u2028b", "a\u202eb",
-               "a\tb"]
+               "a\tb", "a\u00a0b", "a\ue000b"]
 HOB_DIAMETER_MM = 101.6
 
 

@@ -228,7 +228,8 @@ def _header(root: Table, name: str) -> tuple[str, str, float]:
     # (the argument) gets them shown escaped: a name never becomes a line of an output
     name = root.string("name", name) if root.has("name") else escaped(name)
     _check(name.isprintable(), "name", brief(name, 40), "printable characters only (no "
-           "control character, line break, ESC, NUL or format character)")
+           "control character such as a line break, tab, ESC or NUL, no format character, "
+           "no space but ' ')")
     _check(len(name) <= MAX_NAME_CHARS, "name", brief(name, 40),
            f"at most {MAX_NAME_CHARS} characters (it names files and reports)")
     misalignment = math.radians(check_misalignment_deg(root.number("design_misalignment_deg",
