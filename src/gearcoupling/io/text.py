@@ -47,11 +47,15 @@ def _escape(ch: str) -> str:
     return f"\\u{code:04x}" if code < 0x10000 else f"\\U{code:08x}"
 
 
-def escaped(text: object, keep: Callable[[str], bool] = str.isprintable) -> str:
+def escaped(text: object, keep: Callable[[str], bool] | None = None) -> str:
     """``str(text)`` with every character that ``keep`` refuses shown as its escape
-    (``\\x0a``, ``\\u202e``, ``\\U0001f600``); by default the unprintable ones."""
+    (``\\x0a``, ``\\u202e``, ``\\U0001f600``); by default (None) the unprintable ones."""
     s = str(text)
-    if all(map(keep, s)):
+    if keep is None:
+        if s.isprintable():
+            return s
+        keep = str.isprintable
+    elif all(map(keep, s)):
         return s
     return "".join(c if keep(c) else _escape(c) for c in s)
 
