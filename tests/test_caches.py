@@ -8,8 +8,9 @@ every tampered entry is not used. The solver is made unreachable for these
 the recomputation that would follow, after one line on stderr saying why. One slow test
 recomputes a tampered entry with the real solver on the smallest mesh that works.
 
-numba's compiled kernels: seeded bit flips in the cache files, each loaded by a fresh
-interpreter, recompile with the same results and one line on stderr (slow).
+numba's compiled kernels: the clearance and contact kernels use the verified cache;
+seeded bit flips in the cache files of a small kernel compiled the same way, each loaded
+by a fresh interpreter, recompile with the same result and one line on stderr (slow).
 """
 
 from __future__ import annotations
@@ -21,7 +22,6 @@ import shutil
 import stat
 import subprocess
 import sys
-import textwrap
 import threading
 from pathlib import Path
 
@@ -262,55 +262,92 @@ def test_a_named_pipe_is_refused_without_blocking(tmp_path):
 
 # numba -----------------------------------------------------------------------------
 
-KERNEL = """
-import hashlib, json, sys
-import numpy as np
-from gearcoupling.loading.kernels import halfspace
-from gearcoupling.loading.kernels.halfspace import half_space, solve_contact
+KERNEL_MODULE = """
+import math
+from gearcoupling.io.numba_cache import njit
 
-kern = halfspace.compiled()
-x = (np.arange(12) - 6) * 0.3
-gap = x[:, None] ** 2 / 40 + x[None, :8] ** 2 / 10
-r = solve_contact(half_space((12, 8), 0.3, 0.3, 2.2e5), np.stack([gap, gap + 2e-4]),
-                  load_N=400.0, spring_mm_per_N=[1e-5, 2e-5], tolerance=1e-10)
-stats = kern.per_grid_cg.stats
-print(json.dumps({"pressure": hashlib.sha256(r.pressure_MPa.tobytes()).hexdigest(),
-                  "approach": float(r.approach_mm),
-                  "hits": sum(stats.cache_hits.values()),
+@njit(nogil=True, error_model="numpy", fastmath={"contract"})
+def kernel(x):
+    s = 0.0
+    for v in x:
+        s += math.sqrt(v) * 1.5 + math.sin(v)
+    return s
+"""
+
+KERNEL_RUN = """
+import json
+import numpy as np
+import kernel_module
+
+x = np.linspace(0.0, 10.0, 101)
+value = kernel_module.kernel(x)
+stats = kernel_module.kernel.stats
+print(json.dumps({"value": value.hex(), "hits": sum(stats.cache_hits.values()),
                   "misses": sum(stats.cache_misses.values())}))
 """
 
 
-def _kernel_run(cache: Path, timeout_s: float = 300.0) -> tuple[dict, list[str]]:
-    """The compiled contact kernel on a small problem in a fresh interpreter with numba's
-    cache in ``cache``: its figures and its stderr lines (asserting a clean exit)."""
-    env = dict(os.environ, NUMBA_CACHE_DIR=str(cache))
+def _kernel_env(cache: Path, module_dir: Path) -> dict:
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(cache),
+               PYTHONPATH=os.pathsep.join([str(module_dir), *sys.path]))
     env.pop("GEARCOUPLING_NUMBA", None)
-    out = subprocess.run([sys.executable, "-c", textwrap.dedent(KERNEL)], env=env,
-                         capture_output=True, text=True, timeout=timeout_s)
+    return env
+
+
+def _kernel_run(cache: Path, module_dir: Path, timeout_s: float = 120.0
+                ) -> tuple[dict, list[str]]:
+    """A small kernel compiled with the project's cached ``njit``, called in a fresh
+    interpreter with numba's cache in ``cache``: its result and cache figures, and its
+    stderr lines (asserting a clean exit: no traceback, no signal)."""
+    out = subprocess.run([sys.executable, "-c", KERNEL_RUN], capture_output=True,
+                         text=True, timeout=timeout_s, env=_kernel_env(cache, module_dir))
     assert out.returncode == 0, f"exit {out.returncode}: {out.stderr[-2000:]}"
     return json.loads(out.stdout), out.stderr.splitlines()
 
 
 @pytest.fixture(scope="module")
 def numba_cache(tmp_path_factory):
-    """numba's cache of the contact kernel, compiled into a fresh folder, and the
-    figures of that first run."""
+    """A kernel module, its numba cache compiled into a fresh folder, and the figures of
+    that first run: ``(cache, module folder, figures)``."""
+    module_dir = tmp_path_factory.mktemp("kernel")
+    (module_dir / "kernel_module.py").write_text(KERNEL_MODULE)
     cache = tmp_path_factory.mktemp("numba-cache")
-    first, err = _kernel_run(cache)
-    assert first["misses"] >= 1 and err == [], err
-    return cache, first
+    first, err = _kernel_run(cache, module_dir)
+    assert first["misses"] == 1 and err == [], err
+    return cache, module_dir, first
+
+
+def test_the_compiled_kernels_use_the_verified_cache():
+    """Every cached function of the clearance and contact kernels goes through the sealed
+    cache (numba's own cache loads a damaged file)."""
+    numba = pytest.importorskip("numba")
+    from numba.core.caching import NullCache
+
+    from gearcoupling.clearance import _compiled
+    from gearcoupling.io.numba_cache import _SealedCache
+    from gearcoupling.loading.kernels import _contact_compiled
+
+    cached = {}
+    for module in (_compiled, _contact_compiled):
+        for name, obj in vars(module).items():
+            if isinstance(obj, numba.core.registry.CPUDispatcher) and \
+                    not isinstance(obj._cache, NullCache):
+                cached[f"{module.__name__}.{name}"] = type(obj._cache)
+    assert "gearcoupling.clearance._compiled.minimise_rows" in cached
+    assert "gearcoupling.loading.kernels._contact_compiled.per_grid_cg" in cached
+    assert set(cached.values()) == {_SealedCache}, cached
 
 
 @pytest.mark.slow
-def test_bit_flips_in_numba_cache_files_recompile_with_the_same_results(numba_cache,
-                                                                       tmp_path):
-    """Eight seeded single-bit flips, each in a copy of the cache loaded by a fresh
-    interpreter (the old cache gave tracebacks, segfaults and an LLVM error on such
-    flips, or silently ran the flipped code): each run exits cleanly with the same
-    pressure and approach, recompiled (a cache miss) after one line on stderr naming the
-    file; the cache it writes is then used as it is (a hit, no line)."""
-    cache, first = numba_cache
+def test_bit_flips_in_numba_cache_files_recompile_with_the_same_result(numba_cache,
+                                                                      tmp_path):
+    """Eight seeded single-bit flips, each in a copy of the cache (index or data file)
+    loaded by a fresh interpreter (numba's own cache gave tracebacks, segfaults and an
+    LLVM error on such flips of the contact kernel, or silently ran the flipped code):
+    each run exits cleanly with the same result, recompiled (a cache miss) after one line
+    on stderr naming the file; the cache it writes is then used as it is (a hit, no
+    line)."""
+    cache, module_dir, first = numba_cache
     files = sorted(p for p in cache.rglob("*") if p.is_file())
     assert {p.suffix for p in files} == {".nbi", ".nbc"}
     rng = random.Random(38)
@@ -321,34 +358,29 @@ def test_bit_flips_in_numba_cache_files_recompile_with_the_same_results(numba_ca
         data = bytearray(target.read_bytes())
         data[rng.randrange(len(data))] ^= 1 << rng.randrange(8)
         target.write_bytes(bytes(data))
-        got, err = _kernel_run(copy)
-        assert (got["pressure"], got["approach"]) == (first["pressure"], first["approach"])
-        assert got["misses"] >= 1, (k, target.name, got)
+        got, err = _kernel_run(copy, module_dir)
+        assert got["value"] == first["value"] and got["misses"] == 1, (k, target.name, got)
         assert len(err) == 1 and f"{target.name}' not used: " in err[0] \
             and err[0].endswith("compiling again"), (k, err)
-    again, err = _kernel_run(copy)
-    assert again["hits"] >= 1 and again["misses"] == 0 and err == [], (again, err)
-    assert again["pressure"] == first["pressure"]
+    again, err = _kernel_run(copy, module_dir)
+    assert (again["value"], again["hits"], again["misses"], err) == (first["value"], 1, 0, [])
 
 
 @pytest.mark.slow
 def test_two_processes_compiling_at_once_leave_a_cache_both_can_use(numba_cache, tmp_path):
-    """Two interpreters compile the kernel into the same empty folder at the same time
-    (each writes whole files: numba's temporary-and-rename); a third one then loads it
-    from the cache without a line, with the same results."""
-    _, first = numba_cache
-    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path))
-    env.pop("GEARCOUPLING_NUMBA", None)
-    runs = [subprocess.Popen([sys.executable, "-c", textwrap.dedent(KERNEL)], env=env,
-                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-            for _ in range(2)]
+    """Two interpreters compile the kernel into the same empty cache folder at the same
+    time (each writes whole files: a temporary renamed into place); a third one then loads
+    it from the cache without a line, with the same result."""
+    _, module_dir, first = numba_cache
+    runs = [subprocess.Popen([sys.executable, "-c", KERNEL_RUN], stdout=subprocess.PIPE,
+                             stderr=subprocess.PIPE, text=True,
+                             env=_kernel_env(tmp_path, module_dir)) for _ in range(2)]
     for run in runs:
-        out, err = run.communicate(timeout=300)
+        out, err = run.communicate(timeout=120)
         assert run.returncode == 0 and err == "", err
-        assert json.loads(out)["pressure"] == first["pressure"]
-    third, err = _kernel_run(tmp_path)
-    assert third["hits"] >= 1 and third["misses"] == 0 and err == [], (third, err)
-    assert third["pressure"] == first["pressure"]
+        assert json.loads(out)["value"] == first["value"]
+    third, err = _kernel_run(tmp_path, module_dir)
+    assert (third["value"], third["hits"], third["misses"], err) == (first["value"], 1, 0, [])
 
 
 # the real solver ---------------------------------------------------------------------
