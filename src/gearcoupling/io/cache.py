@@ -225,7 +225,7 @@ def cache_folder(path: str | os.PathLike, field: str, shown: object = None) -> P
     or cannot be made or written into. Its entries are not looked at (:func:`cached` checks
     each one)."""
     p = as_path(path, field)
-    value = os.fspath(path) if shown is None else shown  # type: ignore[call-overload]
+    value = os.fspath(path) if shown is None else shown
     try:
         p.mkdir(parents=True, exist_ok=True)
     except FileExistsError:

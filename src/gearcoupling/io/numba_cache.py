@@ -61,7 +61,7 @@ def njit(**options: Any) -> Callable[[Callable], Any]:
 
 if FunctionCache is not None:
 
-    class _SealedFile(IndexDataCacheFile):  # type: ignore[misc,valid-type]
+    class _SealedFile(IndexDataCacheFile):
         """numba's index and data files, sealed (module docstring)."""
 
         def _load_index(self) -> dict:
@@ -102,7 +102,7 @@ if FunctionCache is not None:
                 return pickle.loads(unseal(raw, tag))
             except CacheMiss as miss:
                 reason = str(miss)
-            except Exception as err:  # noqa: BLE001 - sealed, yet not numba's: recompile
+            except Exception as err:  # sealed, yet numba cannot load it: recompile
                 reason = f"cannot be loaded ({type(err).__name__})"
             _discard(Path(path), reason)
             return None
@@ -113,7 +113,7 @@ if FunctionCache is not None:
             with self._open_for_write(path) as f:
                 f.write(seal(dumps(obj), tag))
 
-    class _SealedCache(FunctionCache):  # type: ignore[misc,valid-type]
+    class _SealedCache(FunctionCache):
         """numba's per-function cache on :class:`_SealedFile`."""
 
         def __init__(self, py_func: Callable) -> None:
