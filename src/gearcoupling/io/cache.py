@@ -17,6 +17,7 @@ a tag line (the key) and the SHA-256 of tag and payload before the payload.
 from __future__ import annotations
 
 import hashlib
+import importlib
 import json
 import os
 import stat
@@ -54,9 +55,9 @@ def cache_key(kind: str, table_version: int, **settings: Any) -> dict:
 
 def package_version() -> str:
     """gearcoupling's version (part of every cache key)."""
-    from .. import __version__
-
-    return __version__
+    # looked up, not imported: a static import of the package here puts the compiled
+    # kernels (io.numba_cache) in the package stub's import cycle, which confuses mypy
+    return str(importlib.import_module("gearcoupling").__version__)
 
 
 def checksum(data: bytes) -> str:
