@@ -210,8 +210,9 @@ class ComplianceTable:
             raise ArgumentError("info", type(info).__name__, "a dict")
         table = cls(z, r, hub, sleeve, stress, float(R), near, info)
         if not np.all(table.far_field_mm_per_N > 0):
-            raise ArgumentError("near_field_mm_per_N", "at least the FE compliance",
-                                "below the hub + sleeve compliance at every load point")
+            raise ArgumentError("near_field_mm_per_N", near, "below the hub + sleeve "
+                                "compliance at every load point (a positive far field)",
+                                _shown(near))
         return table
 
     def rows(self) -> list[dict]:
@@ -552,8 +553,8 @@ def tooth_compliance_table(spec: CouplingSpec, *, size_mm: float | None = None,
     ``pair_compliance_mm_per_N(z_mm, r_mm)`` of the load models.
     """
     spec = as_spec(spec)
-    path, key = table_entry(spec, size_mm=size_mm, sector=sector, nz=nz, nr=nr, cache=cache)
     flag(refresh, "refresh")
+    path, key = table_entry(spec, size_mm=size_mm, sector=sector, nz=nz, nr=nr, cache=cache)
     found = None if refresh else cached(path, key, ComplianceTable.from_dict,
                                         f"the FE tooth table of {spec.name!r}")
     if found is not None:
