@@ -5,7 +5,7 @@ element (docs/rotordynamics.md)."""
 from __future__ import annotations
 
 from ..loading import TOOTH_LOAD_RATIO, WINDUP_ERROR_PCT
-from .allowable import AllowableLoads, allowable_loads
+from .allowable import AllowableLoads, allowable_loads, allowable_misalignment
 from .data import (
     DATASHEET_COLUMNS,
     FILES,
@@ -46,6 +46,7 @@ __all__ = [
     "StiffnessMatrix",
     "TorsionalStiffness",
     "allowable_loads",
+    "allowable_misalignment",
     "check_inputs",
     "coupling_data",
     "coupling_element",
