@@ -135,7 +135,8 @@ def allowable_offset(spec: CouplingSpec, layout: CouplingLayout,
         Accuracy of each mesh's allowable angle (the offset is solved to 1e-6 mm on them).
     """
     alignment = ShaftAlignment() if alignment is None else alignment
-    geom = coupling_geometry(spec, layout, alignment.replace(offset_mm=0.0))
+    geom = coupling_geometry(spec, layout, alignment)  # checks what it is given first
+    geom = coupling_geometry(geom.spec_a, layout, alignment.replace(offset_mm=0.0))
     if geom.layout.engagements == 1:
         raise ArgumentError("engagements", 1, "2: a single engagement takes no offset")
     T = resolve_torque_Nm(geom.spec_a, torque_Nm)

@@ -336,7 +336,8 @@ def whole_coupling_data(spec: CouplingSpec, layout: CouplingLayout,
         Chordal tolerance of the hub and sleeve meshes (default module / 200).
     """
     t0 = time.perf_counter()
-    probe = coupling_geometry(spec, layout, alignment or ShaftAlignment())
+    probe = coupling_geometry(spec, layout, ShaftAlignment() if alignment is None else
+                              alignment)
     if probe.layout.engagements != 2:
         raise ArgumentError("engagements", probe.layout.engagements, "2: one engagement's "
                             "data sheet is gc.coupling_data")
