@@ -439,8 +439,8 @@ def test_mass_properties_of_each_half_against_the_step_solids(m2, spacer_data):
             BRepGProp.VolumeProperties_s(piece, props, 1e-6)
             if props.Mass() > 0:
                 total.Add(props, rho[p.kind] * 1e-9)
-        c, I = total.CentreOfMass(), total.MatrixOfInertia()
-        inertia = np.array([[I.Value(i, j) for j in (1, 2, 3)] for i in (1, 2, 3)]) * 1e-6
+        c, tensor = total.CentreOfMass(), total.MatrixOfInertia()
+        inertia = np.array([[tensor.Value(i, j) for j in (1, 2, 3)] for i in (1, 2, 3)]) * 1e-6
         got = spacer_data.halves[side]
         assert got.mass_kg == pytest.approx(total.Mass(), rel=5e-3)
         assert got.centre_of_gravity_mm == pytest.approx([c.X(), c.Y(), c.Z()],

@@ -35,10 +35,11 @@ class Segment:
 def _element(length: float, EI: float, m: float) -> tuple[NDArray, NDArray]:
     """Stiffness and consistent mass ``(4, 4)`` of one element (w1, t1, w2, t2)."""
     L = length
-    k = EI / L**3 * np.array([[12, 6 * L, -12, 6 * L], [6 * L, 4 * L * L, -6 * L, 2 * L * L],
-                              [-12, -6 * L, 12, -6 * L], [6 * L, 2 * L * L, -6 * L, 4 * L * L]])
-    mm = m * L / 420 * np.array([[156, 22 * L, 54, -13 * L], [22 * L, 4 * L * L, 13 * L, -3 * L * L],
-                                 [54, 13 * L, 156, -22 * L], [-13 * L, -3 * L * L, -22 * L, 4 * L * L]])
+    LL = L * L
+    k = EI / L**3 * np.array([[12, 6 * L, -12, 6 * L], [6 * L, 4 * LL, -6 * L, 2 * LL],
+                              [-12, -6 * L, 12, -6 * L], [6 * L, 2 * LL, -6 * L, 4 * LL]])
+    mm = m * L / 420 * np.array([[156, 22 * L, 54, -13 * L], [22 * L, 4 * LL, 13 * L, -3 * LL],
+                                 [54, 13 * L, 156, -22 * L], [-13 * L, -3 * LL, -22 * L, 4 * LL]])
     return k, mm
 
 

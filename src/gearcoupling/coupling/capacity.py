@@ -142,7 +142,7 @@ def allowable_offset(spec: CouplingSpec, layout: CouplingLayout,
     T = resolve_torque_Nm(geom.spec_a, torque_Nm)
     model = resolve_model(geom.spec_a, model)
     tolerance_deg = real(tolerance_deg, "tolerance_deg", 1e-6, 0.5, unit="degrees")
-    limits = {}
+    limits: dict[str, tuple[float, str, float | None, float | None, str | None]] = {}
     for m in geom.meshes:
         same = m == "B" and geom.spec_b is geom.spec_a
         limits[m] = limits["A"] if same else allowable_misalignment(

@@ -22,7 +22,6 @@ The machine loads are each hub's whole wrench: its teeth's and these reactions.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
