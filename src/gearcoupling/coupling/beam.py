@@ -47,21 +47,27 @@ def beam_frequencies_Hz(segments: list[Segment], supports_m: ArrayLike, *,
                         point_masses: ArrayLike = (), modes: int = 1,
                         elements: int = MIN_ELEMENTS) -> NDArray[np.float64]:
     """The lowest ``modes`` bending frequencies (Hz) of a chain of ``segments`` (contiguous,
-    increasing ``z``) pinned at the positions ``supports_m`` (each a segment end), with
-    ``point_masses`` ``(z_m, kg)`` at segment ends; ``elements`` over the whole length."""
+    increasing ``z``) pinned at the positions ``supports_m``, with ``point_masses``
+    ``(z_m, kg)``; ``elements`` over the whole length (every segment, split at the supports
+    and masses, gets at least two)."""
     from scipy.linalg import eigh  # at the call: importing the package stays light
 
     if not segments or any(s.z1_m <= s.z0_m or s.EI_Nm2 <= 0 or s.mass_kg_per_m < 0
                            for s in segments):
         raise ArgumentError("segments", len(segments), "contiguous lengths with EI > 0 and "
                             "mass >= 0")
+    masses = np.reshape(np.asarray(point_masses, float), (-1, 2))
+    supports = np.atleast_1d(np.asarray(supports_m, float))
+    cuts = np.concatenate([supports, masses[:, 0]])
     total = segments[-1].z1_m - segments[0].z0_m
     z_nodes, props = [segments[0].z0_m], []
     for s in segments:
-        n = max(2, math.ceil(elements * (s.z1_m - s.z0_m) / total))
-        for z in np.linspace(s.z0_m, s.z1_m, n + 1)[1:]:
-            props.append((z - z_nodes[-1], s.EI_Nm2, s.mass_kg_per_m))
-            z_nodes.append(float(z))
+        inner = np.sort(cuts[(cuts > s.z0_m) & (cuts < s.z1_m)])
+        for a, b in zip([s.z0_m, *inner], [*inner, s.z1_m], strict=True):
+            n = max(2, math.ceil(elements * (b - a) / total))
+            for z in np.linspace(a, b, n + 1)[1:]:
+                props.append((z - z_nodes[-1], s.EI_Nm2, s.mass_kg_per_m))
+                z_nodes.append(float(z))
     nodes = np.array(z_nodes)
     K = np.zeros((2 * nodes.size, 2 * nodes.size))
     M = np.zeros_like(K)
@@ -69,9 +75,9 @@ def beam_frequencies_Hz(segments: list[Segment], supports_m: ArrayLike, *,
         k, mm = _element(L, EI, m)
         K[2 * e:2 * e + 4, 2 * e:2 * e + 4] += k
         M[2 * e:2 * e + 4, 2 * e:2 * e + 4] += mm
-    for z, mass in np.reshape(np.asarray(point_masses, float), (-1, 2)):
+    for z, mass in masses:
         M[2 * _node(nodes, z), 2 * _node(nodes, z)] += mass
-    held = {2 * _node(nodes, z) for z in np.atleast_1d(np.asarray(supports_m, float))}
+    held = {2 * _node(nodes, z) for z in supports}
     free = [i for i in range(K.shape[0]) if i not in held]
     w2 = eigh(K[np.ix_(free, free)], M[np.ix_(free, free)], eigvals_only=True,
               subset_by_index=[0, modes - 1])
@@ -81,7 +87,7 @@ def beam_frequencies_Hz(segments: list[Segment], supports_m: ArrayLike, *,
 def _node(nodes: NDArray, z: float) -> int:
     i = int(np.argmin(np.abs(nodes - z)))
     if abs(nodes[i] - z) > 1e-9 * max(1.0, abs(z)):
-        raise ArgumentError("supports_m", z, "a segment end (a node of the beam)")
+        raise ArgumentError("supports_m", z, "positions on the beam (m)")
     return i
 
 
