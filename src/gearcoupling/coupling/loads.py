@@ -31,6 +31,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..arguments import angle_list
+from ..errors import ArgumentError
 from ..io import write_csv_rows
 from ..loading import PHASES, LoadResult, load, resolve_model, resolve_torque_Nm
 from ..rotordynamics import hub_wrench
@@ -133,7 +134,8 @@ class WholeLoads:
         """What is left of the floating member's force ``(M, 3)`` and moment about ``O_A``
         ``(M, 3)`` once all its loads are summed: rounding (two engagements)."""
         if len(self.meshes) < 2:
-            raise ValueError("a single engagement has no floating member")
+            raise ArgumentError("engagements", 1, "2: a single engagement has no floating "
+                                "member")
         F = -(self.hub_force_N("A") + self.hub_force_N("B"))
         arm = 1e-3 * self.geometry.centre_b_mm
         M = -(self.hub_moment_Nm("A") + self.hub_moment_Nm("B")
