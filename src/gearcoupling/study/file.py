@@ -60,9 +60,9 @@ from ..arguments import (
 from ..errors import SpecError
 from ..io import Table, as_path, bundled_names, line_of, resolve_bundled, set_dotted
 from ..loading import model_names
-from ..loadspec import UNIT_SIBLINGS
 from ..spec import (
     MISALIGNMENT_RANGE_DEG,
+    UNIT_SIBLINGS,
     CouplingSpec,
     check_misalignment_deg,
     resolve_spec_path,
