@@ -9,7 +9,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .. import geometry
+from ..geometry import hub_flank as geometry_hub_flank
+from ..geometry import sleeve_flank as geometry_sleeve_flank
+from ..geometry import transverse_section as geometry_transverse_section
 from .coupling import as_spec
 
 
@@ -19,7 +21,7 @@ def hub_flank(spec: Any, flank: str, z_mm: ArrayLike, r_mm: ArrayLike
     0's ``flank`` (``cw``, ``ccw``) at axial positions ``z_mm`` and radii ``r_mm`` in the
     hub frame: :func:`gearcoupling.geometry.hub_flank` of ``spec`` (a spec, template name
     or TOML path)."""
-    return geometry.hub_flank(as_spec(spec), flank, z_mm, r_mm)
+    return geometry_hub_flank(as_spec(spec), flank, z_mm, r_mm)
 
 
 def sleeve_flank(spec: Any, flank: str, z_mm: ArrayLike, r_mm: ArrayLike
@@ -28,7 +30,7 @@ def sleeve_flank(spec: Any, flank: str, z_mm: ArrayLike, r_mm: ArrayLike
     0's flank facing hub tooth 0's ``flank``, at ``z_mm`` and ``r_mm`` in the sleeve frame:
     :func:`gearcoupling.geometry.sleeve_flank` of ``spec`` (a spec, template name or TOML
     path)."""
-    return geometry.sleeve_flank(as_spec(spec), flank, z_mm, r_mm)
+    return geometry_sleeve_flank(as_spec(spec), flank, z_mm, r_mm)
 
 
 def transverse_section(spec: Any, part: str, z_mm: float, tolerance_mm: float
@@ -37,4 +39,4 @@ def transverse_section(spec: Any, part: str, z_mm: float, tolerance_mm: float
     (``hub``, ``sleeve``) at ``z_mm`` within ``tolerance_mm`` of the exact curves:
     :func:`gearcoupling.geometry.transverse_section` of ``spec`` (a spec, template name or
     TOML path)."""
-    return geometry.transverse_section(as_spec(spec), part, z_mm, tolerance_mm)
+    return geometry_transverse_section(as_spec(spec), part, z_mm, tolerance_mm)
