@@ -11,7 +11,7 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from itertools import pairwise
-from typing import TYPE_CHECKING, Any
+from typing import Any, ClassVar, Protocol
 
 import numpy as np
 
@@ -25,9 +25,6 @@ from ..geometry import (
     vari_crown_path,
 )
 from .values import _check, _positive
-
-if TYPE_CHECKING:
-    from .model import Crowning
 
 #: steepest feed-path tangent allowed at the face ends (degrees)
 MAX_END_TANGENT_DEG = 45.0
@@ -47,11 +44,42 @@ CROWN_FIELDS: dict[str, tuple[str, Any, int]] = {
 }
 
 
+class CrownValues(Protocol):
+    """The values of a ``[hub.crowning]`` table as its kind reads them (mm, 1/mm):
+    :class:`gearcoupling.spec.Crowning` (which validates itself through this table)."""
+
+    PATH: ClassVar[str]
+
+    @property
+    def kind(self) -> str: ...
+
+    @property
+    def radius(self) -> float: ...
+
+    @property
+    def end_radius(self) -> float: ...
+
+    @property
+    def start_z(self) -> float: ...
+
+    @property
+    def table_s(self) -> tuple[float, ...]: ...
+
+    @property
+    def table_kappa(self) -> tuple[float, ...]: ...
+
+    @property
+    def table_z(self) -> tuple[float, ...]: ...
+
+    @property
+    def table_drop(self) -> tuple[float, ...]: ...
+
+
 def _nothing(*_: Any) -> None:
     """No check: the kind has nothing to check at this stage."""
 
 
-def _radius_key(crowning: Crowning, sharpest: bool) -> str:
+def _radius_key(crowning: CrownValues, sharpest: bool) -> str:
     return "radius"
 
 
@@ -83,21 +111,21 @@ class CrownKind:
     """
 
     name: str
-    path: Callable[[Crowning, float, float], FeedPath]
+    path: Callable[[CrownValues, float, float], FeedPath]
     what: str
     needs: tuple[str, ...] = ()
-    check: Callable[[Crowning], None] = _nothing
-    check_face: Callable[[Crowning, float], None] = _nothing
-    check_path: Callable[[Crowning, FeedPath, float], None] = _nothing
-    curvature_key: Callable[[Crowning, bool], str] = _radius_key
+    check: Callable[[CrownValues], None] = _nothing
+    check_face: Callable[[CrownValues, float], None] = _nothing
+    check_path: Callable[[CrownValues, FeedPath, float], None] = _nothing
+    curvature_key: Callable[[CrownValues, bool], str] = _radius_key
 
 
 # ----------------------------------------------------------------------- vari_crown
-def _vari_crown_path(c: Crowning, R: float, face_width: float) -> FeedPath:
+def _vari_crown_path(c: CrownValues, R: float, face_width: float) -> FeedPath:
     return vari_crown_path(R, c.radius, c.end_radius, face_width, c.kind)
 
 
-def _check_vari_crown(c: Crowning) -> None:
+def _check_vari_crown(c: CrownValues) -> None:
     p = c.PATH
     _positive(f"{p}.radius", c.radius)
     _check(c.radius < c.end_radius, f"{p}.end_radius", c.end_radius,
@@ -106,11 +134,11 @@ def _check_vari_crown(c: Crowning) -> None:
 
 
 # ----------------------------------------------------------------------- end_round
-def _end_round_path(c: Crowning, R: float, face_width: float) -> FeedPath:
+def _end_round_path(c: CrownValues, R: float, face_width: float) -> FeedPath:
     return end_round_path(R, c.radius, c.end_radius, c.start_z, c.kind)
 
 
-def _check_end_round(c: Crowning) -> None:
+def _check_end_round(c: CrownValues) -> None:
     p = c.PATH
     _positive(f"{p}.end_radius", c.end_radius)
     _check(c.end_radius < c.radius, f"{p}.end_radius", c.end_radius,
@@ -121,23 +149,23 @@ def _check_end_round(c: Crowning) -> None:
            c.start_z, f"must be a length from 0 to radius * sin 45° = {limit:.6g} mm")
 
 
-def _check_end_round_face(c: Crowning, half_face: float) -> None:
+def _check_end_round_face(c: CrownValues, half_face: float) -> None:
     _check(c.start_z < half_face, f"{c.PATH}.start_z", c.start_z,
            f"must lie inside the half face width {half_face:.6g} mm")
 
 
-def _end_round_key(c: Crowning, sharpest: bool) -> str:
+def _end_round_key(c: CrownValues, sharpest: bool) -> str:
     return "end_radius" if sharpest else "radius"
 
 
 # ----------------------------------------------------------------------- table
-def _table_path(c: Crowning, R: float, face_width: float) -> FeedPath:
+def _table_path(c: CrownValues, R: float, face_width: float) -> FeedPath:
     if c.table_s:
         return curvature_table_path(R, c.table_s, c.table_kappa, c.kind)
     return drop_table_path(R, c.table_z, c.table_drop, c.kind)
 
 
-def _check_table(c: Crowning) -> None:
+def _check_table(c: CrownValues) -> None:
     p = c.PATH
     by_s = bool(c.table_s or c.table_kappa)
     by_z = bool(c.table_z or c.table_drop)
@@ -159,7 +187,7 @@ def _check_table(c: Crowning) -> None:
         _check(all(k >= 0 for k in ys), f"{p}.kappa", ys, "curvatures must be >= 0 (1/mm)")
 
 
-def _check_table_path(c: Crowning, path: FeedPath, half_face: float) -> None:
+def _check_table_path(c: CrownValues, path: FeedPath, half_face: float) -> None:
     """A table crown is validated along its splined path, not only at its samples: the
     samples must reach the face end and the drop must stay >= 0 between them."""
     key = _table_key(c, True)
@@ -178,7 +206,7 @@ def _check_table_path(c: Crowning, path: FeedPath, half_face: float) -> None:
                         "be thicker than at the midplane; add samples or smooth the table")
 
 
-def _table_key(c: Crowning, sharpest: bool) -> str:
+def _table_key(c: CrownValues, sharpest: bool) -> str:
     return "kappa" if c.table_s else "drop"
 
 
