@@ -73,11 +73,12 @@ def _inspection(t: Table) -> InspectionLimits:
     return limits
 
 
-#: the self-contained top-level tables, in reading order (after tooth, hub and sleeve)
+#: the self-contained top-level tables, in the order they are read and written (after
+#: tooth, hub and sleeve)
 TABLES: tuple[SpecTable, ...] = (
+    SpecTable("inspection", _inspection, keys=INSPECTION_LIMITS),
     SpecTable("load", parse_load, without_none),
     SpecTable("material", parse_material, material_table),
-    SpecTable("inspection", _inspection, keys=INSPECTION_LIMITS),
 )
 
 # every key a spec file may hold, per table (unknown keys are reported before anything else)
