@@ -14,11 +14,23 @@ from .files import as_path, not_a_file, output_folder, require_file, writable_fi
 from .inp import inp_element_lines, inp_id_lines, inp_node_lines, inp_number
 from .json import NonFiniteError, plain, write_json
 from .resources import bundled_dir, bundled_names, resolve_bundled
-from .toml import Table, line_of, parse_override, read_toml, set_dotted, unknown_key
+from .toml import (
+    MAX_NESTING,
+    Table,
+    array_lengths,
+    line_of,
+    parse_override,
+    parse_toml,
+    read_toml,
+    set_dotted,
+    unknown_key,
+)
 
 __all__ = [
+    "MAX_NESTING",
     "NonFiniteError",
     "Table",
+    "array_lengths",
     "as_path",
     "atomic_path",
     "bundled_dir",
@@ -32,6 +44,7 @@ __all__ = [
     "not_a_file",
     "output_folder",
     "parse_override",
+    "parse_toml",
     "plain",
     "read_toml",
     "remove_stale_temporaries",
