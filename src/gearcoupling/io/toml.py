@@ -87,9 +87,9 @@ def check_nesting_text(text: str, where: str) -> None:
     line where text has more than one)."""
     code = np.frombuffer(_plain(text).encode(), dtype=np.uint8)
     lines = "\n" in text.rstrip("\n")
-    dots, at = _longest_key(code)
+    dots, key_at = _longest_key(code)
     if dots > MAX_NESTING:
-        raise _too_deep(where, _line(code, at) if lines else None, f"{dots + 1} or more")
+        raise _too_deep(where, _line(code, key_at) if lines else None, f"{dots + 1} or more")
     at, depth = _brackets(code)
     if depth.size and depth.max() + 1 > MAX_NESTING:  # and the root table
         first = int(at[np.argmax(depth + 1 > MAX_NESTING)])
