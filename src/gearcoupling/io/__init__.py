@@ -1,6 +1,6 @@
-"""Files in and out: atomic writes, output folders locked one command at a time, JSON with one rule for non-finite numbers, CSV, TOML
-read strictly with file:line errors, CalculiX/Abaqus INP numbers and the bundled
-resources (templates, studies)."""
+"""Files in and out: atomic writes, output folders held by one command at a time, JSON
+with one rule for non-finite numbers, CSV, TOML read strictly with file:line errors,
+CalculiX/Abaqus INP numbers and the bundled resources (templates, studies)."""
 
 from .atomic import (
     atomic_path,
