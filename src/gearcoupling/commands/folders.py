@@ -56,10 +56,10 @@ def claim(out: str | os.PathLike, settings: Any = None, files: Iterable[str] = (
     folder = Path(out)
     files, folders = tuple(files), tuple(folders)
     key = None if settings is None else settings_key(settings)
+    writable_targets(folder, files, folders, field)  # refused: nothing made in the folder
     if folder not in HELD:
         since = time.time_ns() - 50_000_000  # file times come from a coarser clock
         HELD[folder] = _Held(lock_folder(folder, field), key, folders, since)
-    writable_targets(folder, files, folders, field)
     if key is not None:
         _note_earlier(folder, earlier_files(folder, key, [folder / f for f in files]))
     return folder

@@ -26,8 +26,9 @@ from .files import writable_file
 
 #: how every temporary name of this module starts
 PREFIX = ".gctmp-"
-_TEMP_NAME = re.compile(r"^\.gctmp-(?P<pid>[1-9][0-9]{0,9})-(?P<mark>[0-9a-f]{8})-"
-                        r"[a-z0-9_]{8}(?:\.[^./]{1,16})?$")
+_SUFFIX = r"\.[A-Za-z0-9_]{1,16}"
+_TEMP_NAME = re.compile(r"\.gctmp-(?P<pid>[1-9][0-9]{0,9})-(?P<mark>[0-9a-f]{8})-"
+                        rf"[a-z0-9_]{{8}}{_SUFFIX}")
 
 
 def temporary_mark(pid: int | None = None) -> str:
@@ -46,7 +47,7 @@ def _suffix(target: Path) -> str:
     """The target's suffix when it is short and plain (a writer may pick its format by
     it), else ``.tmp``."""
     suffix = target.suffix
-    return suffix if re.fullmatch(r"\.[^./]{1,16}", suffix) else ".tmp"
+    return suffix if re.fullmatch(_SUFFIX, suffix) else ".tmp"
 
 
 def _about_temporary(err: OSError) -> bool:
@@ -130,7 +131,7 @@ def is_stale_temporary(path: str | os.PathLike) -> bool:
     it, it is a regular file or a folder (not a link) owned by this user, and no process
     of that pid exists."""
     p = Path(path)
-    match = _TEMP_NAME.match(p.name)
+    match = _TEMP_NAME.fullmatch(p.name)
     if not match or match["mark"] != temporary_mark(int(match["pid"])):
         return False
     try:
