@@ -1,6 +1,7 @@
 """Files in and out: atomic writes, output folders held by one command at a time, JSON
 with one rule for non-finite numbers, CSV, TOML read strictly with file:line errors,
-CalculiX/Abaqus INP numbers and the bundled resources (templates, studies)."""
+CalculiX/Abaqus INP numbers, the bundled resources (templates, studies), and text from a
+spec made safe for each target."""
 
 from .atomic import (
     atomic_path,
@@ -26,6 +27,19 @@ from .inp import inp_element_lines, inp_id_lines, inp_node_lines, inp_number
 from .json import NonFiniteError, plain, write_json
 from .lock import FolderLock, earlier_files, lock_folder, record_files, settings_key
 from .resources import bundled_dir, bundled_names, resolve_bundled
+from .text import (
+    csv_cell,
+    csv_comment,
+    escaped,
+    gcode_comment,
+    inp_comment,
+    markdown_text,
+    plot_text,
+    step_text,
+    terminal_text,
+    vtk_header,
+    xml_text,
+)
 from .toml import Table, line_of, parse_override, read_toml, set_dotted, unknown_key
 
 __all__ = [
@@ -36,8 +50,13 @@ __all__ = [
     "atomic_path",
     "bundled_dir",
     "bundled_names",
+    "csv_cell",
+    "csv_comment",
     "default_output_dir",
     "earlier_files",
+    "escaped",
+    "gcode_comment",
+    "inp_comment",
     "inp_element_lines",
     "inp_id_lines",
     "inp_node_lines",
@@ -45,12 +64,14 @@ __all__ = [
     "is_stale_temporary",
     "line_of",
     "lock_folder",
+    "markdown_text",
     "move_into",
     "not_a_file",
     "output_folder",
     "own_folder",
     "parse_override",
     "plain",
+    "plot_text",
     "read_toml",
     "record_files",
     "remove_stale_temporaries",
@@ -59,8 +80,11 @@ __all__ = [
     "safe_name",
     "set_dotted",
     "settings_key",
+    "step_text",
     "temporary_folder",
+    "terminal_text",
     "unknown_key",
+    "vtk_header",
     "writable_file",
     "writable_targets",
     "write_csv_columns",
@@ -68,4 +92,5 @@ __all__ = [
     "write_csv_rows",
     "write_json",
     "write_text",
+    "xml_text",
 ]
