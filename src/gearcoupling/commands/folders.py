@@ -27,6 +27,7 @@ from ..io import (
     lock_folder,
     record_files,
     settings_key,
+    terminal_text,
     writable_targets,
 )
 
@@ -70,9 +71,9 @@ def _note_earlier(folder: Path, names: list[str]) -> None:
         return
     more = len(names) - LISTED
     listing = ", ".join(names[:LISTED]) + (f" and {more} more" if more > 0 else "")
-    print(f"gearcoupling: note: {folder} holds {len(names)} file"
+    print(terminal_text(f"gearcoupling: note: {folder} holds {len(names)} file"
           f"{'' if len(names) == 1 else 's'} made earlier with other settings, left as "
-          f"they are: {listing} (give another -o folder to keep runs apart)",
+          f"they are: {listing} (give another -o folder to keep runs apart)"),
           file=sys.stderr)
 
 
