@@ -6,6 +6,7 @@ import pytest
 
 from gearcoupling.cli import main
 from gearcoupling.io.lock import RECORD_NAME
+from gearcoupling.outputs.pipeline import run_files
 
 
 def test_spec_json_has_derived_values(capsys):
@@ -56,6 +57,7 @@ def test_sections_and_run_write_files(tmp_path, capsys):
             "sweep_summary.json", "interference.json", "viewer.html"} <= written
     # no temporary files left behind: the one hidden file is the record of the settings
     assert [n for n in written if n.startswith(".")] == [RECORD_NAME]
+    assert written - {RECORD_NAME} <= set(run_files())  # each checked before any work
 
 
 def test_run_only_and_skip_choose_steps(tmp_path):

@@ -422,6 +422,21 @@ def test_a_killed_commands_lock_holds_nobody_back(tmp_path, capsys):
     assert not (tmp_path / LOCK_NAME).exists()
 
 
+def test_every_command_that_claims_a_folder_lets_it_go():
+    """A command that locks its folder (``claim``) is wrapped by ``holds_folders``, which
+    releases it: else a second command in the same process would find it held."""
+    import inspect
+
+    from gearcoupling.commands import NAMES, command_module
+    from gearcoupling.commands.folders import holds_folders
+
+    wrapper = holds_folders(lambda args: 0).__code__
+    claiming = [n for n in NAMES if "claim(" in inspect.getsource(command_module(n))]
+    assert len(claiming) >= 16, claiming
+    for name in claiming:
+        assert command_module(name).run.__code__ is wrapper, name
+
+
 def test_files_of_other_settings_are_named_and_kept(tmp_path, capsys):
     """Two runs with different ``--set`` into one folder: the second names the file of the
     first that it does not replace, and leaves it; a run with the first settings again

@@ -131,7 +131,8 @@ def _read_record(folder: Path) -> dict[str, dict[str, Any]]:
     files = data.get("files")
     if not isinstance(files, dict):
         return {}
-    return {k: v for k, v in files.items() if isinstance(k, str) and isinstance(v, dict)}
+    return {k: v for k, v in files.items() if isinstance(k, str) and isinstance(v, dict)
+            and not os.path.isabs(k) and ".." not in Path(k).parts}
 
 
 def _unchanged(folder: Path, name: str, entry: dict[str, Any]) -> bool:
