@@ -121,9 +121,9 @@ def _read_only(p: Path) -> bool:
 def own_folder(path: object, field: str = "path") -> Path:
     """``path`` when gearcoupling may make or fill it as a folder of its own files (a
     solver's ``fea_contact/``, a report's ``report-data/``): nothing there yet, or a folder
-    holding regular files only. A symbolic link there (the files would go where it points),
-    a file, a device or a folder that holds anything but regular files is refused with
-    :class:`ArgumentError` naming ``field``."""
+    holding writable regular files only. A symbolic link there (the files would go where
+    it points), a file, a device or a folder that holds anything else (a folder, a device,
+    a read-only file) is refused with :class:`ArgumentError` naming ``field``."""
     p = as_path(path, field)
     shown = os.fspath(path)  # type: ignore[call-overload]
     if p.is_symlink():
@@ -134,7 +134,7 @@ def own_folder(path: object, field: str = "path") -> Path:
         raise ArgumentError(field, shown, f"{_not(kind, 'a folder')}: gearcoupling makes a "
                             "folder of its own files there; remove it")
     for entry in _entries(p, depth=1) if kind else []:
-        inner = _existing_kind(entry)
+        inner = _existing_kind(entry) or ("a read-only file" if _read_only(entry) else None)
         if inner is not None:
             raise ArgumentError(field, shown, f"holds {entry.name}, {inner}, where "
                                 "gearcoupling writes its own files: remove it")
