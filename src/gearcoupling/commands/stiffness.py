@@ -2,8 +2,10 @@
 
 Writes ``stiffness.csv`` (one row per load point: hub, sleeve and pair compliance, pair
 stiffness, fillet stress per N) and ``stiffness.json`` (the table, the pitch-point figures
-and the set-up: supports, sizes, times). The table is cached per spec hash (see
-:func:`gearcoupling.fea.tooth_compliance_table`).
+and the set-up: supports, sizes, times). The table is cached per spec hash and settings,
+used only when its key and checksum match (see
+:func:`gearcoupling.fea.tooth_compliance_table`); the cache folder is checked before the FE
+runs.
 """
 
 from __future__ import annotations
@@ -17,12 +19,13 @@ from ..errors import ArgumentError
 from ..fea import (
     ccx_path,
     check_size,
+    fe_cache_folder,
     fillet_notes,
     gmsh_module,
     pitch_point_compliance,
     tooth_compliance_table,
 )
-from ..io import output_folder, write_json, write_text
+from ..io import write_json, write_text
 from .common import (
     MAX_TEETH,
     add_spec_arguments,
@@ -79,8 +82,9 @@ def run(args) -> int:
     if args.sector < 1 or args.sector % 2 == 0 or args.sector > spec.tooth.teeth:
         raise ArgumentError("--sector", args.sector, f"an odd number of teeth from 1 to "
                         f"{spec.tooth.teeth} (the middle tooth is loaded)")
-    if args.cache is not None:  # before the FE runs, which write the cache at the end
-        output_folder(args.cache, "--cache")
+    # before the FE runs, which write the cache at the end: --cache, GEARCOUPLING_CACHE or
+    # the user's cache folder
+    fe_cache_folder(args.cache, "--cache")
     gmsh_module()
     ccx_path()
     out = claim(output_dir(args, spec), spec.to_dict(), FILES)
