@@ -21,7 +21,7 @@ from typing import Any
 from ..arguments import count, flag, real
 from ..errors import ArgumentError, BackendError
 from ..forked import held_signals
-from ..io import atomic_path, output_folder, write_json
+from ..io import atomic_path, output_folder, remove_stale_temporaries, write_json
 from ..tables import import_pandas
 from .evaluate import evaluate_chunk
 from .file import OUTPUTS, TOLERANCE_OUTPUTS, Study, sample_count, samples
@@ -113,7 +113,8 @@ def _manifest(study: Study, out: Path, fresh: bool) -> None:
     data = {"study": study.name, "source": study.source, "digest": study.digest(),
             "samples": sample_count(study), "chunk": study.chunk}
     if (out / "parts").is_dir():  # temporaries of a killed run; with --fresh every part
-        for part in (out / "parts").glob("*chunk-*.parquet" if fresh else ".chunk-*"):
+        remove_stale_temporaries(out / "parts")
+        for part in (out / "parts").glob("chunk-[0-9]*.parquet") if fresh else ():
             part.unlink()
     write_json(path, data)
 
