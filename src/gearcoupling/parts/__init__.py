@@ -49,7 +49,9 @@ def default_tolerance(spec: CouplingSpec) -> float:
 
 
 def check_tolerance(spec: CouplingSpec, tolerance_mm) -> float:
-    """The tolerance as a float, or :class:`SpecError` (a ``ValueError``) naming the range."""
+    """The tolerance as a float (default :func:`default_tolerance`), or an
+    :class:`~gearcoupling.errors.ArgumentError` naming the range
+    (:data:`TOLERANCE_RANGE_MODULES`)."""
     tol = default_tolerance(spec) if tolerance_mm is None else tolerance_mm
     if not is_real(tol):
         raise ArgumentError("tolerance_mm", tolerance_mm, "must be a number (mm)")
@@ -84,6 +86,13 @@ def build_part(spec: CouplingSpec, part: str, *, tolerance_mm: float | None = No
         Watertight, outward wound; ``face_attributes["kind"]`` (int16 codes into
         :data:`SURFACE_KINDS`) and ``face_attributes["tooth"]`` (int32);
         ``metadata`` holds part, tolerance, spec name and build time.
+
+    Raises
+    ------
+    ArgumentError
+        On ``tolerance_mm`` before anything is built, where the part's memory
+        (:func:`part_size`) exceeds the budget of :mod:`gearcoupling.parts.size`; the
+        message names a tolerance that fits.
     """
     import trimesh
 
