@@ -40,12 +40,24 @@ from .text import (
     vtk_header,
     xml_text,
 )
-from .toml import Table, line_of, parse_override, read_toml, set_dotted, unknown_key
+from .toml import (
+    MAX_NESTING,
+    Table,
+    array_lengths,
+    line_of,
+    parse_override,
+    parse_toml,
+    read_toml,
+    set_dotted,
+    unknown_key,
+)
 
 __all__ = [
+    "MAX_NESTING",
     "FolderLock",
     "NonFiniteError",
     "Table",
+    "array_lengths",
     "as_path",
     "atomic_path",
     "bundled_dir",
@@ -70,6 +82,7 @@ __all__ = [
     "output_folder",
     "own_folder",
     "parse_override",
+    "parse_toml",
     "plain",
     "plot_text",
     "read_toml",
