@@ -43,11 +43,8 @@ from .fea import tooth_compliance_table as tooth_compliance_table
 from .fea import write_mesh as write_mesh
 from .geometry import FeedPath as FeedPath
 from .geometry import feed_path as feed_path
-from .geometry import hub_flank as hub_flank
 from .geometry import inv as inv
 from .geometry import inv_inverse as inv_inverse
-from .geometry import sleeve_flank as sleeve_flank
-from .geometry import transverse_section as transverse_section
 from .hob import HobProgram as HobProgram
 from .hob import MeasuringCharts as MeasuringCharts
 from .hob import hob_program as hob_program
@@ -81,9 +78,12 @@ from .reporting import report as report
 from .rotordynamics import CouplingData as CouplingData
 from .rotordynamics import coupling_data as coupling_data
 from .spec import CouplingSpec as CouplingSpec
+from .spec import hub_flank as hub_flank
 from .spec import load_spec as load_spec
+from .spec import sleeve_flank as sleeve_flank
 from .spec import spec_from_dict as spec_from_dict
 from .spec import template_names as template_names
+from .spec import transverse_section as transverse_section
 from .study import Study as Study
 from .study import StudyRun as StudyRun
 from .study import load_study as load_study

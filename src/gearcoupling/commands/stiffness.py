@@ -35,6 +35,7 @@ from .common import (
     progress,
     spec_from_args,
 )
+from .folders import claim, holds_folders
 
 
 def register(sub) -> None:
@@ -55,6 +56,9 @@ def register(sub) -> None:
     p.set_defaults(func=run)
 
 
+FILES = ("stiffness.csv", "stiffness.json")
+
+
 def write_table(table, out: Path) -> list[Path]:
     """``stiffness.csv`` and ``stiffness.json`` of a compliance table."""
     rows = table.rows()
@@ -62,12 +66,13 @@ def write_table(table, out: Path) -> list[Path]:
     writer = csv.DictWriter(buf, fieldnames=list(rows[0]))
     writer.writeheader()
     writer.writerows({k: f"{v:.6g}" for k, v in row.items()} for row in rows)
-    csv_path = write_text(out / "stiffness.csv", buf.getvalue())
+    csv_path = write_text(out / FILES[0], buf.getvalue())
     summary = pitch_point_compliance(table)
-    json_path = write_json(out / "stiffness.json", {"pitch_point": summary, **table.to_dict()})
+    json_path = write_json(out / FILES[1], {"pitch_point": summary, **table.to_dict()})
     return [csv_path, json_path]
 
 
+@holds_folders
 def run(args) -> int:
     spec = spec_from_args(args)
     for part in ("hub", "sleeve"):
@@ -82,7 +87,7 @@ def run(args) -> int:
     fe_cache_folder(args.cache, "--cache")
     gmsh_module()
     ccx_path()
-    out = output_dir(args, spec)
+    out = claim(output_dir(args, spec), spec.to_dict(), FILES)
     with progress(f"{spec.name} FE stiffness", 4) as update:
         table = tooth_compliance_table(spec, size_mm=args.size, sector=args.sector,
                                        nz=args.nz, nr=args.nr, cache=args.cache,
