@@ -19,6 +19,7 @@ HEAVY = ("trimesh", "manifold3d", "viser", "OCP", "meshio", "matplotlib", "dask"
     "gearcoupling.inspection",
     "gearcoupling.study",
     "gearcoupling.rotordynamics",
+    "gearcoupling.coupling",
 ])
 def test_kernels_import_no_heavy_backend(module):
     code = (f"import sys, {module}; "
@@ -70,6 +71,8 @@ LAYERS = {
                "clearance", "interference", "loading", "inspection"},
     "rotordynamics": {"io", "errors", "forked", "geometry", "spec", "plots", "parts",
                       "clearance", "loading", "tables"},
+    "coupling": {"io", "errors", "forked", "geometry", "spec", "plots", "parts", "export",
+                 "clearance", "interference", "loading", "rotordynamics", "tables"},
 }
 # the argument checks (numbers, counts, torques, documented maxima) sit beside the errors,
 # the numeric guards (numpy only) below everything
