@@ -39,13 +39,13 @@ from __future__ import annotations
 
 import math
 
-import numba
 import numpy as np
 from numba.extending import intrinsic
 
+from ..io.numba_cache import njit
 from ..numeric import TINY
 
-_jit = numba.njit(cache=True, nogil=True, error_model="numpy", fastmath={"contract"})
+_jit = njit(nogil=True, error_model="numpy", fastmath={"contract"})  # cached, verified
 
 # tab: constants (kernel._compiled_arrays), then the edges and the plane matrices
 CI, SI, RB, C0, RFIL, RHO, CN, GC, CX, CY, RFORM, SHF, HF, RPITCH, TOL, TIPR, SPHERE, \
@@ -126,7 +126,7 @@ def _lazy(tab, ws, g):
     return _entry(tab, int(ws[GRID]) + MAX_DYN + 1) + g * LSTRIDE
 
 
-@numba.njit(cache=True, nogil=True, error_model="numpy", fastmath={"contract", "reassoc"})
+@njit(nogil=True, error_model="numpy", fastmath={"contract", "reassoc"})
 def plane_at(tab, ws, po, z, deriv):
     """Put the plane ``z`` at ``ws[po:]``: Chebyshev series in ``z`` (the sums
     reassociated, so vectorised: the same values to rounding); with ``deriv`` also their
