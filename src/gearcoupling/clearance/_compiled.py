@@ -147,12 +147,7 @@ def plane_at(tab, ws, po, z, deriv):
             ws[TZ + half + m] = th2 * ws[TZ + m] - ws[TZ + half - m]
         half *= 2
     m0 = EDGES + pieces + 1 + k * (nt + 1) * nz
-    for i in range(nt + 1):
-        mi = m0 + i * nz
-        acc = 0.0
-        for j in range(nz):
-            acc += tab[mi + j] * ws[TZ + j]
-        ws[po + i] = acc
+    _sums(tab, ws, m0, TZ, po)
     r_form = ws[po + nt]
     dtip = 0.0
     if tab[SPHERE] != 0.0:
@@ -173,13 +168,21 @@ def plane_at(tab, ws, po, z, deriv):
     for j in range(1, nz):
         ws[TZD + j] = j * u0 * scale
         u0, u1 = u1, 2.0 * x * u1 - u0
+    _sums(tab, ws, m0, TZD, pd)
+    ws[pd + nt + 1] = dtip - ws[pd + nt]
+
+
+@njit(nogil=True, error_model="numpy", fastmath={"contract", "reassoc"})
+def _sums(tab, ws, m0, tz, out):
+    """``ws[out + i] = sum_j tab[m0 + i nz + j] ws[tz + j]`` for the ``nt + 1`` rows of a
+    piece's plane matrix (the sums reassociated, so vectorised)."""
+    nt, nz = int(tab[NT]), int(tab[NZ])
     for i in range(nt + 1):
         mi = m0 + i * nz
         acc = 0.0
         for j in range(nz):
-            acc += tab[mi + j] * ws[TZD + j]
-        ws[pd + i] = acc
-    ws[pd + nt + 1] = dtip - ws[pd + nt]
+            acc += tab[mi + j] * ws[tz + j]
+        ws[out + i] = acc
 
 
 @_jit
