@@ -227,6 +227,8 @@ def _case_spec(name: str):
     ("m4.6-N293", 6.0, 0.5),  # the followed minimum merges: the next is far away
     ("above-fillet", 6.0, 2.5), ("straight-120", 6.0, 2.5),
     ("random3.3", 1.0, 1.0),  # a minimum at a table piece edge with a twin across it
+    ("random7.2", 1.0, 1.0),  # minima a fraction of a millimetre apart where the sleeve
+    ("random11.6", 1.0, 1.0),  # face cuts the pitch line (a face 1 m wide, 4 mm binding)
     ("random14.0", 1.0, 2.5), ("random14.5", 6.0, 2.5),
 ])
 def test_followed_minima_equal_fresh_searches(name, deg, step):
@@ -237,7 +239,8 @@ def test_followed_minima_equal_fresh_searches(name, deg, step):
     measures, over a stretch of the turn; on cases where a second minimum overtakes the
     followed one, where the followed one ends, and at a table piece edge."""
     spec = _case_spec(name)
-    start = {"m3.6-N232": 60.37, "m4.6-N293": 60.37, "random3.3": 95.37}.get(name, 0.37)
+    start = {"m3.6-N232": 60.37, "m4.6-N293": 60.37, "random3.3": 95.37, "random7.2": 76.37,
+             "random11.6": 250.37}.get(name, 0.37)
     theta_deg = start + step * np.arange(min(int(120 / step), 60))
     seq = _followed(spec, deg, theta_deg)
     for i, th in enumerate(theta_deg):

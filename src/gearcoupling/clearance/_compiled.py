@@ -75,15 +75,19 @@ COUNTS = MODE + 8  # counts over a call: rows searched afresh, minima lost, plan
 AFRESH, LOST, PLANES, GUARD, GUARD_SEARCH, TRACKED = range(6)
 GT, CT = COUNTS + 8, COUNTS + 16  # the 8 rows' slopes along t in a plane: of the gap and
 # of the crossing's condition (rq r_form at the sleeve tip edge, zq at a sleeve face end)
-ENTRIES = COUNTS + 24  # the planes of this turning angle (_entry), the coarse ones first
+TAN_LO, ATAN_LO, TAN_BETA, MARGIN = COUNTS + 24, COUNTS + 25, COUNTS + 26, COUNTS + 27  # of
+# the rate bounds (:func:`keep_coarse`): the sleeve's pressure angle at its tip edge, the
+# hub profile's largest angle to the radial, the window with the points' polar angles
+ENTRIES = COUNTS + 28  # the planes of this turning angle (_entry), the coarse ones first
 EZ, VALID, EV, ET, EK, ED, EGT, ECT, EPL = 0, 1, 9, 17, 25, 33, 41, 49, 57  # an entry: z,
 # which rows are known, their value, t, kind, slope d/dz and slopes along t, the plane
 L_TH, L_V, L_D, L_RHO = 0, 8, 16, 24  # a coarse plane's last values (:func:`keep_coarse`):
 # per row the turning angle, value, bound on its rate and the angle span the bound holds
 L_FACE = 32  # whether the plane stays within the sleeve face (whole flank, pitch point)
 L_RMAX = 34  # a bound on the sleeve radius of its points
-LSTRIDE = 35
-MAX_DYN = 64  # planes kept beyond the coarse ones (then one more, kept for nothing)
+L_TAN = 35  # tan and the angle of the sleeve's largest pressure angle its points meet
+LSTRIDE = 37
+MAX_DYN = 256  # planes kept beyond the coarse ones (then one more, kept for nothing)
 D_SLOPE = 1e-6  # shortest interval searched inside, / 8
 REL = 1e-11  # crossings, relative to the target
 MAX_TURN = 0.1  # turning angle step (rad) beyond which a row is searched afresh
@@ -194,37 +198,30 @@ def with_slopes(tab, ws, po):
 
 
 @_jit
-def series(tab, ws, b, s):
-    """``y`` and ``dy/ds`` of the series in ``s = 2 t - 1`` with the ``nt`` coefficients
-    at ``ws[b:]``: by Horner's rule (power form), else by the Chebyshev recurrences of
-    ``T_k(s)`` and ``T_k'(s)``."""
+def point(tab, ws, po, ct, st, t):
+    """The flank point at height ``t`` in the sleeve frame and its rate along ``t``:
+    ``(qx, qy, zq, dqx, dqy, dzq)``. ``y`` by Horner's rule in ``s = 2 t - 1`` (power
+    form), else by the Chebyshev recurrences of ``T_k(s)`` and ``T_k'(s)``."""
     nt = int(tab[NT])
+    s = 2.0 * t - 1.0
     if tab[POWER] != 0.0:  # even and odd powers apart: two chains in s^2 at once
         u = s * s
         ke, ko = (nt - 1, nt - 2) if nt % 2 else (nt - 2, nt - 1)
-        e, de, o, do = ws[b + ke], 0.0, ws[b + ko], 0.0
+        e, de, o, do = ws[po + ke], 0.0, ws[po + ko], 0.0
         for k in range(ke - 2, -1, -2):
             de = de * u + e
-            e = e * u + ws[b + k]
+            e = e * u + ws[po + k]
         for k in range(ko - 2, 0, -2):
             do = do * u + o
-            o = o * u + ws[b + k]
-        return e + s * o, o + 2.0 * s * (de + s * do)
-    t0, t1, d0, d1 = 1.0, s, 0.0, 1.0
-    y, dy = ws[b] + ws[b + 1] * s, ws[b + 1]
-    for k in range(2, nt):
-        t0, t1, d0, d1 = t1, 2.0 * s * t1 - t0, d1, 2.0 * t1 + 2.0 * s * d1 - d0
-        y += ws[b + k] * t1
-        dy += ws[b + k] * d1
-    return y, dy
-
-
-@_jit
-def point(tab, ws, po, ct, st, t):
-    """The flank point at height ``t`` in the sleeve frame and its rate along ``t``:
-    ``(qx, qy, zq, dqx, dqy, dzq)``."""
-    nt = int(tab[NT])
-    y, dy = series(tab, ws, po, 2.0 * t - 1.0)
+            o = o * u + ws[po + k]
+        y, dy = e + s * o, o + 2.0 * s * (de + s * do)
+    else:
+        t0, t1, d0, d1 = 1.0, s, 0.0, 1.0
+        y, dy = ws[po] + ws[po + 1] * s, ws[po + 1]
+        for k in range(2, nt):
+            t0, t1, d0, d1 = t1, 2.0 * s * t1 - t0, d1, 2.0 * t1 + 2.0 * s * d1 - d0
+            y += ws[po + k] * t1
+            dy += ws[po + k] * d1
     dy *= 2.0
     ci, si = tab[CI], tab[SI]
     span = ws[po + nt + 1]
@@ -240,12 +237,21 @@ def point(tab, ws, po, ct, st, t):
 @_jit
 def point_dz(tab, ws, po, ct, st, t):
     """:func:`point` with its rate along ``z`` at fixed ``t`` instead (the plane's
-    derivatives: :func:`with_slopes`)."""
+    derivatives: :func:`with_slopes`); ``y`` and ``dy/dz`` side by side by Horner's rule
+    (power form) or Clenshaw's recurrence (Chebyshev form)."""
     nt = int(tab[NT])
     pd = po + nt + 3
     s = 2.0 * t - 1.0
-    y = series(tab, ws, po, s)[0]
-    dy = series(tab, ws, pd, s)[0]
+    if tab[POWER] != 0.0:
+        y, dy = ws[po + nt - 1], ws[pd + nt - 1]
+        for k in range(nt - 2, -1, -1):
+            y, dy = y * s + ws[po + k], dy * s + ws[pd + k]
+    else:  # b_k = c_k + 2 s b_(k+1) - b_(k+2); the sum is c_0 + s b_1 - b_2
+        b1, b2, d1, d2 = 0.0, 0.0, 0.0, 0.0
+        for k in range(nt - 1, 0, -1):
+            b1, b2 = ws[po + k] + 2.0 * s * b1 - b2, b1
+            d1, d2 = ws[pd + k] + 2.0 * s * d1 - d2, d1
+        y, dy = ws[po] + s * b1 - b2, ws[pd] + s * d1 - d2
     ci, si = tab[CI], tab[SI]
     r = ws[po + nt] + t * ws[po + nt + 1]
     dr = ws[pd + nt] + t * ws[pd + nt + 1]
@@ -455,7 +461,10 @@ def over_t(tab, ws, po, ct, st, want0, want1):
                                        fa[2 + mi], fb[2 + mi])
                 ti = (root, ti[1]) if mi == 0 else (ti[0], root)
                 fi = (val, fi[1]) if mi == 0 else (fi[0], val)
-    c_lo, c_hi = crossing_slope(p_lo, k_lo), crossing_slope(p_hi, k_hi)
+    # the slopes along t of the ends' conditions: rq drq/dt at the sleeve tip edge, dzq/dt
+    # at a sleeve face end (the slope of a row's minimum along z needs them: slope())
+    c_lo = p_lo[0] * p_lo[3] + p_lo[1] * p_lo[4] if k_lo == SLEEVE_TIP else p_lo[5]
+    c_hi = p_hi[5]
     for mi in range(2):
         v, t, k, gt, cs = fa[mi], t_lo, k_lo, fa[2 + mi], c_lo
         if fb_min[mi] < v:
@@ -469,18 +478,6 @@ def over_t(tab, ws, po, ct, st, want0, want1):
         ws[GT + 4 + mi], ws[CT + 4 + mi] = fa[2 + mi], c_lo
         ws[V + 6 + mi], ws[T + 6 + mi], ws[K + 6 + mi] = fh[mi], t_hi, k_hi
         ws[GT + 6 + mi], ws[CT + 6 + mi] = fh[2 + mi], c_hi
-
-
-@_jit
-def crossing_slope(p, k):
-    """The slope along ``t`` of the condition of an end of kind ``k`` at the
-    :func:`point` ``p``: ``rq drq/dt`` at the sleeve tip edge, ``dzq/dt`` at a sleeve face
-    end (0 elsewhere)."""
-    if k == SLEEVE_TIP:
-        return p[0] * p[3] + p[1] * p[4]
-    if k == SLEEVE_FACE:
-        return p[5]
-    return 0.0
 
 
 @_jit
@@ -864,14 +861,11 @@ def keep_coarse(tab, ws, g, vm, ct, st):
     v_r = rt * (1.0 - ci)
     v_z = v_r + abs(z) * si
     rate = v_r + v_z
-    r_b, r_fil, r_form = tab[RB], tab[RFIL], tab[RFORM]
-    tan_lo = math.sqrt(max(r_form * r_form - r_b * r_b, 0.0)) / r_b
-    tan_hi = math.sqrt(max(max(r_fil, rt) ** 2 - r_b * r_b, 0.0)) / r_b
-    tan_beta = math.sqrt(max(tab[TIPR] ** 2 - r_b * r_b, 0.0)) / r_b + 0.05
-    margin = WINDOW + abs(tab[C0]) + 0.05  # the window and the points' polar angles
-    phi_lo, phi_hi = ws[THETA] - margin, ws[THETA] + margin
+    r_fil, r_form = tab[RFIL], tab[RFORM]
+    tan_hi, tan_beta = ws[lo + L_TAN], ws[TAN_BETA]
+    phi_lo, phi_hi = ws[THETA] - ws[MARGIN], ws[THETA] + ws[MARGIN]
     cos_m, sin_m = abs_cos_max(phi_lo, phi_hi), abs_sin_max(phi_lo, phi_hi)
-    sin_n = abs_sin_max(phi_lo + math.atan(tan_lo), phi_hi + math.atan(tan_hi))
+    sin_n = abs_sin_max(phi_lo + ws[ATAN_LO], phi_hi + ws[lo + L_TAN + 1])
     pitch = vm == 2 or vm == 3
     rq1 = -1.0  # the sleeve radius at the profile's top (the pitch point), where needed
     for q in range(8):
@@ -914,7 +908,12 @@ def init_coarse(tab, ws, zg):
     sleeve face (whole flank, pitch point) and a bound on its points' sleeve radius."""
     nt = int(tab[NT])
     ci, si, shf = tab[CI], tab[SI], tab[SHF]
+    r_b = tab[RB]
     ws[GRID] = zg.size
+    ws[TAN_LO] = math.sqrt(max(tab[RFORM] ** 2 - r_b * r_b, 0.0)) / r_b
+    ws[ATAN_LO] = math.atan(ws[TAN_LO])
+    ws[TAN_BETA] = math.sqrt(max(tab[TIPR] ** 2 - r_b * r_b, 0.0)) / r_b + 0.05
+    ws[MARGIN] = WINDOW + abs(tab[C0]) + 0.05  # the window and the points' polar angles
     for g in range(zg.size):
         eo = _entry(tab, g)
         ws[eo + EZ] = zg[g]
@@ -928,6 +927,8 @@ def init_coarse(tab, ws, zg):
         ws[lo + L_FACE + 1] = 1.0 if z * ci + tab[RPITCH] * si < shf else 0.0
         # |q| = |p| and |zq| >= |z| cos i - r sin i
         ws[lo + L_RMAX] = math.sqrt(rt * rt + z * z - max(z * ci - rt * si, 0.0) ** 2)
+        ws[lo + L_TAN] = math.sqrt(max(max(tab[RFIL], rt) ** 2 - r_b * r_b, 0.0)) / r_b
+        ws[lo + L_TAN + 1] = math.atan(ws[lo + L_TAN])
 
 
 @_jit
@@ -1076,6 +1077,24 @@ def one_piece(tab, z0, z1):
 
 
 @_jit
+def smooth_around(tab, ws, vm, z, reach):
+    """Whether the coarse planes within ``reach`` of ``z`` leave row ``vm`` smooth there:
+    none may leave the sleeve face (its cut makes kinks and ends of the row's domain a
+    fraction of a spacing apart, minima a Newton step from one does not see), none faced
+    no sleeve flank or had no rate bound when last evaluated (the root fillet, deep
+    interference): there the row is searched afresh at each turning angle, as the
+    nested grids of :func:`search` look between the planes."""
+    pitch = vm == 2 or vm == 3
+    for g in range(int(ws[GRID])):
+        if abs(ws[_entry(tab, g)] - z) <= reach:
+            lo = _lazy(tab, ws, g)
+            if ws[lo + L_FACE + (1 if pitch else 0)] == 0.0 or ws[lo + L_RHO + vm] == 0.0 \
+                    or not math.isfinite(ws[lo + L_V + vm]):
+                return False
+    return True
+
+
+@_jit
 def across_edge(tab, ws, vm, found, z, v, t, k, c, place, near_edge, ct, st):
     """A minimum within ``near_edge`` of a piece edge of the table may have a twin just
     across it (the pieces meet within the table's error, not exactly): the lower of the
@@ -1113,8 +1132,9 @@ def follow(tab, ws, vm, ct, st):
     """Follow row ``vm``'s minima to this turning angle, each from its last place moved on
     as its last two places moved (:func:`track`); False where the best one is lost (a
     second one lost is dropped, and one found farther from where it was expected than
-    four times its move or a quarter of a coarse spacing is lost). A row facing no sleeve
-    flank has none to follow."""
+    four times its move or a quarter of a coarse spacing, or where the planes around it
+    are not smooth (:func:`smooth_around`), is lost). A row facing no sleeve flank has none
+    to follow."""
     theta = ws[THETA]
     hf = tab[HF]
     spacing = 2.0 * hf / (ws[GRID] - 1.0)
@@ -1125,6 +1145,13 @@ def follow(tab, ws, vm, ct, st):
                 return False
             continue
         z = ws[bo + B_ZS]
+        if not smooth_around(tab, ws, vm, ws[bo + B_Z], 1.5 * spacing):
+            found = False  # lost before a plane is spent on it
+            ws[COUNTS + LOST] += 1.0
+            if b == 0:
+                return False
+            ws[bo + B_LIVE] = 0.0
+            continue
         move = 0.0
         if math.isfinite(ws[bo + B_THP]) and ws[bo + B_TH] != ws[bo + B_THP]:
             move = (z - ws[bo + B_ZSP]) * (theta - ws[bo + B_TH]) / (ws[bo + B_TH]
@@ -1134,7 +1161,8 @@ def follow(tab, ws, vm, ct, st):
                                              max(abs(move), 1e-6 * hf), ws[bo + B_C],
                                              ws[bo + B_K], ct, st)
         # a minimum far from where its last two places put it is another one
-        found = found and abs(zn - z - move) <= max(4.0 * abs(move), 0.25 * spacing)
+        found = found and abs(zn - z - move) <= max(4.0 * abs(move), 0.25 * spacing) and \
+            smooth_around(tab, ws, vm, zn, 1.5 * spacing)
         if found:
             found, zn, v, t, k, c, place = across_edge(tab, ws, vm, found, zn, v, t, k, c,
                                                        place, 0.01 * spacing, ct, st)
@@ -1190,8 +1218,13 @@ def searched(tab, ws, j, max_levels, vm, ct, st):
     z, v, t, k = ws[BZ], ws[BV], ws[BT], ws[BK]
     if not math.isfinite(v):
         return False, z, v, t, k, np.nan, z
-    found, zn, vn, tn, kn, c, place = track(tab, ws, vm, z, 1e-4 * tab[HF], np.nan, -1.0,
-                                            ct, st)
+    # the curvature of the parabola through the bracket, where it brackets
+    za, va, zb, vb = ws[AZ], ws[AV], ws[BZB], ws[BVB]
+    curv, step = np.nan, 1e-4 * tab[HF]
+    if za < z < zb and math.isfinite(va) and math.isfinite(vb):
+        curv = 2.0 * ((vb - v) / (zb - z) - (v - va) / (z - za)) / (zb - za)
+        step = min(step, 0.25 * (zb - za))
+    found, zn, vn, tn, kn, c, place = track(tab, ws, vm, z, step, curv, k, ct, st)
     if found and vn <= v:
         return True, zn, vn, tn, kn, c, place
     return False, z, v, t, k, np.nan, z
