@@ -7,9 +7,8 @@ Writes ``charts.png`` (profile and lead traces per flank with the evaluation ran
 
 from __future__ import annotations
 
-from ..hob import measuring_charts, plot_measuring_charts, write_nominal_csv
-from ..io import write_json
-from ..plots import save_figure
+from ..hob import measuring_charts
+from ..outputs.manufacturing import chart_files
 from .common import add_spec_arguments, count, number_in, output_dir, spec_from_args
 
 
@@ -28,10 +27,7 @@ def run(args) -> int:
     spec = spec_from_args(args)
     charts = measuring_charts(spec, args.points, args.tip_exclusion)
     out = output_dir(args, spec)
-    files = [save_figure(plot_measuring_charts(charts), out / "charts.png"),
-             write_nominal_csv(charts, out / "nominal_traces.csv")]
-    files.append(write_json(out / "charts.json", {**charts.summary(),
-                                                  "files": [str(f) for f in files]}))
+    files = chart_files(charts, out)
     for flank, v in charts.values.items():
         print(f"{flank}: C_beta {1e3 * v['C_beta_mm']:.2f} um, f_Hbeta "
               f"{1e3 * v['f_Hbeta_mm']:.2f} um, f_Halpha mid/ends "

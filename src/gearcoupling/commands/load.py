@@ -54,7 +54,7 @@ def run(args) -> int:
                                 plots=not args.no_plots, with_studies=not args.quick_plots,
                                 progress=update)
     status = print_findings(f"{spec.name}: {res.model} model, T = {res.torque_Nm:.4g} N·m at "
-                            f"{mis:g}°:", load_verdicts(spec, res, None, with_capacity=False))
+                            f"{mis:g}°:", load_verdicts(spec, res))
     for path in paths:
         print(path)
     return status

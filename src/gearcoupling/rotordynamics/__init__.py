@@ -11,9 +11,11 @@ from .data import (
     FILES,
     MAX_TORQUE_NM,
     CouplingData,
+    DatasheetPlan,
     StartedCouplingData,
     check_inputs,
     coupling_data,
+    datasheet_plan,
 )
 from .mass import MassProperties, mass_properties, mesh_mass_properties
 from .plots import plot_allowable_loads, plot_windup
@@ -41,6 +43,7 @@ __all__ = [
     "WINDUP_ERROR_PCT",
     "AllowableLoads",
     "CouplingData",
+    "DatasheetPlan",
     "MassProperties",
     "StartedCouplingData",
     "StiffnessMatrix",
@@ -48,6 +51,7 @@ __all__ = [
     "allowable_loads",
     "check_inputs",
     "coupling_data",
+    "datasheet_plan",
     "coupling_element",
     "generalized_forces",
     "hub_wrench",

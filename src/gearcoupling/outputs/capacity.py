@@ -1,10 +1,13 @@
-"""Capacity curves of several specs over one misalignment range (``gearcoupling capacity
---compare`` and the report's capacity section)."""
+"""Capacity against misalignment: the stage ``capacity`` (one spec, to its critical
+misalignment, through the operating point) and the curves of several specs over one range
+(``gearcoupling capacity --compare``)."""
 
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from functools import partial
+from pathlib import Path
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -14,8 +17,12 @@ from ..arguments import count as check_count
 from ..clearance import critical_misalignment_deg
 from ..errors import ArgumentError
 from ..forked import ForkedMap, default_workers
-from ..loading import CapacityCurve, capacity, model_names
+from ..loading import Capacity, CapacityCurve, capacity, model_names, plot_capacity
+from ..loading import write_capacity_csv as write_curves_csv
+from ..plots import save_figure
 from ..spec import MISALIGNMENT_RANGE_DEG, CouplingSpec, as_spec
+from .stage import StageInputs
+from .sweep import DesignPoint
 
 DEFAULT_COUNT = 25
 SMALLEST_TOP_DEG = 0.5
@@ -31,13 +38,31 @@ class CapacityComparison:
     critical_deg: dict[str, float | None]
 
 
+@dataclass(frozen=True)
+class CapacityAgainstMisalignment:
+    """The stage ``capacity``: the capacity curve of one spec (ccw flanks) from 0 to
+    ``top_deg``, its critical misalignment, and the capacity at the operating point on its
+    loaded flank (:attr:`at_point`)."""
+
+    curve: CapacityCurve
+    critical_deg: float | None
+    top_deg: float
+    at_point: Capacity
+
+    @property
+    def misalignments_deg(self) -> NDArray[np.float64]:
+        return np.array([c.misalignment_deg for c in self.curve])
+
+
 def comparison_range(specs: Sequence[CouplingSpec], count: int = DEFAULT_COUNT,
-                     top_deg: float | None = None) -> tuple[NDArray, dict[str, float | None]]:
+                     top_deg: float | None = None,
+                     critical: dict[str, float | None] | None = None
+                     ) -> tuple[NDArray, dict[str, float | None]]:
     """``count`` misalignments from 0 to ``top_deg``, by default the largest critical
     misalignment of ``specs`` (where the contact of the pivot teeth reaches a face end;
     the range where crowns differ), at least every design angle and 0.5°, at most 6°;
-    and the critical misalignments by spec name."""
-    critical = {s.name: critical_misalignment_deg(s) for s in specs}
+    and the critical misalignments by spec name (``critical``: those already known)."""
+    critical = critical or {s.name: critical_misalignment_deg(s) for s in specs}
     if top_deg is None:
         tops = [SMALLEST_TOP_DEG, *(s.design_misalignment_deg for s in specs),
                 *(c for c in critical.values() if c is not None)]
@@ -45,6 +70,65 @@ def comparison_range(specs: Sequence[CouplingSpec], count: int = DEFAULT_COUNT,
     if not (isinstance(count, int) and count >= 2):
         raise ArgumentError("count", count, "a whole number >= 2")
     return np.linspace(0.0, float(top_deg), count), critical
+
+
+def through(grid: NDArray, point_deg: float) -> NDArray:
+    """The misalignments ``grid`` through ``point_deg``, so that one search gives the
+    operating point's capacity and the curve's point: it takes the place of the nearest
+    interior point of ``grid`` (0 and the top stay), else it is added."""
+    inside = grid[1:-1]
+    out = grid.copy()
+    if inside.size and grid[0] < point_deg < grid[-1]:
+        out[1 + int(np.argmin(np.abs(inside - point_deg)))] = point_deg
+    else:
+        out = np.append(out, point_deg)
+    return np.unique(out)
+
+
+@dataclass(frozen=True)
+class CapacityPlan:
+    """The stage ``capacity``'s searches: one per misalignment of the curve, and one at
+    the operating point where its flank is cw."""
+
+    grid: NDArray[np.float64]
+    critical_deg: float | None
+    point_deg: float
+    flank: str
+    tasks: tuple[Callable[[], Capacity], ...]
+
+    def combine(self, found: Sequence[Capacity]) -> CapacityAgainstMisalignment:
+        curve = CapacityCurve(found[:self.grid.size])
+        at = found[-1] if self.flank == "cw" else \
+            found[int(np.searchsorted(self.grid, self.point_deg))]
+        return CapacityAgainstMisalignment(curve, self.critical_deg, float(self.grid[-1]),
+                                           at)
+
+
+def plan(inputs: StageInputs) -> CapacityPlan:
+    """The stage ``capacity``: ``capacity_count`` misalignments from 0 to the critical
+    misalignment (:func:`comparison_range`), through the operating point on the ccw
+    flanks."""
+    spec, p = inputs.spec, inputs.point
+    critical = inputs.get("design", DesignPoint).critical_deg
+    grid, _ = comparison_range([spec], inputs.settings.capacity_count,
+                               critical={spec.name: critical})
+    if p.flank == "ccw":
+        grid = through(grid, p.misalignment_deg)
+    tasks = [partial(capacity, spec, float(m), model=p.model) for m in grid]
+    if p.flank == "cw":
+        tasks.append(partial(capacity, spec, p.misalignment_deg, model=p.model,
+                             loaded_flank="cw"))
+    return CapacityPlan(grid, critical, p.misalignment_deg, p.flank, tuple(tasks))
+
+
+def files(result: CapacityAgainstMisalignment, inputs: StageInputs, folder: Path
+          ) -> list[Path]:
+    """The stage ``capacity``'s ``capacity.csv`` and ``capacity.png``."""
+    name = inputs.spec.name
+    curves = {name: result.curve}
+    return [write_curves_csv(curves, folder / "capacity.csv"),
+            save_figure(plot_capacity(curves, critical_deg={name: result.critical_deg}),
+                        folder / "capacity.png", inputs.settings.dpi)]
 
 
 def compare_capacity(specs: Sequence[CouplingSpec], misalignments_deg: ArrayLike | None = None,
