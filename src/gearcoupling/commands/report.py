@@ -27,6 +27,13 @@ from .common import (
 from .compare import parse_limits
 
 
+#: the accuracy knobs the command takes, as options
+KNOBS = {"angles": "rotations over a turn of the clearance sweep",
+         "phases": "rotations per tooth pitch of the loads over a turn",
+         "capacity_count": "misalignments of the capacity curve",
+         "check_angles": "poses of the mesh interference check"}
+
+
 def register(sub) -> None:
     p = sub.add_parser("report", help="design report: one self-contained HTML file (and "
                        "--pdf) with the verdict against the spec's limits")
@@ -49,14 +56,11 @@ def register(sub) -> None:
     p.add_argument("--hob-diameter", type=positive_length, default=None, metavar="MM",
                    help="hob outside diameter of the feed program (default: an illustrative "
                         "max(50, 20 module) mm)")
-    knob = {"angles": "rotations over a turn of the sweep and loads (default 180)",
-            "capacity_count": "misalignments of the capacity curve (default 7)",
-            "check_angles": "poses of the mesh interference check (default 36)",
-            "surface_angles": "rotations over a tooth pitch for the surface model (default 6)"}
-    for name, text in knob.items():
+    for name, text in KNOBS.items():
         lo, hi = KNOB_RANGES[name]
+        default = getattr(ReportSettings(), name)
         p.add_argument(f"--{name.replace('_', '-')}", type=count(lo, hi), default=None,
-                       metavar="N", help=f"{text}; {lo}-{hi}")
+                       metavar="N", help=f"{text}; {lo}-{hi} (default {default})")
     p.add_argument("--no-viewer", action="store_true", help="leave out the 3D view")
     p.add_argument("--no-datasheet", action="store_true",
                    help="leave out the API 671 data sheet (its stiffness matrix, wind-up curve "
@@ -75,8 +79,7 @@ def run(args) -> int:
                      ArgumentError)
     if args.grade is not None:
         grade_limits(spec, args.grade, "--grade")
-    knobs = {k: getattr(args, k) for k in ("angles", "capacity_count", "check_angles",
-                                            "surface_angles") if getattr(args, k) is not None}
+    knobs = {k: getattr(args, k) for k in KNOBS if getattr(args, k) is not None}
     settings = ReportSettings(misalignment_deg=misalignment_deg(args, spec),
                               torque_Nm=args.torque, model=args.model, scan=args.scan,
                               scan_units=args.units, grade=args.grade,

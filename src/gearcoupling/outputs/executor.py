@@ -5,8 +5,8 @@ The parent hands a worker a stage whose needs are done (the costliest first), wi
 results of those needs that the worker does not hold yet; the worker computes it, writes
 its files and sends the result back. A parallel stage (:attr:`Stage.parallel`) is cut into
 parts in the parent once its needs are done (its :class:`~.stage.Plan`); the parts go to
-the workers like stages, and a last task combines their values. Nothing is kept between calls: the results
-of one call are its return value.
+the workers like stages, and a last task combines their values. Nothing is kept between
+calls: the results of one call are its return value.
 """
 
 from __future__ import annotations
@@ -292,7 +292,7 @@ def _dispatch(state: _State, procs: list, tick: Callable[[], None]) -> None:
         if not busy:
             return
         for ready in multiprocessing.connection.wait([conns[w] for w in busy]):
-            w = conns.index(ready)  # type: ignore[arg-type]
+            w = conns.index(ready)
             try:
                 kind, payload = conns[w].recv()
             except EOFError:

@@ -9,7 +9,7 @@ import time
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field, fields
 from pathlib import Path
-from typing import Any
+from typing import Any, TypeVar
 
 from ..arguments import keywords
 from ..errors import ArgumentError
@@ -72,9 +72,11 @@ def _names(value: Any, name: str) -> set[str]:
     return set(names)
 
 
-def settings_from(settings: StageSettings | None, options: dict[str, Any],
-                  kind: type[StageSettings] = StageSettings, caller: str = "run"
-                  ) -> StageSettings:
+S = TypeVar("S", bound=StageSettings)
+
+
+def settings_from(settings: S | None, options: dict[str, Any], kind: type[S],
+                  caller: str) -> S:
     """``settings``, or one made of the keyword ``options`` (names checked)."""
     if settings is not None:
         if not isinstance(settings, kind):
@@ -135,7 +137,7 @@ def run(spec: CouplingSpec, out: str | os.PathLike, *, only: Iterable[str] | Non
     spec = as_spec(spec)
     output_folder(out, "out", create=False)
     keys = chosen(only, skip)
-    s = settings_from(settings, options)
+    s = settings_from(settings, options, StageSettings, "run")
     s.resolve(spec)
     n = default_workers(workers)
     folder = output_folder(out, "out")

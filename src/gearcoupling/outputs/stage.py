@@ -44,8 +44,8 @@ class Stage:
         the function itself: ``function(inputs) -> result`` (a frozen dataclass); for a
         ``parallel`` stage ``function(inputs) -> Plan``, its parts and how they combine.
     files : str, callable or None
-        ``"module:function"`` or the function itself: ``function(result, inputs, folder) -> list[Path]``, the files
-        it writes (None: it writes none).
+        ``"module:function"`` or the function itself: ``function(result, inputs,
+        folder) -> list[Path]``, the files it writes (None: it writes none).
     cost : float
         CPU seconds on renzo-1967 with the default settings: what the workers balance
         and what the progress bar counts.

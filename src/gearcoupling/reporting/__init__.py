@@ -3,8 +3,8 @@ printed to PDF, that says what the coupling is, what it carries and whether it p
 against the spec's limits (and which limits were not set)."""
 
 from .build import ReportResult, report
-from .settings import KNOB_RANGES, ReportSettings
 from .sections import SECTIONS
+from .settings import KNOB_RANGES, ReportSettings
 from .verdict import FAIL, Verdict, capacity_verdict, geometry_verdicts, load_verdicts
 from .view import ReportSection, View
 

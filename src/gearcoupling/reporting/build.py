@@ -24,9 +24,9 @@ from ..outputs.executor import compute
 from ..outputs.pipeline import default_workers, settings_from
 from ..outputs.stage import Results
 from ..spec import CouplingSpec, as_spec
+from . import sections as registry
 from .document import Note, Section, Table, render
 from .pdf import print_pdf
-from . import sections as registry
 from .settings import ReportSettings
 from .verdict import COLUMNS, overall
 from .view import ReportSection, View
