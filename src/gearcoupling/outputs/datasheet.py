@@ -8,7 +8,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..io import write_csv_rows
+from ..io import plot_text, write_csv_rows
 from ..plots import save_figure
 from ..rotordynamics import (
     CouplingData,
@@ -59,7 +59,7 @@ def files(data: CouplingData, inputs: StageInputs, folder: Path) -> list[Path]:
             write_csv_rows(folder / "windup_curve.csv", ("torque_Nm", "mesh_windup_rad",
                                                          "body_windup_rad", "windup_rad"),
                            data.torsion.rows()),
-            save_figure(plot_windup(data.torsion, f"{data.spec.name}, i = "
+            save_figure(plot_windup(data.torsion, f"{plot_text(data.spec.name)}, i = "
                                                   f"{data.misalignment_deg:g}°"),
                         folder / "windup.png", dpi),
             write_csv_rows(folder / "allowable_loads.csv", ("psi_deg", *a.loads()), a.rows()),

@@ -14,7 +14,7 @@ import numpy as np
 from ..arguments import GAP_TOLERANCE_MM
 from ..clearance import SweepResult, sweep
 from ..geometry import renzo_z0_mm
-from ..io import write_csv_rows, write_json
+from ..io import plot_text, write_csv_rows, write_json
 from ..loading import (
     LoadResult,
     capacity_from_sweep,
@@ -209,11 +209,11 @@ def study_plots(spec: CouplingSpec, study: LoadStudy, folder: Path, dpi: int = 1
     mis = study.misalignments_deg
     return [
         save_figure(plot_vs_misalignment(mis, dict(study.peak_N), "max tooth load P (N)",
-                                         f"{spec.name}: {study.model}, max tooth load"),
+                                         f"{plot_text(spec.name)}: {study.model}, max tooth load"),
                     folder / "load_max_vs_misalignment.png", dpi),
         save_figure(plot_vs_misalignment(mis, dict(study.moment_Nm),
                                          "additional (tilting) moment (N·m)",
-                                         f"{spec.name}: {study.model}, mean over the turn"),
+                                         f"{plot_text(spec.name)}: {study.model}, mean over the turn"),
                     folder / "load_moment_vs_misalignment.png", dpi)]
 
 
@@ -271,7 +271,7 @@ def q_graph(spec: CouplingSpec, top_deg: float | None = None) -> QGraph:
 def q_files(graph: QGraph, spec: CouplingSpec, folder: Path, dpi: int = 110) -> list[Path]:
     """``q_graph.csv`` and ``load_q_graph.png``."""
     pts = graph.points
-    title = (f"{spec.name}: load proportion q against z_c / z0 (Renzo Fig. 12)\n"
+    title = (f"{plot_text(spec.name)}: load proportion q against z_c / z0 (Renzo Fig. 12)\n"
              "points: the linear model's tooth-load capacity on the exact geometry, "
              f"{pts[0].misalignment_deg:.2g}-{pts[-1].misalignment_deg:.2g}°")
     fig = plot_q_graph({"linear model, exact geometry": [(p.zc_over_z0, p.q_linear)

@@ -15,7 +15,7 @@ from ..hob import (
     plot_measuring_charts,
     write_nominal_csv,
 )
-from ..io import write_csv_records, write_json, write_text
+from ..io import plot_text, write_csv_records, write_json, write_text
 from ..plots import fixed_layout, new_figure, save_figure
 from ..spec import CouplingSpec
 from .stage import StageInputs
@@ -69,7 +69,7 @@ def plot_hob_path(prog: HobProgram):
     ax.set_ylabel("infeed from the midplane (µm)")
     ax.invert_yaxis()
     ax.grid(alpha=0.3)
-    ax.set_title(f"{prog.spec_name}: hob centre path, {prog.crown_kind} crown, hob Ø "
+    ax.set_title(f"{plot_text(prog.spec_name)}: hob centre path, {prog.crown_kind} crown, hob Ø "
                  f"{prog.hob_diameter_mm:g} mm", fontsize=10)
     return fig
 
