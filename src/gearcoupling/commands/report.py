@@ -26,7 +26,6 @@ from .common import (
 )
 from .compare import parse_limits
 
-
 #: the accuracy knobs the command takes, as options
 KNOBS = {"angles": "rotations over a turn of the clearance sweep",
          "phases": "rotations per tooth pitch of the loads over a turn",

@@ -207,13 +207,14 @@ def study_plots(spec: CouplingSpec, study: LoadStudy, folder: Path, dpi: int = 1
     """Wei Figs. 12-13: the largest tooth load and the mean tilting moment against
     misalignment."""
     mis = study.misalignments_deg
+    head = f"{plot_text(spec.name)}: {study.model}"
     return [
         save_figure(plot_vs_misalignment(mis, dict(study.peak_N), "max tooth load P (N)",
-                                         f"{plot_text(spec.name)}: {study.model}, max tooth load"),
+                                         f"{head}, max tooth load"),
                     folder / "load_max_vs_misalignment.png", dpi),
         save_figure(plot_vs_misalignment(mis, dict(study.moment_Nm),
                                          "additional (tilting) moment (N·m)",
-                                         f"{plot_text(spec.name)}: {study.model}, mean over the turn"),
+                                         f"{head}, mean over the turn"),
                     folder / "load_moment_vs_misalignment.png", dpi)]
 
 
