@@ -69,7 +69,11 @@ LAYERS = {
     "hob": {"io", "errors", "geometry", "spec", "plots"},
     "inspection": {"io", "errors", "geometry", "spec", "plots", "parts", "hob", "tables"},
     "outputs": {"io", "errors", "forked", "geometry", "spec", "plots", "parts", "export",
-                "clearance", "interference", "loading", "viewer"},
+                "clearance", "interference", "loading", "viewer", "hob", "inspection",
+                "rotordynamics"},
+    # the report renders the outputs' stage results: it computes nothing of its own
+    "reporting": {"__init__", "io", "errors", "browser", "geometry", "spec", "loadspec",
+                  "clearance", "loading", "hob", "inspection", "rotordynamics", "outputs"},
     "viewer": {"io", "errors", "browser", "geometry", "spec", "plots", "parts", "export",
                "clearance", "interference", "loading", "inspection"},
     "rotordynamics": {"io", "errors", "forked", "geometry", "spec", "loadspec", "plots",

@@ -8,7 +8,7 @@ Writes ``charts.png`` (profile and lead traces per flank with the evaluation ran
 from __future__ import annotations
 
 from ..hob import measuring_charts
-from ..outputs.manufacturing import chart_files
+from ..outputs import chart_files
 from .common import add_spec_arguments, count, number_in, output_dir, spec_from_args
 
 

@@ -8,7 +8,7 @@ chordal deviation, start/end positions, crown drop at the tooth ends).
 from __future__ import annotations
 
 from ..hob import FEED_RANGE_MM_PER_REV, check_hob_diameter, hob_program
-from ..outputs.manufacturing import program_files
+from ..outputs import program_files
 from .common import add_spec_arguments, number_in, output_dir, positive_length, spec_from_args
 
 

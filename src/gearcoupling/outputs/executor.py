@@ -11,15 +11,18 @@ calls: the results of one call are its return value.
 
 from __future__ import annotations
 
+import importlib
 import multiprocessing
 import multiprocessing.connection
 import time
+from collections import Counter
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from ..errors import ArgumentError, BackendError
+from ..clearance import sweep
+from ..errors import ArgumentError, BackendError, GearCouplingError
 from ..forked import can_fork, held_signals, stop_workers, worker_signals
 from ..io import remove_stale_temporaries
 from ..spec import CouplingSpec
@@ -307,42 +310,20 @@ def _dispatch(state: _State, procs: list, tick: Callable[[], None]) -> None:
 def _preload(state: _State) -> None:
     """Load before the fork what more than one stage uses (:attr:`Stage.uses`): once, not
     once in each worker."""
-    from collections import Counter
-
     counts = Counter(u for s in state.stages for u in s.uses)
     for group in (g for g, n in counts.items() if n >= 2):
-        PRELOAD[group](state.spec)
+        for module in PRELOAD[group]:
+            importlib.import_module(module)
+        if group == "kernels":  # the compiled sweep kernels and the spec's flank table
+            try:
+                sweep(state.spec, state.spec.design_misalignment_deg, [0.0])
+            except GearCouplingError:  # the stages report it
+                pass
 
 
-def _figures(spec: CouplingSpec) -> None:
-    from ..plots import import_matplotlib
-
-    import_matplotlib()
-    import matplotlib.backends.backend_agg
-    import matplotlib.figure  # noqa: F401
-
-
-def _meshes(spec: CouplingSpec) -> None:
-    import trimesh  # noqa: F401
-
-    from .. import parts  # noqa: F401
-
-
-def _loads(spec: CouplingSpec) -> None:
-    from .. import loading  # noqa: F401
-
-
-def _kernels(spec: CouplingSpec) -> None:
-    """The compiled sweep kernels and the spec's flank table."""
-    from ..clearance import sweep
-    from ..errors import GearCouplingError
-
-    try:
-        sweep(spec, spec.design_misalignment_deg, [0.0])
-    except GearCouplingError:  # the stages report it
-        pass
-
-
-#: what each library group of :attr:`Stage.uses` loads
-PRELOAD: dict[str, Callable[[CouplingSpec], None]] = {
-    "figures": _figures, "meshes": _meshes, "loads": _loads, "kernels": _kernels}
+#: the modules each library group of :attr:`Stage.uses` loads
+PRELOAD: dict[str, tuple[str, ...]] = {
+    "figures": ("matplotlib.backends.backend_agg", "matplotlib.figure"),
+    "meshes": ("trimesh", "gearcoupling.parts"),
+    "loads": ("gearcoupling.loading",),
+    "kernels": ("gearcoupling.clearance",)}

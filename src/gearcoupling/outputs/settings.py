@@ -12,6 +12,7 @@ import numpy as np
 from ..arguments import GAP_TOLERANCE_MM, PHASES, choice, count, positive, real, torque_Nm
 from ..errors import ArgumentError
 from ..io import as_path
+from ..loading import model_names, resolve_torque_Nm
 from ..spec import CouplingSpec, check_misalignment_deg
 
 # (smallest, largest) of each count: enough to draw, small enough to stay interactive
@@ -80,8 +81,6 @@ class StageSettings:
         if self.misalignment_deg is not None:
             check_misalignment_deg(self.misalignment_deg, "misalignment_deg", ArgumentError)
         if self.model is not None:
-            from ..loading import model_names
-
             choice(self.model, "model", model_names())
         if self.torque_Nm is not None:
             torque_Nm(self.torque_Nm)
@@ -107,8 +106,6 @@ class StageSettings:
         mis = spec.design_misalignment_deg if self.misalignment_deg is None else \
             self.misalignment_deg
         mis = check_misalignment_deg(mis, "misalignment_deg", ArgumentError)
-        from ..loading import resolve_torque_Nm
-
         torque = None
         if self.torque_Nm is not None or spec.load.torque_Nm is not None:
             torque = resolve_torque_Nm(spec, self.torque_Nm)

@@ -13,17 +13,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..arguments import GAP_TOLERANCE_MM
-from ..clearance import SweepResult, design_quantities, sweep
-from ..clearance.plots import (
-    backlash_curve,
-    plot_backlash,
-    plot_backlash_over_turn,
-    plot_clearance,
-    plot_clearance_map,
-    plot_contact_path,
-    plot_critical_vs_radius,
-    plot_generation,
-)
+from ..clearance import SweepResult, backlash_curve, design_quantities, sweep, sweep_figures
 from ..errors import ArgumentError
 from ..io import plain, write_csv_rows, write_json
 from ..plots import save_figure
@@ -118,11 +108,11 @@ def summary(sw: SweepResult, point: DesignPoint | None) -> dict[str, Any]:
 
 def sweep_files(sw: SweepResult, spec: CouplingSpec, folder: Path, point: DesignPoint | None,
                 curve: BacklashCurve | None, *, plots: bool = True, studies: bool = True,
-                dpi: int = 110) -> list[Path]:
+                dpi: int = 130) -> list[Path]:
     """``sweep.csv``, ``sweep_summary.json`` (with the design quantities), the backlash
-    over the turn and, with ``plots``, the pictures; ``studies`` (with a design point)
-    adds the backlash against misalignment, the critical angle against R_c and the two
-    generation methods."""
+    over the turn and, with ``plots``, the pictures; ``studies`` (with a design point and
+    its backlash curve) adds the backlash against misalignment, the critical angle against
+    R_c and the two generation methods."""
     data = summary(sw, point)
     plain(data, "sweep_summary.json")  # refuses NaN before anything is written
     paths = [sw.write_csv(folder / "sweep.csv"),
@@ -133,22 +123,14 @@ def sweep_files(sw: SweepResult, spec: CouplingSpec, folder: Path, point: Design
                                 strict=True))]
     if not plots:
         return paths
-    figures: dict[str, Callable[[], Any]] = {
-        "sweep_clearance.png": lambda: plot_clearance(sw),
-        "sweep_backlash_over_turn.png": lambda: plot_backlash_over_turn(sw),
-        "sweep_contact_path.png": lambda: plot_contact_path(sw, spec),
-        "sweep_clearance_map.png": lambda: plot_clearance_map(sw, spec)}
+    drawn = None
     if studies and point is not None and curve is not None:
+        drawn = (curve.misalignments_deg, curve.min_backlash_mm)
         paths.append(write_csv_rows(folder / "backlash_vs_misalignment.csv",
                                     ("misalignment_deg", "min_backlash_mm"),
-                                    zip(curve.misalignments_deg, curve.min_backlash_mm,
-                                        strict=True)))
-        figures["sweep_backlash.png"] = lambda: plot_backlash(
-            spec, binding_deg=point.binding_deg,
-            curve=(curve.misalignments_deg, curve.min_backlash_mm))
-        figures["sweep_critical_vs_rc.png"] = lambda: plot_critical_vs_radius(spec)
-        figures["sweep_generation.png"] = lambda: plot_generation(
-            spec, max(sw.misalignment_deg, 0.5))
+                                    zip(*drawn, strict=True)))
+    figures = sweep_figures(sw, spec, design=None if point is None else point.quantities,
+                            studies=drawn is not None, backlash=drawn)
     return paths + [save_figure(make(), folder / name, dpi) for name, make in figures.items()]
 
 

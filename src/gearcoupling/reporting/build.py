@@ -20,9 +20,7 @@ from ..errors import ArgumentError
 from ..hob import check_hob_diameter
 from ..inspection import check_limits, grade_limits, load_points
 from ..io import output_folder, require_file, write_text
-from ..outputs.executor import compute
-from ..outputs.pipeline import default_workers, settings_from
-from ..outputs.stage import Results
+from ..outputs import Results, compute, default_workers, settings_from
 from ..spec import CouplingSpec, as_spec
 from . import sections as registry
 from .document import Note, Section, Table, render

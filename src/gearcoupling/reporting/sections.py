@@ -17,13 +17,16 @@ from ..geometry import renzo_z0_mm
 from ..hob import MeasuringCharts
 from ..inspection import InspectionReport
 from ..loading import LoadResult, load_model, springs_name, tooth_load_error, windup_error
-from ..outputs.capacity import CapacityAgainstMisalignment
-from ..outputs.interference import Check
-from ..outputs.load import QGraph
-from ..outputs.manufacturing import Hob
-from ..outputs.spec import CrownProfile
-from ..outputs.sweep import BacklashCurve, DesignPoint
-from ..outputs.viewer import StaticViewer
+from ..outputs import (
+    BacklashCurve,
+    CapacityAgainstMisalignment,
+    Check,
+    CrownProfile,
+    DesignPoint,
+    Hob,
+    QGraph,
+    StaticViewer,
+)
 from ..spec import CouplingSpec
 from .datasheet import datasheet
 from .document import Block, Note, Row, Table, Viewer

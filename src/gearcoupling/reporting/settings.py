@@ -6,7 +6,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ..arguments import flag
-from ..outputs.settings import KNOB_RANGES, StageSettings
+from ..outputs import KNOB_RANGES, StageSettings
 
 __all__ = ["KNOB_RANGES", "ReportSettings"]
 

@@ -7,8 +7,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TypeVar
 
-from ..outputs.settings import Resolved
-from ..outputs.stage import Results
+from ..outputs import Resolved, Results
 from ..spec import CouplingSpec
 from .document import Block, Figure
 from .settings import ReportSettings
