@@ -53,6 +53,7 @@ from .loading import load as load
 from .loading import load_from_sweep as load_from_sweep
 from .loading import sector_check as sector_check
 from .outputs import CapacityComparison as CapacityComparison
+from .outputs import OperatingPoint as OperatingPoint
 from .outputs import RunResult as RunResult
 from .outputs import StageSettings as StageSettings
 from .outputs import compare_capacity as compare_capacity

@@ -11,7 +11,7 @@ import numpy as np
 
 from .errors import ArgumentError, BackendError
 from .geometry import hub_flank_model, hub_model, plane_rack, transverse_section
-from .io import atomic_path, plot_text
+from .io import atomic_path, plot_text, writable_file
 
 if TYPE_CHECKING:  # matplotlib is imported where a plot is drawn
     from matplotlib.axes import Axes
@@ -97,7 +97,8 @@ def figure_png(fig: Figure, dpi: int) -> bytes:
 
 def save_figure(fig: Figure, path: str | Path, dpi: int = 130) -> Path:
     """Write ``fig`` as PNG (:func:`figure_png`) atomically (nothing is closed: the figure
-    stays usable)."""
+    stays usable). A target that may not be written is refused before the figure is drawn."""
+    writable_file(path)
     data = figure_png(fig, dpi)
     with atomic_path(path) as tmp:
         tmp.write_bytes(data)

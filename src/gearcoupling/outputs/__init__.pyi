@@ -30,7 +30,7 @@ from .pipeline import settings_from as settings_from
 from .registry import RUN as RUN
 from .registry import STAGES as STAGES
 from .settings import KNOB_RANGES as KNOB_RANGES
-from .settings import Resolved as Resolved
+from .settings import OperatingPoint as OperatingPoint
 from .settings import StageSettings as StageSettings
 from .spec import CrownProfile as CrownProfile
 from .spec import resolved_spec as resolved_spec

@@ -39,7 +39,7 @@ from .stage import SkipStage, StageInputs
 from .sweep import turn_angles
 
 STUDY_POINTS = 7  # misalignments of the studies and the q graph
-NO_TORQUE = "no torque: set [load] torque_Nm in the spec or give one"
+NO_TORQUE = "no [load] torque_Nm in the spec and no torque given"
 
 
 @dataclass(frozen=True)

@@ -101,7 +101,7 @@ class StageSettings:
                      if isinstance(self.scan, np.ndarray) else os.fspath(self.scan))
         return d
 
-    def resolve(self, spec: CouplingSpec) -> Resolved:
+    def resolve(self, spec: CouplingSpec) -> OperatingPoint:
         """The operating point these settings give ``spec``."""
         mis = spec.design_misalignment_deg if self.misalignment_deg is None else \
             self.misalignment_deg
@@ -109,11 +109,11 @@ class StageSettings:
         torque = None
         if self.torque_Nm is not None or spec.load.torque_Nm is not None:
             torque = resolve_torque_Nm(spec, self.torque_Nm)
-        return Resolved(float(mis), torque, self.model or spec.load.model)
+        return OperatingPoint(float(mis), torque, self.model or spec.load.model)
 
 
 @dataclass(frozen=True)
-class Resolved:
+class OperatingPoint:
     """The operating point of a run: misalignment (deg), signed torque (N·m, None: no
     torque given) and load model."""
 

@@ -17,7 +17,7 @@ from typing import Any, Protocol, TypeVar
 
 from ..errors import GearCouplingError
 from ..spec import CouplingSpec
-from .settings import Resolved, StageSettings
+from .settings import OperatingPoint, StageSettings
 
 R = TypeVar("R")
 
@@ -133,7 +133,7 @@ class StageInputs:
 
     spec: CouplingSpec
     settings: StageSettings
-    point: Resolved
+    point: OperatingPoint
     results: Results
 
     def get(self, name: str, kind: type[R]) -> R:

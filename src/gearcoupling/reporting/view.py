@@ -7,7 +7,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TypeVar
 
-from ..outputs import Resolved, Results
+from ..outputs import OperatingPoint, Results
 from ..spec import CouplingSpec
 from .document import Block, Figure
 from .settings import ReportSettings
@@ -23,7 +23,7 @@ class View:
 
     spec: CouplingSpec
     settings: ReportSettings
-    point: Resolved
+    point: OperatingPoint
     results: Results
     folder: Path
 
