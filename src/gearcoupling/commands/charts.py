@@ -8,8 +8,9 @@ Writes ``charts.png`` (profile and lead traces per flank with the evaluation ran
 from __future__ import annotations
 
 from ..hob import measuring_charts
-from ..outputs import chart_files
+from ..outputs import chart_files, files
 from .common import add_spec_arguments, count, number_in, output_dir, spec_from_args
+from .folders import claim, holds_folders
 
 
 def register(sub) -> None:
@@ -23,15 +24,16 @@ def register(sub) -> None:
     p.set_defaults(func=run)
 
 
+@holds_folders
 def run(args) -> int:
     spec = spec_from_args(args)
+    out = claim(output_dir(args, spec), spec.to_dict(), files.CHARTS)
     charts = measuring_charts(spec, args.points, args.tip_exclusion)
-    out = output_dir(args, spec)
-    files = chart_files(charts, out)
+    written = chart_files(charts, out)
     for flank, v in charts.values.items():
         print(f"{flank}: C_beta {1e3 * v['C_beta_mm']:.2f} um, f_Hbeta "
               f"{1e3 * v['f_Hbeta_mm']:.2f} um, f_Halpha mid/ends "
               f"{1e3 * v['f_Halpha_mid_mm']:.2f} / {1e3 * v['f_Halpha_z_plus_mm']:.2f} um")
-    for f in files:
+    for f in written:
         print(f)
     return 0

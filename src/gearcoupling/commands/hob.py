@@ -8,8 +8,9 @@ chordal deviation, start/end positions, crown drop at the tooth ends).
 from __future__ import annotations
 
 from ..hob import FEED_RANGE_MM_PER_REV, check_hob_diameter, hob_program
-from ..outputs import program_files
+from ..outputs import files, program_files
 from .common import add_spec_arguments, number_in, output_dir, positive_length, spec_from_args
+from .folders import claim, holds_folders
 
 
 def register(sub) -> None:
@@ -27,17 +28,18 @@ def register(sub) -> None:
     p.set_defaults(func=run)
 
 
+@holds_folders
 def run(args) -> int:
     spec = spec_from_args(args)
     check_hob_diameter(spec, args.hob_diameter, "--hob-diameter")
+    out = claim(output_dir(args, spec), spec.to_dict(), files.HOB_PROGRAM)
     prog = hob_program(spec, args.hob_diameter, tolerance_mm=args.tolerance)
-    out = output_dir(args, spec)
-    files = program_files(prog, out, args.feed)
+    written = program_files(prog, out, args.feed)
     s = prog.summary()
     print(f"hob: {s['arc_moves']} arc and {s['line_moves']} line moves, max chordal deviation "
           f"{s['max_deviation_mm']:.3g} mm (tolerance {s['tolerance_mm']:.3g} mm), "
           f"Z {s['z_start_mm']:.4f} .. {s['z_end_mm']:.4f} mm, crown drop at ends "
           f"{s['crown_drop_end_mm']:.5f} mm")
-    for f in files:
+    for f in written:
         print(f)
     return 0

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from ..arguments import GAP_TOLERANCE_MM
-from ..outputs import write_sweep
+from ..outputs import files, write_sweep
 from ..reporting import geometry_verdicts
 from .common import (
     MAX_ANGLES,
@@ -17,6 +17,7 @@ from .common import (
     spec_from_args,
 )
 from .findings import print_findings
+from .folders import claim, holds_folders
 
 
 def register(sub) -> None:
@@ -36,14 +37,16 @@ def register(sub) -> None:
     p.set_defaults(func=run)
 
 
+@holds_folders
 def run(args) -> int:
     spec = spec_from_args(args)
     mis = misalignment_deg(args, spec)
-    out = output_dir(args, spec)
+    out = claim(output_dir(args, spec), spec.to_dict(), files.SWEEP)
     with progress(f"sweep {spec.name}", 3) as update:
-        result, point, paths = write_sweep(spec, out, mis, args.angles, tolerance_mm=args.tolerance,
-                                    design=not args.no_design, plots=not args.no_plots,
-                                    studies=not args.quick_plots, progress=update)
+        result, point, paths = write_sweep(spec, out, mis, args.angles,
+                                           tolerance_mm=args.tolerance,
+                                           design=not args.no_design, plots=not args.no_plots,
+                                           studies=not args.quick_plots, progress=update)
     summary = result.summary()
     print(f"{spec.name}: backlash {summary['aligned_backlash_mm'] * 1e3:.2f} µm aligned, "
           f"{summary['min_backlash_mm'] * 1e3:.2f} µm at least over the turn at {mis:g}°")

@@ -1,11 +1,14 @@
 # The names of gearcoupling.outputs, read by type checkers and, at run time, by
 # lazy_loader.attach_stub: each module is imported on first use, so a process loads only
 # what the stages it runs need (gearcoupling.run).
+from . import files as files
 from .capacity import CapacityAgainstMisalignment as CapacityAgainstMisalignment
 from .capacity import CapacityComparison as CapacityComparison
 from .capacity import compare_capacity as compare_capacity
 from .capacity import comparison_range as comparison_range
 from .executor import compute as compute
+from .files import REPORT as REPORT
+from .files import REPORT_PDF as REPORT_PDF
 from .interference import Check as Check
 from .interference import write_interference as write_interference
 from .load import LoadStudy as LoadStudy
@@ -26,7 +29,9 @@ from .pipeline import STEPS as STEPS
 from .pipeline import RunResult as RunResult
 from .pipeline import default_workers as default_workers
 from .pipeline import run as run
+from .pipeline import run_files as run_files
 from .pipeline import settings_from as settings_from
+from .pipeline import stage_files as stage_files
 from .registry import RUN as RUN
 from .registry import STAGES as STAGES
 from .settings import KNOB_RANGES as KNOB_RANGES

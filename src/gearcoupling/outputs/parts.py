@@ -15,14 +15,8 @@ from ..export import export_part
 from ..io import write_json
 from ..parts import build_part, check_part, check_tolerance, measure_deviation
 from ..spec import CouplingSpec
+from .files import PART_NAMES, file_stem
 from .stage import StageInputs
-
-PART_NAMES = ("hub", "sleeve")
-
-
-def file_stem(part: str, teeth: Sequence[int] | None) -> str:
-    """``hub`` or ``hub-teeth-0-1-2`` for a sector."""
-    return part if teeth is None else f"{part}-teeth-{'-'.join(map(str, teeth))}"
 
 
 @dataclass(frozen=True)

@@ -14,9 +14,10 @@ from typing import Any, TypeVar
 from ..arguments import keywords
 from ..errors import ArgumentError
 from ..forked import can_fork
-from ..io import output_folder, write_json
+from ..io import output_folder, writable_targets, write_json
 from ..spec import CouplingSpec, as_spec
 from .executor import compute, plan
+from .files import RUN_SUMMARY
 from .registry import RUN, STAGES
 from .settings import StageSettings
 from .stage import Results
@@ -75,6 +76,18 @@ def _names(value: Any, name: str) -> set[str]:
 S = TypeVar("S", bound=StageSettings)
 
 
+def run_files(only: Iterable[str] | None = None, skip: Iterable[str] = ()) -> list[str]:
+    """The files :func:`run` may write with these ``only`` and ``skip`` (those of the
+    stages it computes, :attr:`~.stage.Stage.writes`, and ``run_summary.json``), each once,
+    in the order of the stages."""
+    return [*stage_files(chosen(only, skip)), RUN_SUMMARY]
+
+
+def stage_files(names: Iterable[str]) -> list[str]:
+    """The files the stages ``names`` and those they need may write, each once."""
+    return list(dict.fromkeys(f for stage in plan(list(names)) for f in stage.writes))
+
+
 def settings_from(settings: S | None, options: dict[str, Any], kind: type[S],
                   caller: str) -> S:
     """``settings``, or one made of the keyword ``options`` (names checked)."""
@@ -107,7 +120,8 @@ def run(spec: CouplingSpec, out: str | os.PathLike, *, only: Iterable[str] | Non
     spec : CouplingSpec
     out : path-like
         Output folder (created; refused if it holds a device, pipe or socket, see
-        :func:`~gearcoupling.io.output_folder`).
+        :func:`~gearcoupling.io.output_folder`, or anything but a regular file where a
+        stage writes one, :func:`run_files`: before any stage runs).
     only, skip : iterable of str
         Stages of :data:`STEPS` to run (default :data:`~.registry.RUN`), or to leave out;
         the stages they need are computed too.
@@ -137,6 +151,7 @@ def run(spec: CouplingSpec, out: str | os.PathLike, *, only: Iterable[str] | Non
     spec = as_spec(spec)
     output_folder(out, "out", create=False)
     keys = chosen(only, skip)
+    writable_targets(out, run_files(only, skip), field="out")
     s = settings_from(settings, options, StageSettings, "run")
     s.resolve(spec)
     n = default_workers(workers)
@@ -148,6 +163,6 @@ def run(spec: CouplingSpec, out: str | os.PathLike, *, only: Iterable[str] | Non
     files = results.all_files([st.name for st in stages])
     result = RunResult(spec.name, folder, tuple(files), dict(results.seconds),
                        dict(results.skipped), time.perf_counter() - t0, used, results)
-    summary = write_json(folder / "run_summary.json", result.summary())
+    summary = write_json(folder / RUN_SUMMARY, result.summary())
     return RunResult(result.spec_name, folder, (*files, summary), result.seconds,
                      result.skipped, result.wall_seconds, result.workers, results)

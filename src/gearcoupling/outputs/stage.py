@@ -58,6 +58,9 @@ class Stage:
     after : tuple of str
         Stages that must have written their files first where both run (their results are
         not passed).
+    writes : tuple of str
+        The names of the files it may write (:mod:`~gearcoupling.outputs.files`): checked
+        before any stage runs.
     """
 
     name: str
@@ -69,6 +72,7 @@ class Stage:
     parallel: bool = False
     uses: tuple[str, ...] = ()
     after: tuple[str, ...] = ()
+    writes: tuple[str, ...] = ()
 
     def run(self, inputs: StageInputs) -> Any:
         """The stage's result, or its :class:`Plan` where it is :attr:`parallel`."""

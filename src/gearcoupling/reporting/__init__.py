@@ -2,7 +2,7 @@
 printed to PDF, that says what the coupling is, what it carries and whether it passes
 against the spec's limits (and which limits were not set)."""
 
-from .build import ReportResult, report
+from .build import ReportResult, report, report_files
 from .sections import SECTIONS
 from .settings import KNOB_RANGES, ReportSettings
 from .verdict import FAIL, Verdict, capacity_verdict, geometry_verdicts, load_verdicts
@@ -21,4 +21,5 @@ __all__ = [
     "geometry_verdicts",
     "load_verdicts",
     "report",
+    "report_files",
 ]

@@ -19,8 +19,16 @@ from ..browser import browser_backend
 from ..errors import ArgumentError
 from ..hob import check_hob_diameter
 from ..inspection import check_limits, grade_limits, load_points
-from ..io import output_folder, require_file, write_text
-from ..outputs import Results, compute, default_workers, settings_from
+from ..io import output_folder, require_file, writable_targets, write_text
+from ..outputs import (
+    REPORT,
+    REPORT_PDF,
+    Results,
+    compute,
+    default_workers,
+    settings_from,
+    stage_files,
+)
 from ..spec import CouplingSpec, as_spec
 from . import sections as registry
 from .document import Note, Section, Table, render
@@ -28,8 +36,6 @@ from .pdf import print_pdf
 from .settings import ReportSettings
 from .verdict import COLUMNS, overall
 from .view import ReportSection, View
-
-REPORT = "report.html"
 
 
 @dataclass(frozen=True)
@@ -88,6 +94,7 @@ def report(spec: CouplingSpec, out: str | os.PathLike, *, pdf: bool = False,
     output_folder(out, "out", create=False)
     s = settings_from(settings, options, ReportSettings, "report")
     flag(pdf, "pdf")
+    writable_targets(out, report_files(s, pdf), field="out")
     n = default_workers(workers)
     t0 = time.perf_counter()
     s.resolve(spec)
@@ -99,12 +106,23 @@ def report(spec: CouplingSpec, out: str | os.PathLike, *, pdf: bool = False,
     shown = [sec for sec in registry.SECTIONS if sec.shown(s)]
     written: list[Path] = []
     try:
-        results = compute(spec, s, [n for sec in shown for n in sec.stages], folder=folder,
+        results = compute(spec, s, report_stages(s), folder=folder,
                           workers=n, progress=progress, written=written)
         return _render(spec, s, results, folder, shown, pdf, t0)
     except BaseException:  # an error or an interruption: no partial report is left
         _discard(folder, written, created)
         raise
+
+
+def report_stages(settings: ReportSettings) -> list[str]:
+    """The stages a report with these settings shows."""
+    return [n for sec in registry.SECTIONS if sec.shown(settings) for n in sec.stages]
+
+
+def report_files(settings: ReportSettings, pdf: bool = False) -> list[str]:
+    """The files :func:`report` may write: those of its stages, ``report.html`` and, with
+    ``pdf``, ``report.pdf``."""
+    return [*stage_files(report_stages(settings)), REPORT, *([REPORT_PDF] if pdf else [])]
 
 
 def _render(spec: CouplingSpec, s: ReportSettings, results: Results, folder: Path,
@@ -130,7 +148,7 @@ def _render(spec: CouplingSpec, s: ReportSettings, results: Results, folder: Pat
            + (f"T = {torque:.4g} N·m" if torque is not None else "no torque")
            + f", {point.model} load model · gearcoupling {__version__} · {when}")
     write_text(html_path, render(title, sub, (cls, text), [head, *sections]))
-    pdf_path = print_pdf(html_path, folder / "report.pdf") if pdf else None
+    pdf_path = print_pdf(html_path, folder / REPORT_PDF) if pdf else None
     return ReportResult(html_path, pdf_path, data, cls, text, dict(results.seconds),
                         time.perf_counter() - t0)
 
@@ -138,7 +156,7 @@ def _render(spec: CouplingSpec, s: ReportSettings, results: Results, folder: Pat
 def _discard(folder: Path, written: list[Path], created: bool) -> None:
     """Remove what this report wrote (and its folder when it is left empty and was made
     now)."""
-    for path in [*written, folder / REPORT, folder / "report.pdf"]:
+    for path in [*written, folder / REPORT, folder / REPORT_PDF]:
         path.unlink(missing_ok=True)
     if created:
         with contextlib.suppress(OSError):  # not empty: other files were there before
