@@ -116,6 +116,26 @@ def test_report_numbers_are_the_librarys(made, renzo):
 
 
 @pytest.mark.slow
+def test_the_report_writes_the_stages_files_once_and_they_are_runs(made, renzo, tmp_path):
+    """One pipeline: the report's data files are its stages' files (no second copy, each
+    name one the stages declare), and the same stages run by ``gc.run`` write the same
+    bytes."""
+    from gearcoupling.reporting import report_files
+
+    res, _ = made
+    folder = res.html.parent
+    written = {p.name for p in folder.iterdir() if not p.name.startswith(".")}
+    allowed = set(report_files(ReportSettings(scan=res.files[0], grade=6)))
+    assert written - {"scan.xyz"} <= allowed, written - allowed
+    assert {p.name for p in res.files} <= written
+    run = gc.run(renzo, tmp_path, only=["sweep", "load"], workers=1)
+    for name in ("sweep.csv", "sweep_summary.json", "backlash_over_turn.csv", "load.csv",
+                 "load_summary.json", "contact_patches.csv"):
+        assert (tmp_path / name).read_bytes() == (folder / name).read_bytes(), name
+    assert len(run.files) > 6
+
+
+@pytest.mark.slow
 def test_verdicts_judge_only_against_limits(made):
     res, text = made
     text = html.unescape(text)
