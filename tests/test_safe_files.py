@@ -363,15 +363,14 @@ REPORT = ["report", "renzo-1967", "--no-viewer", "--no-datasheet"]
     (HOB, "hob.json"),  # the issue: refused only after the two other files were written
     (QUICK_RUN, "run_summary.json"),  # the run's last file
     (REPORT, "report.html"),
-    (REPORT, "report-data/sweep.csv"),
-], ids=["hob", "run", "report", "report-data"])
+    (REPORT, "sweep.csv"),  # a stage's file the report writes
+], ids=["hob", "run", "report", "report-stage"])
 def test_a_folder_where_a_file_goes_is_refused_before_anything_is_written(argv, name,
                                                                           tmp_path, capsys):
     out = tmp_path / "out"
     (out / name).mkdir(parents=True)
-    if argv is REPORT:  # the report's data folder, with a file of the user's
-        (out / "report-data").mkdir(exist_ok=True)
-        (out / "report-data" / "notes.txt").write_text("mine")
+    if argv is REPORT:  # a file of the user's beside
+        (out / "notes.txt").write_text("mine")
     before = _state(out)
     assert main([*argv, "-o", str(out)]) == 2
     err = capsys.readouterr().err

@@ -1,7 +1,8 @@
 """``gearcoupling report``: the design report (HTML, optionally PDF) of a spec.
 
-Writes ``report.html`` (self-contained: figures inline, the 3D viewer embedded) and the
-figures' data files in ``report-data/``; ``--pdf`` also prints ``report.pdf``. Exit status
+Writes ``report.html`` (self-contained: figures inline, the 3D viewer embedded) and, beside
+it, the files of the stages it shows (each figure's data); ``--pdf`` also prints
+``report.pdf``. Exit status
 1 when a judged check fails.
 """
 
