@@ -448,8 +448,8 @@ def test_files_of_other_settings_are_named_and_kept(tmp_path, capsys):
     for _ in range(2):  # still there, still of the first settings: said again
         assert main([*other, "-o", out]) == 0
         notes = [ln for ln in capsys.readouterr().err.splitlines() if "note:" in ln]
-        assert len(notes) == 1 and "1 file made earlier with other settings" in notes[0]
-        assert notes[0].split(": ", 3)[-1].startswith("sections.png"), notes
+        assert len(notes) == 1 and "2 files made earlier with other settings" in notes[0]
+        assert notes[0].split(": ", 3)[-1].startswith("crown_profile.csv, sections.png"), notes
     assert (tmp_path / "sections.png").read_bytes() == sections
     assert main(["run", "renzo-1967", "--only", "spec", "-o", out]) == 0
     assert "note:" not in capsys.readouterr().err
