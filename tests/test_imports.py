@@ -19,6 +19,7 @@ HEAVY = ("trimesh", "manifold3d", "viser", "OCP", "meshio", "matplotlib", "dask"
     "gearcoupling.inspection",
     "gearcoupling.study",
     "gearcoupling.rotordynamics",
+    "gearcoupling.coupling",
 ])
 def test_kernels_import_no_heavy_backend(module):
     code = (f"import sys, {module}; "
@@ -51,21 +52,17 @@ LAYERS = {
     "browser": {"errors"},
     "forked": {"errors"},
     "tables": {"errors"},
-    "loadspec": {"errors", "io"},
-    "geometry": {"errors"},
-    "specmodel": {"errors", "io", "geometry", "loadspec"},
-    "specfile": {"errors", "io", "geometry", "loadspec", "specmodel"},
-    "spec": {"errors", "io", "geometry", "loadspec", "specmodel", "specfile"},
+    "geometry": {"errors"},  # takes spec objects (a protocol): never the spec package
+    "spec": {"errors", "io", "geometry"},
     "plots": {"io", "errors", "geometry", "spec"},
     "parts": {"io", "errors", "geometry", "spec"},
     "export": {"io", "errors", "geometry", "spec", "parts"},
     "clearance": {"io", "errors", "geometry", "spec", "plots", "tables"},
     "interference": {"io", "errors", "geometry", "spec", "plots", "parts", "clearance"},
     "fea": {"io", "errors", "forked", "geometry", "spec", "parts", "export", "clearance"},
-    "loading": {"io", "errors", "geometry", "spec", "loadspec", "plots", "clearance",
-                "fea", "tables"},
-    "study": {"__init__", "io", "forked", "loadspec", "errors", "geometry", "spec", "plots",
-              "clearance", "loading", "tables"},
+    "loading": {"io", "errors", "geometry", "spec", "plots", "clearance", "fea", "tables"},
+    "study": {"__init__", "io", "forked", "errors", "geometry", "spec", "plots", "clearance",
+              "loading", "tables"},
     "hob": {"io", "errors", "geometry", "spec", "plots"},
     "inspection": {"io", "errors", "geometry", "spec", "plots", "parts", "hob", "tables"},
     "outputs": {"io", "errors", "forked", "geometry", "spec", "plots", "parts", "export",
@@ -76,8 +73,10 @@ LAYERS = {
                   "clearance", "loading", "hob", "inspection", "rotordynamics", "outputs"},
     "viewer": {"io", "errors", "browser", "geometry", "spec", "plots", "parts", "export",
                "clearance", "interference", "loading", "inspection"},
-    "rotordynamics": {"io", "errors", "forked", "geometry", "spec", "loadspec", "plots",
-                      "parts", "clearance", "loading", "tables"},
+    "rotordynamics": {"io", "errors", "forked", "geometry", "spec", "plots", "parts",
+                      "clearance", "loading", "tables"},
+    "coupling": {"io", "errors", "forked", "geometry", "spec", "plots", "parts", "export",
+                 "clearance", "interference", "loading", "rotordynamics", "tables"},
 }
 # the argument checks (numbers, counts, torques, documented maxima) sit beside the errors,
 # the numeric guards (numpy only) below everything
