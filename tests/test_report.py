@@ -154,8 +154,6 @@ def test_verdicts_judge_only_against_limits(made):
 
 
 def test_verdicts_without_limits_or_inputs_are_not_judged(renzo):
-    from types import SimpleNamespace
-
     open_ = [*load_verdicts(renzo, None), capacity_verdict(renzo, None, None)]
     assert {v.verdict for v in open_} == {OPEN} and "no torque" in open_[0].reason
     assert "no torque" in open_[-1].reason
@@ -165,8 +163,7 @@ def test_verdicts_without_limits_or_inputs_are_not_judged(renzo):
     assert rows[0].verdict == OPEN and "allowable_tooth_load" in rows[0].reason
     assert capacity_verdict(renzo, res, None).verdict == OPEN
     cap = gc.capacity(renzo, 1.0)
-    rows = [*load_verdicts(renzo, res), capacity_verdict(renzo, res, SimpleNamespace(
-        at_point=cap))]
+    rows = [*load_verdicts(renzo, res), capacity_verdict(renzo, res, cap)]
     # judged against each limit: the stresses and the patch pass at 1°; the torque is judged
     # against the capacity (the template's 2260 N·m lies just above it with the default model)
     fits = PASS if abs(res.torque_Nm) <= cap.capacity_Nm else FAIL

@@ -3,9 +3,9 @@
 from __future__ import annotations
 
 from ..arguments import GAP_TOLERANCE_MM, TORQUE_RANGE_NM
-from ..loading import PHASES, model_names, models_help
+from ..loading import PHASES, capacity, model_names, models_help
 from ..outputs import files, write_load
-from ..reporting import load_verdicts
+from ..reporting import capacity_verdict, load_verdicts
 from .common import (
     MAX_ANGLES,
     add_misalignment_argument,
@@ -56,8 +56,11 @@ def run(args) -> int:
                                 model=args.model, tolerance_mm=args.tolerance,
                                 plots=not args.no_plots, with_studies=not args.quick_plots,
                                 progress=update)
+    # the torque against the capacity at this misalignment: what the report judges too
+    at = capacity(spec, mis, model=res.model, loaded_flank=res.loaded_flank)
     status = print_findings(f"{spec.name}: {res.model} model, T = {res.torque_Nm:.4g} N·m at "
-                            f"{mis:g}°:", load_verdicts(spec, res))
+                            f"{mis:g}°:", [*load_verdicts(spec, res),
+                                           capacity_verdict(spec, res, at)])
     for path in paths:
         print(path)
     return status

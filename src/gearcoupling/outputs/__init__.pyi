@@ -4,6 +4,7 @@
 from . import files as files
 from .capacity import CapacityAgainstMisalignment as CapacityAgainstMisalignment
 from .capacity import CapacityComparison as CapacityComparison
+from .capacity import Rating as Rating
 from .capacity import compare_capacity as compare_capacity
 from .capacity import comparison_range as comparison_range
 from .executor import compute as compute

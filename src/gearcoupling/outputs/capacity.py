@@ -8,6 +8,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from functools import partial
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -17,6 +18,7 @@ from ..arguments import count as check_count
 from ..clearance import critical_misalignment_deg
 from ..errors import ArgumentError
 from ..forked import ForkedMap, default_workers
+from ..io import write_json
 from ..loading import Capacity, CapacityCurve, capacity, model_names, plot_capacity
 from ..loading import write_capacity_csv as write_curves_csv
 from ..plots import save_figure
@@ -39,10 +41,67 @@ class CapacityComparison:
 
 
 @dataclass(frozen=True)
+class Rating:
+    """The stage ``rating``: the capacity at the operating point on its loaded flank, and
+    the torque judged against it (``torque_Nm`` None: no torque given, nothing judged)."""
+
+    capacity: Capacity
+    torque_Nm: float | None
+
+    @property
+    def holds(self) -> bool | None:
+        """Whether the capacity carries the torque (None: no torque, or no criterion
+        reaches its limit, which carries any torque)."""
+        cap = self.capacity.capacity_Nm
+        if self.torque_Nm is None:
+            return None
+        return True if cap is None else abs(self.torque_Nm) <= cap
+
+    def summary(self) -> dict[str, Any]:
+        """``rating.json``: the capacity (times K) and its governing criterion, K, the
+        torque and the margin (% of the capacity; negative: over it)."""
+        c = self.capacity
+        margin = None if c.capacity_Nm is None or self.torque_Nm is None else \
+            100.0 * (c.capacity_Nm - abs(self.torque_Nm)) / c.capacity_Nm
+        return {"misalignment_deg": c.misalignment_deg, "model": c.model,
+                "loaded_flank": c.loaded_flank, "capacity_Nm": c.capacity_Nm,
+                "governing": c.governing, "accuracy_factor": c.accuracy_factor,
+                "torque_Nm": self.torque_Nm, "margin_pct": margin, "holds": self.holds}
+
+    def sentence(self) -> str:
+        """The finding in one line."""
+        c = self.capacity
+        where = f"at {c.misalignment_deg:g}° ({c.model} model, {c.loaded_flank} flanks)"
+        if c.capacity_Nm is None:
+            return f"capacity {where}: no criterion reaches its limit"
+        text = (f"capacity {where} {c.capacity_Nm:.4g} N·m = K × "
+                f"{c.capacity_Nm / c.accuracy_factor:.4g} N·m ({c.governing.replace('_', ' ')}"
+                f" governs, K = {c.accuracy_factor:g})")
+        if self.torque_Nm is None:
+            return text
+        T = abs(self.torque_Nm)
+        verdict = "carries" if self.holds else "is UNDER"
+        return (f"{text}: it {verdict} the torque {T:.4g} N·m (margin "
+                f"{self.summary()['margin_pct']:+.1f} %)")
+
+
+def rating(inputs: StageInputs) -> Rating:
+    """The stage ``rating``."""
+    p = inputs.point
+    return Rating(capacity(inputs.spec, p.misalignment_deg, model=p.model,
+                           loaded_flank=p.flank), p.torque_Nm)
+
+
+def rating_files(result: Rating, inputs: StageInputs, folder: Path) -> list[Path]:
+    """The stage ``rating``'s ``rating.json``."""
+    return [write_json(folder / "rating.json", result.summary())]
+
+
+@dataclass(frozen=True)
 class CapacityAgainstMisalignment:
     """The stage ``capacity``: the capacity curve of one spec (ccw flanks) from 0 to
     ``top_deg``, its critical misalignment, and the capacity at the operating point on its
-    loaded flank (:attr:`at_point`)."""
+    loaded flank (:attr:`at_point`, the rating's)."""
 
     curve: CapacityCurve
     critical_deg: float | None
@@ -92,33 +151,34 @@ class CapacityPlan:
 
     grid: NDArray[np.float64]
     critical_deg: float | None
-    point_deg: float
-    flank: str
+    at_point: Capacity
+    known: int | None  # the grid's index of the operating point, searched by the rating
     tasks: tuple[Callable[[], Capacity], ...]
 
     def combine(self, found: Sequence[Capacity]) -> CapacityAgainstMisalignment:
-        curve = CapacityCurve(found[:self.grid.size])
-        at = found[-1] if self.flank == "cw" else \
-            found[int(np.searchsorted(self.grid, self.point_deg))]
-        return CapacityAgainstMisalignment(curve, self.critical_deg, float(self.grid[-1]),
-                                           at)
+        found = list(found)
+        if self.known is not None:
+            found.insert(self.known, self.at_point)
+        return CapacityAgainstMisalignment(CapacityCurve(found), self.critical_deg,
+                                           float(self.grid[-1]), self.at_point)
 
 
 def plan(inputs: StageInputs) -> CapacityPlan:
     """The stage ``capacity``: ``capacity_count`` misalignments from 0 to the critical
-    misalignment (:func:`comparison_range`), through the operating point on the ccw
-    flanks."""
+    misalignment (:func:`comparison_range`), on the ccw flanks through the operating point,
+    whose capacity the rating searched already."""
     spec, p = inputs.spec, inputs.point
     critical = inputs.get("design", DesignPoint).critical_deg
+    at = inputs.get("rating", Rating).capacity
     grid, _ = comparison_range([spec], inputs.settings.capacity_count,
                                critical={spec.name: critical})
+    known = None
     if p.flank == "ccw":
         grid = through(grid, p.misalignment_deg)
-    tasks = [partial(capacity, spec, float(m), model=p.model) for m in grid]
-    if p.flank == "cw":
-        tasks.append(partial(capacity, spec, p.misalignment_deg, model=p.model,
-                             loaded_flank="cw"))
-    return CapacityPlan(grid, critical, p.misalignment_deg, p.flank, tuple(tasks))
+        known = int(np.searchsorted(grid, p.misalignment_deg))
+    tasks = [partial(capacity, spec, float(m), model=p.model) for j, m in enumerate(grid)
+             if j != known]
+    return CapacityPlan(grid, critical, at, known, tuple(tasks))
 
 
 def files(result: CapacityAgainstMisalignment, inputs: StageInputs, folder: Path

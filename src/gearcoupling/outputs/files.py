@@ -28,6 +28,7 @@ INTERFERENCE = ("interference.csv", "interference.json", "interference.png",
 #: :func:`~gearcoupling.outputs.write_step_files`, and the listing it adds them to
 STEP = (*(f"{part}.step" for part in PART_NAMES), "parts.json")
 VIEWER = ("viewer.html",)
+RATING = ("rating.json",)
 CAPACITY = ("capacity.csv", "capacity.png")
 DATASHEET = ("datasheet.json", "datasheet.csv", "stiffness_matrix.csv", "windup_curve.csv",
              "windup.png", "allowable_loads.csv", "allowable_loads.png")

@@ -41,7 +41,10 @@ STAGES: dict[str, Stage] = {s.name: s for s in (
           writes=files.INTERFERENCE),
     Stage("viewer", "static 3D viewer", (), "viewer:scene", "viewer:files", 0.6,
           uses=(MESHES, KERNELS, LOADS), writes=files.VIEWER),
-    Stage("capacity", "capacity per criterion against misalignment", ("design",),
+    Stage("rating", "capacity at the operating point, the torque against it", (),
+          "capacity:rating", "capacity:rating_files", 2.0, uses=(KERNELS, LOADS),
+          writes=files.RATING),
+    Stage("capacity", "capacity per criterion against misalignment", ("design", "rating"),
           "capacity:plan", "capacity:files", 12.0, parallel=True,
           uses=(FIGURES, KERNELS, LOADS), writes=files.CAPACITY),
     Stage("mass", "masses and inertias of the solids", (), "datasheet:mass", None, 1.0,
@@ -59,6 +62,6 @@ STAGES: dict[str, Stage] = {s.name: s for s in (
 
 #: what ``gc.run`` computes by default: everything a spec alone gives but the capacity
 #: curve, the data sheet and the manufacturing files (their own commands and the report
-#: make those)
+#: make those); the rating says whether the capacity carries the torque
 RUN = ("spec", "sections", "parts", "step", "sweep", "load", "load_study", "q_graph",
-       "check", "viewer")
+       "rating", "check", "viewer")

@@ -25,6 +25,7 @@ from ..outputs import (
     DesignPoint,
     Hob,
     QGraph,
+    Rating,
     StaticViewer,
 )
 from ..spec import CouplingSpec
@@ -283,10 +284,9 @@ def capacity(v: View) -> list[Block]:
 
 
 def capacity_verdicts(v: View) -> list[Verdict]:
-    res = v.get("load", LoadResult)
-    if res is None:
-        return []
-    return [capacity_verdict(v.spec, res, v.get("capacity", CapacityAgainstMisalignment))]
+    rating = v.get("rating", Rating)
+    return [capacity_verdict(v.spec, v.get("load", LoadResult),
+                             None if rating is None else rating.capacity)]
 
 
 # --------------------------------------------------------------------------- checks
@@ -397,8 +397,8 @@ SECTIONS: tuple[ReportSection, ...] = (
                   ("design", "backlash", "sweep"), design_angles, design_verdicts),
     ReportSection("loads", "Loads: tooth load, q, pressure, root stress, machine loads",
                   ("load", "q_graph"), loads, loads_verdicts),
-    ReportSection("capacity", "Capacity per criterion against misalignment", ("capacity",),
-                  capacity, capacity_verdicts),
+    ReportSection("capacity", "Capacity per criterion against misalignment",
+                  ("rating", "capacity"), capacity, capacity_verdicts),
     ReportSection("datasheet", "Coupling data sheet for rotordynamics, after API 671",
                   ("datasheet",), datasheet, shown=lambda s: s.datasheet),
     ReportSection("interference", "Interference check of the meshes", ("check",),

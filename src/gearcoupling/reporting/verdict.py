@@ -149,15 +149,14 @@ def load_verdicts(spec: CouplingSpec, res) -> list[Verdict]:
     return out
 
 
-def capacity_verdict(spec: CouplingSpec, res, capacity) -> Verdict:
-    """The torque of ``res`` against the capacity at its misalignment (``capacity``: a
-    result with ``at_point``, a :class:`~gearcoupling.Capacity`; None: not computed)."""
+def capacity_verdict(spec: CouplingSpec, res, at) -> Verdict:
+    """The torque of ``res`` against the capacity at its misalignment (``at``: a
+    :class:`~gearcoupling.Capacity`; None: not computed)."""
     check = "torque ≤ capacity at the misalignment"
     if res is None:
         return Verdict(check, "–", "–", "–", OPEN, "no torque: set [load] torque_Nm or "
                        "--torque")
     T = abs(res.torque_Nm)
-    at = None if capacity is None else capacity.at_point
     if at is None or at.capacity_Nm is None:
         return Verdict(check, f"{T:.4g} N·m", "–", "–", OPEN,
                        "no criterion reaches its limit" if at is not None else
