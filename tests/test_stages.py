@@ -27,7 +27,7 @@ def test_every_stage_follows_the_stages_it_needs():
         assert set(stage.needs) <= seen, name
         seen.add(name)
     assert [s.name for s in plan(["sweep"])] == ["design", "backlash", "sweep"]
-    assert [s.name for s in plan(["datasheet"])] == ["design", "capacity", "mass",
+    assert [s.name for s in plan(["datasheet"])] == ["design", "rating", "capacity", "mass",
                                                      "datasheet"]
     with pytest.raises(gc.ArgumentError, match="bogus"):
         plan(["bogus"])
