@@ -15,6 +15,7 @@ from contextlib import contextmanager
 from pathlib import Path
 
 from ..forked import held_signals
+from ..interrupts import check as check_interrupt
 from .files import writable_file
 
 
@@ -44,6 +45,7 @@ def atomic_path(path: str | os.PathLike, field: str = "path") -> Iterator[Path]:
         yield tmp_path
         os.chmod(tmp_path, 0o666 & ~_umask())  # mkstemp made it private; use the usual mode
         writable_file(target, field)  # nothing special put there while the body ran
+        check_interrupt()  # nothing written after a signal, also one a library dropped
         os.replace(tmp_path, target)
     finally:
         if tmp_path is not None and tmp_path.exists():
