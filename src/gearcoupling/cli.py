@@ -194,10 +194,11 @@ _said: list[int] = []  # the exit status of the interruption line, once printed
 _ENDING = threading.RLock()  # one interruption line, one ending
 
 
-def _say_interrupted(signum: int, *, now: bool = False) -> int:
+def _say_interrupted(signum: int, *, fd: int | None = None) -> int:
     """Once per command (later calls only return the status): remove the temporaries of
     its stopped workers, say what is complete in one line on stderr (written straight to
-    the descriptor with ``now``: the process ends next), return 128 + the signal."""
+    the descriptor ``fd`` where given: the process ends next), return 128 + the
+    signal."""
     with _ENDING:
         if _said:
             return _said[0]
@@ -212,10 +213,8 @@ def _say_interrupted(signum: int, *, now: bool = False) -> int:
         where = f" in {', '.join(map(str, folders))}" if folders else ""
         line = (f"gearcoupling: interrupted; {len(complete)} file"
                 f"{'' if len(complete) == 1 else 's'} complete{where}")
-        if now:
-            with contextlib.suppress(Exception):  # the main thread may be writing to it
-                sys.stderr.flush()
-            os.write(2, f"{line}\n".encode())
+        if fd is not None:
+            os.write(fd, f"{line}\n".encode())
         else:
             print(line, file=sys.stderr)
         _said.append(128 + int(signum))
@@ -234,9 +233,13 @@ def _end_now(signum: int) -> NoReturn:
     FE solvers and every child process, then the interruption line
     (:func:`_say_interrupted`, unless said) and exit 128 + the signal."""
     with _ENDING:
+        # from here on what this process (its main thread may still run) and what it starts
+        # meanwhile write to stderr is not the user's business: only the line goes there
+        stderr = os.dup(2)
+        os.dup2(os.open(os.devnull, os.O_WRONLY), 2)
         _stop_solvers()
         kill_children()
-        os._exit(_say_interrupted(signum, now=True))
+        os._exit(_say_interrupted(signum, fd=stderr))
 
 
 def _handle(args: argparse.Namespace) -> int:
