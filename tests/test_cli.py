@@ -5,6 +5,8 @@ import json
 import pytest
 
 from gearcoupling.cli import main
+from gearcoupling.io.lock import RECORD_NAME
+from gearcoupling.outputs.pipeline import run_files
 
 
 def test_spec_json_has_derived_values(capsys):
@@ -53,14 +55,16 @@ def test_sections_and_run_write_files(tmp_path, capsys):
     written = {p.name for p in (tmp_path / "r").iterdir()}
     assert {"sections.png", "hub.stl", "sleeve.stl", "hub.step", "sleeve.step", "sweep.csv",
             "sweep_summary.json", "interference.json", "viewer.html"} <= written
-    assert not [n for n in written if n.startswith(".")]  # no temporary files left behind
+    # no temporary files left behind: the one hidden file is the record of the settings
+    assert [n for n in written if n.startswith(".")] == [RECORD_NAME]
+    assert written - {RECORD_NAME} <= set(run_files())  # each checked before any work
 
 
 def test_run_only_and_skip_choose_steps(tmp_path):
     assert main(["run", "renzo-1967", "-o", str(tmp_path), "--only", "spec,sections,parts",
                  "--skip", "parts"]) == 0
     assert {p.name for p in tmp_path.iterdir()} == {"spec.json", "sections.png",
-                                                    "run_summary.json"}
+                                                    "run_summary.json", RECORD_NAME}
     summary = json.loads((tmp_path / "run_summary.json").read_text())
     assert set(summary["step_seconds"]) == {"spec", "sections"}
     assert summary["files"] == ["spec.json", "sections.png"]

@@ -295,27 +295,6 @@ def test_spec_json_into_a_closed_pipe_is_quiet():
     assert proc.returncode == 0
 
 
-def test_a_killed_writer_leaves_a_temporary_that_the_next_write_removes(tmp_path):
-    from gearcoupling.io import write_text
-
-    code = ("import sys, time\nfrom gearcoupling.io import atomic_path\n"
-            "with atomic_path(sys.argv[1]) as tmp:\n    tmp.write_text('half')\n"
-            "    print('ready', flush=True)\n    time.sleep(60)\n")
-    proc = subprocess.Popen([sys.executable, "-c", code, str(tmp_path / "hub.stl")],
-                            stdout=subprocess.PIPE, env={**os.environ,
-                                                         "PYTHONPATH": os.pathsep.join(sys.path)})
-    assert proc.stdout.readline().strip() == b"ready"
-    proc.send_signal(signal.SIGKILL)
-    proc.wait(timeout=30)
-    proc.stdout.close()
-    stale = [p.name for p in tmp_path.iterdir()]
-    assert len(stale) == 1 and stale[0].startswith(".hub.stl.")  # what kill -9 strands
-    live = tmp_path / f".sleeve.stl.{os.getpid()}.abcdefgh.stl"  # a live writer's: kept
-    live.write_text("in progress")
-    write_text(tmp_path / "other.txt", "next run")
-    assert sorted(p.name for p in tmp_path.iterdir()) == [live.name, "other.txt"]
-
-
 def test_a_signal_while_the_temporary_is_made_leaves_none_behind(tmp_path, monkeypatch):
     """A SIGTERM that lands just after the temporary file exists, before the writer knows
     its name, is held until it does and then raised where the writer removes it: the study

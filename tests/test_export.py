@@ -16,6 +16,7 @@ from gearcoupling.cli import main
 from gearcoupling.errors import ArgumentError, BackendError
 from gearcoupling.export import WRITERS, Writer, export_part, formats
 from gearcoupling.export.meshes import read_mesh
+from gearcoupling.io.lock import RECORD_NAME
 from gearcoupling.parts import SURFACE_KINDS, build_part
 
 import clients
@@ -209,7 +210,7 @@ def test_generate_writes_parts_and_report(tmp_path, capsys):
     rc = main(["generate", "renzo-1967", "--parts", "sleeve,hub", "--format", "stl,vtu",
                "--teeth", "0-1,49", "--tolerance", "0.05", "-o", str(tmp_path)])
     assert rc == 0
-    names = sorted(p.name for p in tmp_path.iterdir())
+    names = sorted(p.name for p in tmp_path.iterdir() if p.name != RECORD_NAME)
     assert names == ["hub-teeth-0-1-49.stl", "hub-teeth-0-1-49.vtu", "parts.json",
                      "sleeve-teeth-0-1-49.stl", "sleeve-teeth-0-1-49.vtu"]
     report = json.loads((tmp_path / "parts.json").read_text())

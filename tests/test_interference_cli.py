@@ -25,7 +25,7 @@ def test_free_coupling_exits_0_and_writes_everything(tmp_path, capsys):
     assert (out / "interference.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert (out / "worst_hub.stl").stat().st_size > 0
     assert not (out / "worst_overlap.stl").exists()
-    assert not list(out.glob(".*"))
+    assert [p.name for p in out.glob(".*")] == [".gearcoupling.json"]  # the record only
 
 
 def test_binding_coupling_exits_1(tmp_path, capsys):

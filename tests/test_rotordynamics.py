@@ -13,6 +13,7 @@ import pytest
 import gearcoupling as gc
 from gearcoupling.cli import main
 from gearcoupling.geometry import form_radius, hub_model, inv, tip_radius
+from gearcoupling.io.lock import RECORD_NAME
 from gearcoupling.loading import (
     PHASES,
     machine_loads,
@@ -521,7 +522,7 @@ def test_datasheet_command_writes_the_files(tmp_path, capsys):
     code = main(["datasheet", "industrial-m2", "--model", "compliance", "--rotations", "2",
                  "--angles", "36", "-o", str(tmp_path)])
     assert code == 0
-    assert {p.name for p in tmp_path.iterdir()} == set(FILES)
+    assert {p.name for p in tmp_path.iterdir()} == {*FILES, RECORD_NAME}
     assert capsys.readouterr().out.split() == [str(tmp_path / f) for f in FILES]
 
 

@@ -31,7 +31,7 @@ def test_sweep_command_writes_csv_json_and_plots(tmp_path, capsys):
     assert 1.5 < summary["binding_angle_deg"] < summary["critical_misalignment_deg"] < 2.5
     for name in ("sweep_clearance.png", "sweep_contact_path.png", "sweep_clearance_map.png"):
         assert (out / name).stat().st_size > 10_000
-    assert not list(out.glob(".*"))  # no temporary files left behind
+    assert [p.name for p in out.glob(".*")] == [".gearcoupling.json"]  # no temporary left
     printed = capsys.readouterr().out.split()
     assert str(out / "sweep.csv") in printed
 

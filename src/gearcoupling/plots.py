@@ -12,7 +12,7 @@ import numpy as np
 from .errors import ArgumentError, BackendError
 from .geometry import hub_flank_model, hub_model, plane_rack, transverse_section
 from .interrupts import reraise as reraise_interrupt
-from .io import atomic_path
+from .io import atomic_path, plot_text
 
 if TYPE_CHECKING:  # matplotlib is imported where a plot is drawn
     from matplotlib.axes import Axes
@@ -165,7 +165,7 @@ def sections_figure(spec: CouplingSpec, tolerance_mm: float | None = None, *,
         hub = transverse_section(spec, "hub", z, tol)
         ax0.plot(*clip(hub), color=c, lw=1.0, label=f"hub z = {z:.3g} mm")
     ax0.set_aspect("equal")
-    ax0.set_title(f"{spec.name}: transverse sections (tooth 0 up)")
+    ax0.set_title(f"{plot_text(spec.name)}: transverse sections (tooth 0 up)")
     ax0.set_xlabel("across the teeth, from tooth 0's centre line (mm)")
     ax0.set_ylabel("from the axis, along tooth 0's centre line (mm)")
     ax0.legend(fontsize=7, loc="lower left")

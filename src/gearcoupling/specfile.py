@@ -21,7 +21,16 @@ import numpy as np
 
 from .errors import ArgumentError, GeometryError, SpecError, brief
 from .geometry import HubModel, feed_path, inv_inverse, radius_squared, use_spec_loader
-from .io import Table, as_path, bundled_names, read_toml, resolve_bundled, set_dotted, unknown_key
+from .io import (
+    Table,
+    as_path,
+    bundled_names,
+    escaped,
+    read_toml,
+    resolve_bundled,
+    set_dotted,
+    unknown_key,
+)
 from .loadspec import UNIT_SIBLINGS, parse_load, parse_material
 from .specmodel import (
     INSPECTION_LIMITS,
@@ -215,7 +224,12 @@ def _header(root: Table, name: str) -> tuple[str, str, float]:
     units = root.string("units", "mm")
     _check(units in UNITS, "units", units, f"one of {tuple(UNITS)}")
     root.scale = UNITS[units]
-    name = root.string("name", name)
+    # a name from the file is refused with a control character; one from a file's stem
+    # (the argument) gets them shown escaped: a name never becomes a line of an output
+    name = root.string("name", name) if root.has("name") else escaped(name)
+    _check(name.isprintable(), "name", brief(name, 40), "printable characters only (no "
+           "control character such as a line break, tab, ESC or NUL, no format character, "
+           "no space but ' ')")
     _check(len(name) <= MAX_NAME_CHARS, "name", brief(name, 40),
            f"at most {MAX_NAME_CHARS} characters (it names files and reports)")
     misalignment = math.radians(check_misalignment_deg(root.number("design_misalignment_deg",

@@ -26,13 +26,13 @@ from __future__ import annotations
 
 import math
 
-import numba
 import numpy as np
 from numba.extending import intrinsic
 
+from ..io.numba_cache import njit
 from ..numeric import TINY
 
-_jit = numba.njit(cache=True, nogil=True, error_model="numpy", fastmath={"contract"})
+_jit = njit(nogil=True, error_model="numpy", fastmath={"contract"})  # cached, verified
 
 # tab: constants (kernel._compiled_arrays), then the edges and the plane matrices
 CI, SI, RB, C0, RFIL, RHO, CN, GC, CX, CY, RFORM, SHF, HF, RPITCH, TOL, TIPR, SPHERE, \
@@ -85,7 +85,7 @@ def _entry(tab, e):
     return ENTRIES + e * (EPL + int(tab[NT]) + 3)
 
 
-@numba.njit(cache=True, nogil=True, error_model="numpy", fastmath={"contract", "reassoc"})
+@njit(nogil=True, error_model="numpy", fastmath={"contract", "reassoc"})
 def plane_at(tab, ws, po, z):
     """Put the plane ``z`` at ``ws[po:]``: Chebyshev series in ``z`` (the sums
     reassociated, so vectorised: the same values to rounding)."""

@@ -25,7 +25,7 @@ from numpy.typing import NDArray
 
 from ..arguments import GAP_TOLERANCE_MM
 from ..geometry import map_polar, sleeve_model
-from ..io import atomic_path
+from ..io import atomic_path, plot_text
 from ..plots import figure_axes, fixed_layout
 from ..spec import MISALIGNMENT_RANGE_DEG, CouplingSpec
 from .design import binding_angle_deg, critical_misalignment_deg, min_backlash_rad
@@ -71,7 +71,7 @@ def plot_clearance(result: SweepResult, *, ax=None):
             ax.legend(fontsize=8, loc="upper right")
     for ax in axes[1]:
         ax.set_xlabel("rotation ψ (deg); one line per tooth")
-    fig.suptitle(f"{result.spec_name}: clearance of every tooth at i = "
+    fig.suptitle(f"{plot_text(result.spec_name)}: clearance of every tooth at i = "
                  f"{result.misalignment_deg:g}°")
     if own:
         fixed_layout(fig, 0.72, 0.15, 0.59, 0.68, wspace=0.12, hspace=0.13)
@@ -105,7 +105,7 @@ def plot_contact_path(result: SweepResult, spec: CouplingSpec, *, ax=None):
         ax.legend(fontsize=7, loc="lower center")
     axes[0].set_ylabel("radius on the hub flank (mm)")
     fig.colorbar(sc, ax=axes, shrink=0.8)
-    fig.suptitle(f"{result.spec_name}: contact path at i = {result.misalignment_deg:g}°")
+    fig.suptitle(f"{plot_text(result.spec_name)}: contact path at i = {result.misalignment_deg:g}°")
     return fig
 
 
@@ -163,7 +163,8 @@ def plot_clearance_map(result: SweepResult, spec: CouplingSpec, *, ax=None):
         ax_.plot(z.ravel()[k], r.ravel()[k], "r*", ms=12, label="minimum")
         ax_.legend(fontsize=8, loc="best")
     axes[0].set_ylabel("r (mm)")
-    fig.suptitle(f"{result.spec_name}: clearance map at i = {result.misalignment_deg:g}° "
+    fig.suptitle(f"{plot_text(result.spec_name)}: "
+                 f"clearance map at i = {result.misalignment_deg:g}° "
                  "(blank: facing the sleeve tip chamfer)")
     return fig
 
@@ -184,7 +185,8 @@ def plot_backlash_over_turn(result: SweepResult, *, ax=None):
     ax.set_xlim(0, 360)
     ax.set_xlabel("rotation ψ (deg)")
     ax.set_ylabel("backlash at the pitch circle (µm)")
-    ax.set_title(f"{result.spec_name}: backlash over a turn at i = {result.misalignment_deg:g}°",
+    ax.set_title(f"{plot_text(result.spec_name)}: "
+                 f"backlash over a turn at i = {result.misalignment_deg:g}°",
                  fontsize=10)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8, loc="lower right")
@@ -217,7 +219,7 @@ def plot_backlash(spec: CouplingSpec, *, max_deg: float = MISALIGNMENT_RANGE_DEG
         ax.axvline(binding_deg, color="r", ls=":", label=f"binds at {binding_deg:.4f}°")
     ax.set_xlabel("misalignment i (deg)")
     ax.set_ylabel("backlash at the pitch circle (µm)")
-    ax.set_title(f"{spec.name}: backlash against misalignment")
+    ax.set_title(f"{plot_text(spec.name)}: backlash against misalignment")
     ax.legend(fontsize=8, loc="best")
     return fig
 
@@ -248,7 +250,7 @@ def plot_critical_vs_radius(spec: CouplingSpec,
     ax.plot(q, est, "--", color="0.4", label="b/2 = R_c cot φ · i (Renzo)")
     ax.set_xlabel("crowning radius R_c / R")
     ax.set_ylabel("critical misalignment (deg)")
-    ax.set_title(f"{spec.name}: critical misalignment against crowning radius")
+    ax.set_title(f"{plot_text(spec.name)}: critical misalignment against crowning radius")
     ax.legend(fontsize=8, loc="best")
     return fig
 
@@ -269,7 +271,7 @@ def plot_generation(spec: CouplingSpec, misalignment_deg: float, *, count: int =
                      label=f"{gen}, whole flank")
     axes[0].set_ylabel("clearance, cw (µm)")
     axes[0].legend(fontsize=8, loc="best")
-    axes[0].set_title(f"{spec.name}: enveloped (hob) vs revolved crown at i = "
+    axes[0].set_title(f"{plot_text(spec.name)}: enveloped (hob) vs revolved crown at i = "
                       f"{misalignment_deg:g}°")
     for key, label in (("pitch", "pitch line"), ("clearance", "whole flank")):
         diff = curves["revolved"][key] - curves["enveloped"][key]

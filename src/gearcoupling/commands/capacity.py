@@ -20,6 +20,9 @@ from .common import (
     progress,
     spec_from_args,
 )
+from .folders import claim, holds_folders
+
+FILES = ("capacity.csv", "capacity.png")
 
 MAX_COUNT = MAXIMA["misalignments"]  # of a curve (each one is a sweep over a tooth pitch)
 DEFAULT_COUNT = 13
@@ -81,6 +84,7 @@ def _compared_spec(text: str, overrides: dict):
             from None
 
 
+@holds_folders
 def run(args) -> int:
     if args.misalignments is not None and (args.max is not None or args.count is not None):
         raise ArgumentError("--misalignments", ",".join(map(str, args.misalignments)),
@@ -96,7 +100,7 @@ def run(args) -> int:
     mis = args.misalignments
     if mis is None:
         mis, _ = comparison_range(specs, args.count or DEFAULT_COUNT, args.max)
-    out = output_dir(args, spec)
+    out = claim(output_dir(args, spec), [s.to_dict() for s in specs], FILES)
     with progress("capacity", len(specs) * len(mis)) as update:
         comparison = compare_capacity(specs, mis, model=args.model, progress=update)
     for path in capacity_files(comparison, out, plots=not args.no_plots):

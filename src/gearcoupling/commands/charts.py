@@ -11,6 +11,9 @@ from ..hob import measuring_charts, plot_measuring_charts, write_nominal_csv
 from ..io import write_json
 from ..plots import save_figure
 from .common import add_spec_arguments, count, number_in, output_dir, spec_from_args
+from .folders import claim, holds_folders
+
+FILES = ("charts.png", "nominal_traces.csv", "charts.json")
 
 
 def register(sub) -> None:
@@ -24,10 +27,11 @@ def register(sub) -> None:
     p.set_defaults(func=run)
 
 
+@holds_folders
 def run(args) -> int:
     spec = spec_from_args(args)
+    out = claim(output_dir(args, spec), spec.to_dict(), FILES)
     charts = measuring_charts(spec, args.points, args.tip_exclusion)
-    out = output_dir(args, spec)
     files = [save_figure(plot_measuring_charts(charts), out / "charts.png"),
              write_nominal_csv(charts, out / "nominal_traces.csv")]
     files.append(write_json(out / "charts.json", {**charts.summary(),

@@ -15,6 +15,7 @@ import numpy as np
 
 from ..interference import check_interference
 from ..outputs import write_interference
+from ..outputs.files import INTERFERENCE
 from .common import (
     MAX_TEETH,
     add_misalignment_argument,
@@ -27,6 +28,7 @@ from .common import (
     progress,
     spec_from_args,
 )
+from .folders import claim, holds_folders
 
 EXIT_INTERFERENCE = 1
 MAX_CHECK_ANGLES = 3600  # every pose is a mesh boolean: about 3600 x 10-100 ms at most
@@ -94,11 +96,12 @@ def print_table(result, count: int) -> None:
                   f"pose; {'INTERFERENCE' if result.interferes else 'no interference'}")
 
 
+@holds_folders
 def run(args) -> int:
     spec = spec_from_args(args)
     mis = misalignment_deg(args, spec)
     angles = 360.0 * np.arange(args.angles) / args.angles
-    out = output_dir(args, spec)
+    out = claim(output_dir(args, spec), spec.to_dict(), INTERFERENCE)
     with progress(f"check {spec.name}", args.angles) as update:
         result = check_interference(spec, mis, angles, method=args.method,
                                     tolerance_mm=args.tolerance, teeth=args.teeth,

@@ -14,7 +14,7 @@ from ..arguments import MAXIMA, parse_count, parse_number
 from ..arguments import torque_Nm as check_torque_Nm
 from ..errors import ArgumentError, brief
 from ..interrupts import check as check_interrupt
-from ..io import default_output_dir, output_folder, parse_override
+from ..io import default_output_dir, output_folder, parse_override, terminal_text
 from ..spec import CouplingSpec, check_misalignment_deg, load_spec
 
 MAX_ANGLES = MAXIMA["angles"]  # rotation angles per turn (memory grows with it)
@@ -157,8 +157,9 @@ def writing_into(out: str | Path, field: str = "-o", *, create: bool = True) -> 
 def progress(description: str, total: int):
     """A rich progress bar on stderr with the time left; yields ``update(done, total)``, the
     library's progress callback. The bar redraws on each update (no refresh thread, so
-    :func:`gearcoupling.run` may fork beside it). Each update first raises an
-    interruption a library dropped (:func:`gearcoupling.interrupts.check`)."""
+    :func:`gearcoupling.run` may fork beside it). ``description`` is shown as text
+    (:func:`~gearcoupling.io.terminal_text`), never as rich markup. Each update first
+    raises an interruption a library dropped (:func:`gearcoupling.interrupts.check`)."""
     from rich.console import Console
     from rich.progress import (
         BarColumn,
@@ -171,10 +172,11 @@ def progress(description: str, total: int):
     # transient until the work is done: an error or an interruption, also one that comes
     # while the bar starts, leaves no bar behind (a pipe would get its last frame): the
     # command's one line says it all
-    with Progress(TextColumn("{task.description}"), BarColumn(), TextColumn("{task.completed}/"
-                  "{task.total}"), TimeElapsedColumn(), TimeRemainingColumn(),
+    with Progress(TextColumn("{task.description}", markup=False), BarColumn(),
+                  TextColumn("{task.completed}/{task.total}"), TimeElapsedColumn(),
+                  TimeRemainingColumn(),
                   console=Console(stderr=True), transient=True, auto_refresh=False) as bar:
-        task = bar.add_task(description, total=total)
+        task = bar.add_task(terminal_text(description), total=total)  # data, not markup
 
         def update(done: int, total: int) -> None:
             check_interrupt()  # a signal whose exception a library dropped stops here

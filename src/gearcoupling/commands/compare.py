@@ -29,6 +29,12 @@ from ..inspection import (
 from ..io import require_file, write_csv_records, write_json
 from ..plots import save_figure
 from .common import add_spec_arguments, count, output_dir, progress, spec_from_args
+from .folders import claim, holds_folders
+
+#: the files of a comparison of two scans, and of the inspection of one
+FILES = {2: ("comparison.csv", "comparison.json"),
+         1: ("inspection.csv", "inspection.png", "deviation_map.png", "deviation.ply",
+             "inspection.json")}
 
 MAX_FIT_POINTS = 1_000_000
 
@@ -68,6 +74,7 @@ def parse_limits(items: list[str]) -> dict[str, float]:
     return out
 
 
+@holds_folders
 def run(args) -> int:
     if len(args.files) > 2:
         raise SpecError("FILE", args.files, "one scan, or two (A B) to compare")
@@ -76,7 +83,7 @@ def run(args) -> int:
     limits = {**graded, **parse_limits(args.limit)}
     for f in args.files:  # before the output folder is made (the reader checks the rest)
         require_file(f, "file", "a scan or mesh file (STL/PLY/OBJ, CSV/XYZ)", ArgumentError)
-    out = output_dir(args, spec)
+    out = claim(output_dir(args, spec), spec.to_dict(), FILES[len(args.files)])
     with progress("compare", 2 + STAGES * len(args.files)) as update:
         result = compare_part(spec, *args.files, units=args.units, limits=limits,
                               coarse=args.coarse, fit_points=args.fit_points, progress=update)

@@ -5,10 +5,12 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from ..io import writable_file
 from ..loading import PHASES, model_names
 from ..rotordynamics import (
     DEFAULT_STEPS,
     DIFFERENCES,
+    FILES,
     MAX_TORQUE_NM,
     ROSS_SUFFIXES,
     check_inputs,
@@ -26,6 +28,7 @@ from .common import (
     progress,
     spec_from_args,
 )
+from .folders import claim, holds_folders
 
 
 def register(sub) -> None:
@@ -72,13 +75,15 @@ def ross_file(text: str) -> Path:
     return path
 
 
+@holds_folders
 def run(args) -> int:
     spec = spec_from_args(args)
     mis = misalignment_deg(args, spec)
     check_inputs(spec, args.torque)
     if args.ross is not None:
         import_ross()  # a missing extra is refused before the computation
-    out = output_dir(args, spec)
+        writable_file(args.ross, "--ross")
+    out = claim(output_dir(args, spec), spec.to_dict(), FILES)
     with progress(f"datasheet {spec.name}", 4) as update:
         data = coupling_data(spec, mis, args.torque, model=args.model,
                              rotations=args.rotations, relative_step=args.step,

@@ -24,6 +24,7 @@ from .common import (
     progress,
     spec_from_args,
 )
+from .folders import claim, holds_folders
 from .generate import PART_NAMES, parse_list
 
 
@@ -43,13 +44,21 @@ def register(sub) -> None:
     p.set_defaults(func=run)
 
 
+MESH_REPORT = "fea_mesh.json"
+
+
+def _stem(teeth: list[int] | None) -> str:
+    """``whole``, or ``sector-<k>`` for ``k`` teeth: the middle of the mesh files' names."""
+    return "whole" if teeth is None else f"sector-{len(teeth)}"
+
+
 def fea_meshes(spec: CouplingSpec, out: Path, parts, formats, *, sector=3, size_mm=None,
                progress: Callable[[int, int], None] | None = None) -> tuple[list[Path], dict]:
     """Mesh every part and write every format; returns the files and the report."""
     teeth = sector_teeth(spec, sector)
     for part in parts:  # refuse a bad size before any meshing
         check_size(spec, part, size_mm)
-    stem = "whole" if teeth is None else f"sector-{len(teeth)}"
+    stem = _stem(teeth)
     written: list[Path] = []
     report: dict = {"spec": spec.name, "teeth": teeth, "parts": {}}
     for part in parts:
@@ -61,22 +70,24 @@ def fea_meshes(spec: CouplingSpec, out: Path, parts, formats, *, sector=3, size_
                                  "files": [f.name for f in files]}
         if progress:
             progress(len(report["parts"]), len(parts))
-    written.append(write_json(out / "fea_mesh.json", report))
+    written.append(write_json(out / MESH_REPORT, report))
     return written, report
 
 
+@holds_folders
 def run(args) -> int:
     spec = spec_from_args(args)
     parts = parse_list(args.parts, PART_NAMES, "--parts")
     fmts = parse_list(args.formats, volume_formats("volume"), "--format")
     sector = None if args.whole else args.sector
 
-    sector_teeth(spec, sector)
+    stem = _stem(sector_teeth(spec, sector))
     for part in parts:
         check_size(spec, part, args.size)
     for note in fillet_notes(spec, args.size, parts):
         print(f"{spec.name}: {note}", file=sys.stderr)
-    out = output_dir(args, spec)
+    out = claim(output_dir(args, spec), spec.to_dict(),
+                [*(f"{part}-{stem}.{ext}" for part in parts for ext in fmts), MESH_REPORT])
     with progress(f"{spec.name} volume meshes", len(parts)) as update:
         written, report = fea_meshes(spec, out, parts, fmts, sector=sector,
                                      size_mm=args.size, progress=update)

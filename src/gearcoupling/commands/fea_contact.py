@@ -26,6 +26,10 @@ from .common import (
     positive_length,
     spec_from_args,
 )
+from .folders import claim, holds_folders
+
+#: the JSON of the command and the folder of the solver's files beside it
+REPORT, WORK = "fea_contact.json", "fea_contact"
 
 
 def register(sub) -> None:
@@ -51,6 +55,7 @@ def register(sub) -> None:
     p.set_defaults(func=run)
 
 
+@holds_folders
 def run(args) -> int:
     spec = spec_from_args(args)
     if args.misalignment > 0 and args.contact_size is not None:
@@ -66,8 +71,8 @@ def run(args) -> int:
         print(f"{spec.name}: {note}", file=sys.stderr)
     gmsh_module()
     ccx_path()
-    out = output_dir(args, spec)
-    work = out / "fea_contact"
+    out = claim(output_dir(args, spec), spec.to_dict(), [REPORT], [WORK])
+    work = out / WORK
     if args.misalignment > 0:
         print(f"{spec.name}: meshing and solving a {args.sector}-tooth sector in contact "
               "(tens of minutes)", file=sys.stderr)
@@ -79,7 +84,7 @@ def run(args) -> int:
                   f"{chk.fe.tangential_force_N[k]:.0f} N, {chk.model} "
                   f"{chk.model_tangential_force_N[k]:.0f} N (FE / model {r:.3f})",
                   file=sys.stderr)
-        print(write_json(out / "fea_contact.json", chk.to_dict()))
+        print(write_json(out / REPORT, chk.to_dict()))
         return 0
     print(f"{spec.name}: meshing and solving one pitch in contact (minutes)", file=sys.stderr)
     res = fe_contact(spec, torque_Nm=args.torque, size_mm=args.size,
@@ -88,5 +93,5 @@ def run(args) -> int:
           f"touch at {res.torque_Nm:g} N·m; tooth load {res.tooth_load_N:.1f} N "
           f"(equilibrium {res.equilibrium_tooth_load_N:.1f} N); interior pressure "
           f"{res.interior_pressure_MPa:.0f} MPa", file=sys.stderr)
-    print(write_json(out / "fea_contact.json", res.to_dict()))
+    print(write_json(out / REPORT, res.to_dict()))
     return 0

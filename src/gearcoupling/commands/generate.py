@@ -13,7 +13,9 @@ from ..arguments import parse_count
 from ..errors import ArgumentError
 from ..export import formats as registered
 from ..outputs import PART_NAMES, write_parts
+from ..outputs.files import part_files
 from .common import add_spec_arguments, output_dir, positive_length, progress, spec_from_args
+from .folders import claim, holds_folders
 
 
 def register(sub) -> None:
@@ -61,12 +63,13 @@ def parse_teeth(text: str | None, teeth: int) -> list[int] | None:
     return sorted(set(out))
 
 
+@holds_folders
 def run(args) -> int:
     spec = spec_from_args(args)
     parts = parse_list(args.parts, PART_NAMES, "--parts")
     fmts = parse_list(args.formats, registered(), "--format")
     teeth = parse_teeth(args.teeth, spec.tooth.teeth)
-    out = output_dir(args, spec)
+    out = claim(output_dir(args, spec), spec.to_dict(), part_files(parts, fmts, teeth))
     with progress(f"{spec.name} parts", len(parts) * (1 + len(fmts))) as update:
         written, report = write_parts(spec, out, parts, fmts, args.tolerance, teeth,
                                       progress=update)

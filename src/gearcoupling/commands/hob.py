@@ -10,6 +10,9 @@ from __future__ import annotations
 from ..hob import FEED_RANGE_MM_PER_REV, check_hob_diameter, hob_program
 from ..io import write_csv_records, write_json, write_text
 from .common import add_spec_arguments, number_in, output_dir, positive_length, spec_from_args
+from .folders import claim, holds_folders
+
+FILES = ("hob_path.csv", "hob_program.nc", "hob.json")
 
 
 def register(sub) -> None:
@@ -27,11 +30,12 @@ def register(sub) -> None:
     p.set_defaults(func=run)
 
 
+@holds_folders
 def run(args) -> int:
     spec = spec_from_args(args)
     check_hob_diameter(spec, args.hob_diameter, "--hob-diameter")
+    out = claim(output_dir(args, spec), spec.to_dict(), FILES)
     prog = hob_program(spec, args.hob_diameter, tolerance_mm=args.tolerance)
-    out = output_dir(args, spec)
     files = [
         write_csv_records(out / "hob_path.csv", prog.rows(),
                   [f"hob centre path for {spec.name}; mm and degrees; x = centre distance "

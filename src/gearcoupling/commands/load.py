@@ -5,6 +5,7 @@ from __future__ import annotations
 from ..arguments import GAP_TOLERANCE_MM, TORQUE_RANGE_NM
 from ..loading import PHASES, model_names, models_help
 from ..outputs import write_load
+from ..outputs.files import LOAD
 from ..reporting import load_verdicts
 from .common import (
     MAX_ANGLES,
@@ -19,6 +20,7 @@ from .common import (
     torque,
 )
 from .findings import print_findings
+from .folders import claim, holds_folders
 
 
 def register(sub) -> None:
@@ -43,10 +45,11 @@ def register(sub) -> None:
     p.set_defaults(func=run)
 
 
+@holds_folders
 def run(args) -> int:
     spec = spec_from_args(args)
     mis = misalignment_deg(args, spec)
-    out = output_dir(args, spec)
+    out = claim(output_dir(args, spec), spec.to_dict(), LOAD)
     # one bar: the turn's poses, then the studies' misalignments
     with progress(f"load {spec.name}", args.angles or PHASES) as update:
         res, paths = write_load(spec, out, mis, args.angles, torque_Nm=args.torque,

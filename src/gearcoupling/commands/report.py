@@ -13,6 +13,8 @@ from ..inspection import GRADES, LIMITS, grade_limits
 from ..io import require_file
 from ..loading import model_names, models_help
 from ..reporting import KNOB_RANGES, ReportSettings, report
+from ..reporting.build import report_files
+from ..reporting.sections import DATA_DIR
 from .common import (
     add_misalignment_argument,
     add_spec_arguments,
@@ -25,6 +27,7 @@ from .common import (
     torque,
 )
 from .compare import parse_limits
+from .folders import claim, holds_folders
 
 
 def register(sub) -> None:
@@ -66,6 +69,7 @@ def register(sub) -> None:
     p.set_defaults(func=run)
 
 
+@holds_folders
 def run(args) -> int:
     spec = spec_from_args(args)
     if args.hob_diameter is not None:
@@ -84,7 +88,7 @@ def run(args) -> int:
                               hob_diameter_mm=args.hob_diameter, viewer=not args.no_viewer,
                               datasheet=not args.no_datasheet,
                               **knobs)
-    out = output_dir(args, spec)
+    out = claim(output_dir(args, spec), spec.to_dict(), report_files(args.pdf), [DATA_DIR])
     with progress(f"report {spec.name}", 1) as update:
         try:
             result = report(spec, out, pdf=args.pdf, settings=settings, progress=update)

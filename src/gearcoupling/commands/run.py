@@ -8,7 +8,9 @@ import sys
 from ..errors import ArgumentError
 from ..outputs import STEPS
 from ..outputs import run as run_all
+from ..outputs.pipeline import run_files
 from .common import add_spec_arguments, count, output_dir, progress, spec_from_args
+from .folders import claim, holds_folders
 
 
 def register(sub) -> None:
@@ -30,11 +32,12 @@ def _keys(option: str, text: str | None) -> list[str]:
     return keys
 
 
+@holds_folders
 def run(args) -> int:
     only = _keys("--only", args.only) if args.only is not None else None
     skip = _keys("--skip", args.skip)
     spec = spec_from_args(args)
-    out = output_dir(args, spec)
+    out = claim(output_dir(args, spec), spec.to_dict(), run_files(only, skip))
     total = len([k for k in STEPS if (only is None or k in only) and k not in skip])
     with progress(spec.name, total) as update:
         res = run_all(spec, out, only=only, skip=skip, workers=args.workers, progress=update)

@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
+from ..outputs.files import SECTIONS
 from ..plots import plot_sections
 from .common import add_spec_arguments, output_dir, positive_length, progress, spec_from_args
+from .folders import claim, holds_folders
 
 
 def register(sub) -> None:
@@ -14,9 +16,10 @@ def register(sub) -> None:
     p.set_defaults(func=run)
 
 
+@holds_folders
 def run(args) -> int:
     spec = spec_from_args(args)
-    out = output_dir(args, spec)
+    out = claim(output_dir(args, spec), spec.to_dict(), SECTIONS)
     with progress(f"sections {spec.name}", 1) as update:
         path = plot_sections(spec, out / "sections.png", args.tolerance)
         update(1, 1)

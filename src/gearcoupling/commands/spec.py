@@ -1,11 +1,12 @@
-"""``gearcoupling spec``: print the resolved spec with derived values."""
+"""``gearcoupling spec``: print the resolved spec with derived values (text from the spec
+as data: control characters shown escaped, no rich markup)."""
 
 from __future__ import annotations
 
 import json
 import math
 
-from ..io import plain
+from ..io import plain, terminal_text
 from ..outputs import resolved_spec
 from .common import add_spec_arguments, spec_from_args
 
@@ -52,12 +53,14 @@ def _cell(section: str, value) -> str:
 
 def _table(path: str, rows: dict):
     """One section as a rich table under its ``[path]`` heading (a heading that never
-    wraps, whatever the width of the table or the terminal)."""
+    wraps, whatever the width of the table or the terminal); keys and values are
+    :class:`rich.text.Text` of :func:`~gearcoupling.io.terminal_text`, never markup."""
     from rich.console import Group
     from rich.table import Table
     from rich.text import Text
 
     t = Table(show_header=False)
     for key, value in rows.items():
-        t.add_row(key, _cell(path, value))
-    return Group(Text(f"[{path}]", style="bold", no_wrap=True, overflow="ignore"), t)
+        t.add_row(Text(terminal_text(key)), Text(terminal_text(_cell(path, value))))
+    return Group(Text(f"[{terminal_text(path)}]", style="bold", no_wrap=True,
+                      overflow="ignore"), t)

@@ -2,8 +2,10 @@
 
 Writes ``stiffness.csv`` (one row per load point: hub, sleeve and pair compliance, pair
 stiffness, fillet stress per N) and ``stiffness.json`` (the table, the pitch-point figures
-and the set-up: supports, sizes, times). The table is cached per spec hash (see
-:func:`gearcoupling.fea.tooth_compliance_table`).
+and the set-up: supports, sizes, times). The table is cached per spec hash and settings,
+used only when its key and checksum match (see
+:func:`gearcoupling.fea.tooth_compliance_table`); the cache folder is checked before the FE
+runs.
 """
 
 from __future__ import annotations
@@ -17,12 +19,13 @@ from ..errors import ArgumentError
 from ..fea import (
     ccx_path,
     check_size,
+    fe_cache_folder,
     fillet_notes,
     gmsh_module,
     pitch_point_compliance,
     tooth_compliance_table,
 )
-from ..io import output_folder, write_json, write_text
+from ..io import write_json, write_text
 from .common import (
     MAX_TEETH,
     add_spec_arguments,
@@ -32,6 +35,7 @@ from .common import (
     progress,
     spec_from_args,
 )
+from .folders import claim, holds_folders
 
 
 def register(sub) -> None:
@@ -52,6 +56,9 @@ def register(sub) -> None:
     p.set_defaults(func=run)
 
 
+FILES = ("stiffness.csv", "stiffness.json")
+
+
 def write_table(table, out: Path) -> list[Path]:
     """``stiffness.csv`` and ``stiffness.json`` of a compliance table."""
     rows = table.rows()
@@ -59,12 +66,13 @@ def write_table(table, out: Path) -> list[Path]:
     writer = csv.DictWriter(buf, fieldnames=list(rows[0]))
     writer.writeheader()
     writer.writerows({k: f"{v:.6g}" for k, v in row.items()} for row in rows)
-    csv_path = write_text(out / "stiffness.csv", buf.getvalue())
+    csv_path = write_text(out / FILES[0], buf.getvalue())
     summary = pitch_point_compliance(table)
-    json_path = write_json(out / "stiffness.json", {"pitch_point": summary, **table.to_dict()})
+    json_path = write_json(out / FILES[1], {"pitch_point": summary, **table.to_dict()})
     return [csv_path, json_path]
 
 
+@holds_folders
 def run(args) -> int:
     spec = spec_from_args(args)
     for part in ("hub", "sleeve"):
@@ -74,11 +82,12 @@ def run(args) -> int:
     if args.sector < 1 or args.sector % 2 == 0 or args.sector > spec.tooth.teeth:
         raise ArgumentError("--sector", args.sector, f"an odd number of teeth from 1 to "
                         f"{spec.tooth.teeth} (the middle tooth is loaded)")
-    if args.cache is not None:  # before the FE runs, which write the cache at the end
-        output_folder(args.cache, "--cache")
+    # before the FE runs, which write the cache at the end: --cache, GEARCOUPLING_CACHE or
+    # the user's cache folder
+    fe_cache_folder(args.cache, "--cache")
     gmsh_module()
     ccx_path()
-    out = output_dir(args, spec)
+    out = claim(output_dir(args, spec), spec.to_dict(), FILES)
     with progress(f"{spec.name} FE stiffness", 4) as update:
         table = tooth_compliance_table(spec, size_mm=args.size, sector=args.sector,
                                        nz=args.nz, nr=args.nr, cache=args.cache,

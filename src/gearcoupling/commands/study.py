@@ -23,6 +23,7 @@ from ..study import (
     write_rows,
 )
 from .common import count, number_in, progress, writing_into
+from .folders import claim, holds_folders
 
 
 def register(sub) -> None:
@@ -45,12 +46,13 @@ def register(sub) -> None:
     p.set_defaults(func=run)
 
 
+@holds_folders
 def run(args) -> int:
     study = load_study(args.file)
     if args.scheduler is not None:
         scheduler_address(args.scheduler, "--scheduler")
-    out = writing_into(default_output_dir(f"study-{study.name}") if args.output is None
-                       else args.output)
+    out = claim(writing_into(default_output_dir(f"study-{study.name}") if args.output is None
+                             else args.output))
     if study.optimise is not None:
         return _optimise(study, out, plots=not args.no_plots)
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from ..arguments import GAP_TOLERANCE_MM
 from ..outputs import design_point, write_sweep
+from ..outputs.files import SWEEP
 from ..reporting import geometry_verdicts
 from .common import (
     MAX_ANGLES,
@@ -17,6 +18,7 @@ from .common import (
     spec_from_args,
 )
 from .findings import print_findings
+from .folders import claim, holds_folders
 
 
 def register(sub) -> None:
@@ -36,10 +38,11 @@ def register(sub) -> None:
     p.set_defaults(func=run)
 
 
+@holds_folders
 def run(args) -> int:
     spec = spec_from_args(args)
     mis = misalignment_deg(args, spec)
-    out = output_dir(args, spec)
+    out = claim(output_dir(args, spec), spec.to_dict(), SWEEP)
     with progress(f"sweep {spec.name}", 3) as update:
         result, paths = write_sweep(spec, out, mis, args.angles, tolerance_mm=args.tolerance,
                                     design=not args.no_design, plots=not args.no_plots,

@@ -28,7 +28,14 @@ from typing import cast
 import numpy as np
 from numpy.typing import NDArray
 
-from ..io import inp_element_lines, inp_id_lines, inp_node_lines
+from ..io import (
+    inp_comment,
+    inp_element_lines,
+    inp_id_lines,
+    inp_node_lines,
+    vtk_header,
+    xml_text,
+)
 from ..parts import SURFACE_KINDS
 from .job import PartJob
 
@@ -83,7 +90,7 @@ def write_3mf(job: PartJob, path: Path) -> None:
     triangles = _xml_rows('<triangle v1="%d" v2="%d" v3="%d"/>', np.asarray(mesh.faces))
     model = (f'<?xml version="1.0" encoding="UTF-8"?>\n'
              f'<model unit="millimeter" xml:lang="en-US" xmlns="{core}">\n'
-             f'<metadata name="Title">{job.title}</metadata>\n'
+             f'<metadata name="Title">{xml_text(job.title)}</metadata>\n'
              f'<metadata name="Application">gearcoupling</metadata>\n'
              f'<resources>\n<object id="1" type="model" name="{job.part}">\n<mesh>\n'
              f'<vertices>\n{vertices}</vertices>\n<triangles>\n{triangles}</triangles>\n'
@@ -138,7 +145,7 @@ def write_vtk(job: PartJob, path: Path) -> None:
     cells = np.column_stack([np.full(m, 3), faces]).astype(">i4")
     fields = _kind_field_data()
     with open(path, "wb") as fh:
-        fh.write(f"# vtk DataFile Version 4.2\n{job.title} (mm)\nBINARY\n"
+        fh.write(f"# vtk DataFile Version 4.2\n{vtk_header(f'{job.title} (mm)')}\nBINARY\n"
                  f"DATASET UNSTRUCTURED_GRID\nFIELD FieldData {len(fields)}\n".encode())
         for name, code in fields.items():
             fh.write(f"{name} 1 1 int\n".encode())
@@ -219,8 +226,9 @@ def write_inp(job: PartJob, path: Path) -> None:
     """Abaqus/CalculiX mesh deck: S3 triangles and element sets per kind and tooth."""
     mesh = job.mesh
     kind, tooth = _labels(job)
-    lines = [f"** gearcoupling {job.title}: surface mesh in mm, S3 triangles; element sets",
-             "** per surface kind and per tooth. Add a material and *SHELL SECTION to run."]
+    lines = [inp_comment(f"gearcoupling {job.title}: surface mesh in mm, S3 triangles"),
+             "** element sets per surface kind and per tooth. Add a material and *SHELL "
+             "SECTION to run."]
     lines += inp_node_lines(np.asarray(mesh.vertices, dtype=float))
     lines += inp_element_lines(np.asarray(mesh.faces, dtype=np.int64), "S3")
     for code, name in enumerate(SURFACE_KINDS):

@@ -12,6 +12,7 @@ from pathlib import Path
 
 from ..errors import BackendError
 from ..interrupts import reraise as reraise_interrupt
+from ..io import step_text
 from ..parts import check_tolerance, part_solid, shape_volume
 
 
@@ -45,7 +46,8 @@ def _quiet_stdout():
 
 
 def write_step(shape, path: str | Path, *, name: str = "part") -> Path:
-    """Write an OpenCASCADE shape to a STEP file (AP214, millimetres)."""
+    """Write an OpenCASCADE shape to a STEP file (AP214, millimetres), its product named
+    ``name`` in printable ASCII (:func:`~gearcoupling.io.step_text`)."""
     step = _step_control()
     from OCP.IFSelect import IFSelect_ReturnStatus
     from OCP.Interface import Interface_Static
@@ -53,7 +55,7 @@ def write_step(shape, path: str | Path, *, name: str = "part") -> Path:
     step.STEPControl_Controller.Init_s()
     Interface_Static.SetCVal_s("write.step.unit", "MM")
     Interface_Static.SetCVal_s("write.step.schema", "AP214IS")
-    Interface_Static.SetCVal_s("write.step.product.name", name)
+    Interface_Static.SetCVal_s("write.step.product.name", step_text(name))
     # no 2-D parameter curves: readers rebuild them from the 3-D edges and surfaces
     Interface_Static.SetIVal_s("write.surfacecurve.mode", 0)
     with _quiet_stdout():

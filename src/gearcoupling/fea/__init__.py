@@ -29,9 +29,11 @@ from .stiffness import (
     ComplianceTable,
     compute_compliance_table,
     default_patch_mm,
+    fe_cache_folder,
     load_rows_mm,
     pitch_point_compliance,
     rectangle_halfspace_work_mm_per_N,
+    table_entry,
     tooth_compliance_table,
 )
 from .validation import CUT_DISTANCE_PITCHES, check_sector, fe_sector_at_loads
@@ -56,6 +58,7 @@ __all__ = [
     "compute_compliance_table",
     "default_patch_mm",
     "default_size",
+    "fe_cache_folder",
     "fe_contact",
     "fe_contact_sector",
     "fe_sector_at_loads",
@@ -69,6 +72,7 @@ __all__ = [
     "ring_deflections",
     "sector_self",
     "sector_teeth",
+    "table_entry",
     "tooth_compliance_table",
     "write_inp",
     "write_mesh",

@@ -35,7 +35,6 @@ own deflection on the same mesh, at a few ``|z|`` at the pitch radius; their use
 
 from __future__ import annotations
 
-import json
 import math
 import resource
 import time
@@ -47,12 +46,13 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..errors import ArgumentError, GeometryError
 from ..geometry import rot_z
-from ..io import inp_number, safe_name, write_json
+from ..io import inp_number, safe_name
+from ..io.cache import cache_key, cached, package_version, store
 from ..spec import CouplingSpec
 from .ccx import run_ccx, solver_dir
 from .deck import LoadCase, static_deck
 from .mesh import check_size, mesh_part
-from .stiffness import cache_dir, load_case, material, spec_hash
+from .stiffness import fe_cache_folder, load_case, material, spec_hash, table_array
 from .volume import VolumeMesh, tet_volumes
 
 BODIES_VERSION = 1  # bump when the set-up changes: old cache entries are then ignored
@@ -532,9 +532,24 @@ class BodyInfluenceTable:
 
     @classmethod
     def from_dict(cls, d: dict) -> BodyInfluenceTable:
-        arrays = {k: np.asarray(d[k], dtype=float) for k in
-                  ("z_mm", "ring_mm_per_N", "sector_mm_per_N", "shell_twist_rad_per_Nmm")}
-        return cls(**arrays, pitch_radius_mm=float(d["pitch_radius_mm"]), info=d["info"])
+        """The table of :meth:`to_dict`'s data, checked (shapes as documented, values
+        finite, the loaded tooth's own deflections and the pitch radius positive); else
+        :class:`~gearcoupling.errors.ArgumentError` naming the field."""
+        if not isinstance(d, dict):
+            raise ArgumentError("table", type(d).__name__, "a dict of the table's fields")
+        z = table_array(d, "z_mm", None, fewest=1)
+        ring = np.asarray(d.get("ring_mm_per_N"), dtype=object)
+        teeth = ring.shape[2] if ring.ndim == 3 else 0
+        ring = table_array(d, "ring_mm_per_N", (2, z.size, teeth))
+        if not np.all(ring[:, :, 0] > 0):
+            raise ArgumentError("ring_mm_per_N", "a loaded tooth's own deflection <= 0",
+                                "positive on the loaded tooth")
+        info = d.get("info", {})
+        if not isinstance(info, dict):
+            raise ArgumentError("info", type(info).__name__, "a dict")
+        return cls(z, ring, table_array(d, "sector_mm_per_N", (2, z.size), "positive"),
+                   table_array(d, "shell_twist_rad_per_Nmm", (2,)),
+                   float(table_array(d, "pitch_radius_mm", (), "positive")), info)
 
 
 def compute_body_influence(spec: CouplingSpec, *, size_mm: float | None = None, nz: int = 3,
@@ -578,16 +593,20 @@ def body_influence_table(spec: CouplingSpec, *, size_mm: float | None = None, nz
                          cache: str | Path | None = None, refresh: bool = False
                          ) -> BodyInfluenceTable:
     """The body influence table of a spec (:func:`compute_body_influence`), cached like the
-    tooth table (:func:`~gearcoupling.fea.tooth_compliance_table`) in
-    ``<cache>/<name>-bodies-<hash>.json``; ``refresh`` recomputes it."""
+    tooth table (:func:`~gearcoupling.fea.tooth_compliance_table`: used only when its key
+    and checksum match) in ``<cache>/<name>-bodies-<hash>.json``; ``refresh`` recomputes
+    it."""
     size = default_body_size(spec) if size_mm is None else size_mm
     size = min(check_size(spec, "hub", size), check_size(spec, "sleeve", size))
-    key = spec_hash(spec, size_mm=size, nz=nz, kind="bodies", version=BODIES_VERSION)
-    path = (Path(cache) if cache is not None else cache_dir()) / \
-        f"{safe_name(spec.name)}-bodies-{key}.json"
-    if path.exists() and not refresh:
-        return BodyInfluenceTable.from_dict(json.loads(path.read_text()))
+    key = cache_key("FE body influence table", BODIES_VERSION, size_mm=size, nz=nz,
+                    spec_hash=spec_hash(spec, size_mm=size, nz=nz, kind="bodies",
+                                        version=BODIES_VERSION, package=package_version()))
+    path = fe_cache_folder(cache) / f"{safe_name(spec.name)}-bodies-{key['spec_hash']}.json"
+    found = None if refresh else cached(path, key, BodyInfluenceTable.from_dict,
+                                        f"the FE body influence table of {spec.name!r}")
+    if found is not None:
+        return found
     table = compute_body_influence(spec, size_mm=size, nz=nz)
-    table.info["spec_hash"] = key
-    write_json(path, table.to_dict())
+    table.info["spec_hash"] = key["spec_hash"]
+    store(path, key, table.to_dict())
     return table

@@ -19,6 +19,7 @@ from numpy.typing import NDArray
 
 from ..errors import BackendError
 from ..forked import held_signals
+from ..io import move_into, temporary_folder
 from .backends import ccx_path
 
 
@@ -119,44 +120,62 @@ def run_ccx(deck: str, workdir: str | Path, job: str = "job", *,
             timeout_s: float = 3600.0, threads: int = 2) -> CcxResult:
     """Write ``<workdir>/<job>.inp`` and run ``ccx`` on it.
 
-    The solver's output is kept in ``<job>.log`` beside the deck; a failed run raises
-    :class:`BackendError` naming that log.
+    ``ccx`` runs in a private folder made for it in ``workdir``
+    (:func:`~gearcoupling.io.temporary_folder`); when it has ended, the deck, its output
+    files and ``<job>.log`` (its printout) are moved into ``workdir``, each replacing what
+    is there as an atomic write does (a symbolic link there is replaced, not written
+    through). A run that is interrupted or stopped (:func:`stop_solvers`) moves nothing:
+    no partial solver file is left. A failed run raises :class:`BackendError` naming the
+    log and the deck; one that timed out keeps only those two.
     """
     exe = ccx_path()
     work = Path(workdir)
     work.mkdir(parents=True, exist_ok=True)
-    (work / f"{job}.inp").write_text(deck)
-    log = work / f"{job}.log"
     env = dict(os.environ, OMP_NUM_THREADS=str(threads),
                CCX_NPROC_EQUATION_SOLVER=str(threads))
-    t0 = time.perf_counter()
     if _STOPPED.is_set():
         raise _stopped()
-    with _started([exe, "-i", job], work, env) as proc:
-        try:
-            stdout, stderr = proc.communicate(timeout=timeout_s)
-        except subprocess.TimeoutExpired as err:
-            proc.kill()
-            stdout, stderr = proc.communicate()
-            log.write_text(f"{stdout}\n{stderr}\ntimed out after {timeout_s} s\n")
-            raise BackendError(f"ccx timed out after {timeout_s:.0f} s; its log is {log}"
-                               ) from err
-        except BaseException:  # an interruption: the solver goes with the caller
-            proc.kill()
-            raise
-    log.write_text(stdout + "\n" + stderr)
-    if _STOPPED.is_set():
-        raise _stopped()
-    seconds = time.perf_counter() - t0
+    with temporary_folder(work) as scratch:
+        (scratch / f"{job}.inp").write_text(deck)
+        t0 = time.perf_counter()
+        returncode, stdout, timed_out = _solve([exe, "-i", job], scratch, env, timeout_s)
+        if _STOPPED.is_set():
+            raise _stopped()
+        seconds = time.perf_counter() - t0
+        (scratch / f"{job}.log").write_text(stdout if not timed_out else
+                                            f"{stdout}\ntimed out after {timeout_s} s\n")
+        kept = [f"{job}.inp", f"{job}.log"] if timed_out else sorted(
+            p.name for p in scratch.iterdir() if p.is_file() and not p.is_symlink())
+        for name in kept:
+            move_into(scratch / name, work / name)
+    log = work / f"{job}.log"
+    if timed_out:
+        raise BackendError(f"ccx timed out after {timeout_s:.0f} s; its log is {log}")
     dat = work / f"{job}.dat"
-    failed = proc.returncode != 0 or "*ERROR" in stdout or not dat.exists()
-    if failed:
+    if returncode != 0 or "*ERROR" in stdout or f"{job}.dat" not in kept:
         first = next((ln.strip() for ln in stdout.splitlines() if "*ERROR" in ln), "")
-        raise BackendError(f"ccx failed (exit {proc.returncode}) {first}; its log is {log} "
+        raise BackendError(f"ccx failed (exit {returncode}) {first}; its log is {log} "
                            f"and the deck {work / f'{job}.inp'}")
     return CcxResult(work / job, parse_dat(dat.read_text()), seconds)
 
 
+def _solve(args: list[str], cwd: Path, env: dict[str, str],
+           timeout_s: float) -> tuple[int, str, bool]:
+    """Run the solver ``args`` in ``cwd``: its exit status, its printout (stdout, then
+    stderr) and whether it was killed for running past ``timeout_s``. An interruption
+    kills it and propagates."""
+    with _started(args, cwd, env) as proc:
+        try:
+            stdout, stderr = proc.communicate(timeout=timeout_s)
+            timed_out = False
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            stdout, stderr = proc.communicate()
+            timed_out = True
+        except BaseException:  # an interruption: the solver goes with the caller
+            proc.kill()
+            raise
+    return proc.returncode, f"{stdout}\n{stderr}", timed_out
 
 
 _HEADER = re.compile(r"^\s*([a-z][\w ]*?)\s*\(.*\)\s*for (.*?)\s+and time\s+(\S+)", re.I)

@@ -50,8 +50,10 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..arguments import count, flag
 from ..errors import ArgumentError, GeometryError
-from ..io import as_path, safe_name, write_json
+from ..io import safe_name
+from ..io.cache import cache_folder, cache_key, cached, package_version, store
 from ..spec import CouplingSpec, as_spec
+from .backends import ccx_path, gmsh_module
 from .ccx import run_ccx, solver_dir
 from .deck import LoadCase, green_deck, principal_max
 from .mesh import DEFAULT_SECTOR_TEETH, LoadedTooth, check_size, mesh_part, size_range
@@ -93,9 +95,31 @@ def spec_hash(spec: CouplingSpec, **settings) -> str:
 def cache_dir() -> Path:
     """The compliance-table cache: ``$GEARCOUPLING_CACHE`` or ``$XDG_CACHE_HOME/gearcoupling``
     (default ``~/.cache/gearcoupling``), subfolder ``fea``."""
-    base = os.environ.get(CACHE_ENV) or Path(
-        os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "gearcoupling"
-    return Path(base) / "fea"
+    return _cache_base()[0] / "fea"
+
+
+def _cache_base() -> tuple[Path, str, str]:
+    """The cache's base folder, the variable that sets it and its value."""
+    if os.environ.get(CACHE_ENV):
+        return Path(os.environ[CACHE_ENV]), CACHE_ENV, os.environ[CACHE_ENV]
+    if os.environ.get("XDG_CACHE_HOME"):
+        xdg = os.environ["XDG_CACHE_HOME"]
+        return Path(xdg) / "gearcoupling", "XDG_CACHE_HOME", xdg
+    home = Path.home() / ".cache" / "gearcoupling"
+    return home, "the cache folder", str(home)
+
+
+def fe_cache_folder(cache: str | Path | None = None, field: str = "cache") -> Path:
+    """The folder of the FE tables' cache entries, made if missing and checked before any
+    work: ``cache`` (named ``field`` in an error), else :func:`cache_dir` (an error names
+    ``GEARCOUPLING_CACHE`` or ``XDG_CACHE_HOME`` when one of them sets it).
+    :class:`~gearcoupling.errors.ArgumentError` when it is a file, a device or a pipe, lies
+    under a file or cannot be written into (:func:`gearcoupling.io.cache.cache_folder`)."""
+    if cache is not None:
+        return cache_folder(cache, field)
+    base, name, value = _cache_base()
+    cache_folder(base, name, value)
+    return cache_folder(base / "fea", name, value)
 
 
 @dataclass(frozen=True)
@@ -167,10 +191,29 @@ class ComplianceTable:
 
     @classmethod
     def from_dict(cls, d: dict) -> ComplianceTable:
-        arrays = {k: np.asarray(d[k], dtype=float) for k in
-                  ("z_mm", "r_mm", "hub_mm_per_N", "sleeve_mm_per_N", "root_stress_MPa_per_N",
-                   "near_field_mm_per_N")}
-        return cls(**arrays, pitch_radius_mm=float(d["pitch_radius_mm"]), info=d["info"])
+        """The table of :meth:`to_dict`'s data, checked: grids increasing, every value
+        finite, compliances, far field and pitch radius positive, stresses and near field
+        not negative, shapes as documented; else :class:`~gearcoupling.errors.ArgumentError`
+        naming the field."""
+        if not isinstance(d, dict):
+            raise ArgumentError("table", type(d).__name__, "a dict of the table's fields")
+        z = table_array(d, "z_mm", None)
+        r = table_array(d, "r_mm", None)
+        grid = (z.size, r.size)
+        hub = table_array(d, "hub_mm_per_N", grid, "positive")
+        sleeve = table_array(d, "sleeve_mm_per_N", grid, "positive")
+        stress = table_array(d, "root_stress_MPa_per_N", (2, *grid), "not negative")
+        near = table_array(d, "near_field_mm_per_N", (2, *grid), "not negative")
+        R = table_array(d, "pitch_radius_mm", (), "positive")
+        info = d.get("info", {})
+        if not isinstance(info, dict):
+            raise ArgumentError("info", type(info).__name__, "a dict")
+        table = cls(z, r, hub, sleeve, stress, float(R), near, info)
+        if not np.all(table.far_field_mm_per_N > 0):
+            raise ArgumentError("near_field_mm_per_N", near, "below the hub + sleeve "
+                                "compliance at every load point (a positive far field)",
+                                _shown(near))
+        return table
 
     def rows(self) -> list[dict]:
         """One row per grid point (``stiffness.csv``)."""
@@ -189,6 +232,37 @@ class ComplianceTable:
                             "sleeve_root_stress_MPa_per_N":
                                 self.root_stress_MPa_per_N[1, i, j]})
         return out
+
+
+def table_array(d: dict, name: str, shape: tuple[int, ...] | None, sign: str = "finite",
+                fewest: int = 2) -> NDArray[np.float64]:
+    """``d[name]`` (a stored table's field) as a float array of ``shape`` (``None``: 1-D,
+    at least ``fewest`` values, increasing from 0 or more), every value finite and ``sign``
+    (``"positive"``, ``"not negative"`` or ``"finite"``); else an
+    :class:`~gearcoupling.errors.ArgumentError` naming ``name``."""
+    want = (f"a list of at least {fewest} increasing numbers, the first not negative"
+            if shape is None else f"numbers of shape {shape}, finite"
+            + ("" if sign == "finite" else f" and {sign}"))
+    try:
+        a = np.asarray(d[name], dtype=float)
+    except (KeyError, TypeError, ValueError):
+        raise ArgumentError(name, d.get(name), want, _shown(d.get(name))) from None
+    ok = a.shape == shape if shape is not None else (a.ndim == 1 and a.size >= fewest)
+    ok = ok and bool(np.all(np.isfinite(a)))
+    if ok and shape is None:
+        ok = bool(np.all(np.diff(a) > 0) and a[0] >= 0)
+    elif ok and sign != "finite":
+        ok = bool(np.all(a > 0) if sign == "positive" else np.all(a >= 0))
+    if not ok:
+        raise ArgumentError(name, a, want, _shown(a))
+    return a
+
+
+def _shown(value: object) -> str:
+    """A table field's value as an error shows it: an array's shape and range."""
+    if isinstance(value, np.ndarray) and value.size:
+        return f"array of shape {value.shape} from {np.min(value):.4g} to {np.max(value):.4g}"
+    return repr(value)[:80]
 
 
 def _fixed_sets(vm: VolumeMesh) -> list[str]:
@@ -468,29 +542,50 @@ def tooth_compliance_table(spec: CouplingSpec, *, size_mm: float | None = None,
                            ) -> ComplianceTable:
     """The FE compliance table of a spec, cached per spec hash and settings.
 
-    The cache is ``<cache>/<hash>.json`` (default :func:`cache_dir`, i.e. the user's cache
-    folder ``~/.cache/gearcoupling/fea``); ``refresh`` recomputes it. Implements the tooth
-    compliance protocol ``pair_compliance_mm_per_N(z_mm, r_mm)`` of the load models.
+    The cache entry is ``<cache>/<name>-<hash>.json`` (default :func:`cache_dir`, i.e. the
+    user's cache folder ``~/.cache/gearcoupling/fea``), checked before any work
+    (:func:`fe_cache_folder`). It is used only when it was written for the same key (the
+    spec's hash, these settings, :data:`VERSION` and the package's version) and its
+    checksum matches, and when the table in it is valid (:meth:`ComplianceTable.from_dict`);
+    otherwise (or with ``refresh``) the table is computed again and stored, with one line
+    on stderr saying why (:func:`gearcoupling.io.cache.cached`). gmsh and ccx are looked up
+    before that. Implements the tooth compliance protocol
+    ``pair_compliance_mm_per_N(z_mm, r_mm)`` of the load models.
     """
+    spec = as_spec(spec)
+    flag(refresh, "refresh")
+    path, key = table_entry(spec, size_mm=size_mm, sector=sector, nz=nz, nr=nr, cache=cache)
+    found = None if refresh else cached(path, key, ComplianceTable.from_dict,
+                                        f"the FE tooth table of {spec.name!r}")
+    if found is not None:
+        return found
+    gmsh_module()
+    ccx_path()
+    table = compute_compliance_table(spec, size_mm=size_mm, sector=sector, nz=nz, nr=nr,
+                                     progress=progress)
+    table.info["spec_hash"] = key["spec_hash"]
+    store(path, key, table.to_dict())
+    return table
+
+
+def table_entry(spec: CouplingSpec, *, size_mm: float | None = None,
+                sector: int = DEFAULT_SECTOR_TEETH, nz: int = 3, nr: int = 3,
+                cache: str | Path | None = None) -> tuple[Path, dict]:
+    """Where the cache entry of :func:`tooth_compliance_table` lies (its folder checked and
+    made, :func:`fe_cache_folder`) and its key (:func:`gearcoupling.io.cache.cache_key`),
+    the settings checked."""
     spec = as_spec(spec)
     check_size(spec, "hub", size_mm)
     check_size(spec, "sleeve", size_mm)
     count(nz, "nz", 2, 9)
     count(nr, "nr", 2, 9)
     count(sector, "sector", 1, spec.tooth.teeth)
-    flag(refresh, "refresh")
-    if cache is not None:
-        as_path(cache, "cache")
-    key = spec_hash(spec, size_mm=size_mm, sector=sector, nz=nz, nr=nr)
-    path = Path(cache) if cache is not None else cache_dir()
-    path = path / f"{safe_name(spec.name)}-{key}.json"  # a spec name cannot escape
-    if path.exists() and not refresh:
-        return ComplianceTable.from_dict(json.loads(path.read_text()))
-    table = compute_compliance_table(spec, size_mm=size_mm, sector=sector, nz=nz, nr=nr,
-                                     progress=progress)
-    table.info["spec_hash"] = key
-    write_json(path, table.to_dict())
-    return table
+    folder = fe_cache_folder(cache)
+    settings = {"size_mm": size_mm, "sector": sector, "nz": nz, "nr": nr}
+    key = cache_key("FE tooth compliance table", VERSION,
+                    spec_hash=spec_hash(spec, **settings, package=package_version()),
+                    **settings)
+    return folder / f"{safe_name(spec.name)}-{key['spec_hash']}.json", key
 
 
 def pitch_point_compliance(table: ComplianceTable) -> dict:

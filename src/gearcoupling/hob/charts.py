@@ -32,7 +32,7 @@ from numpy.typing import NDArray
 
 from ..arguments import count, real
 from ..geometry import FLANKS, HubModel, form_radius, hub_flank_model, hub_model, inv, tip_radius
-from ..io import write_csv_records
+from ..io import plot_text, write_csv_records
 from ..plots import figure_axes, fixed_layout
 from ..spec import CouplingSpec, as_spec
 
@@ -283,7 +283,8 @@ def plot_measuring_charts(charts: MeasuringCharts, ax=None):
             a.set_ylabel("deviation from midplane involute (µm, + material)")
             a.legend(fontsize=7, loc="best")
             a.grid(True, lw=0.3)
-    fig.suptitle(f"{charts.spec_name}: nominal measuring charts (evaluation ranges dotted)")
+    fig.suptitle(f"{plot_text(charts.spec_name)}: "
+                 "nominal measuring charts (evaluation ranges dotted)")
     if own:
         fixed_layout(fig, 0.83, 0.15, 0.59, 0.66, wspace=0.2, hspace=0.261)
     return fig

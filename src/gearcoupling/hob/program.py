@@ -26,6 +26,7 @@ from numpy.typing import NDArray
 from ..arguments import MAXIMA, count, is_real, real
 from ..errors import ArgumentError
 from ..geometry import HubModel, hub_model, plane_rack, tip_radius
+from ..io import gcode_comment
 from ..numeric import TINY
 from ..spec import CouplingSpec, as_spec
 
@@ -129,23 +130,27 @@ class HobProgram:
 
     def gcode(self, feed_mm_per_rev: float = 1.0, retract_mm: float | None = None) -> str:
         """The program as ISO G-code (``G18`` ZX plane, ``G95`` feed per workpiece turn;
-        every number fixed-point, as controllers read them). ``feed_mm_per_rev`` in
+        every number fixed-point, as controllers read them; the spec name only inside a
+        comment, :func:`~gearcoupling.io.gcode_comment`). ``feed_mm_per_rev`` in
         :data:`FEED_RANGE_MM_PER_REV`; ``retract_mm`` from 0 to the hob diameter (default
         the whole depth)."""
         feed = real(feed_mm_per_rev, "feed_mm_per_rev", *FEED_RANGE_MM_PER_REV, unit="mm/rev")
         retract = self.whole_depth_mm if retract_mm is None else real(
             retract_mm, "retract_mm", 0.0, self.hob_diameter_mm, unit="mm")
         first = self.moves[0].start
+        comments = [
+            f"gearcoupling hob program: spec {self.spec_name}, crowning {self.crown_kind}",
+            "X = hob centre distance from the hub axis, Z = hob centre axial position, mm, "
+            "hub midplane Z0",
+            f"hob outside diameter {self.hob_diameter_mm:.4f}, pitch radius "
+            f"{self.hob_pitch_radius_mm:.4f}, chordal tolerance {self.tolerance_mm:.2e}, "
+            f"max deviation {self.max_deviation_mm:.2e}",
+            f"approach/overtravel {self.approach_mm:.4f}, crown drop at the tooth ends "
+            f"{self.crown_drop_end_mm:.5f}",
+        ]
         lines = [
             "%",
-            f"(gearcoupling hob program: spec {self.spec_name}, crowning {self.crown_kind})",
-            "(X = hob centre distance from the hub axis, Z = hob centre axial position, mm;"
-            " hub midplane Z0)",
-            f"(hob outside diameter {self.hob_diameter_mm:.4f}, pitch radius "
-            f"{self.hob_pitch_radius_mm:.4f}; chordal tolerance {self.tolerance_mm:.2e}, "
-            f"max deviation {self.max_deviation_mm:.2e})",
-            f"(approach/overtravel {self.approach_mm:.4f}; crown drop at the tooth ends "
-            f"{self.crown_drop_end_mm:.5f})",
+            *map(gcode_comment, comments),
             "G21 G90 G18 G95",
             f"G0 X{first[1] + retract:.5f} Z{first[0]:.5f}",
             f"G1 X{first[1]:.5f} F{feed:.4f}",

@@ -17,7 +17,7 @@ from ..hob import measuring_charts
 from ..spec import CouplingSpec, as_spec
 from ..tables import dataframe
 from .datum import bore_datum
-from .io import load_points
+from .io import UNIT_SCALE, check_magnitude, load_points
 from .iso1328 import grade_limits
 from .register import RegistrationError, register
 from .report import FLANK_NAMES, InspectionReport, check_limits, evaluate, pass_fail
@@ -80,7 +80,9 @@ def _points(source, units: str):
         raise ArgumentError("points", f"array of shape {pts.shape}", "an (n, 3) array, n >= 1")
     if not np.all(np.isfinite(pts)):
         raise ArgumentError("points", "array with NaN/inf", "finite coordinates only")
-    return pts * {"mm": 1.0, "in": 25.4, "m": 1000.0}[units], "array"
+    pts = pts * UNIT_SCALE[units]
+    check_magnitude(pts, "points", f"array of shape {pts.shape}")
+    return pts, "array"
 
 
 @overload

@@ -16,6 +16,9 @@ from ..io import require_file
 MESH_SUFFIXES = (".stl", ".obj", ".ply", ".off", ".glb")
 TEXT_SUFFIXES = (".csv", ".xyz", ".txt", ".asc", ".pts")
 UNIT_SCALE = {"mm": 1.0, "in": 25.4, "m": 1000.0}
+#: the largest coordinate of a scan in mm (1 km, beyond any coupling): the registration
+#: squares and sums coordinates, which overflow past about 1e150 mm
+MAX_COORDINATE_MM = 1e6
 ALLOWED = ("an existing, readable mesh (.stl .obj .ply .off .glb: its vertices are used) or "
            "point cloud (.csv .xyz .txt .asc .pts: x y z columns; .ply vertices)")
 
@@ -52,7 +55,22 @@ def load_points(path: str | Path, units: str = "mm") -> NDArray[np.float64]:
         raise ArgumentError("file", str(p), f"finite coordinates; {int(bad.sum())} of {len(pts)} "
                         f"points have NaN or infinity (first at row {int(np.argmax(bad))}): "
                         "remove them from the scan")
-    return pts * UNIT_SCALE[units]
+    pts = pts * UNIT_SCALE[units]
+    check_magnitude(pts, "file", str(p))
+    return pts
+
+
+def check_magnitude(pts: NDArray[np.float64], field: str, value: object) -> None:
+    """Refuse finite points ``(n, 3)`` in mm with a coordinate beyond
+    :data:`MAX_COORDINATE_MM`, naming the first one's row and column."""
+    big = np.abs(pts) > MAX_COORDINATE_MM
+    if np.any(big):
+        row, col = (int(k) for k in np.argwhere(big)[0])
+        raise ArgumentError(field, value, f"coordinates within ±{MAX_COORDINATE_MM:g} mm "
+                            f"({MAX_COORDINATE_MM / 1e6:g} km); points beyond: "
+                            f"{int(big.any(axis=1).sum())} of {len(pts)}, the first at row "
+                            f"{row}, column {'xyz'[col]} = {pts[row, col]:.6g} mm: check the "
+                            "file's units and columns")
 
 
 def _load_mesh(p: Path) -> NDArray[np.float64]:

@@ -6,6 +6,7 @@ from typing import cast
 
 import numpy as np
 
+from ..io import plot_text
 from ..plots import figure_axes
 from .report import FLANK_NAMES, InspectionReport
 
@@ -55,7 +56,7 @@ def plot_inspection(report: InspectionReport, ax=None):
     if report.passed is not None and len(k):
         for kk in k[~report.passed]:
             axes[0].axvspan(kk - 0.5, kk + 0.5, color="r", alpha=0.12)
-    fig.suptitle(f"{report.spec_name}: inspection of {report.source} "
+    fig.suptitle(f"{plot_text(report.spec_name)}: inspection of {plot_text(report.source)} "
                  f"(registration rms {um * report.registration.rms_mm:.2f} µm)")
     fig.tight_layout()
     return fig
@@ -83,5 +84,5 @@ def plot_deviation_map(report: InspectionReport, ax=None, limit_mm: float | None
     axes[-1].set_xlabel("tooth (each tooth spans its face width)")
     if sc is not None:
         fig.colorbar(sc, ax=axes, label="deviation from nominal (µm, + material)")
-    fig.suptitle(f"{report.spec_name}: flank deviation map")
+    fig.suptitle(f"{plot_text(report.spec_name)}: flank deviation map")
     return fig

@@ -8,6 +8,7 @@ from collections.abc import Sequence
 from numpy.typing import ArrayLike
 
 from ..errors import ArgumentError
+from ..io import plot_text
 from ..plots import fixed_layout, new_figure
 
 
@@ -43,7 +44,8 @@ def plot_interference(result, reference_mm: ArrayLike | None = None,
     ax1, ax2 = axes[0], axes[1]
     ax1.plot(a, result.overlap_volume_mm3, ".-", color="tab:red")
     ax1.set_ylabel("overlap volume (mm³)")
-    ax1.set_title(f"{result.spec_name}: i = {result.misalignment_deg:g}°, {result.method}, "
+    ax1.set_title(f"{plot_text(result.spec_name)}: "
+                  f"i = {result.misalignment_deg:g}°, {result.method}, "
                   f"{result.model}, tolerance {result.tolerance_mm:.4g} mm")
     ax1.grid(alpha=0.3)
     ax2.plot(a, result.min_gap_mm, ".-", label="mesh minimum gap (− depth when overlapping)")

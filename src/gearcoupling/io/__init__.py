@@ -1,49 +1,109 @@
-"""Files in and out: atomic writes, JSON with one rule for non-finite numbers, CSV, TOML
-read strictly with file:line errors, CalculiX/Abaqus INP numbers and the bundled
-resources (templates, studies)."""
+"""Files in and out: atomic writes, output folders held by one command at a time, JSON
+with one rule for non-finite numbers, CSV, TOML read strictly with file:line errors,
+CalculiX/Abaqus INP numbers, the bundled resources (templates, studies), and text from a
+spec made safe for each target."""
 
 from .atomic import (
     atomic_path,
     default_output_dir,
+    is_stale_temporary,
+    move_into,
     remove_stale_temporaries,
     safe_name,
+    temporary_folder,
     write_text,
 )
 from .csv import write_csv_columns, write_csv_records, write_csv_rows
-from .files import as_path, not_a_file, output_folder, require_file, writable_file
+from .files import (
+    as_path,
+    not_a_file,
+    output_folder,
+    own_folder,
+    require_file,
+    writable_file,
+    writable_targets,
+)
 from .inp import inp_element_lines, inp_id_lines, inp_node_lines, inp_number
 from .json import NonFiniteError, plain, write_json
+from .lock import FolderLock, earlier_files, lock_folder, record_files, settings_key
 from .resources import bundled_dir, bundled_names, resolve_bundled
-from .toml import Table, line_of, parse_override, read_toml, set_dotted, unknown_key
+from .text import (
+    csv_cell,
+    csv_comment,
+    escaped,
+    gcode_comment,
+    inp_comment,
+    markdown_text,
+    plot_text,
+    step_text,
+    terminal_text,
+    vtk_header,
+    xml_text,
+)
+from .toml import (
+    MAX_NESTING,
+    Table,
+    array_lengths,
+    line_of,
+    parse_override,
+    parse_toml,
+    read_toml,
+    set_dotted,
+    unknown_key,
+)
 
 __all__ = [
+    "MAX_NESTING",
+    "FolderLock",
     "NonFiniteError",
     "Table",
+    "array_lengths",
     "as_path",
     "atomic_path",
     "bundled_dir",
     "bundled_names",
+    "csv_cell",
+    "csv_comment",
     "default_output_dir",
+    "earlier_files",
+    "escaped",
+    "gcode_comment",
+    "inp_comment",
     "inp_element_lines",
     "inp_id_lines",
     "inp_node_lines",
     "inp_number",
+    "is_stale_temporary",
     "line_of",
+    "lock_folder",
+    "markdown_text",
+    "move_into",
     "not_a_file",
     "output_folder",
+    "own_folder",
     "parse_override",
+    "parse_toml",
     "plain",
+    "plot_text",
     "read_toml",
+    "record_files",
     "remove_stale_temporaries",
     "require_file",
     "resolve_bundled",
     "safe_name",
     "set_dotted",
+    "settings_key",
+    "step_text",
+    "temporary_folder",
+    "terminal_text",
     "unknown_key",
+    "vtk_header",
     "writable_file",
+    "writable_targets",
     "write_csv_columns",
     "write_csv_records",
     "write_csv_rows",
     "write_json",
     "write_text",
+    "xml_text",
 ]

@@ -1,4 +1,5 @@
-"""CSV files: one writer for every table gearcoupling writes."""
+"""CSV files: one writer for every table gearcoupling writes. Every text cell, header and
+comment line goes out through :mod:`.text` (one line each, never a formula)."""
 
 from __future__ import annotations
 
@@ -13,14 +14,15 @@ import numpy as np
 
 from ..errors import GearCouplingError
 from .atomic import atomic_path
+from .text import csv_cell, csv_comment
 
 
 def _cell(column: str, v: Any, digits: int, finite: bool) -> Any:
     if type(v) is not float:  # a Python float, the common case, goes straight to the number
         if v is None:
             return ""
-        if isinstance(v, bool) or (not isinstance(v, float | int) and not hasattr(v, "dtype")):
-            return str(v).lower() if isinstance(v, bool) else v
+        if isinstance(v, bool | str) or not (isinstance(v, float | int) or hasattr(v, "dtype")):
+            return str(v).lower() if isinstance(v, bool) else csv_cell(v)
         if isinstance(v, int):
             return v
     x = float(v)
@@ -35,7 +37,8 @@ def write_csv_rows(path: str | os.PathLike, columns: Sequence[str],
     """A CSV written atomically: ``# comment`` lines (units, frame), a header of
     ``columns``, then ``rows`` (sequences in column order). Floats with ``digits``
     significant digits (``inf`` for infinity, or refused with ``finite``), booleans
-    ``true``/``false``, None empty."""
+    ``true``/``false``, None empty, text as :func:`~gearcoupling.io.csv_cell` makes it
+    (comments as :func:`~gearcoupling.io.csv_comment`)."""
     return _write(path, columns, ([_cell(c, v, digits, finite)
                                    for c, v in zip(columns, row, strict=True)]
                                   for row in rows), comments)
@@ -44,11 +47,10 @@ def write_csv_rows(path: str | os.PathLike, columns: Sequence[str],
 def _write(path: str | os.PathLike, columns: Sequence[str], rows: Iterable[Sequence[Any]],
            comments: Iterable[str]) -> Path:
     """``# comment`` lines, the header and the formatted ``rows``, atomically."""
-    with atomic_path(path) as tmp, open(tmp, "w", newline="") as fh:
-        for line in comments:
-            fh.write(f"# {line}\n")
+    with atomic_path(path) as tmp, open(tmp, "w", newline="", encoding="utf-8") as fh:
+        fh.writelines(csv_comment(line) + "\n" for line in comments)
         w = csv.writer(fh, lineterminator="\n")
-        w.writerow(columns)
+        w.writerow([csv_cell(c) for c in columns])
         w.writerows(rows)
     return Path(path)
 

@@ -6,6 +6,7 @@ from __future__ import annotations
 import os
 import stat
 import tempfile
+from collections.abc import Iterable
 from pathlib import Path
 
 from ..errors import ArgumentError, GearCouplingError, SpecError
@@ -93,14 +94,62 @@ def writable_file(path: object, field: str = "path") -> Path:
     a regular file (it will be replaced). A folder, a device such as ``/dev/null``, a named
     pipe or a socket is never replaced: :class:`ArgumentError` naming ``field``. Every
     writer calls this before any work (and :func:`~gearcoupling.io.atomic_path` once more
-    before the rename)."""
+    before the rename). A read-only file is not replaced either: it is refused the same
+    way."""
     p = as_path(path, field)
+    shown = os.fspath(path)  # type: ignore[call-overload]
     kind = _existing_kind(p)
     if kind is not None:
-        raise ArgumentError(field, os.fspath(path),  # type: ignore[call-overload]
-                            f"{_not(kind, 'a file')}: give the path of a regular file "
-                            "(it is replaced) or of a new one")
+        raise ArgumentError(field, shown, f"{_not(kind, 'a file')}: give the path of a "
+                            "regular file (it is replaced) or of a new one")
+    if _read_only(p):
+        raise ArgumentError(field, shown, "a read-only file: make it writable to have it "
+                            "replaced, or give another path")
     return p
+
+
+def _read_only(p: Path) -> bool:
+    """Whether ``p`` is a file without write permission (no write bit at all, or none for
+    this user); False where there is no file."""
+    try:
+        mode = p.stat().st_mode
+    except OSError:
+        return False
+    return not (mode & 0o222 and os.access(p, os.W_OK))
+
+
+def own_folder(path: object, field: str = "path") -> Path:
+    """``path`` when gearcoupling may make or fill it as a folder of its own files (a
+    solver's ``fea_contact/``, a report's ``report-data/``): nothing there yet, or a folder
+    holding writable regular files only. A symbolic link there (the files would go where
+    it points), a file, a device or a folder that holds anything else (a folder, a device,
+    a read-only file) is refused with :class:`ArgumentError` naming ``field``."""
+    p = as_path(path, field)
+    shown = os.fspath(path)  # type: ignore[call-overload]
+    if p.is_symlink():
+        raise ArgumentError(field, shown, "a symbolic link where gearcoupling makes a folder "
+                            "of its own files (they would go where it points): remove it")
+    kind = _existing_kind(p)
+    if kind is not None and kind != "a folder":
+        raise ArgumentError(field, shown, f"{_not(kind, 'a folder')}: gearcoupling makes a "
+                            "folder of its own files there; remove it")
+    for entry in _entries(p, depth=1) if kind else []:
+        inner = _existing_kind(entry) or ("a read-only file" if _read_only(entry) else None)
+        if inner is not None:
+            raise ArgumentError(field, shown, f"holds {entry.name}, {inner}, where "
+                                "gearcoupling writes its own files: remove it")
+    return p
+
+
+def writable_targets(folder: str | os.PathLike, files: Iterable[str] = (),
+                     folders: Iterable[str] = (), field: str = "-o") -> list[Path]:
+    """Every place a command writes in ``folder``, checked before any work: the ``files``
+    (names relative to it) by :func:`writable_file` and the ``folders`` it makes for its
+    own files by :func:`own_folder`, an error naming ``field`` and the path. Returns the
+    paths, files first."""
+    base = Path(folder)
+    paths = [writable_file(base / name, field) for name in files]
+    return paths + [own_folder(base / name, field) for name in folders]
 
 
 def output_folder(path: object, field: str = "out", *, create: bool = True) -> Path:

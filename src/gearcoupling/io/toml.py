@@ -2,7 +2,9 @@
 
 One reader for every TOML file gearcoupling takes: each key is read once, a key left over
 is refused (with the closest allowed key), and when the file's text is known an error
-names ``file:line``.
+names ``file:line``. Text nested deeper than :data:`MAX_NESTING` levels is refused before
+it is parsed (Python's TOML reader recurses once per level of arrays and inline tables,
+and its time grows with the square of a dotted key's length).
 """
 
 from __future__ import annotations
@@ -12,11 +14,27 @@ import math
 import os
 import re
 import tomllib
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from ..arguments import parse_number
 from ..errors import SpecError
+
+#: the deepest nesting of tables and arrays in a spec or study file (a spec needs 4, a
+#: study 6); the text is checked before it is parsed and the data after
+MAX_NESTING = 32
+_NESTING = (f"at most {MAX_NESTING} levels of tables, arrays and dotted keys in a spec or "
+            "study file")
+_LONG_STRINGS = re.compile(r'"""[\s\S]*?"""|\'\'\'[\s\S]*?\'\'\'')
+_STRINGS = re.compile(r'"(?:[^"\\\n]|\\.)*"|\'[^\'\n]*\'|#[^\n]*')
+# the bytes a dotted key is written with (its strings replaced by ""): k dots in a run of
+# them nest k tables in the root
+_KEY_BYTES = np.zeros(256, dtype=bool)
+_KEY_BYTES[[ord(c) for c in "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz"
+            "0123456789_-\" \t."]] = True
 
 
 def line_of(text: str | None, needle: str, start: int = 0) -> int:
@@ -27,13 +45,118 @@ def line_of(text: str | None, needle: str, start: int = 0) -> int:
     return start
 
 
-def read_toml(path: str | os.PathLike) -> tuple[dict[str, Any], str]:
+def _too_deep(where: str, line: int | None, levels: str) -> SpecError:
+    """The refusal of text nested ``levels`` deep at ``where:line`` (no line: the data)."""
+    return SpecError(where if line is None else f"{where}:{line}", None, _NESTING,
+                     shown=f"nested {levels} levels deep")
+
+
+def _plain(text: str) -> str:
+    """TOML text with every string and comment replaced by ``""`` (lines kept)."""
+    plain = _LONG_STRINGS.sub(lambda m: '""' + "\n" * m.group().count("\n"), text)
+    return _STRINGS.sub('""', plain)
+
+
+def _brackets(code: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``(at, depth)``: the positions of the brackets and braces of ``code`` and the
+    arrays and inline tables open just after each."""
+    opens, closes = (code == ord("[")) | (code == ord("{")), (code == ord("]")) | (code == ord("}"))
+    at = np.flatnonzero(opens | closes)
+    return at, np.cumsum(np.where(opens[at], 1, -1))
+
+
+def _longest_key(code: np.ndarray) -> tuple[int, int]:
+    """``(dots, at)``: the most dots in one run of key bytes of ``code`` and where they
+    are (numbers have one dot at most)."""
+    dots = np.flatnonzero(code == ord("."))
+    if dots.size <= MAX_NESTING:
+        return int(dots.size), int(dots[0]) if dots.size else 0
+    run = np.searchsorted(np.flatnonzero(~_KEY_BYTES[code]), dots)  # the run of each dot
+    counts = np.bincount(run)
+    most = int(np.argmax(counts))
+    return int(counts[most]), int(dots[np.searchsorted(run, most)])
+
+
+def _line(code: np.ndarray, at: int) -> int:
+    return int(np.count_nonzero(code[:at] == ord("\n"))) + 1
+
+
+def check_nesting_text(text: str, where: str) -> None:
+    """Refuse TOML text whose arrays and inline tables, or a dotted key, nest deeper than
+    :data:`MAX_NESTING` (strings and comments do not count), naming ``where:line`` (the
+    line where text has more than one)."""
+    code = np.frombuffer(_plain(text).encode(), dtype=np.uint8)
+    lines = "\n" in text.rstrip("\n")
+    dots, key_at = _longest_key(code)
+    if dots > MAX_NESTING:
+        raise _too_deep(where, _line(code, key_at) if lines else None, f"{dots + 1} or more")
+    at, depth = _brackets(code)
+    if depth.size and depth.max() + 1 > MAX_NESTING:  # and the root table
+        first = int(at[np.argmax(depth + 1 > MAX_NESTING)])
+        raise _too_deep(where, _line(code, first) if lines else None,
+                        f"{int(depth.max()) + 1} or more")
+
+
+def array_lengths(text: str, key: str) -> list[tuple[int, int]]:
+    """``(line, commas)`` of each array assigned to ``key`` at the start of a line of TOML
+    text, counted without parsing it: an array of ``n`` values has ``n - 1`` commas, or
+    ``n`` with a trailing one, so ``commas`` is a lower bound of its length."""
+    plain = _plain(text).encode()
+    start = re.compile(rb"(?m)^[ \t]*" + re.escape(key.encode()) + rb"[ \t]*=[ \t]*\[")
+    starts = [m.end() - 1 for m in start.finditer(plain)]
+    if not starts:
+        return []
+    code = np.frombuffer(plain, dtype=np.uint8)
+    at, depth = _brackets(code)
+    commas = np.flatnonzero(code == ord(","))
+    comma_depth = np.concatenate([[0], depth])[np.searchsorted(at, commas)]
+    found = []
+    for opening in starts:
+        k = int(np.searchsorted(at, opening))  # this array's bracket among them
+        level = depth[k]
+        closing = np.flatnonzero(depth[k:] < level)
+        end = at[k + closing[0]] if closing.size else code.size
+        lo, hi = np.searchsorted(commas, (opening, end))
+        found.append((_line(code, opening),
+                      int(np.count_nonzero(comma_depth[lo:hi] == level))))
+    return found
+
+
+def nesting(data: Any) -> int:
+    """Levels of tables and arrays in parsed TOML ``data`` (a table of scalars is 1),
+    counted without recursion."""
+    deepest, todo = 0, [(data, 1)]
+    while todo:
+        node, level = todo.pop()
+        if isinstance(node, dict | list):
+            deepest = max(deepest, level)
+            items = node.values() if isinstance(node, dict) else node
+            todo.extend((v, level + 1) for v in items if isinstance(v, dict | list))
+    return deepest
+
+
+def parse_toml(text: str, where: str) -> dict[str, Any]:
+    """TOML text parsed, nested at most :data:`MAX_NESTING` levels (else a
+    :class:`SpecError` naming ``where``); invalid TOML raises ``TOMLDecodeError``."""
+    check_nesting_text(text, where)
+    data = tomllib.loads(text)
+    levels = nesting(data)
+    if levels > MAX_NESTING:
+        raise _too_deep(where, None, str(levels))
+    return data
+
+
+def read_toml(path: str | os.PathLike, precheck: Callable[[str], None] | None = None
+              ) -> tuple[dict[str, Any], str]:
     """The parsed data and the text of a UTF-8 TOML file; a file that cannot be read or
-    parsed is a :class:`SpecError` naming ``file:line``."""
+    parsed, or nests deeper than :data:`MAX_NESTING`, is a :class:`SpecError` naming
+    ``file:line``. ``precheck(text)`` runs before the text is parsed."""
     p = Path(path)
     try:
         text = p.read_text(encoding="utf-8")
-        return tomllib.loads(text), text
+        if precheck is not None:
+            precheck(text)
+        return parse_toml(text, str(p)), text
     except tomllib.TOMLDecodeError as err:
         m = re.search(r"at line (\d+)", str(err))
         where = f"{p}:{m.group(1)}" if m else str(p)
@@ -82,7 +205,7 @@ def parse_override(text: str) -> tuple[str, Any]:
     if not (sep and key.strip()):
         raise SpecError("--set", text, "must look like KEY=VALUE, e.g. hub.crowning.radius=80")
     try:
-        value = tomllib.loads(f"v = {raw.strip()}")["v"]
+        value = parse_toml(f"v = {raw.strip()}", f"--set {key.strip()}")["v"]
     except tomllib.TOMLDecodeError:
         value = raw.strip()
     if isinstance(value, int | float) and not isinstance(value, bool):

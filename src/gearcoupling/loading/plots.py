@@ -13,6 +13,7 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 
 from ..errors import ArgumentError
+from ..io import plot_text
 from ..plots import fixed_layout, import_matplotlib, new_figure
 from .models.registry import load_model
 from .patchmap import patch_extent, patch_maps
@@ -53,7 +54,7 @@ def plot_tooth_load(res, ax=None, rotation: int = 0):
             label="tooth 0 over the rotations")
     ax.set_xlabel("turning angle theta (deg, from the tilt axis)")
     ax.set_ylabel("tangential tooth load P (N)")
-    ax.set_title(f"{res.spec.name}: {res.model}, T = {torque_text(res.torque_Nm)} N·m, "
+    ax.set_title(f"{plot_text(res.spec.name)}: {res.model}, T = {torque_text(res.torque_Nm)} N·m, "
                  f"i = {res.misalignment_deg:.3g}°, q = {res.q():.3f}")
     ax.set_xlim(0, 360)
     ax.grid(alpha=0.3)
@@ -81,7 +82,7 @@ def plot_loads_over_turn(res, ax=None):
     a0.step(psi, t["teeth_in_contact"][order], where="mid", color="C0")
     a0.set_ylabel("teeth in contact")
     a0.set_ylim(0, res.teeth * 1.05)
-    a0.set_title(f"{res.spec.name}: loads over the rotations, {res.model} model, "
+    a0.set_title(f"{plot_text(res.spec.name)}: loads over the rotations, {res.model} model, "
                  f"T = {torque_text(res.torque_Nm)} N·m, i = {res.misalignment_deg:.3g}°",
                  fontsize=10)
     a1.plot(psi, t["max_interior_pressure_MPa"][order], color="C1",
@@ -179,7 +180,7 @@ def plot_capacity(curves: Mapping[str, Sequence], ax=None, *,
         if spec is not None and spec.load.torque_Nm is not None:
             ax.plot([spec.design_misalignment_deg], [abs(spec.load.torque_Nm)], "*",
                     color=colour, ms=9 + 7 * nest, mec="k", mew=0.6, zorder=20 + k)
-        label = name
+        label = plot_text(name)
         i_crit = (critical_deg or {}).get(name)
         if i_crit is not None:
             ax.axvline(i_crit, color=colour, lw=1.0, alpha=0.6, zorder=1)
@@ -213,7 +214,7 @@ def plot_capacity(curves: Mapping[str, Sequence], ax=None, *,
     rows0 = [r for rows in curves.values() for r in rows]
     models = sorted({r.model for r in rows0})
     factors = sorted({r.accuracy_factor for r in rows0})
-    ax.set_title(f"torque capacity against misalignment: {', '.join(curves)}\n"
+    ax.set_title(f"torque capacity against misalignment: {', '.join(map(plot_text, curves))}\n"
                  f"{'/'.join(models)} model, capacity = K × torque at the first limit reached "
                  f"(K = {', '.join(f'{f:g}' for f in factors)})", fontsize=10)
     return fig
@@ -300,7 +301,8 @@ def plot_patches(res, rotation: int = 0, ax=None, *, count: int = 6):
     how = ("its pressure grid; p: interior pressure, peak: at a profile or face end"
            if load_model(res.model).pressure_grid else
            "its contact laws' patch: Hertz ellipse, or strip over the active profile")
-    fig.suptitle(f"{res.spec.name}: contact pressure on the loaded {res.loaded_flank} flanks at "
+    fig.suptitle(f"{plot_text(res.spec.name)}: "
+                 f"contact pressure on the loaded {res.loaded_flank} flanks at "
                  f"ψ = {res.angles_deg[j]:.3g}°, i = {res.misalignment_deg:.3g}°, "
                  f"T = {torque_text(res.torque_Nm)} N·m\n{res.model} model ({how}); "
                  "grey: active "

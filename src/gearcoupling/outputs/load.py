@@ -8,7 +8,7 @@ from pathlib import Path
 
 from ..arguments import GAP_TOLERANCE_MM
 from ..clearance import SweepResult, sweep
-from ..io import write_json
+from ..io import plot_text, write_json
 from ..loading import (
     LoadResult,
     load_from_sweep,
@@ -35,16 +35,16 @@ def load_studies(spec: CouplingSpec, torque_Nm: float, model: str | None, out: P
     label = model or spec.load.model
     paths = [
         save_figure(plot_vs_misalignment(mis, dict(study.peak_N), "max tooth load P (N)",
-                                         f"{spec.name}: {label}, max tooth load"),
+                                         f"{plot_text(spec.name)}: {label}, max tooth load"),
                     out / "load_max_vs_misalignment.png"),
         save_figure(plot_vs_misalignment(mis, dict(study.moment_Nm),
                                          "additional (tilting) moment (N·m)",
-                                         f"{spec.name}: {label}, mean over the turn"),
+                                         f"{plot_text(spec.name)}: {label}, mean over the turn"),
                     out / "load_moment_vs_misalignment.png"),
     ]
     pts = q_points(spec)
     if pts:
-        title = (f"{spec.name}: load proportion q against z_c / z0 (Renzo Fig. 12)\n"
+        title = (f"{plot_text(spec.name)}: load proportion q against z_c / z0 (Renzo Fig. 12)\n"
                  "points: the linear model's tooth-load capacity on the exact geometry, "
                  f"{mis[0]:.2g}-{mis[-1]:.2g}°")
         paths.append(save_figure(plot_q_graph({"linear model, exact geometry":

@@ -13,13 +13,7 @@ from ..export import export_part
 from ..io import write_json
 from ..parts import build_part, check_part, check_tolerance, measure_deviation
 from ..spec import CouplingSpec
-
-PART_NAMES = ("hub", "sleeve")
-
-
-def file_stem(part: str, teeth: Sequence[int] | None) -> str:
-    """``hub`` or ``hub-teeth-0-1-2`` for a sector."""
-    return part if teeth is None else f"{part}-teeth-{'-'.join(map(str, teeth))}"
+from .files import PART_NAMES, file_stem
 
 
 def write_parts(spec: CouplingSpec, out: Path, parts: Sequence[str] = PART_NAMES,

@@ -21,9 +21,10 @@ from .. import outputs
 from ..clearance import sweep
 from ..errors import ArgumentError, BackendError, GearCouplingError
 from ..forked import can_fork, messages, start_workers, stop_workers, worker_signals
-from ..io import output_folder, remove_stale_temporaries, write_json
+from ..io import output_folder, remove_stale_temporaries, writable_targets, write_json
 from ..plots import import_matplotlib, plot_sections
 from ..spec import CouplingSpec, as_spec
+from . import files as file_names
 from .spec import write_spec
 from .stages import remember, take_new
 
@@ -38,6 +39,12 @@ STEPS: dict[str, str] = {
     "check": "interference check at the design angle",
     "viewer": "static viewer HTML",
 }
+#: the files each step may write (:mod:`~gearcoupling.outputs.files`)
+FILES: dict[str, tuple[str, ...]] = {
+    "spec": file_names.SPEC, "sections": file_names.SECTIONS,
+    "parts": tuple(file_names.part_files()),
+    "step": file_names.STEP, "sweep": file_names.SWEEP, "load": file_names.LOAD,
+    "check": file_names.INTERFERENCE, "viewer": file_names.VIEWER}
 #: CPU seconds of each step on renzo-1967 (this pipeline, the modules of :data:`NEEDS`
 #: loaded before the fork, a step's own modules in it: OpenCASCADE 0.7 s in ``step``, the
 #: load models in ``load``, its study on the compiled contact solver; a loaded machine:
@@ -140,6 +147,13 @@ def _names(value: Any, name: str) -> set[str]:
     return set(names)
 
 
+def run_files(only: Iterable[str] | None = None, skip: Iterable[str] = ()) -> list[str]:
+    """The files :func:`run` may write with these ``only`` and ``skip`` (the steps' and
+    ``run_summary.json``), each once, in the order of the steps."""
+    keys = _chosen(only, skip)
+    return list(dict.fromkeys([n for k in keys for n in FILES[k]] + [file_names.RUN_SUMMARY]))
+
+
 def chains(keys: Sequence[str]) -> list[list[str]]:
     """The steps ``keys`` split in two chains of near equal :data:`COST` (of the splits
     that keep :data:`TOGETHER` steps in one chain, the one with the cheapest longer chain,
@@ -226,7 +240,8 @@ def run(spec: CouplingSpec, out: str | os.PathLike, *, only: Iterable[str] | Non
     spec : CouplingSpec
     out : path-like
         Output folder (created; refused if it holds a device, pipe or socket, see
-        :func:`~gearcoupling.io.output_folder`).
+        :func:`~gearcoupling.io.output_folder`, or anything but a regular file where a
+        step writes one, :func:`run_files`: before any step runs).
     only, skip : iterable of str
         Steps of :data:`STEPS` to run, or to leave out (default: all).
     workers : int, optional
@@ -253,6 +268,7 @@ def run(spec: CouplingSpec, out: str | os.PathLike, *, only: Iterable[str] | Non
     spec = as_spec(spec)
     output_folder(out, "out", create=False)
     keys = _chosen(only, skip)
+    writable_targets(out, run_files(only, skip), field="out")
     if workers is None:
         workers = 2 if (os.cpu_count() or 1) >= 2 else 1
     if workers not in (1, 2) or isinstance(workers, bool):

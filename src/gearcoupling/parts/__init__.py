@@ -23,17 +23,24 @@ from ..geometry import PARTS
 from ..spec import CouplingSpec, as_spec
 from .builder import SURFACE_KINDS, MeshBuilder, Run, tile, tooth_runs
 from .deviation import measure_deviation
-from .hub import build_hub_run, hub_layout
-from .sleeve import build_sleeve_run, sleeve_layout
+from .hub import build_hub_run, hub_layout, hub_triangles
+from .size import PartSize, check_memory
+from .sleeve import build_sleeve_run, sleeve_layout, sleeve_triangles
 from .solid import hub_solid, part_solid, shape_volume, sleeve_solid
 from .validity import PartCheck, check_part
 
 if TYPE_CHECKING:
     import trimesh
 
-# part -> (layout(spec, tol), add_run(builder, layout, run))
-_BUILDERS: dict[str, tuple[Callable[..., Any], Callable[..., None]]] = {
-    "hub": (hub_layout, build_hub_run), "sleeve": (sleeve_layout, build_sleeve_run)}
+# part -> (layout(spec, tol), add_run(builder, layout, run), triangles(layout, run))
+_BUILDERS: dict[str, tuple[Callable[..., Any], Callable[..., None], Callable[..., int]]] = {
+    "hub": (hub_layout, build_hub_run, hub_triangles),
+    "sleeve": (sleeve_layout, build_sleeve_run, sleeve_triangles)}
+
+#: the chordal tolerance's range in modules; its ends are met within a relative 1e-9, so
+#: that a tolerance written as the end in mm (0.0006 for module 60) is not refused by the
+#: rounding of ``module * 1e-5``
+TOLERANCE_RANGE_MODULES = (1e-5, 0.1)
 
 
 def default_tolerance(spec: CouplingSpec) -> float:
@@ -42,13 +49,15 @@ def default_tolerance(spec: CouplingSpec) -> float:
 
 
 def check_tolerance(spec: CouplingSpec, tolerance_mm) -> float:
-    """The tolerance as a float, or :class:`SpecError` (a ``ValueError``) naming the range."""
+    """The tolerance as a float (default :func:`default_tolerance`), or an
+    :class:`~gearcoupling.errors.ArgumentError` naming the range
+    (:data:`TOLERANCE_RANGE_MODULES`)."""
     tol = default_tolerance(spec) if tolerance_mm is None else tolerance_mm
     if not is_real(tol):
         raise ArgumentError("tolerance_mm", tolerance_mm, "must be a number (mm)")
     tol = float(tol)
-    lo, hi = spec.tooth.module * 1e-5, spec.tooth.module * 0.1
-    if not (math.isfinite(tol) and lo <= tol <= hi):
+    lo, hi = (spec.tooth.module * k for k in TOLERANCE_RANGE_MODULES)
+    if not (math.isfinite(tol) and lo * (1 - 1e-9) <= tol <= hi * (1 + 1e-9)):
         raise ArgumentError("tolerance_mm", tolerance_mm, f"must be from {lo:.3g} to {hi:.3g} mm "
                         "(1e-5 to 0.1 module) for this spec")
     return tol
@@ -77,6 +86,13 @@ def build_part(spec: CouplingSpec, part: str, *, tolerance_mm: float | None = No
         Watertight, outward wound; ``face_attributes["kind"]`` (int16 codes into
         :data:`SURFACE_KINDS`) and ``face_attributes["tooth"]`` (int32);
         ``metadata`` holds part, tolerance, spec name and build time.
+
+    Raises
+    ------
+    ArgumentError
+        On ``tolerance_mm`` before anything is built, where the part's memory
+        (:func:`part_size`) exceeds the budget of :mod:`gearcoupling.parts.size`; the
+        message names a tolerance that fits.
     """
     import trimesh
 
@@ -85,7 +101,9 @@ def build_part(spec: CouplingSpec, part: str, *, tolerance_mm: float | None = No
     tol = check_tolerance(spec, tolerance_mm)
     runs = tooth_runs(spec.tooth.teeth, teeth)
     t0 = time.perf_counter()
-    layout, add_run = _BUILDERS[part]
+    check_memory(_size(spec, part, tol, runs), lambda t: _size(spec, part, t, runs).triangles,
+                 spec.tooth.module * TOLERANCE_RANGE_MODULES[1])
+    layout, add_run, _ = _BUILDERS[part]
     lay = layout(spec, tol)  # cached per (spec, tolerance)
     builder = MeshBuilder()
     for run in runs:
@@ -103,10 +121,28 @@ def build_part(spec: CouplingSpec, part: str, *, tolerance_mm: float | None = No
     return mesh
 
 
+def part_size(spec: CouplingSpec, part: str, *, tolerance_mm: float | None = None,
+              teeth=None) -> PartSize:
+    """The triangle count (and memory) of :func:`build_part` with the same arguments,
+    from the part's layout alone: nothing is meshed. :func:`build_part` refuses a part
+    whose memory exceeds the budget (:mod:`gearcoupling.parts.size`)."""
+    spec = as_spec(spec)
+    choice(part, "part", PARTS)
+    tol = check_tolerance(spec, tolerance_mm)
+    return _size(spec, part, tol, tooth_runs(spec.tooth.teeth, teeth))
+
+
+def _size(spec: CouplingSpec, part: str, tol: float, runs: list[Run]) -> PartSize:
+    layout, _, triangles = _BUILDERS[part]
+    lay = layout(spec, tol)  # cached per (spec, tolerance): the build reuses it
+    return PartSize(part, tol, sum(triangles(lay, run) for run in runs))
+
+
 __all__ = [
     "PARTS",
     "SURFACE_KINDS",
     "PartCheck",
+    "PartSize",
     "Run",
     "build_part",
     "check_part",
@@ -115,6 +151,7 @@ __all__ = [
     "hub_layout",
     "hub_solid",
     "measure_deviation",
+    "part_size",
     "part_solid",
     "shape_volume",
     "sleeve_layout",

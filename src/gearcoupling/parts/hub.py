@@ -145,3 +145,19 @@ def _fan(b: MeshBuilder, centre: int, chain: NDArray, closed: bool, *, flip: boo
     tris = np.stack([np.full(len(cur), centre), cur, nxt], axis=1)
     b.faces(tris[:, ::-1] if flip else tris, "end", -1)
 
+
+
+def hub_triangles(lay: HubLayout, run: Run) -> int:
+    """Triangles :func:`build_hub_run` adds for ``run``, from the layout's grid sizes alone
+    (nothing is built): the tooth band, its end faces, the rings of body, shoulder and bore
+    and, for a sector, its two side walls."""
+    nz, nseg, k, ring = len(lay.grid.z), lay.pitch.shape[1] - 1, run.count, lay.ring
+    bore = lay.r_bore > 0
+    strips = (2 if lay.shoulder else 0) + ((4 if lay.shoulder else 1) if bore else 0)
+    fans = 0 if bore else 2
+    total = 2 * (nz - 1) * k * nseg + 2 * k * len(lay.cap) + (2 * strips + fans) * k * ring
+    if run.closed:
+        return total
+    top = nz + (4 if lay.shoulder else 0)
+    bottom = (3 if lay.shoulder else 2) + (0 if bore or lay.shoulder else 2)
+    return total + 2 * (top + bottom - 2)

@@ -63,3 +63,12 @@ def build_sleeve_run(b: mb.MeshBuilder, lay: SleeveLayout, run: mb.Run) -> None:
         b.wall(np.array([o_bot[col], o_top[col]]), np.array([i_bot[col], i_top[col]]),
                start=col == 0)
 
+
+
+def sleeve_triangles(lay: SleeveLayout, run: mb.Run) -> int:
+    """Triangles :func:`build_sleeve_run` adds for ``run``, from the layout's sizes alone:
+    the toothed bore, the outer cylinder, two end faces and, for a sector, two side walls
+    of two triangles each."""
+    k = run.count
+    total = 2 * k * (len(lay.pitch) - 1) + 2 * k * lay.ring + 2 * k * len(lay.cap)
+    return total if run.closed else total + 4

@@ -17,7 +17,7 @@ from ..browser import browser_backend
 from ..errors import ArgumentError
 from ..hob import check_hob_diameter
 from ..inspection import check_limits, grade_limits, load_points
-from ..io import output_folder, require_file, write_text
+from ..io import output_folder, require_file, writable_targets, write_text
 from ..spec import CouplingSpec, as_spec
 from . import sections as sec
 from .datasheet import datasheet, start_datasheet
@@ -108,6 +108,7 @@ def report(spec: CouplingSpec, out: str | os.PathLike, *, pdf: bool = False,
     """
     spec = as_spec(spec)
     output_folder(out, "out", create=False)
+    writable_targets(out, report_files(pdf), [sec.DATA_DIR], "out")
     if settings is not None and not isinstance(settings, ReportSettings):
         raise ArgumentError("settings", settings, "a ReportSettings")
     keywords(options, [f.name for f in fields(ReportSettings)], "report")
@@ -126,6 +127,12 @@ def report(spec: CouplingSpec, out: str | os.PathLike, *, pdf: bool = False,
     except BaseException:  # an error or an interruption: no partial report is left
         _discard(ctx, created)
         raise
+
+
+def report_files(pdf: bool = False) -> list[str]:
+    """The files :func:`report` writes beside its data folder (``report-data/``, a folder
+    of its own): ``report.html``, and ``report.pdf`` with ``pdf``."""
+    return ["report.html", *(["report.pdf"] if pdf else [])]
 
 
 def _build(ctx: sec.Context, pdf: bool, progress: Callable[[int, int], None] | None,

@@ -4,7 +4,7 @@ API 671 coupling data sheet (docs/rotordynamics.md)."""
 from __future__ import annotations
 
 from ..errors import SpecError
-from ..io import write_csv_rows
+from ..io import plot_text, write_csv_rows
 from ..rotordynamics import (
     DOFS,
     CouplingData,
@@ -112,7 +112,7 @@ def _windup_figure(ctx: Context, data: CouplingData):
     write_csv_rows(ctx.data_path(name), ("torque_Nm", "mesh_windup_rad", "body_windup_rad",
                                          "windup_rad"), data.torsion.rows())
     return ctx.figure("windup", "Torque against wind-up, to the capacity",
-                      plot_windup(data.torsion, f"{data.spec.name}, i = "
+                      plot_windup(data.torsion, f"{plot_text(data.spec.name)}, i = "
                                   f"{data.misalignment_deg:g}°"),
                       f"{data.model} model ({data.springs} springs), mean over "
                       f"{data.stiffness.steps['rotations']} rotations of one pitch; bodies "

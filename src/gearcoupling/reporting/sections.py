@@ -27,7 +27,7 @@ from ..geometry import renzo_z0_mm
 from ..hob import hob_program, measuring_charts, plot_measuring_charts, write_nominal_csv
 from ..inspection import compare_part, plot_deviation_map, plot_inspection
 from ..interference import check_interference, plot_interference
-from ..io import write_csv_records, write_csv_rows, write_text
+from ..io import plot_text, write_csv_records, write_csv_rows, write_text
 from ..loading import (
     capacity,
     load_from_sweep,
@@ -349,7 +349,8 @@ def q_graph(ctx: Context, sec: Section) -> None:
                            for p in pts])
     fig = plot_q_graph({"linear model, exact geometry": [(p.zc_over_z0, p.q_linear)
                                                          for p in pts]},
-                       title=f"{spec.name}: load proportion q against z_c / z0 (Renzo Fig. 12)")
+                       title=f"{plot_text(spec.name)}: "
+                             "load proportion q against z_c / z0 (Renzo Fig. 12)")
     sec.blocks.append(ctx.figure("q-graph", "Renzo's load proportion q against z_c / z0", fig,
                                  f"Linear model (C = {ld.mesh_stiffness_N_per_mm:.4g} N/mm, "
                                  f"P_i = {ld.allowable_tooth_load_N:.4g} N) at 7 misalignments "
@@ -479,7 +480,8 @@ def manufacturing(ctx: Context) -> Section:
     ax.set_ylabel("infeed from the midplane (µm)")
     ax.invert_yaxis()
     ax.grid(alpha=0.3)
-    ax.set_title(f"{spec.name}: hob centre path, {prog.crown_kind} crown, hob Ø {D:g} mm",
+    ax.set_title(f"{plot_text(spec.name)}: "
+                 f"hob centre path, {prog.crown_kind} crown, hob Ø {D:g} mm",
                  fontsize=10)
     sec.blocks.append(ctx.figure("hob-path", "Hob centre path over the face", fig,
                                  f"{summ['arc_moves']} arcs and {summ['line_moves']} lines, "

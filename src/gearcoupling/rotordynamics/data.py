@@ -211,9 +211,17 @@ def _torsion_rows(data: CouplingData, accuracy: str) -> Rows:
             ("torsion", "tangent stiffness at the torque", t.tangent_Nm_per_rad, "N·m/rad",
              accuracy),
             ("torsion", "bodies' torsional stiffness", k_body if math.isfinite(k_body) else
-             None, "N·m/rad", "bore to sleeve outside diameter (none: the hub has no bore)"),
+             None, "N·m/rad", _body_source(data.spec.hub.body.bore_diameter)),
             ("torsion", "capacity at the misalignment", data.capacity_Nm, "N·m",
              "the wind-up curve ends here (datasheet.json)")]
+
+
+def _body_source(bore_mm: float) -> str:
+    """What the bodies' torsion spans: from the hub bore, or from the sleeve's teeth where
+    the hub is solid (taken rigid, :func:`~gearcoupling.loading.body_windup_rad`)."""
+    if bore_mm > 0:
+        return f"hub bore ({bore_mm:.4g} mm) to sleeve outside diameter"
+    return "sleeve to its outside diameter (the hub has no bore: taken rigid)"
 
 
 def _stiffness_rows(s: StiffnessMatrix, accuracy: str) -> Rows:

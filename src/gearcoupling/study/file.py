@@ -43,7 +43,6 @@ from __future__ import annotations
 import hashlib
 import json
 import math
-import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -58,7 +57,17 @@ from ..arguments import (
     torque_Nm,
 )
 from ..errors import SpecError
-from ..io import Table, as_path, bundled_names, line_of, resolve_bundled, set_dotted
+from ..io import (
+    Table,
+    array_lengths,
+    as_path,
+    bundled_names,
+    line_of,
+    parse_toml,
+    read_toml,
+    resolve_bundled,
+    set_dotted,
+)
 from ..loading import model_names
 from ..loadspec import UNIT_SIBLINGS
 from ..spec import (
@@ -167,7 +176,7 @@ class Study:
 
 def build_spec(base_name: str, base_text: str, overrides: dict[str, Any]):
     """The base spec (TOML text) with dotted overrides in the file's units."""
-    data = tomllib.loads(base_text)
+    data = parse_toml(base_text, base_name)
     for key, value in overrides.items():
         set_dotted(data, key, value, UNIT_SIBLINGS)
     return spec_from_dict(data, name=base_name)
@@ -228,12 +237,8 @@ def load_study(path: str | Path) -> Study:
     """Parse and validate a study file (a path, or the name of a bundled study)."""
     as_path(path, "path")
     p = resolve_study_path(path)
-    text = p.read_text()
     src = str(p)
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as err:
-        raise SpecError(src, None, f"is not valid TOML: {err}") from err
+    data, text = read_toml(p, lambda t: _check_list_lengths(t, src))
     root = Table(data, "", source=src, text=text)
     s = Table(root.get("study", dict, {}), "study", source=src, text=text,
               line=line_of(text, "[study]"))
@@ -249,7 +254,7 @@ def load_study(path: str | Path) -> Study:
     s.done()
     _check_chunk_outputs(s, chunk, outputs)
     base_path = _resolve_base(base, p.parent)
-    base_text = base_path.read_text()
+    _, base_text = read_toml(base_path)
     fixed = root.get("set", dict, {})
     conditions = _conditions(root, src, text)
     accuracy = _accuracy(root, src, text)
@@ -264,19 +269,49 @@ def load_study(path: str | Path) -> Study:
     elif any(o in TOLERANCE_OUTPUTS and o not in OUTPUTS for o in outputs):
         s.fail("study.outputs", list(outputs), "tolerance outputs need a [tolerances] table")
     root.done()
-    _check_base_and_values(params, src, text, p.stem, base_path.stem, base_text, fixed)
     _check_sampling(s, params, src, method, samples, optimise)
+    if optimise is None:  # before a spec is built: each value of a [[vary]] builds one
+        draws = tolerances["draws"] if tolerances else 1
+        n = _count(params, method, samples, draws)
+        if not 1 <= n <= MAX_SAMPLES:
+            raise SpecError(f"{src} samples", n, _count_text(params, method, draws))
+    _check_base_and_values(params, src, text, p.stem, base_path.stem, base_text, fixed)
     study = Study(name, src, base_path.stem, base_text, fixed, params, method, samples, seed,
                   chunk, outputs, conditions, accuracy, plots, tolerances, optimise)
     if optimise is not None:
         optimise_options(study)
         return study
-    n = sample_count(study)
-    if not 1 <= n <= MAX_SAMPLES:
-        raise SpecError(f"{src} samples", n, f"must be 1-{MAX_SAMPLES}")
     for i, plot in enumerate(plots):
         _check_plot(plot, i, study, text)
     return study
+
+
+def _check_list_lengths(text: str, src: str) -> None:
+    """Refuse a ``values`` list longer than :data:`MAX_SAMPLES` from the text's commas,
+    before it is parsed (2 million values take seconds to parse); only a file with more
+    commas than that is scanned."""
+    if text.count(",") <= MAX_SAMPLES:
+        return
+    for line, commas in array_lengths(text, "values"):
+        if commas > MAX_SAMPLES:
+            raise SpecError(f"{src}:{line} values", None, f"at most {MAX_SAMPLES} values in a "
+                            "[[vary]] list", shown=f"a list of {commas} values or more")
+
+
+def _count(params: tuple[Parameter, ...], method: str, samples: int, draws: int) -> int:
+    """Samples a study asks for, from the lists' lengths and steps (nothing is built):
+    the grid's product or ``samples``, times the draws of a tolerance study."""
+    if method != "grid":
+        return samples * draws
+    return math.prod(q.count() for q in params) * draws
+
+
+def _count_text(params: tuple[Parameter, ...], method: str, draws: int) -> str:
+    """What the count is made of, and its range."""
+    made = (f"a grid of {' x '.join(str(q.count()) for q in params)} values" if method == "grid"
+            else f"study.samples of method '{method}'")
+    times = f" times {draws} draws" if draws > 1 else ""
+    return f"{made}{times}; a study may have 1 to {MAX_SAMPLES} samples"
 
 
 def _check_chunk_outputs(s: Table, chunk: int, outputs: tuple[str, ...]) -> None:
@@ -426,10 +461,9 @@ def _tolerances(r: Table) -> dict[str, Any]:
 
 
 def sample_count(study: Study) -> int:
+    """Samples (rows) of the study."""
     draws = study.tolerances["draws"] if study.tolerances else 1
-    if study.method != "grid":
-        return study.samples * draws
-    return math.prod(q.count() for q in study.parameters) * draws
+    return _count(study.parameters, study.method, study.samples, draws)
 
 
 def samples(study: Study) -> list[dict[str, Any]]:

@@ -29,7 +29,7 @@ import numpy as np
 from ..arguments import GAP_TOLERANCE_MM
 from ..clearance import critical_misalignment_deg, min_backlash_rad
 from ..errors import GearCouplingError, SpecError
-from ..io import atomic_path
+from ..io import atomic_path, plot_text
 from ..loading import capacity
 from ..plots import new_figure
 from ..spec import CouplingSpec, load_spec
@@ -172,7 +172,7 @@ def plot_capacity_curves(curves: dict[str, tuple[np.ndarray, np.ndarray]], *, ax
     else:
         fig = ax.figure
     for name, (angles, cap) in curves.items():
-        ax.plot(angles, cap, "o-", ms=3, label=name)
+        ax.plot(angles, cap, "o-", ms=3, label=plot_text(name))
     ax.set_xlabel("misalignment (deg)")
     ax.set_ylabel("capacity (N m)")
     ax.legend(fontsize=8, loc="best")

@@ -22,10 +22,11 @@ from ..arguments import count, flag, real
 from ..errors import ArgumentError, BackendError
 from ..forked import held_signals
 from ..interrupts import reraise as reraise_interrupt
-from ..io import atomic_path, output_folder, write_json
+from ..io import atomic_path, output_folder, remove_stale_temporaries, write_json
 from ..tables import import_pandas
 from .evaluate import evaluate_chunk
 from .file import OUTPUTS, TOLERANCE_OUTPUTS, Study, sample_count, samples
+from .peer import probe_scheduler
 
 CONNECT_TIMEOUT_S = 10.0
 RETRIES = 3
@@ -115,27 +116,34 @@ def _manifest(study: Study, out: Path, fresh: bool) -> None:
     data = {"study": study.name, "source": study.source, "digest": study.digest(),
             "samples": sample_count(study), "chunk": study.chunk}
     if (out / "parts").is_dir():  # temporaries of a killed run; with --fresh every part
-        for part in (out / "parts").glob("*chunk-*.parquet" if fresh else ".chunk-*"):
+        remove_stale_temporaries(out / "parts")
+        for part in (out / "parts").glob("chunk-[0-9]*.parquet") if fresh else ():
             part.unlink()
     write_json(path, data)
 
 
 MAX_WORKERS = 256
-_ADDRESS = re.compile(r"(?:(?:tcp|tls)://)?(?:\[[0-9A-Fa-f:.]+\]|[A-Za-z0-9._-]+):[0-9]{1,5}")
+_ADDRESS = re.compile(r"(?:tcp://)?(?:\[[0-9A-Fa-f:.]+\]|[A-Za-z0-9._-]+):[0-9]{1,5}")
 
 
 def scheduler_address(text: object, field: str = "scheduler") -> str:
-    """A dask scheduler address ``tcp://HOST:PORT`` (or ``tls://``, or ``HOST:PORT``)."""
+    """A dask scheduler address ``tcp://HOST:PORT`` (or ``HOST:PORT``); ``tls://`` is
+    refused: it needs certificates, which a study does not take."""
     if not (isinstance(text, str) and _ADDRESS.fullmatch(text)
             and 1 <= int(text.rsplit(":", 1)[1]) <= 65535):
         raise ArgumentError(field, text, "a dask scheduler address tcp://HOST:PORT, "
-                            "e.g. tcp://127.0.0.1:8786")
+                            "e.g. tcp://127.0.0.1:8786 (tls:// needs certificates, which a "
+                            "study does not take: reach a TLS scheduler through a tunnel)")
     return text
 
 
 def connect(scheduler: str | None, workers: int | None, timeout_s: float = CONNECT_TIMEOUT_S):
-    """A dask Client: to ``scheduler`` (``tcp://HOST:PORT``) or a new LocalCluster with
-    ``workers`` single-threaded worker processes (default: one per core)."""
+    """A dask Client: to ``scheduler`` (``tcp://HOST:PORT``; a peer that is no dask
+    scheduler is refused within ``timeout_s``, :func:`.peer.probe_scheduler`) or a new
+    LocalCluster with ``workers`` single-threaded worker processes (default: one per
+    core)."""
+    if scheduler is not None:
+        probe_scheduler(scheduler, timeout_s)  # a dask scheduler, else refused in time
     distributed = _distributed()
     if scheduler is not None:
         try:

@@ -13,6 +13,7 @@ from collections.abc import Callable
 import numpy as np
 
 from ..errors import GearCouplingError
+from ..io import markdown_text
 from ..spec import MISALIGNMENT_RANGE_DEG, CouplingSpec
 from .nodes import FRAMES, CouplingScene, ViewSettings
 from .scene import COLOR_MODES, CUTAWAYS, LOD_DIVISORS, legend_markdown, plot_range
@@ -45,7 +46,7 @@ class Panel:
     def __init__(self, gui, spec: CouplingSpec, settings: ViewSettings, color_scale_mm: float,
                  lod: str | None, plot_data: tuple):
         st = settings
-        gui.add_markdown(f"**{spec.name}** — {spec.tooth.teeth} teeth, module "
+        gui.add_markdown(f"**{markdown_text(spec.name)}** — {spec.tooth.teeth} teeth, module "
                          f"{spec.tooth.module:.4g} mm")
         with gui.add_folder("Pose"):
             self.misalignment = gui.add_slider("misalignment (°)", *MISALIGNMENT_RANGE_DEG, 0.05,

@@ -23,7 +23,7 @@ from pathlib import Path
 
 from ..arguments import choice, count
 from ..errors import ArgumentError, GearCouplingError
-from ..io import default_output_dir
+from ..io import default_output_dir, markdown_text
 from ..spec import CouplingSpec, as_spec
 from .html import save_html
 from .nodes import CouplingScene, ViewSettings, import_viser
@@ -193,7 +193,7 @@ class ViewerApp:
                 try:
                     self.apply(dirty)
                 except Exception as err:  # keep serving; show what went wrong
-                    self.panel.status.content = f"**error:** {err}"
+                    self.panel.status.content = f"**error:** {markdown_text(err)}"
             with self._ticked:
                 self.ticks += 1
                 self._ticked.notify_all()

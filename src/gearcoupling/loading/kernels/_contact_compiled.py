@@ -19,7 +19,9 @@ import math
 import numba
 import numpy as np
 
-_jit = numba.njit(cache=True, nogil=True, error_model="numpy", fastmath={"contract"})
+from ...io.numba_cache import njit
+
+_jit = njit(nogil=True, error_model="numpy", fastmath={"contract"})  # cached, verified
 _inline = numba.njit(inline="always", error_model="numpy", fastmath={"contract"})
 
 
