@@ -22,6 +22,7 @@ import pytest
 
 from fresh_python import session_alive
 from gearcoupling.cli import main
+from gearcoupling.io.atomic import PREFIX
 
 ENV = {**os.environ, "PYTHONPATH": os.pathsep.join(sys.path)}
 LINE = re.compile(r"gearcoupling: interrupted; (\d+) files? complete(?: in (.+))?")
@@ -120,13 +121,14 @@ class Try:
         assert self.proc.returncode == 128 + self.sig, (what, self.proc.returncode, self.err)
         lines = self.err.strip().splitlines()
         assert len(lines) == 1 and (match := LINE.fullmatch(lines[0])), (what, self.err)
-        files = [p for p in self.out.rglob("*") if p.is_file()] if self.out.is_dir() else []
-        assert not [p for p in files if p.name.startswith(".")], (what, files)
+        found = list(self.out.rglob("*")) if self.out.is_dir() else []
+        assert not [p for p in found if p.name.startswith(PREFIX)], (what, found)
+        files = [p for p in found if p.is_file() and not p.name.startswith(".")]
         assert int(match[1]) == len(files), (what, self.err, files)
         if files:
             assert match[2] is not None and str(self.out) in match[2], (what, self.err)
-        late = {p.name: p.stat().st_mtime - self.sent for p in files
-                if p.stat().st_mtime > self.sent + LATE_S}
+        late = {p.name: p.stat().st_mtime - self.sent for p in found  # the record's too
+                if p.is_file() and p.stat().st_mtime > self.sent + LATE_S}
         assert not late, f"{what}: written after the signal (s after it): {late}"
 
 

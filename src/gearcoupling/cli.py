@@ -31,6 +31,7 @@ from typing import NoReturn
 
 from . import interrupts
 from .commands import CREATED, NAMES, WRITING, command_module
+from .commands.folders import HELD
 from .errors import GearCouplingError, brief
 from .forked import kill_children
 from .interrupts import SIGNALS, Interrupted
@@ -196,9 +197,9 @@ _ENDING = threading.RLock()  # one interruption line, one ending
 
 def _say_interrupted(signum: int, *, fd: int | None = None) -> int:
     """Once per command (later calls only return the status): remove the temporaries of
-    its stopped workers, say what is complete in one line on stderr (written straight to
-    the descriptor ``fd`` where given: the process ends next), return 128 + the
-    signal."""
+    its stopped workers (and, with ``fd``, its own: the process ends next), say what is
+    complete in one line on stderr (written straight to the descriptor ``fd`` where
+    given), return 128 + the signal."""
     with _ENDING:
         if _said:
             return _said[0]
@@ -207,7 +208,7 @@ def _say_interrupted(signum: int, *, fd: int | None = None) -> int:
         for folder in folders:
             with contextlib.suppress(OSError):  # a folder not made yet, or removed
                 for sub in (folder, *(p for p in folder.rglob("*") if p.is_dir())):
-                    remove_stale_temporaries(sub)
+                    remove_stale_temporaries(sub, own=fd is not None)
                 complete += [p for p in folder.rglob("*") if p.is_file()
                              and not p.name.startswith(".") and p.stat().st_mtime >= _started]
         where = f" in {', '.join(map(str, folders))}" if folders else ""
@@ -230,8 +231,9 @@ def _interrupted(stop: KeyboardInterrupt) -> int:
 def _end_now(signum: int) -> NoReturn:
     """End the program at once, the last resort of a second signal, of a command that did
     not stop within :data:`GRACE_S`, and of a signal before or after the command: kill the
-    FE solvers and every child process, then the interruption line
-    (:func:`_say_interrupted`, unless said) and exit 128 + the signal."""
+    FE solvers and every child process, remove the files of its output folders' locks,
+    then the interruption line (:func:`_say_interrupted`, unless said) and exit 128 + the
+    signal."""
     with _ENDING:
         # from here on what this process (its main thread may still run) and what it starts
         # meanwhile write to stderr is not the user's business: only the line goes there
@@ -239,6 +241,8 @@ def _end_now(signum: int) -> NoReturn:
         os.dup2(os.open(os.devnull, os.O_WRONLY), 2)
         _stop_solvers()
         kill_children()
+        for held in list(HELD.values()):  # the locks go with the process, their files here
+            held.lock.remove_file()
         os._exit(_say_interrupted(signum, fd=stderr))
 
 

@@ -146,14 +146,15 @@ def is_stale_temporary(path: str | os.PathLike) -> bool:
     return not _alive(int(match["pid"]))
 
 
-def remove_stale_temporaries(folder: str | os.PathLike) -> list[Path]:
+def remove_stale_temporaries(folder: str | os.PathLike, *, own: bool = False) -> list[Path]:
     """Remove the temporaries in ``folder`` whose writing process has ended
-    (:func:`is_stale_temporary`); returns the removed paths. Temporaries of live processes
-    (another run writing into the same folder) and files that only look like temporaries
-    are left alone."""
+    (:func:`is_stale_temporary`), with ``own`` also this process's (the last act of a
+    process that ends at once); returns the removed paths. Temporaries of other live
+    processes (another run writing into the same folder) and files that only look like
+    temporaries are left alone."""
     removed = []
     for entry in Path(folder).glob(f"{PREFIX}*"):
-        if not is_stale_temporary(entry):
+        if not (is_stale_temporary(entry) or (own and entry.name.startswith(_prefix()))):
             continue
         try:
             if entry.is_dir() and not entry.is_symlink():
