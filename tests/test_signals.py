@@ -23,25 +23,14 @@ import pytest
 from fresh_python import session_alive
 from gearcoupling.cli import main
 from gearcoupling.io.atomic import PREFIX
+from test_cli_bad_input import STUDY_28
 
 ENV = {**os.environ, "PYTHONPATH": os.pathsep.join(sys.path)}
 LINE = re.compile(r"gearcoupling: interrupted; (\d+) files? complete(?: in (.+))?")
 WITHIN_S = 5.0  # from the signal to the end of the process and of every process it started
 LATE_S = 0.1  # file times run on a coarser clock than time.time()
 M2 = "industrial-m2"
-STUDY = """\
-[study]
-base = "industrial-m2"
-chunk = 1
-outputs = ["critical_misalignment_deg"]
-[accuracy]
-angle_tolerance_deg = 1e-2
-steps = 4
-[[vary]]
-key = "hub.crowning.radius"
-range = [40.0, 200.0]
-steps = 4
-"""
+STUDY = STUDY_28.replace("steps = 40\n", "steps = 4\n")  # 4 samples
 
 # the cheapest real work of each command; ``{out}`` is the try's own folder
 COMMANDS = {
