@@ -129,7 +129,7 @@ def is_program() -> bool:
     argv0 = sys.argv[0] if sys.argv else ""
     if argv0 == "-m":
         module = _program_module(list(getattr(sys, "orig_argv", ())))
-        return module == "gearcoupling" or module.startswith("gearcoupling.")
+        return module in ("gearcoupling", "gearcoupling.__main__", "gearcoupling.cli")
     main = sys.modules.get("__main__")
     return (os.path.basename(argv0).removesuffix(".exe") == "gearcoupling"
             and getattr(main, "__file__", None) == argv0)
