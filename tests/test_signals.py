@@ -389,3 +389,34 @@ def test_a_signal_during_a_backend_import_is_not_a_missing_backend(module, funct
     monkeypatch.setattr(sys, "meta_path", [_FailedImport(backend, False), *finders])
     with pytest.raises(BackendError, match="pip install"):
         call(*args)
+
+
+OCP_INTERRUPTED = """
+import os, signal, sys, threading, time
+from gearcoupling.cli import _signals_raise
+from gearcoupling.errors import BackendError
+from gearcoupling.parts.solid import _occ
+
+with _signals_raise():
+    threading.Timer(0.05, os.kill, (os.getpid(), signal.SIGINT)).start()
+    try:
+        _occ()  # OpenCASCADE's import takes some 0.3-0.6 s
+        time.sleep(5.0)
+    except KeyboardInterrupt:
+        print("interrupted")
+    except BackendError as err:
+        print(err)
+"""
+
+
+def test_ctrl_c_while_opencascade_loads_is_an_interruption():
+    """The real thing: Ctrl-C 50 ms into OpenCASCADE's import (inside its pybind11
+    module's initialisation). Before, it was reported as "CAD solids need OpenCASCADE:
+    pip install 'gearcoupling[step]'"."""
+    import importlib.util
+
+    if importlib.util.find_spec("OCP") is None:
+        pytest.skip("OCP not installed: pip install 'gearcoupling[step]'")
+    out = subprocess.run([sys.executable, "-c", OCP_INTERRUPTED], capture_output=True,
+                         text=True, env=ENV, timeout=120)
+    assert out.stdout == "interrupted\n", (out.stdout, out.stderr)
