@@ -31,7 +31,6 @@ from typing import NoReturn
 
 from . import interrupts
 from .commands import CREATED, NAMES, WRITING, command_module
-from .commands.folders import HELD
 from .errors import GearCouplingError, brief
 from .forked import kill_children
 from .interrupts import SIGNALS, Interrupted
@@ -228,6 +227,15 @@ def _interrupted(stop: KeyboardInterrupt) -> int:
     return _say_interrupted(getattr(stop, "signum", signal.SIGINT))
 
 
+def _remove_lock_files() -> None:
+    """Remove the lock files of the output folders the command holds (the locks go with
+    the process)."""
+    folders = sys.modules.get("gearcoupling.commands.folders")  # if the command held any
+    if folders is not None:
+        for held in list(folders.HELD.values()):
+            held.lock.remove_file()
+
+
 def _end_now(signum: int) -> NoReturn:
     """End the program at once, the last resort of a second signal, of a command that did
     not stop within :data:`GRACE_S`, and of a signal before or after the command: kill the
@@ -241,8 +249,7 @@ def _end_now(signum: int) -> NoReturn:
         os.dup2(os.open(os.devnull, os.O_WRONLY), 2)
         _stop_solvers()
         kill_children()
-        for held in list(HELD.values()):  # the locks go with the process, their files here
-            held.lock.remove_file()
+        _remove_lock_files()
         os._exit(_say_interrupted(signum, fd=stderr))
 
 

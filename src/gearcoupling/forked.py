@@ -13,8 +13,9 @@ from collections.abc import Callable, Collection, Iterator, Sequence
 from contextlib import contextmanager
 from typing import Any, TypeVar, cast
 
-from . import interrupts
 from .errors import BackendError
+from .interrupts import check as check_interrupt
+from .interrupts import reset as forget_interrupt
 
 T = TypeVar("T")
 STOP_SIGNALS = {signal.SIGINT, signal.SIGTERM}  # held while workers fork
@@ -56,7 +57,7 @@ def worker_signals() -> None:
     """A forked worker leaves signals to its parent: it ignores Ctrl-C (which reaches the
     whole group) and ends at SIGTERM; it dies with the parent (:func:`die_with_parent`)."""
     die_with_parent()
-    interrupts.reset()  # the parent's note is the parent's to act on
+    forget_interrupt()  # the parent's note is the parent's to act on
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
     signal.pthread_sigmask(signal.SIG_UNBLOCK, STOP_SIGNALS)  # blocked over the fork
@@ -173,7 +174,7 @@ def messages(procs: Sequence[tuple[Any, multiprocessing.connection.Connection]]
     with an exit code a :class:`BackendError`."""
     waiting = {recv: proc for proc, recv in procs}
     while waiting:
-        interrupts.check()  # a signal whose exception a library dropped: no more waiting
+        check_interrupt()  # a signal whose exception a library dropped: no more waiting
         for ready in multiprocessing.connection.wait(list(waiting)):
             conn = cast(multiprocessing.connection.Connection, ready)
             try:

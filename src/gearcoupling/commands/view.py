@@ -5,7 +5,7 @@ from __future__ import annotations
 import sys
 import time
 
-from .. import interrupts
+from ..interrupts import reset as forget_interrupt
 from ..io import writable_file
 from ..viewer import (
     COLOR_MODES,
@@ -99,7 +99,7 @@ def run(args) -> int:
             while True:
                 time.sleep(3600)
     except KeyboardInterrupt:  # the server's way to stop: not an interruption
-        interrupts.reset()
+        forget_interrupt()
         print("stopping", file=sys.stderr)
     finally:
         app.stop()

@@ -31,7 +31,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ...arguments import GAP_TOLERANCE_MM
-from ...clearance.flank_table import flank_table
+from ...clearance import flank_table
 from ...errors import ArgumentError
 from ...geometry import (
     FLANKS,
