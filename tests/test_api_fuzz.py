@@ -131,6 +131,19 @@ FUNCTIONS = {
     "write_mesh": (True, {"vm": "mesh", "path": "file", "fmt": "part"}),
     "tooth_compliance_table": (True, {"spec": "spec", "nz": "count", "nr": "count",
                                       "sector": "count"}),
+    "coupling_geometry": (False, {"spec": "spec", "layout": "layout",
+                                  "alignment": "alignment"}),
+    "coupling_assembly": (False, {"spec": "spec", "layout": "layout",
+                                  "alignment": "alignment", "psi_deg": "real"}),
+    "whole_loads": (True, {"spec": "spec", "layout": "layout", "alignment": "alignment",
+                           "torque_Nm": "torque", "angles_deg": "turn", "model": "model"}),
+    "whole_capacity": (True, {"spec": "spec", "layout": "layout", "alignment": "alignment",
+                              "model": "model", "loaded_flank": "flank"}),
+    "allowable_offset": (True, {"spec": "spec", "layout": "layout", "alignment": "alignment",
+                                "torque_Nm": "torque", "model": "model"}),
+    "whole_coupling_data": (True, {"spec": "spec", "layout": "layout",
+                                   "alignment": "alignment", "torque_Nm": "torque",
+                                   "model": "model"}),
 }
 # kinds whose valid values need the fixture objects
 KINDS["sweep"] = (["SWEEP"], [None, 42, "industrial-m2", {}])
@@ -143,6 +156,10 @@ KINDS["chordal"] = ([0.01, 0.002], [0.0, -1.0, NAN, 1e-300, "0.01", None])
 KINDS["points"] = ([5, 11, 101], [0, 4, 10**9, 2.5, "11", None, True])
 KINDS["hob"] = ([60.0, 80], [NAN, 0.0, 1e9, "60", None, 5.0])
 KINDS["units"] = (["mm", "in"], ["cm", None, 1, ""])
+# the whole coupling: None is a default where it is allowed, so it is not among the bad
+KINDS["layout"] = (["LAYOUT"], [None, 42, "one-piece", {}, 300.0])
+KINDS["alignment"] = (["ALIGNMENT"], [42, {}, "0.4", [0.4], 0.4])
+KINDS["turn"] = (KINDS["angles"][0], [v for v in KINDS["angles"][1] if v is not None])
 KINDS["dict"] = ([{}, {"tooth": {"teeth": 38, "module": 2.0}, "hub": {"face_width": 16.0}}],
                  [None, [1], "x", {"tooth": 5}, {"tooth": {"teeth": NAN}}])
 
@@ -158,7 +175,8 @@ def test_the_fuzz_covers_every_public_function():
 @pytest.fixture(scope="module")
 def objects():
     spec = gc.load_spec(M2)
-    return {"SPEC": spec, "SWEEP": gc.sweep(spec, 0.5, [0.0]), "CROWNING": spec.hub.crowning}
+    return {"SPEC": spec, "SWEEP": gc.sweep(spec, 0.5, [0.0]), "CROWNING": spec.hub.crowning,
+            "LAYOUT": gc.CouplingLayout(span_mm=300.0), "ALIGNMENT": gc.ShaftAlignment(0.4)}
 
 
 def _draws(name: str):

@@ -13,7 +13,7 @@ from gearcoupling.cli import build_parser
 from gearcoupling.errors import ArgumentError
 from gearcoupling.loading import MODELS, LoadModel, load_from_sweep, model_names, patch_maps
 from gearcoupling.loading.models.registry import ModelOutput
-from gearcoupling.loadspec import LOAD_MODELS
+from gearcoupling.spec.load import LOAD_MODELS
 
 SRC = Path(gc.__file__).parent
 BUILT_IN = tuple(MODELS)  # at import: before any test registers its own

@@ -14,7 +14,7 @@ import pytest
 import gearcoupling as gc
 from gearcoupling.loading import FittedCompliance
 from gearcoupling.loading.springs import SPRINGS
-from gearcoupling.loadspec import STIFFNESS_SOURCES
+from gearcoupling.spec import STIFFNESS_SOURCES
 from random_specs import proportions_spec, springs_specs
 
 TEMPLATES = ("renzo-1967", "renzo-1967-vari-crown", "renzo-1967-end-round", "industrial-m2",

@@ -41,7 +41,7 @@ from gearcoupling.loading import write_capacity_csv
 from gearcoupling.loading.capacity import Capacity
 from gearcoupling.parts import build_part
 from gearcoupling.plots import save_figure
-from gearcoupling.specfile import resolve_spec_path
+from gearcoupling.spec import resolve_spec_path
 
 import clients
 

@@ -323,3 +323,26 @@ def test_a_spec_error_with_its_typed_value_survives_pickling():
         gc.load_spec("renzo-1967", **{"hub.crowning.radius": 0.1})
     again = pickle.loads(pickle.dumps(err.value))
     assert str(again) == str(err.value) and again.value == 0.1
+
+
+def test_the_geometry_takes_spec_objects_and_the_public_functions_load_names():
+    """No loader is injected into the geometry: its functions refuse a template name and the
+    public ones load it (``gc.hub_flank`` of a name is the geometry's of the loaded spec);
+    importing the package or the geometry imports no spec module."""
+    import subprocess
+    import sys
+
+    from gearcoupling import geometry
+
+    with pytest.raises(gc.ArgumentError) as err:
+        geometry.hub_flank("industrial-m2", "cw", 0.0, 38.0)
+    assert err.value.field == "spec"
+    by_name = gc.hub_flank("industrial-m2", "cw", 0.0, 38.0)
+    by_spec = geometry.hub_flank(gc.load_spec("industrial-m2"), "cw", 0.0, 38.0)
+    for a, b in zip(by_name, by_spec, strict=True):
+        np.testing.assert_array_equal(a, b)
+    code = ("import sys, gearcoupling, gearcoupling.geometry; "
+            "print([m for m in sys.modules if m.startswith('gearcoupling.spec')])")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True)
+    assert out.stdout.strip() == "[]"

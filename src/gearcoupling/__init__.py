@@ -16,7 +16,3 @@ import lazy_loader  # noqa: E402
 __version__ = "0.1.0"
 
 __getattr__, __dir__, __all__ = lazy_loader.attach_stub(__name__, __file__)
-
-# the specs (numpy only): every public function that takes a spec also takes a template
-# name or a TOML path, the geometry's too, which loads them through this stage
-from . import spec as _spec  # noqa: E402, F401

@@ -8,6 +8,7 @@ from .design import (
     critical_misalignment_deg,
     design_quantities,
     double_engagement,
+    mesh_angles,
     min_backlash_rad,
     pitch_turning_angles,
 )
@@ -40,6 +41,7 @@ __all__ = [
     "double_engagement",
     "flank_minima",
     "flank_table",
+    "mesh_angles",
     "min_backlash_rad",
     "pitch_turning_angles",
     "plot_all",

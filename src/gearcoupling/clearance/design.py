@@ -159,11 +159,22 @@ def binding_angle_deg(spec: CouplingSpec, *, tolerance_deg: float = ANGLE_TOLERA
 
 @dataclass(frozen=True)
 class MeshAngles:
-    """Misalignment of each gear mesh of a double-engagement coupling (degrees)."""
+    """Misalignment of each gear mesh of a double-engagement coupling (degrees).
+
+    ``a_tilt_axis_deg``, ``b_tilt_axis_deg``: azimuth of each mesh's tilt axis (sleeve axis
+    x hub axis) about the sleeve axis, from shaft A's ``x`` carried onto the sleeve by the
+    smallest turn; a mesh at the coupling rotation ``psi`` is the single-engagement pose
+    ``psi - tilt axis`` (docs/coupling.md). ``sleeve_azimuth_deg``: the direction about
+    shaft A toward which the sleeve axis leans; ``centre_b_mm``: hub B's midplane centre.
+    """
 
     a_deg: float
     b_deg: float
     sleeve_tilt_deg: float
+    a_tilt_axis_deg: float = 0.0
+    b_tilt_axis_deg: float = 0.0
+    sleeve_azimuth_deg: float = 0.0
+    centre_b_mm: tuple[float, float, float] = (0.0, 0.0, 0.0)
 
 
 def _direction(angle: float, azimuth: float) -> np.ndarray:
@@ -172,37 +183,51 @@ def _direction(angle: float, azimuth: float) -> np.ndarray:
 
 
 def mesh_angles(offset_mm: float, angle_deg: float, span_mm: float, *,
-                offset_azimuth_deg: float = 0.0, angle_azimuth_deg: float = 0.0) -> MeshAngles:
+                offset_azimuth_deg: float = 0.0, angle_azimuth_deg: float = 0.0,
+                offset_at: float = 1.0) -> MeshAngles:
     """Angles at the two gear meshes of a double-engagement coupling.
 
-    Shaft A runs along ``z``; hub A's tooth midplane centre ``O_A`` is the origin. Hub B's
-    midplane lies ``span_mm`` along ``z``; shaft B meets that plane at the parallel offset
-    ``offset_mm`` (direction ``offset_azimuth_deg`` about ``z``) and is tilted by
-    ``angle_deg`` (in the plane at ``angle_azimuth_deg``). The floating sleeve centres on
-    both meshes, so its axis runs through ``O_A`` and ``O_B``; each mesh angle is the
-    angle between its shaft and the sleeve axis.
+    Shaft A runs along ``z``; hub A's tooth midplane centre ``O_A`` is the origin. Shaft B
+    is tilted by ``angle_deg`` (in the plane at ``angle_azimuth_deg``) and crosses the
+    plane ``z = offset_at * span_mm`` at the parallel offset ``offset_mm`` (direction
+    ``offset_azimuth_deg`` about ``z``); hub B's midplane centre ``O_B`` lies on shaft B,
+    the rest of the span beyond that plane (``offset_at`` 1: the offset at hub B's
+    midplane; 0.5: at the coupling's centre, where a shaft angle splits evenly). The
+    floating sleeve centres on both meshes, so its axis runs through ``O_A`` and ``O_B``;
+    each mesh angle is the angle between its shaft and the sleeve axis.
     """
     offset_mm, angle_deg, span_mm, offset_azimuth_deg, angle_azimuth_deg = (
         real(v, name) for v, name in ((offset_mm, "offset_mm"), (angle_deg, "angle_deg"),
                                       (span_mm, "span_mm"),
                                       (offset_azimuth_deg, "offset_azimuth_deg"),
                                       (angle_azimuth_deg, "angle_azimuth_deg")))
+    offset_at = real(offset_at, "offset_at", 0.0, 1.0)
     if span_mm <= 0:
         raise ArgumentError("span_mm", span_mm, "distance between the hub midplanes must be > 0 mm")
     if offset_mm < 0 or not 0 <= angle_deg < 90:
         raise ArgumentError("offset_mm/angle_deg", (offset_mm, angle_deg),
                         "offset must be >= 0 mm and the angle 0-90°")
     az = math.radians(offset_azimuth_deg)
-    ob = np.array([offset_mm * math.cos(az), offset_mm * math.sin(az), span_mm])
-    sleeve = ob / np.linalg.norm(ob)
     shaft_b = _direction(math.radians(angle_deg), math.radians(angle_azimuth_deg))
+    ob = (np.array([offset_mm * math.cos(az), offset_mm * math.sin(az), offset_at * span_mm])
+          + (1.0 - offset_at) * span_mm * shaft_b)
+    sleeve = ob / np.linalg.norm(ob)
+    z = np.array([0.0, 0.0, 1.0])
+    k = np.cross(z, sleeve)  # the smallest turn carrying z onto the sleeve axis
+    skew = np.array([[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]])
+    ref = np.eye(3) + skew + skew @ skew / (1.0 + float(sleeve[2]))
 
     def between(u, v):
         return math.degrees(math.atan2(np.linalg.norm(np.cross(u, v)), float(np.dot(u, v))))
 
-    a = between(np.array([0.0, 0.0, 1.0]), sleeve)
-    b = between(shaft_b, sleeve)
-    return MeshAngles(a, b, a)
+    def tilt_axis(hub):  # azimuth of sleeve x hub about the sleeve axis; 0 where aligned
+        x = np.cross(sleeve, hub)
+        return math.degrees(math.atan2(float(x @ ref[:, 1]), float(x @ ref[:, 0])))
+
+    a = between(z, sleeve)
+    return MeshAngles(a, between(shaft_b, sleeve), a, tilt_axis(z), tilt_axis(shaft_b),
+                      math.degrees(math.atan2(sleeve[1], sleeve[0])),
+                      (float(ob[0]), float(ob[1]), float(ob[2])))
 
 
 def double_engagement(spec: CouplingSpec, offset_mm: float, angle_deg: float, span_mm: float,

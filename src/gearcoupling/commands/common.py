@@ -15,10 +15,10 @@ from ..arguments import torque_Nm as check_torque_Nm
 from ..errors import ArgumentError, brief
 from ..interrupts import check as check_interrupt
 from ..io import default_output_dir, output_folder, parse_override, terminal_text
-from ..spec import CouplingSpec, check_misalignment_deg, load_spec
+from ..spec import TEETH_RANGE, CouplingSpec, check_misalignment_deg, load_spec
 
 MAX_ANGLES = MAXIMA["angles"]  # rotation angles per turn (memory grows with it)
-MAX_TEETH = 300  # the documented range of teeth is 6-300
+MAX_TEETH = TEETH_RANGE[1]  # the largest coupling
 
 T = TypeVar("T")
 

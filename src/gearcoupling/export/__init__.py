@@ -9,7 +9,7 @@ writers, STEP files of the parts' OpenCASCADE solids (see ``docs/export.md``).
 
 from .job import PartJob
 from .registry import WRITERS, Writer, export_part, formats, writer_for
-from .step import read_step_volume, write_step
+from .step import read_step_volume, write_step, write_step_assembly
 from .volume import inp_mesh_lines, region_ids, write_inp_text
 
 __all__ = [
@@ -23,5 +23,6 @@ __all__ = [
     "region_ids",
     "write_inp_text",
     "write_step",
+    "write_step_assembly",
     "writer_for",
 ]

@@ -3,8 +3,16 @@
 Nothing here imports a mesh, CAD or viewer library.
 """
 
-from .checks import MAX_END_TANGENT_DEG, check_spec, derived_values
-from .feedpath import FeedPath, feed_path
+from .feedpath import (
+    CrowningLike,
+    FeedPath,
+    arc_path,
+    curvature_table_path,
+    drop_table_path,
+    end_round_path,
+    feed_path,
+    vari_crown_path,
+)
 from .hub import (
     FLANKS,
     HubModel,
@@ -26,18 +34,21 @@ from .pose import hub_to_sleeve, map_polar, rot_z, turning_angles
 from .renzo import renzo_z0_mm
 from .section import PARTS, sleeve_space_outline, transverse_section
 from .sleeve import SleeveModel, flank_point, sleeve_flank, sleeve_model
-from .speclike import use_spec_loader
+from .speclike import SpecLike
 
 __all__ = [
     "FLANKS",
-    "MAX_END_TANGENT_DEG",
     "PARTS",
+    "CrowningLike",
     "FeedPath",
     "HubModel",
     "SleeveModel",
-    "check_spec",
-    "derived_values",
+    "SpecLike",
+    "arc_path",
+    "curvature_table_path",
     "developed_arc",
+    "drop_table_path",
+    "end_round_path",
     "envelope",
     "feed_path",
     "flank_depth",
@@ -63,5 +74,5 @@ __all__ = [
     "tip_radius",
     "transverse_section",
     "turning_angles",
-    "use_spec_loader",
+    "vari_crown_path",
 ]

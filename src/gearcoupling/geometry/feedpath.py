@@ -16,6 +16,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from itertools import pairwise
+from typing import Protocol
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -161,9 +162,39 @@ class FeedPath:
         return self.R - qv
 
 
-def _spline_path(R: float, s_knots, kappa_knots, kind: str) -> FeedPath:
+def arc_path(R: float, radius: float, kind: str) -> FeedPath:
+    """A circular feed path of ``radius`` (``inf``: straight)."""
+    return FeedPath(R, [(np.inf, 1.0 / radius)], kind=kind)
+
+
+def end_round_path(R: float, radius: float, end_radius: float, start_z: float,
+                   kind: str) -> FeedPath:
+    """A circular path of ``radius`` up to the axial position ``start_z``, then of
+    ``end_radius``, tangent-continuous."""
+    s0 = start_z if np.isinf(radius) else radius * np.arcsin(start_z / radius)
+    return FeedPath(R, [(s0, 1.0 / radius), (np.inf, 1.0 / end_radius)], kind=kind)
+
+
+def vari_crown_path(R: float, radius: float, end_radius: float, face_width: float,
+                    kind: str) -> FeedPath:
+    """Curvature ``1/radius`` at the midplane blending quadratically in arc length to
+    ``1/end_radius`` at half the face width, constant beyond."""
+    km, ke = 1.0 / radius, 1.0 / end_radius
+    se = 0.5 * face_width
+
+    def smooth(s):
+        x = s / se
+        return km + (ke - km) * x * x, s * (km + (ke - km) * x * x / 3.0)
+
+    return FeedPath(R, [(se, None), (np.inf, ke)], smooth, kind=kind)
+
+
+def curvature_table_path(R: float, s_knots, kappa_knots, kind: str) -> FeedPath:
+    """A path whose curvature is splined through ``(s, kappa)`` samples (slope 0 at the
+    midplane), constant past the last sample."""
     from scipy.interpolate import CubicSpline  # lazy: keeps `import gearcoupling` fast
 
+    s_knots, kappa_knots = np.asarray(s_knots, dtype=float), np.asarray(kappa_knots, dtype=float)
     spline = CubicSpline(s_knots, kappa_knots, bc_type=((1, 0.0), "not-a-knot"))
     anti = spline.antiderivative()
 
@@ -197,34 +228,31 @@ def drop_table_to_curvature(z_knots, drop_knots, n: int = 400):
     return s, kappa
 
 
-def feed_path(crowning, pitch_radius: float, face_width: float) -> FeedPath:
-    """Build the feed path of a :class:`~gearcoupling.spec.Crowning` spec."""
-    if getattr(crowning, "kind", None) is None:
+def drop_table_path(R: float, z_knots, drop_knots, kind: str) -> FeedPath:
+    """A path through splined crown-drop samples ``(z, drop)``
+    (:func:`drop_table_to_curvature`)."""
+    s, kappa = drop_table_to_curvature(np.asarray(z_knots, dtype=float),
+                                       np.asarray(drop_knots, dtype=float))
+    return curvature_table_path(R, s, kappa, kind)
+
+
+class CrowningLike(Protocol):
+    """A hub crowning as the geometry sees it (:class:`gearcoupling.spec.Crowning` is one):
+    its kind and the feed path it stands for (built by its kind's entry of
+    ``gearcoupling.spec.CROWN_KINDS``)."""
+
+    @property
+    def kind(self) -> str: ...
+
+    def feed_path(self, pitch_radius: float, face_width: float) -> FeedPath: ...
+
+
+def feed_path(crowning: CrowningLike, pitch_radius: float, face_width: float) -> FeedPath:
+    """The feed path of a hub crowning (``spec.hub.crowning``) at pitch radius
+    ``pitch_radius`` over the face width ``face_width`` (mm)."""
+    if not callable(getattr(crowning, "feed_path", None)):
         raise ArgumentError("crowning", crowning, "a Crowning of a spec "
                             "(spec.hub.crowning)")
     R = real(pitch_radius, "pitch_radius", 0.0, open_lo=True, unit="mm")
-    real(face_width, "face_width", 0.0, open_lo=True, unit="mm")
-    kind = crowning.kind
-    if kind == "none":
-        return FeedPath(R, [(np.inf, 0.0)], kind=kind)
-    if kind == "circular":
-        return FeedPath(R, [(np.inf, 1.0 / crowning.radius)], kind=kind)
-    if kind == "end_round":
-        rc = crowning.radius
-        s0 = crowning.start_z if np.isinf(rc) else rc * np.arcsin(crowning.start_z / rc)
-        return FeedPath(R, [(s0, 1.0 / rc), (np.inf, 1.0 / crowning.end_radius)], kind=kind)
-    if kind == "vari_crown":
-        km, ke = 1.0 / crowning.radius, 1.0 / crowning.end_radius
-        se = 0.5 * face_width
-
-        def smooth(s):
-            x = s / se
-            return km + (ke - km) * x * x, s * (km + (ke - km) * x * x / 3.0)
-
-        return FeedPath(R, [(se, None), (np.inf, ke)], smooth, kind=kind)
-    if kind == "table":
-        if crowning.table_s:
-            return _spline_path(R, np.array(crowning.table_s), np.array(crowning.table_kappa), kind)
-        s, kap = drop_table_to_curvature(np.array(crowning.table_z), np.array(crowning.table_drop))
-        return _spline_path(R, s, kap, kind)
-    raise ArgumentError("kind", kind, "a known crowning kind")
+    b = real(face_width, "face_width", 0.0, open_lo=True, unit="mm")
+    return crowning.feed_path(R, b)

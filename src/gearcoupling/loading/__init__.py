@@ -10,7 +10,7 @@ from .accuracy import (
     windup_error,
 )
 from .api import load, load_from_sweep
-from .body import body_windup_rad
+from .body import annulus_twist_rad, body_windup_rad
 from .capacity import (
     PHASES,
     Capacity,
@@ -65,6 +65,7 @@ __all__ = [
     "LoadResult",
     "PatchMap",
     "SectorCheck",
+    "annulus_twist_rad",
     "body_windup_rad",
     "capacity",
     "capacity_curve",

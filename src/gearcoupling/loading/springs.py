@@ -1,6 +1,6 @@
 """The tooth springs by name (``[load] stiffness``): what each is, how it is made and what the
 accuracy ladder measured for it (docs/load.md). The one place that knows the names; the
-spec's allowed values (:data:`gearcoupling.loadspec.STIFFNESS_SOURCES`) are these keys.
+spec's allowed values (:data:`gearcoupling.spec.STIFFNESS_SOURCES`) are these keys.
 """
 
 from __future__ import annotations

@@ -13,8 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..loading import TOOTH_LOAD_RATIO, springs_name
-from ..loadspec import STEEL
-from ..spec import CouplingSpec
+from ..spec import STEEL, CouplingSpec
 
 PASS, FAIL, OPEN = "pass", "fail", "not judged"
 

@@ -5,7 +5,7 @@ element (docs/rotordynamics.md)."""
 from __future__ import annotations
 
 from ..loading import TOOTH_LOAD_RATIO, WINDUP_ERROR_PCT
-from .allowable import AllowableLoads, allowable_loads
+from .allowable import AllowableLoads, allowable_loads, allowable_misalignment
 from .data import (
     DATASHEET_COLUMNS,
     FILES,
@@ -15,7 +15,7 @@ from .data import (
     check_inputs,
     coupling_data,
 )
-from .mass import MassProperties, mass_properties, mesh_mass_properties
+from .mass import MassProperties, combine, mass_properties, mesh_mass_properties
 from .plots import plot_allowable_loads, plot_windup
 from .pose import generalized_forces, tilt_pose, translation_gap_offsets
 from .ross import ROSS_SUFFIXES, coupling_element, import_ross, write_ross
@@ -24,9 +24,11 @@ from .stiffness import (
     DIFFERENCES,
     DOFS,
     StiffnessMatrix,
+    default_rotations,
+    pitch_rotations,
     stiffness_matrix,
 )
-from .torsion import TorsionalStiffness
+from .torsion import TorsionalStiffness, windup_beyond_touch
 from .wrench import hub_wrench
 
 __all__ = [
@@ -46,18 +48,23 @@ __all__ = [
     "StiffnessMatrix",
     "TorsionalStiffness",
     "allowable_loads",
+    "allowable_misalignment",
     "check_inputs",
+    "combine",
     "coupling_data",
     "coupling_element",
+    "default_rotations",
     "generalized_forces",
     "hub_wrench",
     "import_ross",
     "mass_properties",
     "mesh_mass_properties",
+    "pitch_rotations",
     "plot_allowable_loads",
     "plot_windup",
     "stiffness_matrix",
     "tilt_pose",
     "translation_gap_offsets",
+    "windup_beyond_touch",
     "write_ross",
 ]

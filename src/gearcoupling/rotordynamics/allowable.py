@@ -150,6 +150,24 @@ def _bracket(seen: dict[float, Capacity], top_deg: float, need: float) -> tuple[
     return lo, hi
 
 
+def allowable_misalignment(spec, torque_Nm: float, *, model: str | None = None,
+                           tolerance_deg: float = ANGLE_TOLERANCE_DEG,
+                           known: Sequence[Capacity] = ()
+                           ) -> tuple[float, str, float | None, float | None, str | None]:
+    """The allowable misalignment at ``torque_Nm`` (module docstring) as ``(angle_deg,
+    criterion, critical_deg, capacity_limit_deg, capacity_criterion)``: ``criterion``
+    ``"capacity"``, ``"critical angle"`` or ``"range"`` as :class:`AllowableLoads`."""
+    top = MISALIGNMENT_RANGE_DEG[1]
+    critical = critical_misalignment_deg(spec)
+    limit, governing = capacity_limit_deg(spec, torque_Nm, critical or top, model=model,
+                                          tolerance_deg=tolerance_deg, known=known)
+    if limit is not None:
+        return limit, "capacity", critical, limit, governing
+    if critical is not None:
+        return critical, "critical angle", critical, limit, governing
+    return top, "range", critical, limit, governing
+
+
 def allowable_loads(spec, torque_Nm: float, *, model: str | None = None,
                     angles: int | None = None,
                     tolerance_deg: float = ANGLE_TOLERANCE_DEG,
@@ -164,16 +182,8 @@ def allowable_loads(spec, torque_Nm: float, *, model: str | None = None,
     counts (docs/rotordynamics.md). ``model`` default the spec's; ``known`` as
     :func:`capacity_limit_deg`."""
     model = resolve_model(spec, model)
-    top = MISALIGNMENT_RANGE_DEG[1]
-    critical = critical_misalignment_deg(spec)
-    limit, governing = capacity_limit_deg(spec, torque_Nm, critical or top, model=model,
-                                          tolerance_deg=tolerance_deg, known=known)
-    if limit is not None:
-        angle, criterion = limit, "capacity"
-    elif critical is not None:
-        angle, criterion = critical, "critical angle"
-    else:
-        angle, criterion = top, "range"
+    angle, criterion, critical, limit, governing = allowable_misalignment(
+        spec, torque_Nm, model=model, tolerance_deg=tolerance_deg, known=known)
     turn = turn_phases(spec) if angles is None else np.arange(angles) * 360.0 / angles
     res = load(spec, angle, turn, torque_Nm=torque_Nm, model=model)
     ml = machine_loads(res)
@@ -184,4 +194,4 @@ def allowable_loads(spec, torque_Nm: float, *, model: str | None = None,
 
 
 __all__ = ["ANGLE_TOLERANCE_DEG", "AllowableLoads", "allowable_loads",
-           "capacity_limit_deg", "known_capacities"]
+           "allowable_misalignment", "capacity_limit_deg", "known_capacities"]

@@ -69,9 +69,9 @@ from ..io import (
     set_dotted,
 )
 from ..loading import model_names
-from ..loadspec import UNIT_SIBLINGS
 from ..spec import (
     MISALIGNMENT_RANGE_DEG,
+    UNIT_SIBLINGS,
     CouplingSpec,
     check_misalignment_deg,
     resolve_spec_path,

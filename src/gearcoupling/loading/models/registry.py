@@ -8,7 +8,7 @@ typed :class:`ModelOutput`.
 - ``surface``: contact pressure on the exact gap field (:mod:`.surface`).
 
 Adding a model is adding one entry to :data:`MODELS` (docs/api.md, "Adding a load model");
-the spec's ``[load] model`` accepts the names of :data:`gearcoupling.loadspec.LOAD_MODELS`
+the spec's ``[load] model`` accepts the names of :data:`gearcoupling.spec.load.LOAD_MODELS`
 (a test holds them equal to the built-in entries here).
 """
 

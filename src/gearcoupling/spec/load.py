@@ -13,12 +13,12 @@ quenched-and-tempered steel; density 7850 kg/m³, taken only while E is a steel'
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 from typing import Any
 
-from .arguments import torque_Nm as check_torque_Nm
-from .errors import SpecError
-from .io import Table
+from ..arguments import torque_Nm as check_torque_Nm
+from ..errors import SpecError
+from ..io import Table
 
 N_PER_LBF = 4.4482216152605
 NM_PER_LBF_IN = N_PER_LBF * 0.0254
@@ -27,9 +27,11 @@ MPA_PER_PSI = N_PER_LBF / 25.4**2
 KG_PER_M3_PER_LB_PER_IN3 = 0.45359237 / 0.0254**3
 
 # the load models a spec file may name (gearcoupling.loading.MODELS holds what each is;
-# tests/test_load_models.py holds the two equal)
+# tests/test_load_models.py holds the two equal: the registry sits above the spec, which
+# checks a file's names as it reads them)
 LOAD_MODELS = ("linear", "compliance", "surface")
-# the tooth springs (gearcoupling.loading.springs.SPRINGS holds what each is)
+# the tooth springs (gearcoupling.loading.springs.SPRINGS holds what each is;
+# tests/test_load_springs.py holds the two equal)
 STIFFNESS_SOURCES = ("fe-fit", "fe", "cantilever")
 STEEL = {"youngs_modulus_MPa": 206_000.0, "poisson_ratio": 0.3,
          "allowable_contact_stress_MPa": 700.0, "allowable_bending_stress_MPa": 280.0,
@@ -221,5 +223,16 @@ def parse_material(data: Any) -> Materials:
     return Materials(**out)
 
 
-__all__ = ["LOAD_MODELS", "UNIT_SIBLINGS", "LoadSpec", "Material", "Materials", "parse_load",
-           "parse_material"]
+def without_none(part: Any) -> dict[str, Any]:
+    """The ``[load]`` table of a :class:`LoadSpec`: its set values."""
+    return {k: v for k, v in asdict(part).items() if v is not None}
+
+
+def material_table(part: Materials) -> dict[str, Any]:
+    """The ``[material]`` table of :class:`Materials`: a sub-table of set values per part."""
+    return {p: {k: v for k, v in m.items() if k != "part" and v is not None}
+            for p, m in asdict(part).items()}
+
+
+__all__ = ["LOAD_MODELS", "STEEL", "STIFFNESS_SOURCES", "UNIT_SIBLINGS", "LoadSpec", "Material",
+           "Materials", "material_table", "parse_load", "parse_material", "without_none"]

@@ -1,7 +1,8 @@
 """Spec checks that need the geometry, and the derived values a designer reads.
 
 :func:`check_spec` runs from ``CouplingSpec.__post_init__``; it turns every geometric
-impossibility into a :class:`~gearcoupling.errors.SpecError` naming the field to change.
+impossibility into a :class:`~gearcoupling.errors.SpecError` naming the field to change
+(what is particular to a crown kind comes from its entry of :data:`.kinds.CROWN_KINDS`).
 """
 
 from __future__ import annotations
@@ -11,65 +12,28 @@ import math
 import numpy as np
 
 from ..errors import GeometryError, SpecError
-from .hub import (
+from ..geometry import (
     HubModel,
+    SleeveModel,
+    SpecLike,
     form_radius,
     hub_flank_model,
     hub_model,
     radius_squared,
+    renzo_z0_mm,
     root_radius,
+    sleeve_model,
     tip_radius,
 )
-from .renzo import renzo_z0_mm
-from .sleeve import SleeveModel, sleeve_model
-from .speclike import SpecLike
+from .kinds import CROWN_FIELDS, CROWN_KINDS, MAX_END_TANGENT_DEG
 
 _Z_SAMPLES = 17  # planes from the midplane to the face end checked for undercut and points
-_PATH_SAMPLES = 401  # points of a table crown's splined path checked between its samples
-# steepest feed-path tangent allowed at the face ends (kept here, not imported from spec,
-# so that spec -> geometry stays one-way)
-MAX_END_TANGENT_DEG = 45.0
 
 
-def _max_curvature(m: HubModel, crowning) -> float:
-    if crowning.kind == "table":
-        s = np.linspace(0.0, m.half_face * 1.5, 400)
-        return float(np.max(np.abs(m.path.evaluate(s)[0])))
-    radii = [crowning.radius] + ([crowning.end_radius] if crowning.kind == "end_round" else [])
-    return max(0.0 if math.isinf(r) else 1.0 / r for r in radii)
-
-
-_FIELD_ATTR = {"kappa": "table_kappa", "drop": "table_drop", "end_radius": "end_radius"}
-
-
-def _crown_field(cr, *, end: bool = False) -> str:
-    """The spec key that sets a crown's curvature (the end radius of ``end_round`` where
-    ``end``; the samples of a ``table``)."""
-    if cr.kind == "table":
-        return f"hub.crowning.{'kappa' if cr.table_s else 'drop'}"
-    return f"hub.crowning.{'end_radius' if end and cr.kind == 'end_round' else 'radius'}"
-
-
-def _check_table_path(m: HubModel, crowning) -> None:
-    """A table crown is validated along its splined path, not only at its samples: the
-    samples must reach the face end and the drop must stay >= 0 between them."""
-    key = "kappa" if crowning.table_s else "drop"
-    if crowning.table_s:
-        reach = float(m.path.evaluate(crowning.table_s[-1])[3])
-    else:
-        reach = crowning.table_z[-1]
-    if reach < m.half_face * (1.0 - 1e-9):
-        raise SpecError(f"hub.crowning.{'s' if crowning.table_s else 'z'}", reach,
-                        f"the samples must reach the face end z = {m.half_face:.6g} mm "
-                        "(the path is not extrapolated)")
-    z = np.linspace(0.0, m.half_face, _PATH_SAMPLES)
-    drop = m.path.drop(z)
-    if np.min(drop) < -1e-9 * m.R:
-        zi = float(z[np.argmin(drop)])
-        raise SpecError(f"hub.crowning.{key}", getattr(crowning, f"table_{key}"),
-                        f"the splined crown rises above the midplane (drop "
-                        f"{float(np.min(drop)):.3g} mm at z = {zi:.4g} mm): the tooth would "
-                        "be thicker than at the midplane; add samples or smooth the table")
+def _max_curvature(m: HubModel) -> float:
+    """The largest curvature of the feed path up to past the face end."""
+    s = np.linspace(0.0, m.half_face * 1.5, 400)
+    return float(np.max(np.abs(m.path.evaluate(s)[0])))
 
 
 def check_spec(spec: SpecLike) -> None:
@@ -125,14 +89,14 @@ def _check_hob_rounds(spec: SpecLike, m: HubModel) -> None:
 
 
 def _check_crown(spec: SpecLike, m: HubModel) -> None:
-    """A table crown's path, the crown curvature against the dedendum and the feed-path
-    tangent at the face ends."""
+    """The crown along its path (its kind's check), its curvature against the dedendum and
+    the feed-path tangent at the face ends."""
     hub, cr = spec.hub, spec.hub.crowning
-    if cr.kind == "table":
-        _check_table_path(m, cr)
-    kmax = _max_curvature(m, cr)
+    kind = CROWN_KINDS[cr.kind]
+    kind.check_path(cr, m.path, m.half_face)
+    kmax = _max_curvature(m)
     if kmax * hub.root.dedendum > 0.5:
-        raise SpecError(_crown_field(cr, end=True),
+        raise SpecError(f"{cr.PATH}.{kind.curvature_key(cr, True)}",
                         1.0 / kmax, f"crowning radius must be at least twice the hub dedendum "
                         f"({2 * hub.root.dedendum:.6g} mm)")
     try:
@@ -141,8 +105,8 @@ def _check_crown(spec: SpecLike, m: HubModel) -> None:
     except GeometryError:
         e_end = math.pi / 2
     if abs(math.degrees(e_end)) > MAX_END_TANGENT_DEG:
-        field = _crown_field(cr)
-        raise SpecError(field, getattr(cr, _FIELD_ATTR.get(field.rpartition(".")[2], "radius")),
+        key = kind.curvature_key(cr, False)
+        raise SpecError(f"{cr.PATH}.{key}", getattr(cr, CROWN_FIELDS[key][0]),
                         f"too small for the face width {hub.face_width:.6g} mm: the feed path "
                         f"turns {math.degrees(e_end):.1f}° by the face end, at most "
                         f"{MAX_END_TANGENT_DEG:g}° allowed")

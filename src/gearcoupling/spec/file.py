@@ -1,43 +1,33 @@
-"""Spec files: TOML in mm or inches, defaults, templates and dotted overrides.
+"""Reading spec files: TOML tables in mm or inches into the parts of a spec, with their
+defaults; the bundled templates.
 
 Spec files are TOML with ``units = "mm"`` (default) or ``"in"`` for lengths and angles in
-degrees (keys ending in ``_deg``). :func:`load_spec` reads a bundled template by name or a
-file by path and applies dotted overrides; every invalid value or combination raises
-:class:`~gearcoupling.errors.SpecError` naming the field, the value as the file gave it
-(with the mm value beside it in an inch file) and what is allowed. Keys left out get
-defaults (:data:`DEFAULT_RULES`) chosen to always validate. Defaults and errors:
-``docs/spec-and-cli.md``.
+degrees (keys ending in ``_deg``). :func:`read_parts` reads the tables in a fixed order;
+every invalid value or combination raises :class:`~gearcoupling.errors.SpecError` naming
+the field, the value as the file gave it (with the mm value beside it in an inch file,
+:func:`explained`) and what is allowed. Keys left out get defaults (:data:`DEFAULT_RULES`)
+chosen to always validate. A top-level table that stands on its own is one
+:class:`SpecTable` of :data:`TABLES`. Loading a file with overrides: :mod:`.coupling`.
+Defaults and errors: ``docs/spec-and-cli.md``.
 """
 
 from __future__ import annotations
 
-import copy
 import math
-import os
+from collections.abc import Callable
+from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from .errors import ArgumentError, GeometryError, SpecError, brief
-from .geometry import HubModel, feed_path, inv_inverse, radius_squared, use_spec_loader
-from .io import (
-    Table,
-    as_path,
-    bundled_names,
-    escaped,
-    read_toml,
-    resolve_bundled,
-    set_dotted,
-    unknown_key,
-)
-from .loadspec import UNIT_SIBLINGS, parse_load, parse_material
-from .specmodel import (
+from ..errors import GeometryError, SpecError, brief
+from ..geometry import HubModel, feed_path, inv_inverse, radius_squared
+from ..io import Table, bundled_names, escaped, resolve_bundled, unknown_key
+from .kinds import CROWN_FIELDS, CROWN_KINDS
+from .load import material_table, parse_load, parse_material, without_none
+from .model import (
     INSPECTION_LIMITS,
-    MAX_NAME_CHARS,
-    MM_PER_INCH,
-    UNITS,
-    CouplingSpec,
     Crowning,
     Hub,
     HubBody,
@@ -46,26 +36,64 @@ from .specmodel import (
     InspectionLimits,
     Sleeve,
     ToothSystem,
-    _check,
-    _positive,
-    check_misalignment_deg,
-    use_spec_reader,
+)
+from .values import MAX_NAME_CHARS, MM_PER_INCH, UNITS, _check, _positive, check_misalignment_deg
+
+
+@dataclass(frozen=True)
+class SpecTable:
+    """A top-level table of a spec file that stands on its own: read into the
+    :class:`~gearcoupling.spec.CouplingSpec` field of the same name and written back by
+    ``CouplingSpec.to_dict``.
+
+    Attributes
+    ----------
+    key : str
+        The table's key, and the name of its field.
+    read : callable
+        ``read(table)`` -> the part, from a :class:`~gearcoupling.io.Table` (which it
+        empties, refusing a key left over).
+    write : callable
+        ``write(part)`` -> the table as plain data in mm and degrees.
+    keys : tuple of str or None
+        Its keys, refused before anything is read when unknown (:func:`check_keys`);
+        ``None``: ``read`` refuses them in turn.
+    """
+
+    key: str
+    read: Callable[[Table], Any]
+    write: Callable[[Any], dict[str, Any]] = asdict
+    keys: tuple[str, ...] | None = None
+
+
+def _inspection(t: Table) -> InspectionLimits:
+    """The ``inspection`` table: tolerance limits for compare."""
+    limits = InspectionLimits(**{k: t.length(k, math.inf) for k in INSPECTION_LIMITS})
+    t.done(INSPECTION_LIMITS)
+    return limits
+
+
+#: the self-contained top-level tables, in the order they are read and written (after
+#: tooth, hub and sleeve)
+TABLES: tuple[SpecTable, ...] = (
+    SpecTable("inspection", _inspection, keys=INSPECTION_LIMITS),
+    SpecTable("load", parse_load, without_none),
+    SpecTable("material", parse_material, material_table),
 )
 
 # every key a spec file may hold, per table (unknown keys are reported before anything else)
 SPEC_KEYS: dict[str, tuple[str, ...]] = {
-    "": ("units", "name", "design_misalignment_deg", "tooth", "hub", "sleeve", "load",
-         "material", "inspection"),
+    "": ("units", "name", "design_misalignment_deg", "tooth", "hub", "sleeve",
+         *(t.key for t in TABLES)),
     "tooth": ("teeth", "module", "diametral_pitch", "pressure_angle_deg"),
     "hub": ("face_width", "tooth_thickness", "backlash", "tip", "root", "crowning", "body"),
     "hub.tip": ("kind", "diameter"),
     "hub.root": ("dedendum", "fillet_radius"),
-    "hub.crowning": ("kind", "radius", "end_radius", "start_z", "s", "kappa", "z", "drop",
-                     "generation"),
+    "hub.crowning": ("kind", *CROWN_FIELDS, "generation"),
     "hub.body": ("bore_diameter", "length"),
     "sleeve": ("face_width", "minor_diameter", "major_diameter", "space_width", "tip_chamfer",
                "root_fillet_radius", "outer_diameter"),
-    "inspection": INSPECTION_LIMITS,
+    **{t.key: t.keys for t in TABLES if t.keys is not None},
 }
 
 # how each derived default is chosen (quoted when a derived value is refused)
@@ -102,30 +130,18 @@ def check_keys(data: Any, path: str = "") -> None:
         check_keys(data[key], name)
 
 
-def spec_from_dict(data: dict[str, Any], name: str = "custom") -> CouplingSpec:
-    """Build a :class:`CouplingSpec` from parsed TOML data (file units, angles in degrees).
-
-    Keys left out get the defaults of :data:`DEFAULT_RULES`, chosen so that they always
-    fit; if a derived value is refused anyway, the error says so and names the key to set.
-    """
-    if not isinstance(data, dict):
-        raise ArgumentError("data", data, "a dict of spec tables, as read from a TOML "
-                            "spec file")
-    if not isinstance(name, str):
-        raise ArgumentError("name", name, "a str")
-    check_keys(data)
-    root = Table(copy.deepcopy(data))
-    try:
-        return _build(root, name)
-    except SpecError as err:
-        if err.field in root.defaulted:
-            raise SpecError(err.field, err.value, f"{err.allowed} [not in the spec: derived "
-                            f"as {DEFAULT_RULES.get(err.field, 'a default')}; set "
-                            f"{err.field} explicitly]") from None
-        if err.field in root.given and root.scale != 1.0:
-            typed, scale = root.given[err.field]
-            raise _as_typed(err, typed, scale, root.scale) from None
-        raise
+def explained(err: SpecError, root: Table) -> SpecError:
+    """``err`` raised while reading ``root``, saying so where its field took a default
+    (:data:`DEFAULT_RULES`: which key to set) and quoting the value as the file gave it in
+    an inch file; ``err`` itself otherwise."""
+    if err.field in root.defaulted:
+        return SpecError(err.field, err.value, f"{err.allowed} [not in the spec: derived as "
+                         f"{DEFAULT_RULES.get(err.field, 'a default')}; set {err.field} "
+                         "explicitly]")
+    if err.field in root.given and root.scale != 1.0:
+        typed, scale = root.given[err.field]
+        return _as_typed(err, typed, scale, root.scale)
+    return err
 
 
 def _as_typed(err: SpecError, typed: Any, scale: float, unit_mm: float) -> SpecError:
@@ -198,9 +214,10 @@ def default_dedendum(tooth: ToothSystem, thickness: float, crowning: Crowning,
     return d
 
 
-def _build(root: Table, name: str) -> CouplingSpec:
-    """The spec of a spec file's ``root`` table; tables and keys are read in a fixed order,
-    which decides the error raised first."""
+def read_parts(root: Table, name: str) -> dict[str, Any]:
+    """The fields of a :class:`~gearcoupling.spec.CouplingSpec` from a spec file's
+    ``root`` table; tables and keys are read in a fixed order, which decides the error
+    raised first."""
     units, name, misalignment = _header(root, name)
     tooth = _tooth_system(root)
     s = root.table("sleeve")
@@ -208,14 +225,10 @@ def _build(root: Table, name: str) -> CouplingSpec:
     _positive("sleeve.space_width", space_width)
     hub, tip_default = _hub(root, tooth, space_width)
     sleeve = _sleeve(s, tooth, hub, space_width, tip_default)
-    load = parse_load(root.table("load"))
-    material = parse_material(root.table("material"))
-    ins = root.table("inspection")  # tolerance limits for compare
-    inspection = InspectionLimits(**{k: ins.length(k, math.inf) for k in INSPECTION_LIMITS})
-    ins.done(SPEC_KEYS.get(ins.where, ()))
+    parts = {t.key: t.read(root.table(t.key)) for t in TABLES}
     root.done(SPEC_KEYS.get(root.where, ()))
-    return CouplingSpec(tooth, hub, sleeve, misalignment, name=name, units=units, load=load,
-                        material=material, inspection=inspection)
+    return dict(tooth=tooth, hub=hub, sleeve=sleeve, design_misalignment=misalignment,
+                name=name, units=units, **parts)
 
 
 def _header(root: Table, name: str) -> tuple[str, str, float]:
@@ -291,21 +304,19 @@ def _hub_thickness(h: Table, tooth: ToothSystem, space_width: float) -> float:
 
 
 def _crowning(h: Table) -> Crowning:
-    """The ``hub.crowning`` table (the radius is required for the kinds that use one)."""
+    """The ``hub.crowning`` table: the keys of :data:`.kinds.CROWN_FIELDS` (required where
+    the kind needs them)."""
     c = h.table("crowning")
     kind = c.string("kind", "circular")
-    needs_radius = kind in ("circular", "vari_crown", "end_round")
-    crowning = Crowning(
-        kind=kind,
-        radius=c.length("radius", None if needs_radius else math.inf),
-        end_radius=c.length("end_radius", math.inf),
-        start_z=c.length("start_z", 0.0),
-        table_s=c.array("s", c.scale),
-        table_kappa=c.array("kappa", 1.0 / c.scale),
-        table_z=c.array("z", c.scale),
-        table_drop=c.array("drop", c.scale),
-        generation=c.string("generation", "enveloped"),
-    )
+    known = CROWN_KINDS.get(kind)
+    needs = known.needs if known is not None else ()
+    values: dict[str, Any] = {}
+    for key, (attr, default, power) in CROWN_FIELDS.items():
+        if isinstance(default, tuple):
+            values[attr] = c.array(key, c.scale if power > 0 else 1.0 / c.scale)
+        else:
+            values[attr] = c.length(key, None if key in needs else default)
+    crowning = Crowning(kind=kind, **values, generation=c.string("generation", "enveloped"))
     c.done(SPEC_KEYS.get(c.where, ()))
     return crowning
 
@@ -409,32 +420,3 @@ def template_names() -> list[str]:
 def resolve_spec_path(name_or_path: str | Path) -> Path:
     """A template name or a file path, as a path to a TOML file."""
     return resolve_bundled("templates", name_or_path)
-
-
-def load_spec(name_or_path: str | Path, **overrides: Any) -> CouplingSpec:
-    """Load a template (by name) or a TOML spec file, with dotted overrides in file units.
-
-    >>> spec = load_spec("renzo-1967", **{"hub.crowning.radius": 2.0})  # doctest: +SKIP
-    """
-    as_path(name_or_path, "name_or_path")
-    path = resolve_spec_path(name_or_path)
-    data, _ = read_toml(path)
-    for key, value in overrides.items():
-        set_dotted(data, key, value, UNIT_SIBLINGS)
-    return spec_from_dict(data, name=path.stem)
-
-
-def as_spec(spec: Any, field: str = "spec") -> CouplingSpec:
-    """``spec`` when it is a :class:`CouplingSpec`; a template name or the path of a TOML
-    spec is loaded (:func:`load_spec`); anything else is an :class:`ArgumentError` naming
-    ``field``. Every public function that takes a spec starts with this."""
-    if isinstance(spec, CouplingSpec):
-        return spec
-    if isinstance(spec, str | os.PathLike):
-        return load_spec(as_path(spec, field))
-    raise ArgumentError(field, spec, "a CouplingSpec (gearcoupling.load_spec), a "
-                        "template name or the path of a TOML spec")
-
-
-use_spec_loader(as_spec)  # the geometry's public functions take names too
-use_spec_reader(spec_from_dict)  # CouplingSpec.replace re-reads its file
