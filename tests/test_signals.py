@@ -307,7 +307,7 @@ def test_a_command_that_never_returns_ends_at_a_second_signal_or_after_the_grace
     else:
         time.sleep(0.3)
         os.killpg(proc.pid, second)
-        code, err = _ended(proc, 1.5)
+        code, err = _ended(proc, 2.0)  # before the grace would end it (2.7 s)
         _only_spec_written(code, err, second, out)
 
 
