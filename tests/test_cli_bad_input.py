@@ -13,6 +13,7 @@ import time
 import pytest
 
 import gearcoupling as gc
+from fresh_python import session_alive as _session_alive
 from gearcoupling.cli import main
 
 T = "renzo-1967"
@@ -441,22 +442,6 @@ def test_folder_writers_refuse_a_special_file_in_the_folder_before_any_work(kind
         if kind2 != kind:
             with pytest.raises(gc.ArgumentError, match=WORDS[kind2]):
                 gc.run(spec, targets[kind2], only=["spec"])
-
-
-def _session_alive(pgid: int) -> list[int]:
-    """Processes (not zombies) of the process group ``pgid``, from /proc."""
-    alive = []
-    for entry in os.listdir("/proc"):
-        if not entry.isdigit():
-            continue
-        try:
-            with open(f"/proc/{entry}/stat") as fh:
-                fields = fh.read().rsplit(")", 1)[1].split()
-        except OSError:
-            continue
-        if int(fields[2]) == pgid and fields[0] != "Z":
-            alive.append(int(entry))
-    return alive
 
 
 def _snapshot(folder):

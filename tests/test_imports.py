@@ -79,9 +79,10 @@ LAYERS = {
                  "clearance", "interference", "loading", "rotordynamics", "tables"},
 }
 # the argument checks (numbers, counts, torques, documented maxima) sit beside the errors,
-# the numeric guards (numpy only) below everything
-LAYERS = {k: v | {"arguments", "numeric"} if k not in ("errors", "arguments", "numeric")
-          else v for k, v in LAYERS.items()}
+# the numeric guards (numpy only) and the interruption's note (stdlib only) below everything
+LAYERS = {k: v | {"arguments", "numeric", "interrupts"}
+          if k not in ("errors", "arguments", "numeric") else v for k, v in LAYERS.items()}
+LAYERS["interrupts"] = set()
 
 
 def _type_checking_nodes(tree) -> set[int]:

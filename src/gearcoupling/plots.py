@@ -11,6 +11,7 @@ import numpy as np
 
 from .errors import ArgumentError, BackendError
 from .geometry import hub_flank_model, hub_model, plane_rack, transverse_section
+from .interrupts import reraise as reraise_interrupt
 from .io import atomic_path, plot_text, writable_file
 
 if TYPE_CHECKING:  # matplotlib is imported where a plot is drawn
@@ -28,6 +29,7 @@ def import_matplotlib():
     try:
         import matplotlib
     except ImportError as err:
+        reraise_interrupt(err)  # a signal during the import
         raise BackendError("plots need matplotlib (a dependency of gearcoupling): "
                            "pip install matplotlib") from err
     return matplotlib

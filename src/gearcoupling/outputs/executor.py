@@ -24,6 +24,7 @@ from typing import Any
 from ..clearance import sweep
 from ..errors import ArgumentError, BackendError, GearCouplingError
 from ..forked import can_fork, held_signals, stop_workers, worker_signals
+from ..interrupts import check
 from ..io import remove_stale_temporaries
 from ..spec import CouplingSpec
 from . import registry
@@ -210,6 +211,7 @@ def _inline(state: _State, tick: Callable[[], None]) -> None:
             queue += _tasks_of(state, stage)
         if not queue:
             return
+        check()  # an interruption a library dropped: no next stage
         task = queue.pop(0)
         queue += _record(state, task, *_run_task(task, state.inputs(), state.folder))
         tick()
@@ -294,6 +296,7 @@ def _dispatch(state: _State, procs: list, tick: Callable[[], None]) -> None:
                 busy[w] = task
         if not busy:
             return
+        check()  # an interruption a library dropped stops the dispatch here
         for ready in multiprocessing.connection.wait([conns[w] for w in busy]):
             w = conns.index(ready)
             try:
