@@ -646,7 +646,7 @@ def test_report_reads_the_scan_before_any_work_and_leaves_no_folder(name, tmp_pa
     code = main(["report", T, "--scan", str(scan), "-o", str(out)])
     err = capsys.readouterr().err
     assert code == 2 and "--scan" in err and len(err.strip().splitlines()) == 1, err
-    assert not out.exists()  # no report-data/ with the CSVs of seven sections
+    assert not out.exists()  # none of the stages' files
 
 
 def test_report_pdf_without_playwright_is_refused_before_any_work(tmp_path, capsys,

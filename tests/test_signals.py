@@ -216,13 +216,15 @@ def test_a_signal_while_the_package_loads_ends_the_program_in_one_line(how, sig,
     assert (code, err) == (128 + sig, "gearcoupling: interrupted; 0 files complete\n")
 
 
-# a run whose sections step meets a library that is given the signal's exception
+# a run whose sections stage meets a library that is given the signal's exception
 RUN_WITH = """
-import gc, os, pathlib, signal, sys, time
-from gearcoupling.outputs import pipeline
+import dataclasses, gc, os, pathlib, signal, sys, time
+from gearcoupling.outputs import registry
+from gearcoupling.outputs.stage import function
 
 out, how = pathlib.Path(sys.argv[1]), sys.argv[2]
-step = pipeline._step
+stage = registry.STAGES["sections"]
+compute = function(stage.compute)
 
 
 def drop_it(forever):  # a library that catches everything (trimesh's imports do)
@@ -241,20 +243,20 @@ def in_gc_callback(phase, info):  # dask's: an exception raised there is dropped
         time.sleep(5.0)
 
 
-def sections_meeting_a_library(key, spec, folder):
-    if key == "sections":
-        if how == "catch-all":
-            drop_it(False)
-        elif how == "never-returns":
-            drop_it(True)
-        else:
-            gc.callbacks.append(in_gc_callback)
-            gc.collect()
-            gc.callbacks.remove(in_gc_callback)
-    return step(key, spec, folder)
+def sections_meeting_a_library(inputs):
+    if how == "catch-all":
+        drop_it(False)
+    elif how == "never-returns":
+        drop_it(True)
+    else:
+        gc.callbacks.append(in_gc_callback)
+        gc.collect()
+        gc.callbacks.remove(in_gc_callback)
+    return compute(inputs)
 
 
-pipeline._step = sections_meeting_a_library
+registry.STAGES = dict(registry.STAGES, sections=dataclasses.replace(
+    stage, compute=sections_meeting_a_library))
 sys.argv = ["gearcoupling", "run", "industrial-m2", "--only", "spec,sections", "--workers",
             "1", "-o", str(out)]
 from gearcoupling.cli import console
