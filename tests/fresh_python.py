@@ -3,6 +3,7 @@ a process without other threads, and an injected signal must not reach the test 
 
 from __future__ import annotations
 
+import os
 import subprocess
 import sys
 import textwrap
@@ -27,3 +28,19 @@ def run_fresh(code: str, *args: str, timeout_s: float = 120.0) -> str:
                          capture_output=True, text=True, timeout=timeout_s)
     assert out.returncode == 0, out.stderr
     return out.stdout
+
+
+def session_alive(pgid: int) -> list[int]:
+    """Processes (not zombies) of the process group ``pgid``, from /proc."""
+    alive = []
+    for entry in os.listdir("/proc"):
+        if not entry.isdigit():
+            continue
+        try:
+            with open(f"/proc/{entry}/stat") as fh:
+                fields = fh.read().rsplit(")", 1)[1].split()
+        except OSError:
+            continue
+        if int(fields[2]) == pgid and fields[0] != "Z":
+            alive.append(int(entry))
+    return alive

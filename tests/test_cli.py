@@ -6,7 +6,7 @@ import pytest
 
 from gearcoupling.cli import main
 from gearcoupling.io.lock import RECORD_NAME
-from gearcoupling.outputs.pipeline import run_files
+from gearcoupling.outputs import run_files
 
 
 def test_spec_json_has_derived_values(capsys):
@@ -64,10 +64,11 @@ def test_run_only_and_skip_choose_steps(tmp_path):
     assert main(["run", "renzo-1967", "-o", str(tmp_path), "--only", "spec,sections,parts",
                  "--skip", "parts"]) == 0
     assert {p.name for p in tmp_path.iterdir()} == {"spec.json", "sections.png",
-                                                    "run_summary.json", RECORD_NAME}
+                                                    "crown_profile.csv", "run_summary.json",
+                                                    RECORD_NAME}
     summary = json.loads((tmp_path / "run_summary.json").read_text())
     assert set(summary["step_seconds"]) == {"spec", "sections"}
-    assert summary["files"] == ["spec.json", "sections.png"]
+    assert summary["files"] == ["spec.json", "crown_profile.csv", "sections.png"]
 
 
 @pytest.mark.parametrize("argv, words", [

@@ -134,6 +134,34 @@ def test_an_interrupt_during_a_fork_is_not_lost():
     """)
 
 
+def test_a_signal_held_after_a_dropped_one_is_delivered_every_time():
+    """Under the command line's handlers, after a first SIGTERM whose exception a library
+    dropped, a SIGINT that comes while signals are held (as over a fork) reaches the
+    handler when the hold ends, every time. Before, the first signal left both ignored
+    (SIG_IGN): every later one was lost."""
+    run_fresh("""
+        import os, signal, time
+        from gearcoupling.cli import _signals_raise
+        from gearcoupling.forked import held_signals
+
+        with _signals_raise():
+            try:  # a library that drops the first
+                os.kill(os.getpid(), signal.SIGTERM)
+                time.sleep(5.0)
+            except BaseException:
+                pass
+            for k in range(20):
+                try:
+                    with held_signals():
+                        os.kill(os.getpid(), signal.SIGINT)
+                        time.sleep(0.01)  # held: nothing is raised here
+                except KeyboardInterrupt as stop:
+                    assert stop.signum == signal.SIGINT, stop
+                else:
+                    raise AssertionError(f"the held signal {k} was lost")
+    """)
+
+
 def test_a_map_dropped_unstopped_leaves_no_worker():
     """A started map dropped without :meth:`stop` (an interrupt between its start and the
     caller's ``try``) kills and reaps its workers then."""

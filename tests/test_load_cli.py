@@ -134,3 +134,26 @@ def test_run_skips_the_load_step_of_a_spec_without_torque(tmp_path, capsys):
     assert main(["run", str(spec), "--only", "load", "-o", str(tmp_path / "out")]) == 0
     assert "skipped: no [load] torque_Nm" in capsys.readouterr().err
     assert not (tmp_path / "out" / "load.csv").exists()
+
+
+def test_run_and_load_say_what_the_report_will_judge_of_the_capacity(tmp_path, capsys):
+    """The showcase's torque (Renzo's 20 000 lb in) is over the default model's capacity
+    at 1° times K: ``run`` says so in one line and ``load`` fails the check, as the report
+    does, with K in the row (a newcomer saw ``run`` and ``load`` pass and the report fail)."""
+    spec = gc.load_spec("renzo-1967")
+    cap = gc.capacity(spec, 1.0)
+    K = spec.load.accuracy_factor
+    assert abs(spec.load.torque_Nm) > cap.capacity_Nm  # the finding the lines must carry
+    assert main(["run", "renzo-1967", "--only", "rating", "-o", str(tmp_path / "r")]) == 0
+    err = capsys.readouterr().err
+    line = next(ln for ln in err.splitlines() if "capacity at 1°" in ln)
+    assert f"{cap.capacity_Nm:.4g} N·m = K × {cap.capacity_Nm / K:.4g} N·m" in line
+    assert "is UNDER the torque" in line and f"K = {K:g}" in line
+    rating = json.loads((tmp_path / "r" / "rating.json").read_text())
+    assert rating["holds"] is False and rating["capacity_Nm"] == pytest.approx(
+        cap.capacity_Nm, rel=1e-12)
+    argv = ["load", "renzo-1967", "--no-plots", "-o", str(tmp_path / "l")]
+    assert main(argv) == 1
+    out = capsys.readouterr().out
+    row = next(ln for ln in out.splitlines() if "torque ≤ capacity" in ln)
+    assert row.strip().startswith("FAIL") and f"K = {K:g}" in row

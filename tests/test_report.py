@@ -27,6 +27,7 @@ from gearcoupling.reporting.verdict import (
     OPEN,
     PASS,
     Verdict,
+    capacity_verdict,
     interference_verdict,
     load_verdicts,
     overall,
@@ -58,7 +59,7 @@ def test_report_is_one_self_contained_file_with_every_section(made):
     _, text = made
     # nothing outside the file but its own data files: no http(s), no relative images
     outside = [v for v in re.findall(r'(?:src|href)="([^"]*)"', text)
-               if not v.startswith(("data:", "#", "report-data/"))]
+               if not v.startswith(("data:", "#")) and "/" in v]
     assert outside == []
     ids = re.findall(r'<section id="([^"]+)">', text)
     assert tuple(ids) == SECTIONS
@@ -71,7 +72,7 @@ def test_every_figure_has_its_data_file_and_its_settings(made):
     figs = re.findall(r"<figure.*?</figure>", text, re.S)
     assert len(figs) >= 14 and len(figures(text)) == len(figs)
     for fig in figs:
-        link = re.search(r'Data: <a href="(report-data/[^"]+)">', fig)
+        link = re.search(r'Data: <a href="([^"/]+)">', fig)
         assert link, fig[:200]
         path = res.html.parent / link.group(1)
         with open(path, newline="") as fh:
@@ -87,18 +88,19 @@ def test_report_numbers_are_the_librarys(made, renzo):
     res, text = made
     text = html.unescape(text)
     # the load data file is the load the report drew: the same sweep and model (the
-    # default surface model over ReportSettings.surface_angles rotations of one pitch)
-    n = ReportSettings().surface_angles
-    pitch = np.arange(n) * 360.0 / (renzo.tooth.teeth * n)
-    sw = gc.sweep(renzo, 1.0, pitch, tolerance_mm=1e-7)
+    # default surface model over a turn of ReportSettings.phases rotations a pitch), the
+    # same file gc.run writes
+    from gearcoupling.loading import turn_phases
+
+    sw = gc.sweep(renzo, 1.0, turn_phases(renzo, ReportSettings().phases), tolerance_mm=1e-7)
     ref = gc.load_from_sweep(sw).to_dataframe()
-    disk = pd.read_csv(res.html.parent / "report-data" / "load.csv")
+    disk = pd.read_csv(res.html.parent / "load.csv")
     pd.testing.assert_frame_equal(ref, disk, check_exact=False, rtol=1e-8, check_dtype=False)
     # the verdict's capacity and the design angles are those of the library's calls
     cap = gc.capacity(renzo, 1.0)
-    assert f"{cap.capacity_Nm:.4g} N·m (bending stress governs)" in text
+    assert f"{cap.capacity_Nm:.4g} N·m = K × " in text and "bending stress governs" in text
     # one capacity per report: the data sheet's is the verdict's, the same model and springs
-    sheet = json.loads((res.html.parent / "report-data" / "datasheet.json").read_text())
+    sheet = json.loads((res.html.parent / "datasheet.json").read_text())
     assert (sheet["model"], sheet["springs"]) == (cap.model, springs_name(renzo, cap.model))
     assert sheet["capacity_Nm"] == pytest.approx(cap.capacity_Nm, rel=1e-12)
     crit = gc.critical_misalignment_deg(renzo)
@@ -111,6 +113,26 @@ def test_report_numbers_are_the_librarys(made, renzo):
                                             rel=1e-3)
     assert est["critical"] == pytest.approx(crit, rel=0.02)
     assert est["binding"] == pytest.approx(gc.binding_angle_deg(renzo), rel=0.02)
+
+
+@pytest.mark.slow
+def test_the_report_writes_the_stages_files_once_and_they_are_runs(made, renzo, tmp_path):
+    """One pipeline: the report's data files are its stages' files (no second copy, each
+    name one the stages declare), and the same stages run by ``gc.run`` write the same
+    bytes."""
+    from gearcoupling.reporting import report_files
+
+    res, _ = made
+    folder = res.html.parent
+    written = {p.name for p in folder.iterdir() if not p.name.startswith(".")}
+    allowed = set(report_files(ReportSettings(scan=res.files[0], grade=6)))
+    assert written - {"scan.xyz"} <= allowed, written - allowed
+    assert {p.name for p in res.files} <= written
+    run = gc.run(renzo, tmp_path, only=["sweep", "load"], workers=1)
+    for name in ("sweep.csv", "sweep_summary.json", "backlash_over_turn.csv", "load.csv",
+                 "load_summary.json", "contact_patches.csv"):
+        assert (tmp_path / name).read_bytes() == (folder / name).read_bytes(), name
+    assert len(run.files) > 6
 
 
 @pytest.mark.slow
@@ -132,18 +154,23 @@ def test_verdicts_judge_only_against_limits(made):
 
 
 def test_verdicts_without_limits_or_inputs_are_not_judged(renzo):
-    open_ = load_verdicts(renzo, None, None)
+    open_ = [*load_verdicts(renzo, None), capacity_verdict(renzo, None, None)]
     assert {v.verdict for v in open_} == {OPEN} and "no torque" in open_[0].reason
+    assert "no torque" in open_[-1].reason
     res = gc.load(renzo, 1.0, [0.0, 3.6])
     no_pi = renzo.replace(**{"load.allowable_tooth_load_N": None})
-    rows = load_verdicts(no_pi, gc.load(no_pi, 1.0, [0.0, 3.6]), None)
+    rows = load_verdicts(no_pi, gc.load(no_pi, 1.0, [0.0, 3.6]))
     assert rows[0].verdict == OPEN and "allowable_tooth_load" in rows[0].reason
+    assert capacity_verdict(renzo, res, None).verdict == OPEN
     cap = gc.capacity(renzo, 1.0)
-    rows = load_verdicts(renzo, res, cap)
+    rows = [*load_verdicts(renzo, res), capacity_verdict(renzo, res, cap)]
     # judged against each limit: the stresses and the patch pass at 1°; the torque is judged
     # against the capacity (the template's 2260 N·m lies just above it with the default model)
     fits = PASS if abs(res.torque_Nm) <= cap.capacity_Nm else FAIL
-    assert [r.verdict for r in rows] == [PASS] * 3 + [fits, PASS]
+    assert [r.verdict for r in rows] == [PASS] * 4 + [fits]
+    # the limit says that it is K times the capacity found
+    K = renzo.load.accuracy_factor
+    assert f"K × {cap.capacity_Nm / K:.4g} N·m" in rows[-1].limit and f"K = {K:g}" in rows[-1].limit
     assert interference_verdict(None, "not run: no python-fcl").verdict == OPEN
 
 
@@ -286,14 +313,14 @@ def test_the_capacity_curve_passes_through_the_design_point():
     place of the nearest interior point (the ends stay), or is added outside the grid."""
     import numpy as np
 
-    from gearcoupling.reporting.sections import _through
+    from gearcoupling.outputs.capacity import through
 
     grid = np.linspace(0.0, 2.064, 7)
-    mis = _through(grid, 1.0)
+    mis = through(grid, 1.0)
     assert mis.size == 7 and 1.0 in mis and 1.032 not in mis
     assert mis[0] == 0.0 and mis[-1] == 2.064
-    assert list(_through(grid, 3.0)) == [*grid, 3.0]
-    assert list(_through(grid, 0.0)) == list(grid)
+    assert list(through(grid, 3.0)) == [*grid, 3.0]
+    assert list(through(grid, 0.0)) == list(grid)
 
 
 @pytest.mark.parametrize("name", ["renzo-1967", "mill-spindle"])

@@ -363,15 +363,14 @@ REPORT = ["report", "renzo-1967", "--no-viewer", "--no-datasheet"]
     (HOB, "hob.json"),  # the issue: refused only after the two other files were written
     (QUICK_RUN, "run_summary.json"),  # the run's last file
     (REPORT, "report.html"),
-    (REPORT, "report-data/sweep.csv"),
-], ids=["hob", "run", "report", "report-data"])
+    (REPORT, "sweep.csv"),  # a stage's file the report writes
+], ids=["hob", "run", "report", "report-stage"])
 def test_a_folder_where_a_file_goes_is_refused_before_anything_is_written(argv, name,
                                                                           tmp_path, capsys):
     out = tmp_path / "out"
     (out / name).mkdir(parents=True)
-    if argv is REPORT:  # the report's data folder, with a file of the user's
-        (out / "report-data").mkdir(exist_ok=True)
-        (out / "report-data" / "notes.txt").write_text("mine")
+    if argv is REPORT:  # a file of the user's beside
+        (out / "notes.txt").write_text("mine")
     before = _state(out)
     assert main([*argv, "-o", str(out)]) == 2
     err = capsys.readouterr().err
@@ -449,8 +448,8 @@ def test_files_of_other_settings_are_named_and_kept(tmp_path, capsys):
     for _ in range(2):  # still there, still of the first settings: said again
         assert main([*other, "-o", out]) == 0
         notes = [ln for ln in capsys.readouterr().err.splitlines() if "note:" in ln]
-        assert len(notes) == 1 and "1 file made earlier with other settings" in notes[0]
-        assert notes[0].split(": ", 3)[-1].startswith("sections.png"), notes
+        assert len(notes) == 1 and "2 files made earlier with other settings" in notes[0]
+        assert notes[0].split(": ", 3)[-1].startswith("crown_profile.csv, sections.png"), notes
     assert (tmp_path / "sections.png").read_bytes() == sections
     assert main(["run", "renzo-1967", "--only", "spec", "-o", out]) == 0
     assert "note:" not in capsys.readouterr().err

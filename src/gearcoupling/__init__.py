@@ -6,7 +6,12 @@ mesh, CAD, solver or viewer library. Units, frames, signs and names:
 ``docs/conventions.md``; every public name by stage: ``docs/api.md``.
 """
 
-import lazy_loader
+# first: the program's signal handler before the imports below (``gearcoupling ...`` only)
+from . import interrupts as _interrupts
+
+_interrupts.at_program_start()
+
+import lazy_loader  # noqa: E402
 
 __version__ = "0.1.0"
 

@@ -50,6 +50,10 @@ SWEEP_TOLERANCE_RANGE_MM = (1e-12, 0.1)
 #: design angles, load, studies, report, command line): one value everywhere
 GAP_TOLERANCE_MM = 1e-7
 
+#: the default rotations per tooth pitch of a turn's loads (``loading.turn_phases``): with
+#: ideal teeth a turn holds only these poses
+PHASES = 8
+
 #: the default coarse planes over the face width of the sweep kernel
 SWEEP_GRID = 17
 

@@ -16,6 +16,7 @@ from collections.abc import Iterator
 import numpy as np
 
 from .errors import BackendError
+from .interrupts import reraise as reraise_interrupt
 
 CHROMIUM = "/usr/bin/chromium"
 CHROMIUM_FLAGS = ("--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
@@ -33,6 +34,7 @@ def browser_backend(executable: str = CHROMIUM):
     try:
         return importlib.import_module("playwright.sync_api")
     except ImportError as err:
+        reraise_interrupt(err)  # a signal during the import
         raise BackendError("driving a browser needs playwright: pip install "
                            "'gearcoupling[browser]'") from err
 

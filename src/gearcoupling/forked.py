@@ -3,6 +3,7 @@ worker behind (the run's chains, the capacity points of a report)."""
 
 from __future__ import annotations
 
+import contextlib
 import multiprocessing
 import multiprocessing.connection
 import os
@@ -13,6 +14,8 @@ from contextlib import contextmanager
 from typing import Any, TypeVar, cast
 
 from .errors import BackendError
+from .interrupts import check as check_interrupt
+from .interrupts import reset as forget_interrupt
 
 T = TypeVar("T")
 STOP_SIGNALS = {signal.SIGINT, signal.SIGTERM}  # held while workers fork
@@ -54,6 +57,7 @@ def worker_signals() -> None:
     """A forked worker leaves signals to its parent: it ignores Ctrl-C (which reaches the
     whole group) and ends at SIGTERM; it dies with the parent (:func:`die_with_parent`)."""
     die_with_parent()
+    forget_interrupt()  # the parent's note is the parent's to act on
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
     signal.pthread_sigmask(signal.SIG_UNBLOCK, STOP_SIGNALS)  # blocked over the fork
@@ -84,18 +88,18 @@ def held_signals(block: bool | Collection[int] = True) -> Iterator[None]:
     ``__del__``) and be lost, or in the middle of starting a process, which would then
     run on unknown to the caller. ``block=False``: only noted, for a program started here
     that must not inherit them blocked (exec); a collection of signals: those blocked,
-    all noted."""
+    all noted.
+
+    At the end the handlers of before are back first, then the mask: a signal still
+    blocked goes to its handler then, and a noted one is handed to it by a call, every
+    time (not raised again: the CLI's watcher counts real signals)."""
     noted: list[int] = []
-    holding = True
     main = threading.current_thread() is threading.main_thread()  # where handlers run
     old: dict[int, Callable[[int, Any], Any]] = {
         s: h for s in STOP_SIGNALS if main and callable(h := signal.getsignal(s))}
 
-    def note(signum: int, frame: Any) -> None:
-        if holding:
-            noted.append(signum)
-        else:  # the block is over: the handler of before
-            old[signum](signum, frame)
+    def note(signum: int, _frame: Any) -> None:
+        noted.append(signum)
 
     mask = signal.pthread_sigmask(signal.SIG_BLOCK, ())  # kept: the next could raise
     try:
@@ -106,12 +110,42 @@ def held_signals(block: bool | Collection[int] = True) -> Iterator[None]:
             signal.pthread_sigmask(signal.SIG_BLOCK, blocked)
         yield
     finally:
-        signal.pthread_sigmask(signal.SIG_SETMASK, mask)  # the blocked ones are noted now
-        holding = False
         for s, handler in old.items():
             signal.signal(s, handler)
+        signal.pthread_sigmask(signal.SIG_SETMASK, mask)
         for signum in dict.fromkeys(noted):
-            signal.raise_signal(signum)
+            old[signum](signum, None)
+
+
+def kill_children() -> None:
+    """Kill every process descended from this one (forked workers, a local dask cluster's,
+    FE solvers: found in ``/proc``; a no-op elsewhere) and reap the children: the last
+    act of a process that ends at once."""
+    me = os.getpid()
+    parents: dict[int, list[int]] = {}
+    try:
+        entries = os.listdir("/proc")
+    except OSError:  # pragma: no cover - not Linux
+        return
+    for entry in entries:
+        if entry.isdigit():
+            try:
+                with open(f"/proc/{entry}/stat") as fh:
+                    ppid = int(fh.read().rsplit(")", 1)[1].split()[1])
+            except (OSError, IndexError, ValueError):
+                continue
+            parents.setdefault(ppid, []).append(int(entry))
+    found, todo = [], list(parents.get(me, ()))
+    while todo:
+        pid = todo.pop()
+        found.append(pid)
+        todo += parents.get(pid, ())
+    for pid in found:
+        with contextlib.suppress(OSError):
+            os.kill(pid, signal.SIGKILL)
+    for pid in parents.get(me, ()):
+        with contextlib.suppress(OSError):
+            os.waitpid(pid, 0)
 
 
 def start_workers(target: Callable[..., None], args: Sequence[tuple],
@@ -140,6 +174,7 @@ def messages(procs: Sequence[tuple[Any, multiprocessing.connection.Connection]]
     with an exit code a :class:`BackendError`."""
     waiting = {recv: proc for proc, recv in procs}
     while waiting:
+        check_interrupt()  # a signal whose exception a library dropped: no more waiting
         for ready in multiprocessing.connection.wait(list(waiting)):
             conn = cast(multiprocessing.connection.Connection, ready)
             try:

@@ -11,7 +11,8 @@ import numpy as np
 
 from .errors import ArgumentError, BackendError
 from .geometry import hub_flank_model, hub_model, plane_rack, transverse_section
-from .io import atomic_path, plot_text
+from .interrupts import reraise as reraise_interrupt
+from .io import atomic_path, plot_text, writable_file
 
 if TYPE_CHECKING:  # matplotlib is imported where a plot is drawn
     from matplotlib.axes import Axes
@@ -28,6 +29,7 @@ def import_matplotlib():
     try:
         import matplotlib
     except ImportError as err:
+        reraise_interrupt(err)  # a signal during the import
         raise BackendError("plots need matplotlib (a dependency of gearcoupling): "
                            "pip install matplotlib") from err
     return matplotlib
@@ -77,10 +79,31 @@ def fixed_layout(fig: Figure, left: float, right: float, bottom: float, top: flo
     return fig
 
 
+def figure_png(fig: Figure, dpi: int) -> bytes:
+    """``fig`` as PNG bytes: RGB, since the figures are opaque, and zlib level 3 (a third
+    faster than matplotlib's RGBA at level 6, and smaller)."""
+    import io
+
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from PIL import Image
+
+    fig.set_dpi(dpi)
+    canvas = FigureCanvasAgg(fig)
+    canvas.draw()
+    rgba = np.asarray(canvas.buffer_rgba())
+    buf = io.BytesIO()
+    Image.frombuffer("RGBA", canvas.get_width_height(physical=True), rgba, "raw", "RGBA", 0,
+                     1).convert("RGB").save(buf, format="png", compress_level=3)
+    return buf.getvalue()
+
+
 def save_figure(fig: Figure, path: str | Path, dpi: int = 130) -> Path:
-    """Write ``fig`` as PNG atomically (nothing is closed: the figure stays usable)."""
+    """Write ``fig`` as PNG (:func:`figure_png`) atomically (nothing is closed: the figure
+    stays usable). A target that may not be written is refused before the figure is drawn."""
+    writable_file(path)
+    data = figure_png(fig, dpi)
     with atomic_path(path) as tmp:
-        fig.savefig(tmp, format="png", dpi=dpi)
+        tmp.write_bytes(data)
     return Path(path)
 
 
@@ -196,6 +219,6 @@ def sections_figure(spec: CouplingSpec, tolerance_mm: float | None = None, *,
 
 
 def plot_sections(spec: CouplingSpec, path: str | Path,
-                  tolerance_mm: float | None = None) -> Path:
+                  tolerance_mm: float | None = None, *, dpi: int = 130) -> Path:
     """:func:`sections_figure` written to ``path`` as PNG (atomically)."""
-    return save_figure(sections_figure(spec, tolerance_mm), path)
+    return save_figure(sections_figure(spec, tolerance_mm), path, dpi)

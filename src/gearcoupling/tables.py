@@ -12,6 +12,7 @@ from collections.abc import Iterable, Sequence
 from typing import Any
 
 from .errors import BackendError
+from .interrupts import reraise as reraise_interrupt
 
 
 def import_pandas() -> Any:
@@ -19,6 +20,7 @@ def import_pandas() -> Any:
     try:
         return importlib.import_module("pandas")
     except ImportError as err:
+        reraise_interrupt(err)  # a signal during the import
         raise BackendError("DataFrames need pandas: pip install 'gearcoupling[pandas]' "
                            "(or pip install pandas)") from err
 

@@ -22,6 +22,7 @@ from .plots import (
     plot_clearance,
     plot_clearance_map,
     plot_contact_path,
+    sweep_figures,
 )
 from .result import CSV_COLUMNS, SweepResult
 from .tooth_map import check_angles, check_misalignment, flank_minima, sweep
@@ -51,4 +52,5 @@ __all__ = [
     "plot_clearance_map",
     "plot_contact_path",
     "sweep",
+    "sweep_figures",
 ]

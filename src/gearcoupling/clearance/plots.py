@@ -18,7 +18,9 @@ switched). :func:`plot_all` writes them as PNG files, atomically.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -282,16 +284,16 @@ def plot_generation(spec: CouplingSpec, misalignment_deg: float, *, count: int =
     return fig
 
 
-def plot_all(result: SweepResult, spec: CouplingSpec,
-             out_dir: str | Path, *, design: dict | None = None,
-             studies: bool = True, backlash=None) -> list[Path]:
-    """Every sweep picture into ``out_dir``; ``studies`` adds the backlash, R_c and
-    generation studies (several seconds); ``backlash``: the backlash curve to draw
-    (``curve`` of :func:`plot_backlash`), else one 0-6° is computed."""
-    out = Path(out_dir)
-    figures = {"sweep_clearance.png": lambda: plot_clearance(result),
-               "sweep_contact_path.png": lambda: plot_contact_path(result, spec),
-               "sweep_clearance_map.png": lambda: plot_clearance_map(result, spec)}
+def sweep_figures(result: SweepResult, spec: CouplingSpec, *, design: dict | None = None,
+                  studies: bool = True, backlash=None) -> dict[str, Callable[[], Any]]:
+    """Every sweep picture by file name, each drawn when called; ``studies`` adds the
+    backlash, R_c and generation studies (several seconds); ``backlash``: the backlash curve
+    to draw (``curve`` of :func:`plot_backlash`), else one 0-6° is computed."""
+    figures: dict[str, Callable[[], Any]] = {
+        "sweep_clearance.png": lambda: plot_clearance(result),
+        "sweep_backlash_over_turn.png": lambda: plot_backlash_over_turn(result),
+        "sweep_contact_path.png": lambda: plot_contact_path(result, spec),
+        "sweep_clearance_map.png": lambda: plot_clearance_map(result, spec)}
     if studies:
         binding = (design or {}).get("binding_angle_deg")
         if binding is None and design is None:
@@ -301,4 +303,14 @@ def plot_all(result: SweepResult, spec: CouplingSpec,
         figures["sweep_critical_vs_rc.png"] = lambda: plot_critical_vs_radius(spec)
         figures["sweep_generation.png"] = lambda: plot_generation(
             spec, max(result.misalignment_deg, 0.5))
-    return [save_png(make(), out / name) for name, make in figures.items()]
+    return figures
+
+
+def plot_all(result: SweepResult, spec: CouplingSpec,
+             out_dir: str | Path, *, design: dict | None = None,
+             studies: bool = True, backlash=None) -> list[Path]:
+    """Every sweep picture (:func:`sweep_figures`) into ``out_dir`` as PNG."""
+    out = Path(out_dir)
+    return [save_png(make(), out / name) for name, make in
+            sweep_figures(result, spec, design=design, studies=studies,
+                          backlash=backlash).items()]

@@ -9,8 +9,8 @@ from ..arguments import MAXIMA
 from ..errors import ArgumentError, SpecError, brief
 from ..io import parse_override
 from ..loading import model_names, models_help, plot_capacity, write_capacity_csv
+from ..outputs import CapacityComparison, compare_capacity, comparison_range
 from ..plots import save_figure
-from ..reporting import CapacityComparison, compare_capacity, comparison_range
 from ..spec import MISALIGNMENT_RANGE_DEG, load_spec
 from .common import (
     add_spec_arguments,

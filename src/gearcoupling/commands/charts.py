@@ -7,13 +7,10 @@ Writes ``charts.png`` (profile and lead traces per flank with the evaluation ran
 
 from __future__ import annotations
 
-from ..hob import measuring_charts, plot_measuring_charts, write_nominal_csv
-from ..io import write_json
-from ..plots import save_figure
+from ..hob import measuring_charts
+from ..outputs import chart_files, files
 from .common import add_spec_arguments, count, number_in, output_dir, spec_from_args
 from .folders import claim, holds_folders
-
-FILES = ("charts.png", "nominal_traces.csv", "charts.json")
 
 
 def register(sub) -> None:
@@ -30,16 +27,13 @@ def register(sub) -> None:
 @holds_folders
 def run(args) -> int:
     spec = spec_from_args(args)
-    out = claim(output_dir(args, spec), spec.to_dict(), FILES)
+    out = claim(output_dir(args, spec), spec.to_dict(), files.CHARTS)
     charts = measuring_charts(spec, args.points, args.tip_exclusion)
-    files = [save_figure(plot_measuring_charts(charts), out / "charts.png"),
-             write_nominal_csv(charts, out / "nominal_traces.csv")]
-    files.append(write_json(out / "charts.json", {**charts.summary(),
-                                                  "files": [str(f) for f in files]}))
+    written = chart_files(charts, out)
     for flank, v in charts.values.items():
         print(f"{flank}: C_beta {1e3 * v['C_beta_mm']:.2f} um, f_Hbeta "
               f"{1e3 * v['f_Hbeta_mm']:.2f} um, f_Halpha mid/ends "
               f"{1e3 * v['f_Halpha_mid_mm']:.2f} / {1e3 * v['f_Halpha_z_plus_mm']:.2f} um")
-    for f in files:
+    for f in written:
         print(f)
     return 0

@@ -14,8 +14,7 @@ import argparse
 import numpy as np
 
 from ..interference import check_interference
-from ..outputs import write_interference
-from ..outputs.files import INTERFERENCE
+from ..outputs import files, write_interference
 from .common import (
     MAX_TEETH,
     add_misalignment_argument,
@@ -101,7 +100,7 @@ def run(args) -> int:
     spec = spec_from_args(args)
     mis = misalignment_deg(args, spec)
     angles = 360.0 * np.arange(args.angles) / args.angles
-    out = claim(output_dir(args, spec), spec.to_dict(), INTERFERENCE)
+    out = claim(output_dir(args, spec), spec.to_dict(), files.INTERFERENCE)
     with progress(f"check {spec.name}", args.angles) as update:
         result = check_interference(spec, mis, angles, method=args.method,
                                     tolerance_mm=args.tolerance, teeth=args.teeth,

@@ -13,6 +13,7 @@ from typing import TypeVar
 from ..arguments import MAXIMA, parse_count, parse_number
 from ..arguments import torque_Nm as check_torque_Nm
 from ..errors import ArgumentError, brief
+from ..interrupts import check as check_interrupt
 from ..io import default_output_dir, output_folder, parse_override, terminal_text
 from ..spec import TEETH_RANGE, CouplingSpec, check_misalignment_deg, load_spec
 
@@ -157,7 +158,8 @@ def progress(description: str, total: int):
     """A rich progress bar on stderr with the time left; yields ``update(done, total)``, the
     library's progress callback. The bar redraws on each update (no refresh thread, so
     :func:`gearcoupling.run` may fork beside it). ``description`` is shown as text
-    (:func:`~gearcoupling.io.terminal_text`), never as rich markup."""
+    (:func:`~gearcoupling.io.terminal_text`), never as rich markup. Each update first
+    raises an interruption a library dropped (:func:`gearcoupling.interrupts.check`)."""
     from rich.console import Console
     from rich.progress import (
         BarColumn,
@@ -177,6 +179,7 @@ def progress(description: str, total: int):
         task = bar.add_task(terminal_text(description), total=total)  # data, not markup
 
         def update(done: int, total: int) -> None:
+            check_interrupt()  # a signal whose exception a library dropped stops here
             bar.update(task, completed=done, total=total, refresh=True)
 
         yield update

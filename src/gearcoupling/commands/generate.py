@@ -12,8 +12,7 @@ import sys
 from ..arguments import parse_count
 from ..errors import ArgumentError
 from ..export import formats as registered
-from ..outputs import PART_NAMES, write_parts
-from ..outputs.files import part_files
+from ..outputs import PART_NAMES, files, write_parts
 from .common import add_spec_arguments, output_dir, positive_length, progress, spec_from_args
 from .folders import claim, holds_folders
 
@@ -69,7 +68,8 @@ def run(args) -> int:
     parts = parse_list(args.parts, PART_NAMES, "--parts")
     fmts = parse_list(args.formats, registered(), "--format")
     teeth = parse_teeth(args.teeth, spec.tooth.teeth)
-    out = claim(output_dir(args, spec), spec.to_dict(), part_files(parts, fmts, teeth))
+    out = claim(output_dir(args, spec), spec.to_dict(),
+                files.part_files(parts, fmts, teeth))
     with progress(f"{spec.name} parts", len(parts) * (1 + len(fmts))) as update:
         written, report = write_parts(spec, out, parts, fmts, args.tolerance, teeth,
                                       progress=update)

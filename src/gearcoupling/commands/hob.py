@@ -8,11 +8,9 @@ chordal deviation, start/end positions, crown drop at the tooth ends).
 from __future__ import annotations
 
 from ..hob import FEED_RANGE_MM_PER_REV, check_hob_diameter, hob_program
-from ..io import write_csv_records, write_json, write_text
+from ..outputs import files, program_files
 from .common import add_spec_arguments, number_in, output_dir, positive_length, spec_from_args
 from .folders import claim, holds_folders
-
-FILES = ("hob_path.csv", "hob_program.nc", "hob.json")
 
 
 def register(sub) -> None:
@@ -34,21 +32,14 @@ def register(sub) -> None:
 def run(args) -> int:
     spec = spec_from_args(args)
     check_hob_diameter(spec, args.hob_diameter, "--hob-diameter")
-    out = claim(output_dir(args, spec), spec.to_dict(), FILES)
+    out = claim(output_dir(args, spec), spec.to_dict(), files.HOB_PROGRAM)
     prog = hob_program(spec, args.hob_diameter, tolerance_mm=args.tolerance)
-    files = [
-        write_csv_records(out / "hob_path.csv", prog.rows(),
-                  [f"hob centre path for {spec.name}; mm and degrees; x = centre distance "
-                   "from the hub axis, z = axial, infeed = x(0) - x"]),
-        write_text(out / "hob_program.nc", prog.gcode(args.feed)),
-    ]
-    files.append(write_json(out / "hob.json", {**prog.summary(),
-                                               "files": [str(f) for f in files]}))
+    written = program_files(prog, out, args.feed)
     s = prog.summary()
     print(f"hob: {s['arc_moves']} arc and {s['line_moves']} line moves, max chordal deviation "
           f"{s['max_deviation_mm']:.3g} mm (tolerance {s['tolerance_mm']:.3g} mm), "
           f"Z {s['z_start_mm']:.4f} .. {s['z_end_mm']:.4f} mm, crown drop at ends "
           f"{s['crown_drop_end_mm']:.5f} mm")
-    for f in files:
+    for f in written:
         print(f)
     return 0

@@ -3,10 +3,9 @@
 from __future__ import annotations
 
 from ..arguments import GAP_TOLERANCE_MM, TORQUE_RANGE_NM
-from ..loading import PHASES, model_names, models_help
-from ..outputs import write_load
-from ..outputs.files import LOAD
-from ..reporting import load_verdicts
+from ..loading import PHASES, capacity, model_names, models_help
+from ..outputs import files, write_load
+from ..reporting import capacity_verdict, load_verdicts
 from .common import (
     MAX_ANGLES,
     add_misalignment_argument,
@@ -49,15 +48,19 @@ def register(sub) -> None:
 def run(args) -> int:
     spec = spec_from_args(args)
     mis = misalignment_deg(args, spec)
-    out = claim(output_dir(args, spec), spec.to_dict(), LOAD)
+    out = claim(output_dir(args, spec), spec.to_dict(),
+                (*files.LOAD, *files.LOAD_STUDY, *files.Q_GRAPH))
     # one bar: the turn's poses, then the studies' misalignments
     with progress(f"load {spec.name}", args.angles or PHASES) as update:
         res, paths = write_load(spec, out, mis, args.angles, torque_Nm=args.torque,
                                 model=args.model, tolerance_mm=args.tolerance,
                                 plots=not args.no_plots, with_studies=not args.quick_plots,
                                 progress=update)
+    # the torque against the capacity at this misalignment: what the report judges too
+    at = capacity(spec, mis, model=res.model, loaded_flank=res.loaded_flank)
     status = print_findings(f"{spec.name}: {res.model} model, T = {res.torque_Nm:.4g} N·m at "
-                            f"{mis:g}°:", load_verdicts(spec, res, None, with_capacity=False))
+                            f"{mis:g}°:", [*load_verdicts(spec, res),
+                                           capacity_verdict(spec, res, at)])
     for path in paths:
         print(path)
     return status

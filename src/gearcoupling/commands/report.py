@@ -1,7 +1,8 @@
 """``gearcoupling report``: the design report (HTML, optionally PDF) of a spec.
 
-Writes ``report.html`` (self-contained: figures inline, the 3D viewer embedded) and the
-figures' data files in ``report-data/``; ``--pdf`` also prints ``report.pdf``. Exit status
+Writes ``report.html`` (self-contained: figures inline, the 3D viewer embedded) and, beside
+it, the files of the stages it shows (each figure's data); ``--pdf`` also prints
+``report.pdf``. Exit status
 1 when a judged check fails.
 """
 
@@ -12,9 +13,7 @@ from ..hob import check_hob_diameter
 from ..inspection import GRADES, LIMITS, grade_limits
 from ..io import require_file
 from ..loading import model_names, models_help
-from ..reporting import KNOB_RANGES, ReportSettings, report
-from ..reporting.build import report_files
-from ..reporting.sections import DATA_DIR
+from ..reporting import KNOB_RANGES, ReportSettings, report, report_files
 from .common import (
     add_misalignment_argument,
     add_spec_arguments,
@@ -28,6 +27,12 @@ from .common import (
 )
 from .compare import parse_limits
 from .folders import claim, holds_folders
+
+#: the accuracy knobs the command takes, as options
+KNOBS = {"angles": "rotations over a turn of the clearance sweep",
+         "phases": "rotations per tooth pitch of the loads over a turn",
+         "capacity_count": "misalignments of the capacity curve",
+         "check_angles": "poses of the mesh interference check"}
 
 
 def register(sub) -> None:
@@ -52,14 +57,11 @@ def register(sub) -> None:
     p.add_argument("--hob-diameter", type=positive_length, default=None, metavar="MM",
                    help="hob outside diameter of the feed program (default: an illustrative "
                         "max(50, 20 module) mm)")
-    knob = {"angles": "rotations over a turn of the sweep and loads (default 180)",
-            "capacity_count": "misalignments of the capacity curve (default 7)",
-            "check_angles": "poses of the mesh interference check (default 36)",
-            "surface_angles": "rotations over a tooth pitch for the surface model (default 6)"}
-    for name, text in knob.items():
+    for name, text in KNOBS.items():
         lo, hi = KNOB_RANGES[name]
+        default = getattr(ReportSettings(), name)
         p.add_argument(f"--{name.replace('_', '-')}", type=count(lo, hi), default=None,
-                       metavar="N", help=f"{text}; {lo}-{hi}")
+                       metavar="N", help=f"{text}; {lo}-{hi} (default {default})")
     p.add_argument("--no-viewer", action="store_true", help="leave out the 3D view")
     p.add_argument("--no-datasheet", action="store_true",
                    help="leave out the API 671 data sheet (its stiffness matrix, wind-up curve "
@@ -79,8 +81,7 @@ def run(args) -> int:
                      ArgumentError)
     if args.grade is not None:
         grade_limits(spec, args.grade, "--grade")
-    knobs = {k: getattr(args, k) for k in ("angles", "capacity_count", "check_angles",
-                                            "surface_angles") if getattr(args, k) is not None}
+    knobs = {k: getattr(args, k) for k in KNOBS if getattr(args, k) is not None}
     settings = ReportSettings(misalignment_deg=misalignment_deg(args, spec),
                               torque_Nm=args.torque, model=args.model, scan=args.scan,
                               scan_units=args.units, grade=args.grade,
@@ -88,7 +89,7 @@ def run(args) -> int:
                               hob_diameter_mm=args.hob_diameter, viewer=not args.no_viewer,
                               datasheet=not args.no_datasheet,
                               **knobs)
-    out = claim(output_dir(args, spec), spec.to_dict(), report_files(args.pdf), [DATA_DIR])
+    out = claim(output_dir(args, spec), spec.to_dict(), report_files(settings, args.pdf))
     with progress(f"report {spec.name}", 1) as update:
         try:
             result = report(spec, out, pdf=args.pdf, settings=settings, progress=update)

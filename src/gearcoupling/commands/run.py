@@ -6,9 +6,8 @@ from __future__ import annotations
 import sys
 
 from ..errors import ArgumentError
-from ..outputs import STEPS
+from ..outputs import STEPS, Rating, run_files
 from ..outputs import run as run_all
-from ..outputs.pipeline import run_files
 from .common import add_spec_arguments, count, output_dir, progress, spec_from_args
 from .folders import claim, holds_folders
 
@@ -38,11 +37,12 @@ def run(args) -> int:
     skip = _keys("--skip", args.skip)
     spec = spec_from_args(args)
     out = claim(output_dir(args, spec), spec.to_dict(), run_files(only, skip))
-    total = len([k for k in STEPS if (only is None or k in only) and k not in skip])
-    with progress(spec.name, total) as update:
+    with progress(spec.name, 1) as update:
         res = run_all(spec, out, only=only, skip=skip, workers=args.workers, progress=update)
     for key, reason in res.skipped.items():
         print(f"gearcoupling: {STEPS[key]} skipped: {reason}", file=sys.stderr)
+    if res.results.has("rating"):  # what the report will judge: said now, not only there
+        print(f"gearcoupling: {res.results.get('rating', Rating).sentence()}", file=sys.stderr)
     steps = ", ".join(f"{k} {s:.1f} s" for k, s in res.seconds.items())
     print(f"gearcoupling: {len(res.files)} files in {res.wall_seconds:.1f} s with "
           f"{res.workers} worker(s) ({steps})", file=sys.stderr)

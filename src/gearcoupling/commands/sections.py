@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from ..outputs.files import SECTIONS
+from ..outputs import files
 from ..plots import plot_sections
 from .common import add_spec_arguments, output_dir, positive_length, progress, spec_from_args
 from .folders import claim, holds_folders
@@ -19,7 +19,7 @@ def register(sub) -> None:
 @holds_folders
 def run(args) -> int:
     spec = spec_from_args(args)
-    out = claim(output_dir(args, spec), spec.to_dict(), SECTIONS)
+    out = claim(output_dir(args, spec), spec.to_dict(), files.SECTIONS)
     with progress(f"sections {spec.name}", 1) as update:
         path = plot_sections(spec, out / "sections.png", args.tolerance)
         update(1, 1)

@@ -3,8 +3,7 @@
 from __future__ import annotations
 
 from ..arguments import GAP_TOLERANCE_MM
-from ..outputs import design_point, write_sweep
-from ..outputs.files import SWEEP
+from ..outputs import files, write_sweep
 from ..reporting import geometry_verdicts
 from .common import (
     MAX_ANGLES,
@@ -42,18 +41,18 @@ def register(sub) -> None:
 def run(args) -> int:
     spec = spec_from_args(args)
     mis = misalignment_deg(args, spec)
-    out = claim(output_dir(args, spec), spec.to_dict(), SWEEP)
+    out = claim(output_dir(args, spec), spec.to_dict(), files.SWEEP)
     with progress(f"sweep {spec.name}", 3) as update:
-        result, paths = write_sweep(spec, out, mis, args.angles, tolerance_mm=args.tolerance,
-                                    design=not args.no_design, plots=not args.no_plots,
-                                    studies=not args.quick_plots, progress=update)
+        result, point, paths = write_sweep(spec, out, mis, args.angles,
+                                           tolerance_mm=args.tolerance,
+                                           design=not args.no_design, plots=not args.no_plots,
+                                           studies=not args.quick_plots, progress=update)
     summary = result.summary()
     print(f"{spec.name}: backlash {summary['aligned_backlash_mm'] * 1e3:.2f} µm aligned, "
           f"{summary['min_backlash_mm'] * 1e3:.2f} µm at least over the turn at {mis:g}°")
     critical = binding = None
-    if not args.no_design:  # the stage write_sweep computed: kept, not computed again
-        dq = design_point(spec, mis)
-        critical, binding = dq["critical_misalignment_deg"], dq["binding_angle_deg"]
+    if point is not None:
+        critical, binding = point.critical_deg, point.binding_deg
         print("critical misalignment (contact reaches a face end): "
               + (f"{critical:.4f}°" if critical is not None else "none up to 6°"))
         print("binding angle (smallest backlash over a turn = 0): "

@@ -5,6 +5,7 @@ from __future__ import annotations
 import sys
 import time
 
+from ..interrupts import reset as forget_interrupt
 from ..io import writable_file
 from ..viewer import (
     COLOR_MODES,
@@ -97,7 +98,8 @@ def run(args) -> int:
         else:
             while True:
                 time.sleep(3600)
-    except KeyboardInterrupt:
+    except KeyboardInterrupt:  # the server's way to stop: not an interruption
+        forget_interrupt()
         print("stopping", file=sys.stderr)
     finally:
         app.stop()

@@ -21,6 +21,7 @@ from typing import Any
 from ..arguments import choice
 from ..errors import ArgumentError, BackendError
 from ..geometry import PARTS
+from ..interrupts import reraise as reraise_interrupt
 from ..io import atomic_path, writable_file
 from ..spec import CouplingSpec, as_spec
 from .job import PartJob
@@ -67,6 +68,7 @@ class Writer:
         try:
             write(obj, path)
         except ModuleNotFoundError as e:
+            reraise_interrupt(e)  # a signal during the import
             if self.extra is None:
                 raise
             raise BackendError(f"{self.name} files need {e.name}: pip install "

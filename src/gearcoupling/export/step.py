@@ -11,6 +11,7 @@ from contextlib import contextmanager
 from pathlib import Path
 
 from ..errors import BackendError
+from ..interrupts import reraise as reraise_interrupt
 from ..io import step_text
 from ..parts import check_tolerance, part_solid, shape_volume
 
@@ -19,6 +20,7 @@ def _step_control():
     try:
         from OCP import STEPControl
     except ImportError as err:
+        reraise_interrupt(err)  # a signal during the import
         raise BackendError("STEP export needs OpenCASCADE: pip install 'gearcoupling[step]' "
                            "(cadquery-ocp-novtk)") from err
     return STEPControl

@@ -9,6 +9,7 @@ import threading
 from contextlib import contextmanager
 
 from ..errors import BackendError
+from ..interrupts import reraise as reraise_interrupt
 
 CCX_ENV = "GEARCOUPLING_CCX"
 """Environment variable naming the ``ccx`` executable (default: ``ccx`` on the PATH)."""
@@ -19,6 +20,7 @@ def gmsh_module():
     try:
         import gmsh
     except ImportError as err:
+        reraise_interrupt(err)  # a signal during the import
         raise BackendError("volume meshing needs gmsh: pip install 'gearcoupling[fea]' "
                            "(PyPI package gmsh)") from err
     return gmsh

@@ -46,8 +46,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..errors import ArgumentError, GeometryError
 from ..geometry import rot_z
-from ..io import inp_number, safe_name
-from ..io.cache import cache_key, cached, package_version, store
+from ..io import cache_key, cached, inp_number, package_version, safe_name, store
 from ..spec import CouplingSpec
 from .ccx import run_ccx, solver_dir
 from .deck import LoadCase, static_deck

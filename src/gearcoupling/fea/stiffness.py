@@ -50,8 +50,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..arguments import count, flag
 from ..errors import ArgumentError, GeometryError
-from ..io import safe_name
-from ..io.cache import cache_folder, cache_key, cached, package_version, store
+from ..io import cache_folder, cache_key, cached, package_version, safe_name, store
 from ..spec import CouplingSpec, as_spec
 from .backends import ccx_path, gmsh_module
 from .ccx import run_ccx, solver_dir

@@ -10,6 +10,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import ArgumentError, BackendError
+from ..interrupts import reraise as reraise_interrupt
 from ..io import require_file
 
 MESH_SUFFIXES = (".stl", ".obj", ".ply", ".off", ".glb")
@@ -76,6 +77,7 @@ def _load_mesh(p: Path) -> NDArray[np.float64]:
     try:
         import trimesh
     except ImportError as err:  # pragma: no cover - trimesh is a core dependency
+        reraise_interrupt(err)  # a signal during the import
         raise BackendError("reading meshes needs trimesh: pip install trimesh") from err
     try:
         obj = trimesh.load(p, process=False)

@@ -28,7 +28,7 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from typing import Any
 
 import numpy as np
@@ -146,6 +146,17 @@ class InterferenceResult:
     side_gap_rad: NDArray[np.float64] | None = None
     prepared: Model | None = field(default=None, repr=False)
     poses: tuple = field(default=(), repr=False)
+
+    def __getstate__(self) -> dict[str, Any]:
+        """Pickled without the prepared model (its manifold3d solids do not pickle): an
+        unpickled result has every array but cannot be posed again (:func:`posed_meshes`)."""
+        state = {f.name: getattr(self, f.name) for f in fields(self)}
+        state["prepared"], state["poses"] = None, ()
+        return state
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        for key, value in state.items():
+            object.__setattr__(self, key, value)
 
     @property
     def interferes(self) -> bool:

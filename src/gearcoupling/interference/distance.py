@@ -35,6 +35,7 @@ from numpy.typing import NDArray
 
 from ..errors import BackendError
 from ..geometry import rot_z
+from ..interrupts import reraise as reraise_interrupt
 from .posed import PreparedPart
 
 
@@ -42,6 +43,7 @@ def _igl():
     try:
         import igl
     except ImportError as err:
+        reraise_interrupt(err)  # a signal during the import
         raise BackendError("penetration depths need libigl: pip install "
                            "'gearcoupling[interference]'") from err
     return igl

@@ -23,6 +23,7 @@ from numpy.typing import NDArray
 
 from ..errors import BackendError
 from ..geometry import hub_to_sleeve, rot_z
+from ..interrupts import reraise as reraise_interrupt
 from ..parts import SURFACE_KINDS
 
 
@@ -66,6 +67,7 @@ def _fcl():
     try:
         import fcl
     except ImportError as err:
+        reraise_interrupt(err)  # a signal during the import
         raise BackendError("distance queries need python-fcl: pip install "
                            "'gearcoupling[interference]'") from err
     return fcl

@@ -13,6 +13,7 @@ from .atomic import (
     temporary_folder,
     write_text,
 )
+from .cache import cache_folder, cache_key, cached, package_version, store
 from .csv import write_csv_columns, write_csv_records, write_csv_rows
 from .files import (
     as_path,
@@ -62,6 +63,9 @@ __all__ = [
     "atomic_path",
     "bundled_dir",
     "bundled_names",
+    "cache_folder",
+    "cache_key",
+    "cached",
     "csv_cell",
     "csv_comment",
     "default_output_dir",
@@ -81,6 +85,7 @@ __all__ = [
     "not_a_file",
     "output_folder",
     "own_folder",
+    "package_version",
     "parse_override",
     "parse_toml",
     "plain",
@@ -94,6 +99,7 @@ __all__ = [
     "set_dotted",
     "settings_key",
     "step_text",
+    "store",
     "temporary_folder",
     "terminal_text",
     "unknown_key",

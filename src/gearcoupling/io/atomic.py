@@ -22,6 +22,7 @@ from contextlib import contextmanager
 from pathlib import Path
 
 from ..forked import held_signals
+from ..interrupts import check as check_interrupt
 from .files import writable_file
 
 #: how every temporary name of this module starts
@@ -84,6 +85,7 @@ def atomic_path(path: str | os.PathLike, field: str = "path") -> Iterator[Path]:
         yield tmp_path
         os.chmod(tmp_path, 0o666 & ~_umask())  # mkstemp made it private; use the usual mode
         writable_file(target, field)  # nothing special put there while the body ran
+        check_interrupt()  # nothing written after a signal, also one a library dropped
         os.replace(tmp_path, target)
     except OSError as err:
         if not _about_temporary(err):
@@ -118,6 +120,7 @@ def move_into(source: str | os.PathLike, target: str | os.PathLike,
     :func:`atomic_path` does: a target that is not a writable regular file is refused, a
     symbolic link there is replaced, not followed."""
     dest = writable_file(target, field)
+    check_interrupt()  # nothing moved in after a signal
     try:
         os.replace(source, dest)
     except OSError as err:
@@ -143,14 +146,15 @@ def is_stale_temporary(path: str | os.PathLike) -> bool:
     return not _alive(int(match["pid"]))
 
 
-def remove_stale_temporaries(folder: str | os.PathLike) -> list[Path]:
+def remove_stale_temporaries(folder: str | os.PathLike, *, own: bool = False) -> list[Path]:
     """Remove the temporaries in ``folder`` whose writing process has ended
-    (:func:`is_stale_temporary`); returns the removed paths. Temporaries of live processes
-    (another run writing into the same folder) and files that only look like temporaries
-    are left alone."""
+    (:func:`is_stale_temporary`), with ``own`` also this process's (the last act of a
+    process that ends at once); returns the removed paths. Temporaries of other live
+    processes (another run writing into the same folder) and files that only look like
+    temporaries are left alone."""
     removed = []
     for entry in Path(folder).glob(f"{PREFIX}*"):
-        if not is_stale_temporary(entry):
+        if not (is_stale_temporary(entry) or (own and entry.name.startswith(_prefix()))):
             continue
         try:
             if entry.is_dir() and not entry.is_symlink():

@@ -120,7 +120,7 @@ def _read_only(p: Path) -> bool:
 
 def own_folder(path: object, field: str = "path") -> Path:
     """``path`` when gearcoupling may make or fill it as a folder of its own files (a
-    solver's ``fea_contact/``, a report's ``report-data/``): nothing there yet, or a folder
+    solver's ``fea_contact/``): nothing there yet, or a folder
     holding writable regular files only. A symbolic link there (the files would go where
     it points), a file, a device or a folder that holds anything else (a folder, a device,
     a read-only file) is refused with :class:`ArgumentError` naming ``field``."""

@@ -41,14 +41,20 @@ class FolderLock:
     def release(self) -> None:
         """Remove the lock file (still ours: the same file) and let the lock go."""
         try:
+            self.remove_file()
+        finally:
+            os.close(self.fd)
+
+    def remove_file(self) -> None:
+        """Remove the lock file if it is still ours (the same file); the lock goes with the
+        descriptor (at the latest when the process ends)."""
+        try:
             now = os.lstat(self.path)
             held = os.fstat(self.fd)
             if (now.st_dev, now.st_ino) == (held.st_dev, held.st_ino):
                 os.unlink(self.path)
         except OSError:  # removed, or the folder gone: nothing to tidy
             pass
-        finally:
-            os.close(self.fd)
 
 
 def lock_folder(folder: str | os.PathLike, field: str = "-o") -> FolderLock:

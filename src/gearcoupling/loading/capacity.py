@@ -27,7 +27,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..arguments import GAP_TOLERANCE_MM, MAXIMA, SWEEP_GRID, angle_list, choice
+from ..arguments import GAP_TOLERANCE_MM, MAXIMA, PHASES, SWEEP_GRID, angle_list, choice
 from ..clearance import SweepResult, sweep
 from ..errors import ArgumentError
 from ..geometry import FLANKS
@@ -160,7 +160,6 @@ def _finite_or_none(v: float) -> float | None:
     return float(v) if math.isfinite(v) else None
 
 
-PHASES = 8  # rotations per tooth pitch of a turn's default load (turn_phases)
 
 
 def turn_phases(spec: CouplingSpec, per_pitch: int = PHASES) -> NDArray:

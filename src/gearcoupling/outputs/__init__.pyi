@@ -1,27 +1,51 @@
 # The names of gearcoupling.outputs, read by type checkers and, at run time, by
-# lazy_loader.attach_stub: each writer's module is imported on first use, so the
-# pipeline's parent process loads only what every step needs (gearcoupling.run).
-from .interference import write_check as write_check
+# lazy_loader.attach_stub: each module is imported on first use, so a process loads only
+# what the stages it runs need (gearcoupling.run).
+from . import files as files
+from .capacity import CapacityAgainstMisalignment as CapacityAgainstMisalignment
+from .capacity import CapacityComparison as CapacityComparison
+from .capacity import Rating as Rating
+from .capacity import compare_capacity as compare_capacity
+from .capacity import comparison_range as comparison_range
+from .executor import compute as compute
+from .files import REPORT as REPORT
+from .files import REPORT_PDF as REPORT_PDF
+from .interference import Check as Check
 from .interference import write_interference as write_interference
+from .load import LoadStudy as LoadStudy
+from .load import QGraph as QGraph
+from .load import QPoint as QPoint
 from .load import load_studies as load_studies
+from .load import load_study as load_study
+from .load import q_graph as q_graph
+from .load import study_misalignments as study_misalignments
 from .load import write_load as write_load
-from .load_stages import LoadStudy as LoadStudy
-from .load_stages import QPoint as QPoint
-from .load_stages import load_study as load_study
-from .load_stages import q_points as q_points
+from .manufacturing import Hob as Hob
+from .manufacturing import chart_files as chart_files
+from .manufacturing import program_files as program_files
 from .parts import PART_NAMES as PART_NAMES
 from .parts import write_parts as write_parts
 from .parts import write_step_files as write_step_files
 from .pipeline import STEPS as STEPS
 from .pipeline import RunResult as RunResult
-from .pipeline import SkipStep as SkipStep
+from .pipeline import default_workers as default_workers
 from .pipeline import run as run
+from .pipeline import run_files as run_files
+from .pipeline import settings_from as settings_from
+from .pipeline import stage_files as stage_files
+from .registry import RUN as RUN
+from .registry import STAGES as STAGES
+from .settings import KNOB_RANGES as KNOB_RANGES
+from .settings import OperatingPoint as OperatingPoint
+from .settings import StageSettings as StageSettings
+from .spec import CrownProfile as CrownProfile
 from .spec import resolved_spec as resolved_spec
 from .spec import write_spec as write_spec
-from .stages import backlash_grid as backlash_grid
-from .stages import backlash_range_deg as backlash_range_deg
-from .stages import design_point as design_point
-from .stages import study_misalignments as study_misalignments
-from .stages import turn_sweep as turn_sweep
+from .stage import Results as Results
+from .stage import SkipStage as SkipStage
+from .stage import Stage as Stage
+from .stage import StageInputs as StageInputs
+from .sweep import BacklashCurve as BacklashCurve
+from .sweep import DesignPoint as DesignPoint
 from .sweep import write_sweep as write_sweep
-from .viewer import write_viewer as write_viewer
+from .viewer import StaticViewer as StaticViewer

@@ -1,6 +1,7 @@
-"""The names of the files the writers of :mod:`gearcoupling.outputs` make, without their
-modules: what a command checks before any work (a light import; each writer is tested
-to write no other name)."""
+"""The names of the files the stages of :mod:`gearcoupling.outputs` write, without their
+modules: what a command checks before any work (a light import; the stage records name
+them, :data:`~gearcoupling.outputs.STAGES`, and each stage is tested to write no other
+name)."""
 
 from __future__ import annotations
 
@@ -8,24 +9,37 @@ from collections.abc import Sequence
 
 PART_NAMES = ("hub", "sleeve")
 SPEC = ("spec.json",)
-SECTIONS = ("sections.png",)
-#: :func:`~gearcoupling.outputs.write_sweep` (the plots with ``plots``, some of them with
-#: ``design`` and ``studies`` only)
-SWEEP = ("sweep.csv", "sweep_summary.json", "sweep_clearance.png", "sweep_contact_path.png",
-         "sweep_clearance_map.png", "sweep_backlash.png", "sweep_critical_vs_rc.png",
-         "sweep_generation.png")
-#: :func:`~gearcoupling.outputs.write_load` (the plots with ``plots``, the studies' three
-#: with ``with_studies``)
-LOAD = ("load.csv", "load_summary.json", "load_tooth_load.png", "load_patches.png",
-        "load_max_vs_misalignment.png", "load_moment_vs_misalignment.png", "load_q_graph.png")
-#: :func:`~gearcoupling.outputs.write_interference` (the overlap where the worst pose has
-#: one)
+SECTIONS = ("crown_profile.csv", "sections.png")
+#: the stage ``sweep`` and :func:`~gearcoupling.outputs.write_sweep` (the plots with
+#: ``plots``, the studies with the design point)
+SWEEP = ("sweep.csv", "sweep_summary.json", "backlash_over_turn.csv",
+         "backlash_vs_misalignment.csv", "sweep_clearance.png", "sweep_backlash_over_turn.png",
+         "sweep_contact_path.png", "sweep_clearance_map.png", "sweep_backlash.png",
+         "sweep_critical_vs_rc.png", "sweep_generation.png")
+#: the stage ``load`` (the plots with ``plots``)
+LOAD = ("load.csv", "load_summary.json", "loads_over_turn.csv", "contact_patches.csv",
+        "load_tooth_load.png", "load_over_turn.png", "load_patches.png")
+LOAD_STUDY = ("load_max_vs_misalignment.png", "load_moment_vs_misalignment.png")
+Q_GRAPH = ("q_graph.csv", "load_q_graph.png")
+#: the stage ``check`` and :func:`~gearcoupling.outputs.write_interference` (the overlap
+#: where the worst pose has one)
 INTERFERENCE = ("interference.csv", "interference.json", "interference.png",
                 "worst_hub.stl", "worst_sleeve.stl", "worst_overlap.stl")
 #: :func:`~gearcoupling.outputs.write_step_files`, and the listing it adds them to
 STEP = (*(f"{part}.step" for part in PART_NAMES), "parts.json")
 VIEWER = ("viewer.html",)
+RATING = ("rating.json",)
+CAPACITY = ("capacity.csv", "capacity.png")
+DATASHEET = ("datasheet.json", "datasheet.csv", "stiffness_matrix.csv", "windup_curve.csv",
+             "windup.png", "allowable_loads.csv", "allowable_loads.png")
+#: :func:`~gearcoupling.outputs.program_files`; the stage ``hob`` adds the path's picture
+HOB_PROGRAM = ("hob_path.csv", "hob_program.nc", "hob.json")
+HOB = (*HOB_PROGRAM, "hob_path.png")
+CHARTS = ("charts.png", "nominal_traces.csv", "charts.json")
+INSPECTION = ("inspection.csv", "inspection.png", "deviation_map.png")
 RUN_SUMMARY = "run_summary.json"
+REPORT = "report.html"
+REPORT_PDF = "report.pdf"
 
 
 def file_stem(part: str, teeth: Sequence[int] | None) -> str:

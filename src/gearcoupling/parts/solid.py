@@ -20,6 +20,7 @@ from numpy.typing import NDArray
 
 from ..errors import BackendError, GeometryError
 from ..geometry import hub_model, sleeve_model
+from ..interrupts import reraise as reraise_interrupt
 from ..spec import CouplingSpec
 from .builder import SURFACE_KINDS, Run, tile, tooth_runs
 from .fit import DEGREE, fit_sections
@@ -39,6 +40,7 @@ def _occ():
     try:
         import OCP  # noqa: F401
     except ImportError as err:
+        reraise_interrupt(err)  # a signal during the import
         raise BackendError("CAD solids need OpenCASCADE: pip install 'gearcoupling[step]' "
                            "(cadquery-ocp-novtk)") from err
     from OCP import (

@@ -2,21 +2,24 @@
 printed to PDF, that says what the coupling is, what it carries and whether it passes
 against the spec's limits (and which limits were not set)."""
 
-from .build import ReportResult, report
-from .capacity import CapacityComparison, compare_capacity, comparison_range
+from .build import ReportResult, report, report_files
+from .sections import SECTIONS
 from .settings import KNOB_RANGES, ReportSettings
-from .verdict import FAIL, Verdict, geometry_verdicts, load_verdicts
+from .verdict import FAIL, Verdict, capacity_verdict, geometry_verdicts, load_verdicts
+from .view import ReportSection, View
 
 __all__ = [
     "FAIL",
     "KNOB_RANGES",
-    "CapacityComparison",
+    "SECTIONS",
     "ReportResult",
+    "ReportSection",
     "ReportSettings",
     "Verdict",
-    "compare_capacity",
-    "comparison_range",
+    "View",
+    "capacity_verdict",
     "geometry_verdicts",
     "load_verdicts",
     "report",
+    "report_files",
 ]

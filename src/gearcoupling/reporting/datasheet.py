@@ -3,55 +3,29 @@ API 671 coupling data sheet (docs/rotordynamics.md)."""
 
 from __future__ import annotations
 
-from ..errors import SpecError
-from ..io import plot_text, write_csv_rows
-from ..rotordynamics import (
-    DOFS,
-    CouplingData,
-    StartedCouplingData,
-    plot_allowable_loads,
-    plot_windup,
-)
-from .document import Note, Row, Section, Table
-from .sections import Context
+from ..rotordynamics import DOFS, CouplingData
+from .document import Block, Note, Row, Table
+from .view import View
 
 PARTS = ("hub", "sleeve", "coupling")
 
 
-def start_datasheet(ctx: Context) -> None:
-    """Start the data sheet's work (forked workers where the machine has two cores), after
-    the capacity section, whose curve it reuses (``known=``): it runs while the sections
-    after it are built. A data sheet that is not made leaves its reason instead
-    (``ctx.datasheet_run`` a string). The caller stops it in a ``finally``."""
-    if ctx.torque_Nm is None or ctx.torque_Nm == 0:
-        ctx.datasheet_run = ("Not made: the stiffness and the loads are those of loaded teeth; "
-                             "give [load] torque_Nm or --torque.")
-        return
-    try:
-        ctx.datasheet_run = StartedCouplingData(ctx.spec, ctx.misalignment_deg, ctx.torque_Nm,
-                                                model=ctx.model,
-                                                known=ctx.found.get("capacity_curve", ()))
-    except SpecError as err:
-        ctx.datasheet_run = f"Not made: {err}"
-
-
-def datasheet(ctx: Context) -> Section:
-    sec = Section("datasheet", "Coupling data sheet for rotordynamics, after API 671")
-    if ctx.datasheet_run is None:
-        start_datasheet(ctx)
-    if isinstance(ctx.datasheet_run, str):
-        sec.blocks.append(Note(ctx.datasheet_run, "skip"))
-        return sec
-    data = ctx.datasheet_run.result()
-    ctx.found["datasheet"] = data
-    for path in data.write(ctx.data_dir):
-        ctx.files.append(path)
+def datasheet(v: View) -> list[Block]:
+    """The data sheet's tables and figures (the stage ``datasheet``)."""
+    data = v.get("datasheet", CouplingData)
+    if data is None:
+        return [Note(f"Not made: {v.why('datasheet')}.", "skip")]
     acc = data.accuracy()
-    sec.blocks += [_rating(data), _mass(data, acc["mass"]), *_stiffness(data, acc)]
-    sec.blocks.append(_windup_figure(ctx, data))
-    sec.blocks.append(_allowable_figure(ctx, data))
-    sec.blocks.append(Note("Not modelled: " + "; ".join(data.not_modelled) + "."))
-    return sec
+    return [_rating(data), _mass(data, acc["mass"]), *_stiffness(data, acc),
+            v.figure("windup", "Torque against wind-up, to the capacity", "windup.png",
+                     f"{data.model} model ({data.springs} springs), mean over "
+                     f"{data.stiffness.steps['rotations']} rotations of one pitch; bodies in "
+                     "closed form.", "windup_curve.csv"),
+            v.figure("allowable-loads", "Loads on the shafts over a turn at the allowable "
+                     "misalignment", "allowable_loads.png", f"{data.model} model, "
+                     f"{data.allowable.angles_deg.size} rotations over the turn.",
+                     "allowable_loads.csv"),
+            Note("Not modelled: " + "; ".join(data.not_modelled) + ".")]
 
 
 def _rating(data: CouplingData) -> Table:
@@ -105,25 +79,3 @@ def _stiffness(data: CouplingData, acc: dict[str, str]) -> list:
                    "(Q on the hub; rows N and N·m, columns per m and per rad); "
                    f"{acc['stiffness']}.")
     return [Row([torsion, cross]), matrix]
-
-
-def _windup_figure(ctx: Context, data: CouplingData):
-    name = "windup_curve.csv"
-    write_csv_rows(ctx.data_path(name), ("torque_Nm", "mesh_windup_rad", "body_windup_rad",
-                                         "windup_rad"), data.torsion.rows())
-    return ctx.figure("windup", "Torque against wind-up, to the capacity",
-                      plot_windup(data.torsion, f"{plot_text(data.spec.name)}, i = "
-                                  f"{data.misalignment_deg:g}°"),
-                      f"{data.model} model ({data.springs} springs), mean over "
-                      f"{data.stiffness.steps['rotations']} rotations of one pitch; bodies "
-                      "in closed form.", name)
-
-
-def _allowable_figure(ctx: Context, data: CouplingData):
-    a = data.allowable
-    name = "allowable_loads.csv"
-    write_csv_rows(ctx.data_path(name), ("psi_deg", *a.loads()), a.rows())
-    return ctx.figure("allowable-loads", "Loads on the shafts over a turn at the allowable "
-                      "misalignment", plot_allowable_loads(a, f"i = {a.misalignment_deg:.3g}°, "
-                                                          f"T = {a.torque_Nm:.4g} N·m"),
-                      f"{data.model} model, {a.angles_deg.size} rotations over the turn.", name)

@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import base64
 import html
-import io
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
@@ -64,31 +63,15 @@ class Row:
     tables: list[Table]
 
 
+Block = Table | Row | Figure | Note | Viewer
+
+
 @dataclass
 class Section:
     key: str
     title: str
-    blocks: list[Table | Row | Figure | Note | Viewer] = field(default_factory=list)
+    blocks: list[Block] = field(default_factory=list)
     seconds: float = 0.0
-
-
-def png_bytes(fig, dpi: int) -> bytes:
-    """A matplotlib figure as PNG bytes (nothing written; the figure is released): RGB,
-    since the figures are opaque, and zlib level 3 (a third faster than matplotlib's RGBA
-    at level 6, and smaller)."""
-    import numpy as np
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from PIL import Image
-
-    fig.set_dpi(dpi)
-    canvas = FigureCanvasAgg(fig)
-    canvas.draw()
-    rgba = np.asarray(canvas.buffer_rgba())
-    buf = io.BytesIO()
-    Image.frombuffer("RGBA", canvas.get_width_height(physical=True), rgba, "raw", "RGBA", 0,
-                     1).convert("RGB").save(buf, format="png", compress_level=3)
-    fig.clear()
-    return buf.getvalue()
 
 
 def fmt(value: Any, digits: int = 4) -> str:

@@ -111,16 +111,14 @@ def _material_source(spec: CouplingSpec, key: str) -> str:
     return "[material] (smaller of hub and sleeve)"
 
 
-def load_verdicts(spec: CouplingSpec, res, capacity_at_design, *,
-                  with_capacity: bool = True) -> list[Verdict]:
-    """Tooth load, contact pressure, root stress, torque capacity (unless not
-    ``with_capacity``: ``gearcoupling load`` searches none) and edge contact at the
-    reported load (``res`` None: no torque, nothing judged)."""
+def load_verdicts(spec: CouplingSpec, res) -> list[Verdict]:
+    """Tooth load, contact pressure, root stress and edge contact at the reported load
+    (``res`` None: no torque, nothing judged)."""
     if res is None:
         why = "no torque: set [load] torque_Nm or --torque"
         return [Verdict(c, "–", "–", "–", OPEN, why) for c in
                 ("tooth load ≤ allowable tooth load", "contact pressure ≤ allowable",
-                 "root bending stress ≤ allowable", "torque ≤ capacity at the misalignment")]
+                 "root bending stress ≤ allowable")]
     mat = spec.material
     out = []
     band = load_band(res.model, springs_name(spec, res.model))
@@ -144,8 +142,6 @@ def load_verdicts(spec: CouplingSpec, res, capacity_at_design, *,
     out.append(judged("root bending stress ≤ allowable", s, s_allow,
                       (f"{s:.4g} MPa", f"{s_allow:.4g} MPa",
                        _material_source(spec, "allowable_bending_stress_MPa")), band))
-    if with_capacity:
-        out.append(_capacity_verdict(spec, abs(res.torque_Nm), capacity_at_design, band))
     edge = int(np.max(np.sum(res.edge_contact, axis=0)))
     out.append(Verdict("no contact patch reaches a face end at this torque",
                        f"{edge} teeth at worst", "0 teeth", "geometry (edge contact)",
@@ -153,16 +149,24 @@ def load_verdicts(spec: CouplingSpec, res, capacity_at_design, *,
     return out
 
 
-def _capacity_verdict(spec: CouplingSpec, T: float, capacity_at_design,
-                      band: tuple[float, float] | None) -> Verdict:
-    cap = None if capacity_at_design is None else capacity_at_design.capacity_Nm
-    if cap is None:
-        return Verdict("torque ≤ capacity at the misalignment", f"{T:.4g} N·m", "–", "–",
-                       OPEN, "no criterion reaches its limit")
-    gov = capacity_at_design.governing.replace("_", " ")
-    return judged("torque ≤ capacity at the misalignment", T, cap,
-                  (f"{T:.4g} N·m", f"{cap:.4g} N·m ({gov} governs)",
-                   f"capacity × K = {spec.load.accuracy_factor:g}"), band,
+def capacity_verdict(spec: CouplingSpec, res, at) -> Verdict:
+    """The torque of ``res`` against the capacity at its misalignment (``at``: a
+    :class:`~gearcoupling.Capacity`; None: not computed)."""
+    check = "torque ≤ capacity at the misalignment"
+    if res is None:
+        return Verdict(check, "–", "–", "–", OPEN, "no torque: set [load] torque_Nm or "
+                       "--torque")
+    T = abs(res.torque_Nm)
+    if at is None or at.capacity_Nm is None:
+        return Verdict(check, f"{T:.4g} N·m", "–", "–", OPEN,
+                       "no criterion reaches its limit" if at is not None else
+                       "the capacity was not computed")
+    gov = at.governing.replace("_", " ")
+    K = spec.load.accuracy_factor
+    band = load_band(res.model, springs_name(spec, res.model))
+    return judged(check, T, at.capacity_Nm,
+                  (f"{T:.4g} N·m", f"{at.capacity_Nm:.4g} N·m = K × {at.capacity_Nm / K:.4g} "
+                   f"N·m ({gov} governs, K = {K:g})", f"capacity × K = {K:g}"), band,
                   scales_with_load=False)
 
 

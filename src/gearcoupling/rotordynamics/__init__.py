@@ -11,9 +11,11 @@ from .data import (
     FILES,
     MAX_TORQUE_NM,
     CouplingData,
+    DatasheetPlan,
     StartedCouplingData,
     check_inputs,
     coupling_data,
+    datasheet_plan,
 )
 from .mass import MassProperties, combine, mass_properties, mesh_mass_properties
 from .plots import plot_allowable_loads, plot_windup
@@ -43,6 +45,7 @@ __all__ = [
     "WINDUP_ERROR_PCT",
     "AllowableLoads",
     "CouplingData",
+    "DatasheetPlan",
     "MassProperties",
     "StartedCouplingData",
     "StiffnessMatrix",
@@ -53,6 +56,7 @@ __all__ = [
     "combine",
     "coupling_data",
     "coupling_element",
+    "datasheet_plan",
     "default_rotations",
     "generalized_forces",
     "hub_wrench",

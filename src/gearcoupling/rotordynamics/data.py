@@ -18,6 +18,9 @@ from functools import partial
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+from numpy.typing import NDArray
+
 from ..clearance import sweep
 from ..errors import ArgumentError
 from ..forked import ForkedMap, default_workers
@@ -340,12 +343,11 @@ def coupling_data(spec: CouplingSpec, misalignment_deg: float | None = None,
         started.stop()
 
 
-class StartedCouplingData:
-    """:func:`coupling_data` started now, its two chains in forked workers where it forks,
-    and collected later by :meth:`result`; :meth:`stop` in a ``finally`` kills the workers
-    still running (the report builds other sections meanwhile). Arguments as
-    :func:`coupling_data`; the masses are computed here, before the workers start (a bad
-    tolerance fails first).
+@dataclass(frozen=True)
+class DatasheetPlan:
+    """:func:`coupling_data` cut into its two chains (:attr:`tasks`, picklable callables
+    of no arguments, run in any process) and their combination (:meth:`combine`).
+    Arguments of :func:`datasheet_plan`.
 
     The chains: the matrix, then every other torque of the wind-up curve on the matrix's
     sweep (each solve starts from the last pose of the one before, the first from the
@@ -353,61 +355,89 @@ class StartedCouplingData:
     torques, on a copy of the sweep (their own chain of warm starts, from cold), follow
     the allowable misalignment when ``known`` capacities shorten its search (the
     report), else the matrix's torques: the two chains then cost about the same. Each
-    sweep's solves are the same in the same order either way, so ``workers=1`` and
-    ``workers=2`` give the same numbers to the last bit.
+    sweep's solves are the same in the same order wherever the chains run, so the
+    numbers are the same to the last bit.
     """
 
-    def __init__(self, spec: CouplingSpec, misalignment_deg: float | None = None,
-                 torque_Nm: float | None = None, *, model: str | None = None,
-                 rotations: int | None = None, relative_step: float | None = None,
-                 differences: str | None = None, turn_angles: int | None = None,
-                 curve_points: int = DEFAULT_POINTS, tolerance_mm: float | None = None,
-                 known: Sequence[Capacity] = (), workers: int | None = None):
-        self.t0 = time.perf_counter()
-        spec = as_spec(spec)
-        mis = (spec.design_misalignment_deg if misalignment_deg is None else
-               check_misalignment_deg(misalignment_deg, "misalignment_deg", ArgumentError))
-        T = check_inputs(spec, torque_Nm)
-        model = resolve_model(spec, model)
-        given = known_capacities(spec, model, known)
-        workers = default_workers() if workers is None else workers
-        if workers not in (1, 2) or isinstance(workers, bool):
-            raise ArgumentError("workers", workers, "1 or 2")
-        self.mass = mass_properties(spec, tolerance_mm)
-        sw = sweep(spec, mis, pitch_rotations(spec, default_rotations(model) if rotations is None
-                                              else rotations))
-        windup_torques(T, None, curve_points)  # the number of points checked before any work
-        cap = given.get(float(mis)) or capacity(spec, mis, model=model)
-        self.grid = windup_torques(T, cap.capacity_Nm, curve_points)
-        self.spec, self.mis, self.T, self.cap = spec, float(mis), T, cap
-        others = [t for t in self.grid if t != T]
-        halves = [(sw, others[0::2]), (copy.copy(sw), others[1::2])]
-        # given capacities (the report's curve) leave the allowable misalignment's search
-        # short: the second half of the curve goes with it, else with the matrix
-        split = 1 if given else 2
-        matrix = partial(_matrix_and_curve, sw, T, model, relative_step, differences,
-                         halves[:split])
-        allowable = partial(_allowable_and_curve, partial(
-            allowable_loads, spec, T, model=model, angles=turn_angles,
-            known=[*given.values(), cap]), halves[split:], model)
-        self.map = ForkedMap(lambda task: task(), [matrix, allowable], workers)
+    spec: CouplingSpec = field(repr=False)
+    misalignment_deg: float
+    torque_Nm: float
+    capacity: Capacity
+    grid: NDArray[np.float64]
+    mass: dict[str, MassProperties]
+    tasks: tuple[Callable[[], Any], ...] = field(repr=False)
 
-    def result(self, progress: Callable[[int, int], Any] | None = None) -> CouplingData:
-        if progress is not None:
-            progress(1, 3)  # the masses
-        (K, first), (allowed, second) = self.map.results(
-            None if progress is None else (lambda n: progress(1 + n, 3)))
+    def combine(self, values: Sequence[Any], seconds: float = 0.0) -> CouplingData:
+        """The data sheet from the chains' values (in the order of :attr:`tasks`)."""
+        (K, first), (allowed, second) = values
         even, odd = list(first) + list(second)
         rest: list[float] = [0.0] * (len(even) + len(odd))
         rest[0::2], rest[1::2] = even, odd
         found = iter(rest)
-        curve = [K.operating_windup_rad if t == self.T else next(found) for t in self.grid]
-        torsion = torsion_from_curve(self.spec, self.grid, curve, self.T,
-                                     float(K.matrix[5, 5]), self.cap.capacity_Nm)
+        T = self.torque_Nm
+        curve = [K.operating_windup_rad if t == T else next(found) for t in self.grid]
+        torsion = torsion_from_curve(self.spec, self.grid, curve, T, float(K.matrix[5, 5]),
+                                     self.capacity.capacity_Nm)
         used = K.model
-        return CouplingData(self.spec, self.mis, self.T, used, springs_name(self.spec, used),
-                            self.mass, torsion, K, self.cap.capacity_Nm, allowed,
-                            time.perf_counter() - self.t0)
+        return CouplingData(self.spec, self.misalignment_deg, T, used,
+                            springs_name(self.spec, used), self.mass, torsion, K,
+                            self.capacity.capacity_Nm, allowed, seconds)
+
+
+def datasheet_plan(spec: CouplingSpec, misalignment_deg: float | None = None,
+                   torque_Nm: float | None = None, *, model: str | None = None,
+                   rotations: int | None = None, relative_step: float | None = None,
+                   differences: str | None = None, turn_angles: int | None = None,
+                   curve_points: int = DEFAULT_POINTS, tolerance_mm: float | None = None,
+                   known: Sequence[Capacity] = (),
+                   mass: dict[str, MassProperties] | None = None) -> DatasheetPlan:
+    """:func:`coupling_data`'s arguments checked and its chains made (:class:`DatasheetPlan`);
+    the masses computed here unless given (a bad tolerance fails first)."""
+    spec = as_spec(spec)
+    mis = (spec.design_misalignment_deg if misalignment_deg is None else
+           check_misalignment_deg(misalignment_deg, "misalignment_deg", ArgumentError))
+    T = check_inputs(spec, torque_Nm)
+    model = resolve_model(spec, model)
+    given = known_capacities(spec, model, known)
+    mass = mass_properties(spec, tolerance_mm) if mass is None else mass
+    sw = sweep(spec, mis, pitch_rotations(spec, default_rotations(model) if rotations is None
+                                          else rotations))
+    windup_torques(T, None, curve_points)  # the number of points checked before any work
+    cap = given.get(float(mis)) or capacity(spec, mis, model=model)
+    grid = windup_torques(T, cap.capacity_Nm, curve_points)
+    others = [t for t in grid if t != T]
+    halves = [(sw, others[0::2]), (copy.copy(sw), others[1::2])]
+    # given capacities (the report's curve) leave the allowable misalignment's search
+    # short: the second half of the curve goes with it, else with the matrix
+    split = 1 if given else 2
+    matrix = partial(_matrix_and_curve, sw, T, model, relative_step, differences,
+                     halves[:split])
+    allowable = partial(_allowable_and_curve, partial(
+        allowable_loads, spec, T, model=model, angles=turn_angles,
+        known=[*given.values(), cap]), halves[split:], model)
+    return DatasheetPlan(spec, float(mis), T, cap, grid, mass, (matrix, allowable))
+
+
+class StartedCouplingData:
+    """:func:`coupling_data` started now, its two chains (:class:`DatasheetPlan`) in forked
+    workers where it forks, and collected later by :meth:`result`; :meth:`stop` in a
+    ``finally`` kills the workers still running. Arguments as :func:`coupling_data`."""
+
+    def __init__(self, spec: CouplingSpec, misalignment_deg: float | None = None,
+                 torque_Nm: float | None = None, *, workers: int | None = None,
+                 **options: Any):
+        self.t0 = time.perf_counter()
+        workers = default_workers() if workers is None else workers
+        if workers not in (1, 2) or isinstance(workers, bool):
+            raise ArgumentError("workers", workers, "1 or 2")
+        self.plan = datasheet_plan(spec, misalignment_deg, torque_Nm, **options)
+        self.map = ForkedMap(lambda task: task(), list(self.plan.tasks), workers)
+
+    def result(self, progress: Callable[[int, int], Any] | None = None) -> CouplingData:
+        if progress is not None:
+            progress(1, 3)  # the masses
+        values = self.map.results(None if progress is None else (lambda n: progress(1 + n, 3)))
+        return self.plan.combine(values, time.perf_counter() - self.t0)
 
     def stop(self) -> None:
         self.map.stop()
@@ -435,5 +465,6 @@ def _allowable_and_curve(allowable: Callable[[], AllowableLoads], halves, model:
     return allowable(), _curves(halves, model)
 
 
-__all__ = ["DATASHEET_COLUMNS", "FILES", "MAX_TORQUE_NM", "NOT_MODELLED",
-           "CouplingData", "StartedCouplingData", "check_inputs", "coupling_data"]
+__all__ = ["DATASHEET_COLUMNS", "FILES", "MAX_TORQUE_NM", "NOT_MODELLED", "CouplingData",
+           "DatasheetPlan", "StartedCouplingData", "check_inputs", "coupling_data",
+           "datasheet_plan"]

@@ -19,6 +19,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import ArgumentError, BackendError
+from ..interrupts import reraise as reraise_interrupt
 from ..io import atomic_path
 
 ROSS_SUFFIXES = (".toml", ".json")
@@ -54,6 +55,7 @@ def import_ross() -> Any:
         with _quiet():
             return importlib.import_module("ross")
     except ImportError as err:
+        reraise_interrupt(err)  # a signal during the import
         raise BackendError("the ROSS element needs ross-rotordynamics: pip install "
                            "'gearcoupling[rotordynamics]'") from err
 

@@ -21,6 +21,7 @@ from typing import Any
 from ..arguments import count, flag, real
 from ..errors import ArgumentError, BackendError
 from ..forked import held_signals
+from ..interrupts import reraise as reraise_interrupt
 from ..io import atomic_path, output_folder, remove_stale_temporaries, write_json
 from ..tables import import_pandas
 from .evaluate import evaluate_chunk
@@ -55,6 +56,7 @@ def pyarrow_modules():
         import pyarrow as pa
         import pyarrow.parquet as pq
     except ImportError as err:  # pragma: no cover - depends on the install
+        reraise_interrupt(err)  # a signal during the import
         raise BackendError("studies need pyarrow: pip install 'gearcoupling[study]'") from err
     return pa, pq
 
@@ -63,6 +65,7 @@ def _distributed():
     try:
         import distributed
     except ImportError as err:  # pragma: no cover - depends on the install
+        reraise_interrupt(err)  # a signal during the import
         raise BackendError("studies need dask.distributed: pip install "
                            "'gearcoupling[study]'") from err
     return distributed

@@ -7,7 +7,7 @@ viser is imported only when a server is made and is an optional extra
 (``pip install 'gearcoupling[viewer]'``).
 """
 
-from .html import write_html
+from .html import static_html, write_html
 from .nodes import FRAMES, ViewSettings
 from .scene import (
     COLOR_MODES,
@@ -35,5 +35,6 @@ __all__ = [
     "lod_tolerance",
     "pose_state",
     "serve",
+    "static_html",
     "write_html",
 ]

@@ -142,28 +142,28 @@ def save_html(scene: CouplingScene, path: str | os.PathLike) -> Path:
 
 def write_html(spec: CouplingSpec, path: str | os.PathLike, *, settings: ViewSettings | None = None,
                tolerance_mm: float | None = None) -> Path:
-    """Write the static HTML of a coupling scene.
+    """Write the static HTML of a coupling scene (:func:`static_html`) to ``path`` (parent
+    folders are created; written atomically)."""
+    writable_file(path, "path")
+    return write_text(path, static_html(spec, settings=settings, tolerance_mm=tolerance_mm))
+
+
+def static_html(spec: CouplingSpec, *, settings: ViewSettings | None = None,
+                tolerance_mm: float | None = None) -> str:
+    """The static HTML of a coupling scene, one self-contained page.
 
     Parameters
     ----------
     spec : CouplingSpec
-    path : path-like
-        Output file (parent folders are created; written atomically).
     settings : ViewSettings, optional
         Pose and display; default: the spec's design misalignment, rotation 0, quarter
         cutaway.
     tolerance_mm : float, optional
-        Chordal tolerance of the meshes (default coarse, module / 20). Most of the file
-        is viser's client (0.8 MB); renzo-1967's scene adds 0.2 MB coarse (30k
-        triangles) and 0.6 MB at module / 400 (105k triangles), compressed
+        Chordal tolerance of the meshes (default coarse, module / 20). Most of the page
+        is viser's client; the scene's meshes add to it in proportion to their triangles
         (``benchmarks/bench_viewer.py``).
-
-    Returns
-    -------
-    Path
     """
     spec = as_spec(spec)
-    writable_file(path, "path")
     if settings is not None and not isinstance(settings, ViewSettings):
         raise ArgumentError("settings", str(settings)[:60], "a ViewSettings")
     viser = import_viser()
@@ -174,8 +174,8 @@ def write_html(spec: CouplingSpec, path: str | os.PathLike, *, settings: ViewSet
     with contextlib.redirect_stdout(io.StringIO()):
         server = viser.ViserServer(host="127.0.0.1", port=free_port(), verbose=False)
     try:
-        scene = CouplingScene(server, spec, settings, tolerance_mm, legend_in_scene=True)
-        return save_html(scene, path)
+        return scene_html(CouplingScene(server, spec, settings, tolerance_mm,
+                                        legend_in_scene=True))
     finally:
         with contextlib.redirect_stdout(io.StringIO()):
             server.stop()

@@ -25,6 +25,7 @@ import numpy as np
 
 from ..errors import ArgumentError, BackendError
 from ..geometry import FLANKS, rot_z
+from ..interrupts import reraise as reraise_interrupt
 from ..loading import LoadResult, load
 from ..spec import CouplingSpec
 from .scene import (
@@ -61,6 +62,7 @@ def import_viser():
     try:
         return importlib.import_module("viser")
     except ImportError as err:
+        reraise_interrupt(err)  # a signal during the import
         raise BackendError("the 3D viewer needs viser: pip install 'gearcoupling[viewer]'"
                            ) from err
 

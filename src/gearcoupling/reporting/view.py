@@ -1,0 +1,67 @@
+"""What a report section is and what its renderer reads."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TypeVar
+
+from ..outputs import OperatingPoint, Results
+from ..spec import CouplingSpec
+from .document import Block, Figure
+from .settings import ReportSettings
+from .verdict import Verdict
+
+R = TypeVar("R")
+
+
+@dataclass(frozen=True)
+class View:
+    """What a renderer reads: the spec, the settings, the operating point, the stages'
+    results and the folder their files are in (the report's own)."""
+
+    spec: CouplingSpec
+    settings: ReportSettings
+    point: OperatingPoint
+    results: Results
+    folder: Path
+
+    def get(self, name: str, kind: type[R]) -> R | None:
+        """The result of stage ``name`` (None where it was skipped)."""
+        return self.results.get(name, kind) if self.results.has(name) else None
+
+    def why(self, name: str) -> str:
+        """Why stage ``name`` has no result."""
+        return self.results.skipped.get(name, "not computed")
+
+    def figure(self, key: str, title: str, png: str, settings: str, data_file: str | None,
+               note: str = "") -> Figure:
+        """A figure from a stage's picture ``png`` in the folder; ``data_file`` the name of
+        its data beside it."""
+        return Figure(key, title, (self.folder / png).read_bytes(), settings, data_file, note)
+
+
+@dataclass(frozen=True)
+class ReportSection:
+    """One section of the report.
+
+    Attributes
+    ----------
+    key, title : str
+    stages : tuple of str
+        The stages whose results it shows (computed for the report).
+    render : callable
+        ``render(view) -> list of blocks``.
+    verdicts : callable, optional
+        ``verdicts(view) -> list of Verdict``: the checks it judges.
+    shown : callable
+        ``shown(settings) -> bool``: whether the report has it.
+    """
+
+    key: str
+    title: str
+    stages: tuple[str, ...]
+    render: Callable[[View], list[Block]]
+    verdicts: Callable[[View], list[Verdict]] | None = None
+    shown: Callable[[ReportSettings], bool] = lambda s: True
