@@ -17,17 +17,31 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import Any, Protocol
 
 import numpy as np
 
 from ..errors import ArgumentError
 from ..rotordynamics import combine, import_ross
 
-if TYPE_CHECKING:
-    from .massdata import WholeCouplingData
-
 MM_TO_M = 1e-3
+
+
+class CouplingMasses(Protocol):
+    """What :func:`ross_pieces` reads of a :class:`~.massdata.WholeCouplingData` (a
+    protocol, so that this module does not import the one that calls it)."""
+
+    @property
+    def geometry(self) -> Any: ...
+
+    @property
+    def parts(self) -> Any: ...
+
+    @property
+    def matrices(self) -> Any: ...
+
+    @property
+    def torsion(self) -> Any: ...
 
 
 @dataclass(frozen=True, eq=False)
@@ -60,7 +74,7 @@ def lateral_diagonal(matrix: np.ndarray, azimuth_deg: float) -> tuple[float, ...
     return tuple(out)
 
 
-def ross_pieces(data: WholeCouplingData, n: int = 0, *,
+def ross_pieces(data: CouplingMasses, n: int = 0, *,
                 held_torque: bool = False) -> RossPieces:
     """:class:`RossPieces` of the coupling's data from element ``n`` (module docstring);
     ``held_torque``: the lateral stiffness with the torque held (the wind-up free)."""
