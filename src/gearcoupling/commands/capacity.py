@@ -42,8 +42,8 @@ def register(sub) -> None:
                    "largest critical misalignment of the specs, at least their design angles "
                    "and 0.5)")
     p.add_argument("--count", type=count(2, MAX_COUNT), default=None, metavar="N",
-                   help=f"misalignments from 0 to --max, 2-{MAX_COUNT} (default {DEFAULT_COUNT}: "
-                        "about 2 s each with the surface model)")
+                   help=f"misalignments from 0 to --max, 2-{MAX_COUNT} (default "
+                        f"{DEFAULT_COUNT}; each a capacity search)")
     p.add_argument("--misalignments", type=degree_list, default=None, metavar="DEG,DEG,...",
                    help="the misalignments themselves, comma-separated degrees 0-6 "
                         "(instead of --max and --count)")

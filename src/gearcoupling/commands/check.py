@@ -30,7 +30,7 @@ from .common import (
 from .folders import claim, holds_folders
 
 EXIT_INTERFERENCE = 1
-MAX_CHECK_ANGLES = 3600  # every pose is a mesh boolean: about 3600 x 10-100 ms at most
+MAX_CHECK_ANGLES = 3600  # every pose is a mesh boolean: the count bounds the run
 MAX_HALF_WINDOW = MAX_TEETH // 2  # 2K+1 teeth cover the largest coupling
 
 
@@ -91,7 +91,8 @@ def print_table(result, count: int) -> None:
         t.add_column(col, justify="right", overflow="fold")
     for j in result.worst(count):
         t.add_row(f"{result.angles_deg[j]:.2f}", f"{result.overlap_volume_mm3[j]:.4g}",
-                  f"{result.overlap_depth_mm[j]:.5f}", f"{result.min_gap_mm[j]:+.5f}", overlapping_teeth(result, j),
+                  f"{result.overlap_depth_mm[j]:.5f}", f"{result.min_gap_mm[j]:+.5f}",
+                  overlapping_teeth(result, j),
                   f"{result.gap_tooth[j]}: {result.gap_hub_surface[j]}/"
                   f"{result.gap_sleeve_surface[j]}")
     console = Console()

@@ -13,9 +13,9 @@ from ..rotordynamics import (
     FILES,
     MAX_TORQUE_NM,
     ROSS_SUFFIXES,
+    CouplingData,
     check_inputs,
     coupling_data,
-    CouplingData,
     import_ross,
     write_ross,
 )

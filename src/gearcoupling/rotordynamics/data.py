@@ -505,7 +505,7 @@ def _call(step: Callable[[], Any] | None) -> None:
 def _curves(halves, model: str, tick: Callable[[], Any] | None = None) -> list[list[float]]:
     """The teeth's wind-up from first touch at each ``(sweep, torques)`` of ``halves``, each
     solve starting from the last pose solved on its sweep; ``tick()`` after each."""
-    out = []
+    out: list[list[float]] = []
     for sw, torques in halves:
         out.append([])
         for t in torques:
