@@ -56,29 +56,6 @@ def test_capacity_prints_capacity_governing_criterion_and_k_per_misalignment(tmp
 # --------------------------------------------------------------------------- datasheet
 
 
-def test_datasheet_prints_its_key_figures(tmp_path, capsys):
-    """Masses, secant and tangent torsional stiffness, the allowable misalignment and the
-    capacity, as datasheet.json holds them (4 significant digits), before the paths."""
-    out = tmp_path / "ds"
-    assert main(["datasheet", M2, "--model", "compliance", "--rotations", "1", "--angles",
-                 "4", "-o", str(out)]) == 0
-    text = capsys.readouterr().out
-    data = json.loads((out / "datasheet.json").read_text(encoding="utf-8"))
-    a, t = data["allowable"], data["torsion"]
-    wanted = [f"{M2}: i = {data['misalignment_deg']:g}°, T = {data['torque_Nm']:.4g} N·m "
-              f"(compliance model, {data['springs']} springs)",
-              "mass: " + ", ".join(f"{k} {data['mass'][k]['mass_kg']:.4g} kg"
-                                   for k in ("hub", "sleeve", "coupling")),
-              f"secant {t['secant_Nm_per_rad']:.4g} N·m/rad, tangent "
-              f"{t['tangent_Nm_per_rad']:.4g} N·m/rad",
-              f"allowable misalignment: {a['misalignment_deg']:.4g}° (limited by the "
-              f"{a['criterion']}",
-              f"capacity at {data['misalignment_deg']:g}°: {data['capacity_Nm']:.4g} N·m"]
-    for line in wanted:
-        assert line in text, (line, text)
-    assert text.index("capacity at") < text.index(str(out / "datasheet.json"))
-
-
 @pytest.mark.skipif(not can_fork(), reason="needs the fork start method")
 def test_datasheet_progress_has_a_step_per_solve_from_both_workers():
     """In two forked workers (a fresh interpreter: forking needs one without threads) the
@@ -163,6 +140,22 @@ def test_spec_json_prints_the_mm_values_without_the_conversions_rounding(capsys)
             assert a == pytest.approx(b, rel=5e-12, abs=0), where
 
     close(printed, own, "spec")
+
+
+# --------------------------------------------------------------------------- README
+
+
+def test_readme_report_example_writes_where_the_cli_does():
+    """The README's Python example gives gc.report the folder `gearcoupling report
+    renzo-1967` writes into (its report.html there), the folder gc.run gets too."""
+    from gearcoupling.io import default_output_dir
+
+    text = (ROOT / "README.md").read_text(encoding="utf-8")
+    block = text.split("```python\n", 1)[1].split("```", 1)[0]
+    spec = re.search(r'gc\.load_spec\("([^"]+)"\)', block).group(1)
+    run_out = re.search(r'gc\.run\(spec, "([^"]+)"\)', block).group(1)
+    report_out = re.search(r'gc\.report\(spec, "([^"]+)"\)', block).group(1)
+    assert Path(report_out) == Path(run_out) == default_output_dir(spec)
 
 
 # --------------------------------------------------------------------------- plots
