@@ -438,12 +438,11 @@ class DatasheetSteps:
     def __init__(self, progress: Callable[[int, int], Any] | None, curve_points: int):
         self.progress = progress
         self.done, self.ended = 0, False
-        self.total = 3 + SEARCH_STEPS + 1 + curve_points
-        self._report()
+        self.curve(curve_points)
 
     def curve(self, torques: int) -> None:
-        """The count of the curve's torques solved (known once the capacity is)."""
-        self.total = 3 + SEARCH_STEPS + 1 + torques
+        """The count of the curve's torques to solve (known once the capacity is)."""
+        self.total = 4 + SEARCH_STEPS + torques  # the masses, capacity, matrix and turn
         self._report()
 
     def step(self) -> None:
@@ -463,7 +462,7 @@ class DatasheetSteps:
             self.progress(self.done, self.total)
 
 
-#: capacities the allowable misalignment's search solves on the templates, about
+#: capacities the allowable misalignment's search solves, about, on the templates
 #: (:func:`~.allowable.capacity_limit_deg`): what the progress bar expects of it
 SEARCH_STEPS = 4
 
