@@ -189,6 +189,7 @@ def test_bending_moment_ticks_read_as_the_values():
     lo, hi = moment.get_ylim()
     shown = [v for v in values if lo <= v <= hi]
     assert max(shown) >= 200 and lo <= 0.0 + 1e-9, (shown, lo, hi)
+    assert hi > 1.05 * 246.15  # the line clear of the frame
 
 
 ROWS_6 = [{"hub.crowning.radius": R, "tooth.pressure_angle_deg": pa, "sleeve.tip_chamfer": ch,

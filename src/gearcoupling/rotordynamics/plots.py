@@ -45,7 +45,8 @@ def plot_allowable_loads(allowable, title: str = ""):
     psi = allowable.angles_deg
     a0.plot(psi, allowable.bending_moment_Nm, color="C0")
     a0.set_ylabel("bending moment (N·m)")
-    a0.set_ylim(bottom=0)
+    top = float(np.max(allowable.bending_moment_Nm, initial=0.0))
+    a0.set_ylim(0.0, 1.1 * top if top > 0 else 1.0)  # the line below the frame
     a1.plot(psi, allowable.axial_slip_force_N, color="C1", label="axial slip force")
     a1.plot(psi, allowable.axial_force_N, color="C2", label="thrust along the hub axis")
     a1.plot(psi, allowable.radial_force_N, color="C3", label="radial force")
