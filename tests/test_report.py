@@ -284,6 +284,36 @@ def test_report_renders_in_chromium_and_prints_a_page_per_section(made, tmp_path
     assert pages >= len(headings)  # every section starts a page
 
 
+@pytest.mark.needs_browser
+@pytest.mark.slow
+def test_verdict_table_fits_a_1400_px_window(made):
+    """In a 1400 px window the page does not scroll sideways and every verdict text is
+    whole: its cell inside the window, nothing of it clipped, its text inside its cell."""
+    from gearcoupling.browser import chromium
+
+    res, _ = made
+    with chromium() as browser:
+        page = browser.new_page(viewport={"width": 1400, "height": 900})
+        try:
+            page.goto(res.html.as_uri(), wait_until="load")
+            width = page.evaluate("document.documentElement.scrollWidth")
+            cells = page.evaluate("""Array.from(document.querySelectorAll('#verdict td.verdict'))
+                .map(c => { const r = c.getBoundingClientRect(), range = document.createRange();
+                            range.selectNodeContents(c);
+                            const t = range.getBoundingClientRect();
+                            return {text: c.textContent, left: r.left, right: r.right,
+                                    scroll: c.scrollWidth, client: c.clientWidth,
+                                    textLeft: t.left, textRight: t.right}; })""")
+        finally:
+            page.close()
+    assert width <= 1400
+    assert len(cells) >= 8 and max(len(c["text"]) for c in cells) > 100  # long texts there
+    for c in cells:
+        assert 0 <= c["left"] and c["right"] <= 1400, c
+        assert c["scroll"] <= c["client"], c
+        assert c["left"] <= c["textLeft"] and c["textRight"] <= c["right"], c
+
+
 def test_margin_says_whether_the_models_error_band_crosses_the_limit():
     """A load 5 % under its limit with a band of 0.9-1.1 x the load crosses it; 20 % under
     does not; a capacity 5 % over the torque with the same band crosses (the capacity's
