@@ -174,6 +174,20 @@ def test_verdicts_without_limits_or_inputs_are_not_judged(renzo):
     assert interference_verdict(None, "not run: no python-fcl").verdict == OPEN
 
 
+def test_verdict_cells_are_coloured_by_their_verdict_also_with_a_margin():
+    """A judged row's text carries its margin ("fail: margin -10.9 %"): its cell is still
+    styled fail (red), not open (amber)."""
+    from gearcoupling.reporting.document import Section, Table, render
+
+    rows = [("a", "pass: margin +6.9 %"), ("b", "fail: margin -10.9 %"), ("c", "pass"),
+            ("d", "not judged: no limit set")]
+    page = render("t", "s", ("pass", "x"), [Section("v", "V", [Table(("check", "verdict"),
+                                                                       rows, "",
+                                                                       verdict_column=1)])])
+    classes = re.findall(r'<td class="verdict (\w+)">', page)
+    assert classes == ["pass", "fail", "pass", "open"]
+
+
 def test_overall_verdict_names_failures_and_counts_what_was_not_judged():
     ok = Verdict("a", "1", "2", "x", PASS)
     bad = Verdict("b", "3", "2", "x", FAIL)

@@ -143,8 +143,7 @@ def _table(t: Table) -> str:
         for i, v in enumerate(row):
             text = html.escape(fmt(v))
             if i == t.verdict_column:
-                key = str(v).split(" ")[0] if str(v).startswith(("pass", "fail")) else \
-                    "not judged"
+                key = str(v).split(":")[0].split(" ")[0]  # "pass: margin ..." is a pass
                 cells.append(f'<td class="verdict {VERDICT_CLASS.get(key, "open")}">{text}</td>')
             elif isinstance(v, int | float) and not isinstance(v, bool):
                 cells.append(f'<td class="num">{text}</td>')
