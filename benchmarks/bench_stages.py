@@ -2,7 +2,7 @@
 
 Run: ``python benchmarks/bench_stages.py [TEMPLATE ...]`` (default renzo-1967). Computes
 every stage of :data:`gearcoupling.outputs.STAGES` in one process (``workers=1``, files
-written to a temporary folder) and prints, per stage, the CPU seconds it took (its
+written to a temporary folder) and prints, per stage, the seconds it took (its
 compute and its files) beside the ``cost`` of its record, which the two workers balance
 and the progress bar counts; a stage that skips says why. The costs in
 ``gearcoupling/outputs/registry.py`` are these figures for renzo-1967, rounded.

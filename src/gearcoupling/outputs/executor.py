@@ -12,6 +12,7 @@ calls: the results of one call are its return value.
 from __future__ import annotations
 
 import importlib
+import os
 import multiprocessing
 import multiprocessing.connection
 import time
@@ -177,7 +178,7 @@ def _record(state: _State, task: _Task, kind: str, value: Any, files: tuple[Path
 
 
 def compute(spec: CouplingSpec, settings: StageSettings, names: Sequence[str], *,
-            folder: Path | None = None, workers: int = 1,
+            folder: str | os.PathLike | None = None, workers: int = 1,
             progress: Progress | None = None, written: list[Path] | None = None) -> Results:
     """The results of the stages ``names`` and those they need (:func:`plan`), their files
     written into ``folder`` (None: none written).
@@ -188,7 +189,7 @@ def compute(spec: CouplingSpec, settings: StageSettings, names: Sequence[str], *
     reaps them before it propagates, so no file is written after it. ``progress(done,
     total)`` in tenths of the stages' expected CPU seconds. ``written``: a list that each
     file is added to as it is written (what an interrupted computation left)."""
-    state = _State(spec, settings, folder, plan(names))
+    state = _State(spec, settings, None if folder is None else Path(folder), plan(names))
     if written is not None:
         state.written = written
     total = max(1, round(10 * sum(s.cost for s in state.stages)))
