@@ -12,9 +12,9 @@ calls: the results of one call are its return value.
 from __future__ import annotations
 
 import importlib
-import os
 import multiprocessing
 import multiprocessing.connection
+import os
 import time
 from collections import Counter
 from collections.abc import Callable, Sequence
