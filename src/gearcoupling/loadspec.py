@@ -221,5 +221,32 @@ def parse_material(data: Any) -> Materials:
     return Materials(**out)
 
 
-__all__ = ["LOAD_MODELS", "UNIT_SIBLINGS", "LoadSpec", "Material", "Materials", "parse_load",
-           "parse_material"]
+# --------------------------------------------------------------------------- wear
+
+#: the keys of ``[wear]``: read here as text and numbers, judged by ``gearcoupling.wear``
+#: (its ``WearSettings``, which knows the regimes and the ranges)
+WEAR_TABLE_KEYS = ("regime", "coefficient_mm3_per_Nm", "coefficient_band_mm3_per_Nm",
+                   "sleeve_factor", "limit_fraction", "required_life_h")
+
+
+def parse_wear(data: Any) -> tuple[tuple[str, Any], ...]:
+    """The ``[wear]`` table as ``(key, value)`` pairs in :data:`WEAR_TABLE_KEYS` order:
+    ``regime`` a string, the band an array of numbers, the others numbers; unknown keys
+    refused. What each value may be is ``gearcoupling.wear``'s to say."""
+    t = data if isinstance(data, Table) else Table(data, "wear")
+    out: list[tuple[str, Any]] = []
+    for key in WEAR_TABLE_KEYS:
+        if not t.has(key):
+            continue
+        if key == "regime":
+            out.append((key, t.get(key, str)))
+        elif key == "coefficient_band_mm3_per_Nm":
+            out.append((key, t.array(key)))
+        else:
+            out.append((key, t.number(key)))
+    t.done(WEAR_TABLE_KEYS)
+    return tuple(out)
+
+
+__all__ = ["LOAD_MODELS", "UNIT_SIBLINGS", "WEAR_TABLE_KEYS", "LoadSpec", "Material",
+           "Materials", "parse_load", "parse_material", "parse_wear"]

@@ -22,7 +22,7 @@ import numpy as np
 from .errors import ArgumentError, GeometryError, SpecError, brief
 from .geometry import HubModel, feed_path, inv_inverse, radius_squared, use_spec_loader
 from .io import Table, as_path, bundled_names, read_toml, resolve_bundled, set_dotted, unknown_key
-from .loadspec import UNIT_SIBLINGS, parse_load, parse_material
+from .loadspec import UNIT_SIBLINGS, WEAR_TABLE_KEYS, parse_load, parse_material, parse_wear
 from .specmodel import (
     INSPECTION_LIMITS,
     MAX_NAME_CHARS,
@@ -46,7 +46,7 @@ from .specmodel import (
 # every key a spec file may hold, per table (unknown keys are reported before anything else)
 SPEC_KEYS: dict[str, tuple[str, ...]] = {
     "": ("units", "name", "design_misalignment_deg", "tooth", "hub", "sleeve", "load",
-         "material", "inspection"),
+         "material", "inspection", "wear"),
     "tooth": ("teeth", "module", "diametral_pitch", "pressure_angle_deg"),
     "hub": ("face_width", "tooth_thickness", "backlash", "tip", "root", "crowning", "body"),
     "hub.tip": ("kind", "diameter"),
@@ -57,6 +57,7 @@ SPEC_KEYS: dict[str, tuple[str, ...]] = {
     "sleeve": ("face_width", "minor_diameter", "major_diameter", "space_width", "tip_chamfer",
                "root_fillet_radius", "outer_diameter"),
     "inspection": INSPECTION_LIMITS,
+    "wear": WEAR_TABLE_KEYS,
 }
 
 # how each derived default is chosen (quoted when a derived value is refused)
@@ -201,12 +202,13 @@ def _build(root: Table, name: str) -> CouplingSpec:
     sleeve = _sleeve(s, tooth, hub, space_width, tip_default)
     load = parse_load(root.table("load"))
     material = parse_material(root.table("material"))
+    wear = parse_wear(root.table("wear"))
     ins = root.table("inspection")  # tolerance limits for compare
     inspection = InspectionLimits(**{k: ins.length(k, math.inf) for k in INSPECTION_LIMITS})
     ins.done(SPEC_KEYS.get(ins.where, ()))
     root.done(SPEC_KEYS.get(root.where, ()))
     return CouplingSpec(tooth, hub, sleeve, misalignment, name=name, units=units, load=load,
-                        material=material, inspection=inspection)
+                        material=material, inspection=inspection, wear=wear)
 
 
 def _header(root: Table, name: str) -> tuple[str, str, float]:

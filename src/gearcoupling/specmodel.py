@@ -348,6 +348,7 @@ class CouplingSpec:
     material: Materials = field(default_factory=Materials)  # [material] (loadspec.py)
     units: str = field(default="mm", compare=False)
     inspection: InspectionLimits = field(default_factory=InspectionLimits, compare=False)
+    wear: tuple[tuple[str, Any], ...] = ()  # [wear] as read (loadspec.parse_wear)
 
     def __post_init__(self):
         check_misalignment_deg(math.degrees(self.design_misalignment), "design_misalignment_deg")
@@ -390,6 +391,8 @@ class CouplingSpec:
         out["load"] = {k: v for k, v in d["load"].items() if v is not None}
         out["material"] = {p: {k: v for k, v in m.items() if k != "part" and v is not None}
                            for p, m in d["material"].items()}
+        if self.wear:
+            out["wear"] = {k: list(v) if isinstance(v, tuple) else v for k, v in self.wear}
         cr = out["hub"]["crowning"]
         for key in ("s", "kappa", "z", "drop"):  # the file's keys of a tabulated path
             samples = list(cr.pop(f"table_{key}"))

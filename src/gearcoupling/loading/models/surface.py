@@ -367,10 +367,18 @@ class SurfaceSolver:
     offsets : (N,) float
         Gap offsets of the loaded flank.
     tolerance : float
+    extra_gap : callable, optional
+        ``extra_gap(j, teeth, gf) -> (n, nf, nd)`` gap (rad, >= 0) added to every gap field
+        ``gf`` of ``teeth`` at rotation ``j`` as it is built (a worn depth ``h`` along the
+        flank normal opens it by ``h / r_b``); called on every field, so it may change
+        between solves (the cached rows hold the gap without it). Its attribute
+        ``uniform`` (default False) says every tooth gets the same addition, which keeps
+        the whole-pitch symmetry of :meth:`plan`.
     """
 
     def __init__(self, spec: CouplingSpec, sweep_result, flank: str, tooth_compliance, *,
-                 grid=DEFAULT_GRID, offsets=None, tolerance: float = DEFAULT_TOLERANCE):
+                 grid=DEFAULT_GRID, offsets=None, tolerance: float = DEFAULT_TOLERANCE,
+                 extra_gap=None):
         self.spec = spec
         self.grid = _check_grid(grid)
         f = FLANKS.index(flank)
@@ -389,7 +397,9 @@ class SurfaceSolver:
         self.mis = math.radians(sw.misalignment_deg)
         self.r_b = spec.tooth.base_radius
         self.pitch = 2.0 * math.pi / N
-        self.uniform = bool(np.ptp(self.offsets) == 0.0)
+        self.extra_gap = extra_gap
+        self.uniform = bool(np.ptp(self.offsets) == 0.0) and (
+            extra_gap is None or bool(getattr(extra_gap, "uniform", False)))
         self.tooth_compliance = tooth_compliance
         self.e_star = contact_modulus(spec)
         self.tolerance = tolerance
@@ -445,7 +455,10 @@ class SurfaceSolver:
         rows = [self._rows[key] for key in keys]
         stacked: dict[str, Any] = {f: np.stack([row[k] for row in rows])
                                    for k, f in enumerate(_ROW_FIELDS)}
-        return replace(self._depth[n_depth], dz=float(z[0, 1] - z[0, 0]), **stacked)
+        gf = replace(self._depth[n_depth], dz=float(z[0, 1] - z[0, 0]), **stacked)
+        if self.extra_gap is None:
+            return gf
+        return replace(gf, gap_rad=gf.gap_rad + self.extra_gap(j, teeth, gf))
 
     def _state(self, j, teeth, level, gf, sol, lift_from, centres) -> SolvedPose:
         c, e = _spans(gf, sol.pressure_MPa)
