@@ -19,6 +19,7 @@ HEAVY = ("trimesh", "manifold3d", "viser", "OCP", "meshio", "matplotlib", "dask"
     "gearcoupling.inspection",
     "gearcoupling.study",
     "gearcoupling.rotordynamics",
+    "gearcoupling.wear",
 ])
 def test_kernels_import_no_heavy_backend(module):
     code = (f"import sys, {module}; "
@@ -74,6 +75,7 @@ LAYERS = {
                "clearance", "interference", "loading", "inspection"},
     "rotordynamics": {"io", "errors", "forked", "geometry", "spec", "loadspec", "plots",
                       "parts", "clearance", "loading", "tables"},
+    "wear": {"io", "errors", "geometry", "spec", "plots", "clearance", "loading", "tables"},
 }
 # the argument checks (numbers, counts, torques, documented maxima) sit beside the errors,
 # the numeric guards (numpy only) below everything
