@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any
 
-from ..arguments import real, resolve_torque_Nm
+from ..arguments import flag, real, resolve_torque_Nm
 from ..spec import CouplingSpec, as_spec
 from .history import run_history
 from .result import WearResult
@@ -29,7 +29,8 @@ def wear(spec: CouplingSpec | str, misalignment_deg: float | None = None,
          axial_float_mm: float = 0.0, gap_offset_rad: Any = None,
          step_fraction: float = DEFAULT_STEP_FRACTION, grid: tuple[int, int] | None = None,
          phases: int = DEFAULT_PHASES,
-         progress: Callable[[int, int], None] | None = None) -> WearResult:
+         progress: Callable[[int, int], None] | None = None,
+         keep: bool = False) -> WearResult:
     """The wear of the flanks of every tooth over ``hours`` of running, and the life to the
     wear limit (docs/wear.md).
 
@@ -64,6 +65,9 @@ def wear(spec: CouplingSpec | str, misalignment_deg: float | None = None,
         The accuracy knobs (:class:`Accuracy`; docs/wear.md measures them).
     progress : callable, optional
         ``progress(done, 1000)`` as the history advances.
+    keep : bool
+        Keep every step's solved poses (``WearResult.steps_kept``: for checks; memory
+        grows with the steps).
 
     Returns
     -------
@@ -96,7 +100,7 @@ def wear(spec: CouplingSpec | str, misalignment_deg: float | None = None,
                open_lo=True, unit="h")
     return run_history(spec, points, settings, accuracy, run,
                        gap_offset_rad=gap_offsets(gap_offset_rad, spec.tooth.teeth),
-                       progress=progress)
+                       progress=progress, keep=flag(keep, "keep"))
 
 
 __all__ = ["wear"]

@@ -59,6 +59,7 @@ def _overlaps(x: NDArray, width: float, lo: float, d: float, n: int
     left = np.where(idx <= 0, -np.inf, idx)
     right = np.where(idx >= n - 1, np.inf, idx + 1.0)
     share = np.maximum(np.minimum(b, right) - np.maximum(a, left), 0.0) / (b - a)
+    share = np.where((idx >= 0) & (idx < n), share, 0.0)  # beyond: held by the end cells
     return np.clip(idx, 0, n - 1), share
 
 
@@ -89,13 +90,18 @@ def deposit(values: ArrayLike, grid: FlankGrid, tooth: ArrayLike, z: ArrayLike,
             s: ArrayLike, dz: float, ds: float, teeth: int) -> NDArray[np.float64]:
     """The transpose of :func:`sample`: ``values (n, ...)`` of cells ``dz`` by ``ds``
     centred on ``z, s`` of teeth ``tooth (n,)``, each spread over the map cells its area
-    overlaps in proportion, as ``(teeth, nz, ns)`` sums; the total is kept."""
-    v = np.asarray(values, float)
-    idx, w = _weights(grid, tooth, np.broadcast_to(np.asarray(z, float), v.shape),
-                      np.broadcast_to(np.asarray(s, float), v.shape), dz, ds)
-    total = np.bincount(idx.ravel(), weights=(w * v).ravel(),
-                        minlength=teeth * grid.nz * grid.ns)
-    return total.reshape(teeth, grid.nz, grid.ns)
+    overlaps in proportion, as ``(teeth, nz, ns)`` sums; the total is kept. ``values`` may
+    also be a list of such arrays: a list of sums, the overlaps found once."""
+    many = isinstance(values, list | tuple)
+    vs = [np.asarray(v, float) for v in (values if many else [values])]
+    shape = vs[0].shape
+    idx, w = _weights(grid, tooth, np.broadcast_to(np.asarray(z, float), shape),
+                      np.broadcast_to(np.asarray(s, float), shape), dz, ds)
+    flat = idx.ravel()
+    size = teeth * grid.nz * grid.ns
+    out = [np.bincount(flat, weights=(w * v).ravel(), minlength=size).reshape(
+        teeth, grid.nz, grid.ns) for v in vs]
+    return out if many else out[0]
 
 
 def sleeve_rows(r_mm: ArrayLike, half_angle: ArrayLike, r_b: float
@@ -162,20 +168,24 @@ def limit_crossing(loss0: ArrayLike, loss1: ArrayLike, limit: float) -> float | 
     return float(np.clip(np.min(lam), 0.0, 1.0))
 
 
-def slip_runs(loaded: NDArray[np.bool_], slip_mm_per_rad: NDArray, half_width_mm: NDArray,
-              work: NDArray, dpsi: float) -> tuple[float, float]:
+def slip_runs(loaded: NDArray[np.bool_], slip_z: NDArray, slip_s: NDArray,
+              half_width_mm: NDArray, work: NDArray, dpsi: float, float_mm: float = 0.0
+              ) -> tuple[float, float]:
     """The partial-slip test over a turn sampled every ``dpsi`` (rad): arrays ``(T, M)``
     per tooth and rotation in turning order. A run of consecutive loaded samples is one
-    pass of a tooth through its loaded arc; its slip amplitude is half the distance slid
-    at the load centre (``slip`` mm/rad times ``dpsi``), against the largest contact
-    half-width along the sliding direction in the run. Returns the share of ``work``
-    (normal force times sliding) done in passes whose amplitude is below their half-width
-    (partial slip, fretting: part of the contact is never uncovered), and the smallest
-    ratio of amplitude to half-width (inf where nothing is loaded)."""
+    pass of a tooth through its loaded arc (a tooth loaded all round: the whole turn); its
+    slip amplitude is half the largest excursion of the load centre's relative
+    displacement (the signed sliding velocity ``slip_z``, ``slip_s`` mm/rad along the face
+    and the profile, integrated), or an axial float's amplitude ``float_mm`` where larger,
+    against the largest contact half-width along the sliding direction in the run.
+    Returns the share of ``work`` (normal force times sliding) done in passes whose
+    amplitude is below their half-width (partial slip, fretting: part of the contact is
+    never uncovered), and the smallest ratio of amplitude to half-width (inf where nothing
+    is loaded)."""
     partial = 0.0
     worst = math.inf
     total = float(np.sum(work))
-    for row, slip, hw, wk in zip(loaded, slip_mm_per_rad, half_width_mm, work, strict=True):
+    for row, vz, vs, hw, wk in zip(loaded, slip_z, slip_s, half_width_mm, work, strict=True):
         if not np.any(row):
             continue
         start = int(np.argmin(row)) if not np.all(row) else 0  # begin at an unloaded one
@@ -184,7 +194,8 @@ def slip_runs(loaded: NDArray[np.bool_], slip_mm_per_rad: NDArray, half_width_mm
         edges = np.flatnonzero(np.diff(np.concatenate([[0], on.astype(int), [0]])))
         for a, b in zip(edges[::2], edges[1::2], strict=True):
             run = order[a:b]
-            amplitude = 0.5 * float(np.sum(slip[run])) * dpsi
+            excursion = max(float(np.ptp(np.cumsum(v[run]))) for v in (vz, vs)) * dpsi
+            amplitude = max(0.5 * excursion, float_mm)
             width = float(np.max(hw[run]))
             if width > 0:
                 worst = min(worst, amplitude / width)

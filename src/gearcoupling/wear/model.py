@@ -187,7 +187,7 @@ class PointSolver:
         acc = _Stats(self, T)
         for shift, axial in self.floats:
             self.worn.shift_mm = shift
-            acc.new_float()
+            acc.new_float(axial)
             for j in self.order:
                 out, extra, self.last = self.solver.solve_pose(int(j), self.load_N, self.last,
                                                                True)
@@ -195,27 +195,33 @@ class PointSolver:
                 polar, tangent = self._rows(gf)
                 vz, vs = slip_velocity(self.axis[teeth, j], gf.z_mm, gf.r_mm, polar, tangent,
                                        axial)
-                weight = gf.dz * gf.ds * self.dpsi / len(self.floats)
+                # aligned with ideal teeth the solver solves one tooth for all: each of the
+                # loaded teeth is one more sample of the turn
+                n_on = int(np.count_nonzero(out["normal_force_N"]))
+                copies = n_on if teeth.size == 1 and n_on > 1 else 1
+                weight = gf.dz * gf.ds * self.dpsi / len(self.floats) * copies
                 slide = np.where(p > 0, np.hypot(vz, vs) * weight, 0.0)  # mm³ per rev
                 work = p * slide  # N·mm per rev
                 t = teeth if T > 1 else np.zeros(teeth.size, dtype=np.intp)
                 s_hub = developed_arc(gf.hub_r_mm, self.r_b)
                 z_sleeve = gf.z_mm[:, :, None] + shift
-                for value, h, s in ((work, hub, sleeve), (slide, hub_slide, sleeve_slide)):
-                    h += deposit(value, hg, t, gf.hub_z_mm, s_hub, gf.dz, gf.ds, T)
-                    s += deposit(value, sg, t, z_sleeve, gf.s_mm[None, None, :], gf.dz,
-                                 gf.ds, T)
-                if keep:
-                    kept.append((int(j), teeth, gf, p, axial, weight))
-                # the mean pressure over each hub map cell's covered part, where a pose's
-                # grid covers at least half of it
-                cover = deposit(np.where(gf.mask, 1.0, 0.0), hg, t, gf.hub_z_mm, s_hub, gf.dz,
-                                gf.ds, T) * (gf.dz * gf.ds / hg.area_mm2)
-                seen = deposit(p, hg, t, gf.hub_z_mm, s_hub, gf.dz, gf.ds, T) * (
-                    gf.dz * gf.ds / hg.area_mm2)
+                # the mean pressure over each hub map cell's covered part (where a pose's
+                # grid covers at least half of it): the tooth bearing picture
+                w_hub, s_hub_, cover, seen = deposit(
+                    [work, slide, np.where(gf.mask, gf.dz * gf.ds / hg.area_mm2, 0.0),
+                     p * (gf.dz * gf.ds / hg.area_mm2)], hg, t, gf.hub_z_mm, s_hub, gf.dz,
+                    gf.ds, T)
+                w_sl, s_sl = deposit([work, slide], sg, t, z_sleeve, gf.s_mm[None, None, :],
+                                     gf.dz, gf.ds, T)
+                hub += w_hub
+                hub_slide += s_hub_
+                sleeve += w_sl
+                sleeve_slide += s_sl
                 np.maximum(bearing, np.where(cover > 0.5, seen / np.maximum(cover, 0.5), 0.0),
                            out=bearing)
-                acc.pose(j, out, extra, gf, p, teeth, vz, vs, work)
+                if keep:
+                    kept.append((int(j), teeth, gf, p, axial, weight))
+                acc.pose(j, out, extra, gf, p, teeth, vz, vs, work / copies)
         per_k = 1e-3  # k in mm³/(N·m), the work in N·mm
         hk, sk = per_k / hg.area_mm2, per_k / sg.area_mm2
         return Turn(self.flank, hub * hk, sleeve * sk, hub_slide * hk, sleeve_slide * sk,
@@ -278,11 +284,14 @@ class _Stats:
         self.partial = 0.0
         self.ratio = math.inf
         self.slip: tuple | None = None
+        self.axial = 0.0
 
-    def new_float(self):
+    def new_float(self, axial: float = 0.0):
         self._flush()
+        self.axial = axial
         shape = (self.T, self.lattice)
-        self.slip = (np.zeros(shape, bool), np.zeros(shape), np.zeros(shape), np.zeros(shape))
+        self.slip = (np.zeros(shape, bool), np.zeros(shape), np.zeros(shape), np.zeros(shape),
+                     np.zeros(shape))
 
     def pose(self, j, out, extra, gf, p, teeth, vz, vs, work):
         self.solves += 1
@@ -300,15 +309,21 @@ class _Stats:
             g = r_b * gf.gap_rad + (0.0 if local is None else local * p)
             elastic = r_b * extra["windup_rad"] - np.min(np.where(p > 0, g, np.inf))
             self.approach = min(self.approach, float(elastic))
-        self.work += float(np.sum(work))
-        self._passes(j, teeth, gf, p, vz, vs, work)
+        alike = teeth.size == 1 and np.sum(W > 0) > 1  # aligned: one tooth stands for all
+        self.work += float(np.sum(work)) * (int(np.sum(W > 0)) if alike else 1)
+        self._passes(j, np.flatnonzero(W > 0) if alike else teeth, alike, gf, p, vz, vs,
+                     work)
 
-    def _passes(self, j, teeth, gf, p, vz, vs, work):
-        """Each loaded tooth's slip speed at its load centre and half-width of its patch
-        along the sliding direction, on the turn's lattice."""
-        on, slip, width, wk = self.slip  # type: ignore[misc]
+    def _passes(self, j, teeth, alike, gf, p, vz, vs, work):
+        """Each loaded tooth's sliding velocity at its load centre (less an axial float's)
+        and half-width of its patch along the sliding direction, on the turn's lattice."""
+        on, slip_z, slip_s, width, wk = self.slip  # type: ignore[misc]
         P = np.sum(p, axis=(1, 2))
-        for i in np.flatnonzero(P > 0):
+        axial = self.axial
+        for n, tooth in enumerate(teeth):
+            i = 0 if alike else n
+            if not P[i] > 0:
+                continue
             w = p[i] / P[i]
             uz, us = float(np.sum(w * vz[i])), float(np.sum(w * vs[i]))
             speed = math.hypot(uz, us)
@@ -321,17 +336,17 @@ class _Stats:
             else:
                 half = 0.0
             if self.T == 1:
-                t, k = 0, round(self.ps.theta[teeth[i], j] / self.ps.dpsi) % self.lattice
+                t, k = 0, round(self.ps.theta[tooth, j] / self.ps.dpsi) % self.lattice
             else:
-                t, k = int(teeth[i]), int(j)
-            on[t, k], slip[t, k], width[t, k] = True, speed, half
+                t, k = int(tooth), int(j)
+            on[t, k], slip_z[t, k], slip_s[t, k], width[t, k] = True, uz - axial, us, half
             wk[t, k] += float(np.sum(work[i]))
 
     def _flush(self):
         if self.slip is None:
             return
-        share, ratio = slip_runs(*self.slip, self.ps.dpsi)
-        total = float(np.sum(self.slip[3]))
+        share, ratio = slip_runs(*self.slip, self.ps.dpsi, self.ps.point.axial_float_mm)
+        total = float(np.sum(self.slip[4]))
         self.partial += share * total
         self.ratio = min(self.ratio, ratio)
 

@@ -28,8 +28,9 @@ def worn_flanks(result: WearResult) -> list[int]:
 
 def plot_wear_maps(result: WearResult):
     """Worn depth of the hub and the sleeve flank (worst tooth) and the tooth bearing
-    picture of the hub flank, on the developed flank (axial position across, involute arc
-    length up), at :data:`SNAPSHOTS` times; a row of each per loaded flank."""
+    picture of the hub flank (the largest pressure of a turn over its peak), on the
+    developed flank (axial position across, involute arc length up), at
+    :data:`SNAPSHOTS` times; a row of each per loaded flank."""
     import_matplotlib()
     from matplotlib.figure import Figure
 
@@ -44,9 +45,16 @@ def plot_wear_maps(result: WearResult):
         top = max(float(np.max(data[states])), 1e-12)
         for c, i in enumerate(states):
             ax = axes[r, c]
-            im = ax.pcolormesh(grid.z_mm, grid.s_mm, data[i].T, vmin=0.0, vmax=top, cmap=cmap,
-                               shading="nearest")
-            ax.set_title(f"{kind} {FLANKS[f]}, {result.hours[i]:.4g} h", fontsize=8)
+            title = f"{kind} {FLANKS[f]}, {result.hours[i]:.4g} h"
+            if kind == "bearing":  # each picture on its own scale, as a marking would be
+                peak = max(float(np.max(data[i])), 1e-12)
+                im = ax.pcolormesh(grid.z_mm, grid.s_mm, data[i].T / peak, vmin=0.0, vmax=1.0,
+                                   cmap=cmap, shading="nearest")
+                title += f", peak {peak:.0f} MPa"
+            else:
+                im = ax.pcolormesh(grid.z_mm, grid.s_mm, data[i].T, vmin=0.0, vmax=top,
+                                   cmap=cmap, shading="nearest")
+            ax.set_title(title, fontsize=8)
             ax.tick_params(labelsize=7)
             if c == 0:
                 ax.set_ylabel("s (mm)", fontsize=8)
@@ -67,7 +75,7 @@ def _panel_data(result: WearResult, flank: int, kind: str):
         return result.hub_maps[:, flank], result.hub_grid, "depth (mm)", "magma"
     if kind == "sleeve":
         return result.sleeve_maps[:, flank], result.sleeve_grid, "depth (mm)", "magma"
-    return result.bearing_MPa[:, flank], result.hub_grid, "pressure (MPa)", "viridis"
+    return result.bearing_MPa[:, flank], result.hub_grid, "pressure / its peak", "viridis"
 
 
 def plot_wear_history(result: WearResult):

@@ -236,8 +236,9 @@ class WearResult:
                     for c, v in zip(cols, ([label] * n, [body] * n, [name] * n, z.ravel(),
                                            s.ravel(), r.ravel(), maps[f, t].ravel()),
                                     strict=True):
-                        c.append(np.asarray(v))
-        return [np.concatenate(c) if c else np.zeros(0) for c in cols]
+                        c.append(v)
+        text = [sum(c, []) for c in cols[:3]]  # the text columns as str lists
+        return [*text, *(np.concatenate(c) if c else np.zeros(0) for c in cols[3:])]
 
 
 _LOAD_KEYS = ("q", "max_tooth_load_N", "max_pressure_MPa", "max_interior_pressure_MPa",
