@@ -25,6 +25,7 @@ from .result import POINT_STATS, WearResult, thicknesses_mm
 from .settings import Accuracy, OperatingPoint, WearSettings
 
 MAX_STEPS = 2000  # a history stops with an error past this many steps
+SPREAD_CELLS = 2  # map cells a step's wear per MPa is spread to (:func:`spread`)
 
 
 def tooth_losses(spec: CouplingSpec, maps: WearMaps) -> tuple[NDArray, NDArray]:
@@ -37,6 +38,27 @@ def tooth_losses(spec: CouplingSpec, maps: WearMaps) -> tuple[NDArray, NDArray]:
     hub = np.max(maps.hub[0] + maps.hub[1], axis=(1, 2))
     sleeve = np.max(maps.sleeve[1] + np.roll(maps.sleeve[0], -1, axis=0), axis=(1, 2))
     return factor * hub, factor * sleeve
+
+
+def spread(maps: NDArray, cells: int = SPREAD_CELLS) -> NDArray:
+    """``maps (..., nz, ns)`` spread to their neighbours: the largest value within
+    ``cells`` map cells either way along the face and the profile. The wear per MPa a
+    step gives a cell is known from the last turn's loaded cells; a patch that grows in
+    the step loads cells next to them, which then take their neighbours' value rather
+    than none (a cell with none would draw the load of the step's worn ones to itself)."""
+    out = maps.copy()
+    for axis in (-2, -1):
+        src = out.copy()
+        n = src.shape[axis]
+        for k in range(1, cells + 1):
+            if k >= n:
+                break
+            lo = [slice(None)] * src.ndim
+            hi = [slice(None)] * src.ndim
+            lo[axis], hi[axis] = slice(0, n - k), slice(k, n)
+            out[tuple(lo)] = np.maximum(out[tuple(lo)], src[tuple(hi)])
+            out[tuple(hi)] = np.maximum(out[tuple(hi)], src[tuple(lo)])
+    return out
 
 
 def _wear_ratio(spec: CouplingSpec, maps: WearMaps) -> NDArray:
@@ -157,10 +179,14 @@ def run_history(spec: CouplingSpec, duty: tuple[OperatingPoint, ...], settings: 
         rate = rates(turns, duty, maps, sf)
         approach = min(t.stats["approach_mm"] for t in turns)
         top = max(float(np.max(rate.hub)), float(np.max(rate.sleeve)))
-        dx = max(exposure_step(approach, top, accuracy.step_fraction, end - x),
-                 min(step_floor, end - x))
+        full = max(exposure_step(approach, top, accuracy.step_fraction, math.inf),
+                   step_floor)
+        dx = min(full, end - x)
+        # the implicit part at the rule's step even where the history's end cuts it
+        # short: the loads of every step are solved alike
         slide = rates(turns, duty, maps, sf, slide=True)
-        local = WearMaps(dx * slide.hub, dx * slide.sleeve, maps.hub_grid, maps.sleeve_grid)
+        local = WearMaps(full * spread(slide.hub), full * spread(slide.sleeve), maps.hub_grid,
+                         maps.sleeve_grid)
         turns = [s.turn(maps, local, keep) for s in solvers]
         rate = rates(turns, duty, maps, sf)
         new = maps.advanced(rate.hub, rate.sleeve, dx)

@@ -5,10 +5,11 @@ the partial-slip test.
 A depth map is ``(T, nz, ns)``: one map per tooth (``T = 1`` where every tooth wears
 alike), constant over each cell of a developed flank (:class:`FlankGrid`: axial position
 ``z`` across, involute arc length from the base circle ``s`` up). :func:`sample` reads a
-map's mean over the cells of a pressure grid (each a rectangle on the flank), and
-:func:`deposit` is its transpose: it spreads a cell's value over the map cells its area
-overlaps, in proportion, so what is deposited is kept to rounding and a pressure grid on a
-fixed lattice leaves no stripes between its cells.
+map on the cells of a pressure grid (each a rectangle on the flank: the map's mean over
+it, or where the cells are finer than the map's, its linear interpolation), and
+:func:`deposit` spreads a cell's value over the map cells its area overlaps, in
+proportion, so what is deposited is kept to rounding and a pressure grid on a fixed
+lattice leaves no stripes between its cells.
 """
 
 from __future__ import annotations
@@ -63,15 +64,28 @@ def _overlaps(x: NDArray, width: float, lo: float, d: float, n: int
     return np.clip(idx, 0, n - 1), share
 
 
+def _linear(x: NDArray, lo: float, d: float, n: int) -> tuple[NDArray[np.intp], NDArray]:
+    """The two cells ``(2, ...)`` whose centres bracket each point along one axis of ``n``
+    cells, and the linear weights (beyond the end centres: the end cell's value)."""
+    t = np.clip((x - lo) / d - 0.5, 0.0, n - 1.0)
+    i = np.minimum(np.floor(t).astype(np.intp), max(n - 2, 0))
+    w = t - i
+    return np.stack([i, np.minimum(i + 1, n - 1)]), np.stack([1.0 - w, w])
+
+
 def _weights(grid: FlankGrid, tooth: ArrayLike, z: NDArray, s: NDArray, dz: float,
-             ds: float):
+             ds: float, smooth: bool = False):
     """Flat indices ``(K, ...)`` into ``(T, nz, ns)`` maps and the area shares ``(K, ...)``
     of cells ``dz`` by ``ds`` centred on ``(z, s)`` of teeth ``tooth`` (one per point of
-    the first axis)."""
+    the first axis). ``smooth``: along an axis where the cells are narrower than the
+    map's, the linear interpolation between the map's cell centres instead (so a map
+    coarser than a grid reads as a smooth surface, not a staircase)."""
     z, s = np.broadcast_arrays(np.asarray(z, float), np.asarray(s, float))
     t = np.asarray(tooth, dtype=np.intp).reshape((-1,) + (1,) * (z.ndim - 1))
-    iz, wz = _overlaps(z, dz, grid.z0, grid.dz, grid.nz)
-    js, ws = _overlaps(s, ds, grid.s0, grid.ds, grid.ns)
+    iz, wz = (_linear(z, grid.z0, grid.dz, grid.nz) if smooth and dz < grid.dz else
+              _overlaps(z, dz, grid.z0, grid.dz, grid.nz))
+    js, ws = (_linear(s, grid.s0, grid.ds, grid.ns) if smooth and ds < grid.ds else
+              _overlaps(s, ds, grid.s0, grid.ds, grid.ns))
     idx = ((t * grid.nz + iz)[:, None] * grid.ns + js[None, :])
     w = wz[:, None] * ws[None, :]
     return idx.reshape((-1, *z.shape)), w.reshape((-1, *z.shape))
@@ -79,10 +93,13 @@ def _weights(grid: FlankGrid, tooth: ArrayLike, z: NDArray, s: NDArray, dz: floa
 
 def sample(maps: NDArray[np.float64], grid: FlankGrid, tooth: ArrayLike, z: ArrayLike,
            s: ArrayLike, dz: float, ds: float) -> NDArray[np.float64]:
-    """The mean of ``maps (T, nz, ns)`` (constant over each map cell) over cells ``dz`` by
-    ``ds`` centred on ``z, s (n, ...)`` of teeth ``tooth (n,)`` (indices into the maps'
-    first axis); shaped like the points."""
-    idx, w = _weights(grid, tooth, np.asarray(z, float), np.asarray(s, float), dz, ds)
+    """``maps (T, nz, ns)`` read on cells ``dz`` by ``ds`` centred on ``z, s (n, ...)`` of
+    teeth ``tooth (n,)`` (indices into the maps' first axis), shaped like the points: the
+    map's mean over each cell (a map cell's value held over its area), or along an axis
+    where the cells are narrower than the map's, its linear interpolation between cell
+    centres."""
+    idx, w = _weights(grid, tooth, np.asarray(z, float), np.asarray(s, float), dz, ds,
+                      smooth=True)
     return np.sum(maps.reshape(-1)[idx] * w, axis=0)
 
 

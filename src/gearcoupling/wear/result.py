@@ -237,7 +237,7 @@ class WearResult:
                                            s.ravel(), r.ravel(), maps[f, t].ravel()),
                                     strict=True):
                         c.append(v)
-        text = [sum(c, []) for c in cols[:3]]  # the text columns as str lists
+        text = [[x for part in c for x in part] for c in cols[:3]]  # text: str lists
         return [*text, *(np.concatenate(c) if c else np.zeros(0) for c in cols[3:])]
 
 
