@@ -75,9 +75,15 @@ def wear(spec: CouplingSpec | str, misalignment_deg: float | None = None,
 
     Examples
     --------
+    A short history at 1° on a coarse grid: the flanks wear, the backlash grows, and the
+    life to the wear limit comes with its band across the grease regime:
+
     >>> import gearcoupling as gc
-    >>> res = gc.wear("renzo-1967", 1.0, 2000.0, 1800.0, 2000.0, grid=(16, 8), phases=2)
-    >>> bool(res.life_h > 0)
+    >>> res = gc.wear("renzo-1967", 1.0, 2000.0, 1800.0, 100.0, grid=(16, 8), phases=1)
+    >>> bool(res.backlash_mm[-1, 0] > res.backlash_mm[0, 0])
+    True
+    >>> lo, hi = res.life_band_h
+    >>> bool(lo < res.life_h < hi)
     True
     """
     spec = as_spec(spec)

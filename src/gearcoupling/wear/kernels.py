@@ -35,11 +35,11 @@ class FlankGrid:
 
     @property
     def z_mm(self) -> NDArray[np.float64]:
-        return self.z0 + (np.arange(self.nz) + 0.5) * self.dz
+        return np.asarray(self.z0 + (np.arange(self.nz) + 0.5) * self.dz, dtype=np.float64)
 
     @property
     def s_mm(self) -> NDArray[np.float64]:
-        return self.s0 + (np.arange(self.ns) + 0.5) * self.ds
+        return np.asarray(self.s0 + (np.arange(self.ns) + 0.5) * self.ds, dtype=np.float64)
 
     @property
     def area_mm2(self) -> float:
@@ -105,20 +105,25 @@ def sample(maps: NDArray[np.float64], grid: FlankGrid, tooth: ArrayLike, z: Arra
 
 def deposit(values: ArrayLike, grid: FlankGrid, tooth: ArrayLike, z: ArrayLike,
             s: ArrayLike, dz: float, ds: float, teeth: int) -> NDArray[np.float64]:
-    """The transpose of :func:`sample`: ``values (n, ...)`` of cells ``dz`` by ``ds``
-    centred on ``z, s`` of teeth ``tooth (n,)``, each spread over the map cells its area
-    overlaps in proportion, as ``(teeth, nz, ns)`` sums; the total is kept. ``values`` may
-    also be a list of such arrays: a list of sums, the overlaps found once."""
-    many = isinstance(values, list | tuple)
-    vs = [np.asarray(v, float) for v in (values if many else [values])]
+    """The transpose of :func:`sample` where the cells are no narrower than the map's:
+    ``values (n, ...)`` of cells ``dz`` by ``ds`` centred on ``z, s`` of teeth ``tooth
+    (n,)``, each spread over the map cells its area overlaps in proportion, as ``(teeth,
+    nz, ns)`` sums; the total is kept."""
+    return deposit_many([values], grid, tooth, z, s, dz, ds, teeth)[0]
+
+
+def deposit_many(values: list[ArrayLike], grid: FlankGrid, tooth: ArrayLike, z: ArrayLike,
+                 s: ArrayLike, dz: float, ds: float, teeth: int) -> list[NDArray[np.float64]]:
+    """:func:`deposit` of several value arrays on the same cells (the overlaps found
+    once)."""
+    vs = [np.asarray(v, float) for v in values]
     shape = vs[0].shape
     idx, w = _weights(grid, tooth, np.broadcast_to(np.asarray(z, float), shape),
                       np.broadcast_to(np.asarray(s, float), shape), dz, ds)
     flat = idx.ravel()
     size = teeth * grid.nz * grid.ns
-    out = [np.bincount(flat, weights=(w * v).ravel(), minlength=size).reshape(
-        teeth, grid.nz, grid.ns) for v in vs]
-    return out if many else out[0]
+    return [np.bincount(flat, weights=(w * v).ravel(), minlength=size).astype(
+        np.float64).reshape(teeth, grid.nz, grid.ns) for v in vs]
 
 
 def sleeve_rows(r_mm: ArrayLike, half_angle: ArrayLike, r_b: float
@@ -221,5 +226,5 @@ def slip_runs(loaded: NDArray[np.bool_], slip_z: NDArray, slip_s: NDArray,
     return (partial / total if total > 0 else 0.0), worst
 
 
-__all__ = ["FlankGrid", "deposit", "exposure_step", "limit_crossing", "sample",
+__all__ = ["FlankGrid", "deposit", "deposit_many", "exposure_step", "limit_crossing", "sample",
            "sleeve_rows", "slip_runs", "slip_velocity"]

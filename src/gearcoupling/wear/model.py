@@ -34,7 +34,7 @@ from ..loading import (
     turn_phases,
 )
 from ..spec import CouplingSpec
-from .kernels import FlankGrid, deposit, sample, sleeve_rows, slip_runs, slip_velocity
+from .kernels import FlankGrid, deposit_many, sample, sleeve_rows, slip_runs, slip_velocity
 from .settings import FLOAT_PHASES, Accuracy, OperatingPoint
 
 MAP_CELLS_PER_GRID_CELL = 4  # depth-map cells along the face per pressure-grid cell
@@ -207,11 +207,11 @@ class PointSolver:
                 z_sleeve = gf.z_mm[:, :, None] + shift
                 # the mean pressure over each hub map cell's covered part (where a pose's
                 # grid covers at least half of it): the tooth bearing picture
-                w_hub, s_hub_, cover, seen = deposit(
+                w_hub, s_hub_, cover, seen = deposit_many(
                     [work, slide, np.where(gf.mask, gf.dz * gf.ds / hg.area_mm2, 0.0),
                      p * (gf.dz * gf.ds / hg.area_mm2)], hg, t, gf.hub_z_mm, s_hub, gf.dz,
                     gf.ds, T)
-                w_sl, s_sl = deposit([work, slide], sg, t, z_sleeve, gf.s_mm[None, None, :],
+                w_sl, s_sl = deposit_many([work, slide], sg, t, z_sleeve, gf.s_mm[None, None, :],
                                      gf.dz, gf.ds, T)
                 hub += w_hub
                 hub_slide += s_hub_
@@ -317,7 +317,7 @@ class _Stats:
     def _passes(self, j, teeth, alike, gf, p, vz, vs, work):
         """Each loaded tooth's sliding velocity at its load centre (less an axial float's)
         and half-width of its patch along the sliding direction, on the turn's lattice."""
-        on, slip_z, slip_s, width, wk = self.slip  # type: ignore[misc]
+        on, slip_z, slip_s, width, wk = self.slip
         P = np.sum(p, axis=(1, 2))
         axial = self.axial
         for n, tooth in enumerate(teeth):
