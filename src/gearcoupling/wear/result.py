@@ -194,6 +194,13 @@ class WearResult:
         if self.life_basis == "no wear":
             notes.append("nothing slides under load (no misalignment, no axial float): no "
                          f"wear, the life is reported as {LIFE_CAP_H:g} h")
+        mat = self.spec.material
+        allowable = min(mat.hub.allowable_contact_stress_MPa,
+                        mat.sleeve.allowable_contact_stress_MPa)
+        if np.max(self.stats["max_interior_pressure_MPa"]) > allowable:
+            notes.append(f"the interior contact pressure exceeds the allowable {allowable:g} "
+                         "MPa at some state: the flanks are taken as elastic (no pitting or "
+                         "plastic flow)")
         if self.life_h >= LIFE_CAP_H:
             notes.append(f"lives beyond {LIFE_CAP_H:g} h are reported as {LIFE_CAP_H:g} h")
         return notes
