@@ -284,9 +284,12 @@ def test_coefficients_and_the_wear_table(renzo):
     ({"gap_offset_rad": [1.0, 2.0]}, "gap_offset_rad"),
     ({"duty": [(1.0, 2000.0, 1800.0)]}, "duty[0]"),
     ({"duty": [(1.0, 2000.0, -1.0, 10.0)]}, "duty[0].speed_rpm"),
+    ({"duty": [(1.0, 2000.0, 1800.0, 10.0)]}, "misalignment_deg"),
 ])
 def test_bad_arguments_are_refused_naming_the_field(renzo, kwargs, field):
     args = {"misalignment_deg": 1.0, "torque_Nm": 2000.0, "speed_rpm": 1800.0, "hours": 10.0}
+    if "duty" in kwargs and field != "misalignment_deg":  # a duty instead of the point
+        args = {"hours": 10.0}
     args.update(kwargs)
     with pytest.raises(gc.ArgumentError) as err:
         wear(renzo, **args)

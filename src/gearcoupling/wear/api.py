@@ -6,6 +6,7 @@ from collections.abc import Callable
 from typing import Any
 
 from ..arguments import flag, real, resolve_torque_Nm
+from ..errors import ArgumentError
 from ..spec import CouplingSpec, as_spec
 from .history import run_history
 from .result import WearResult
@@ -93,6 +94,11 @@ def wear(spec: CouplingSpec | str, misalignment_deg: float | None = None,
     accuracy = Accuracy.checked(step_fraction, grid if grid is not None else
                                 Accuracy().grid, phases)
     if duty is not None:
+        for name, value in (("misalignment_deg", misalignment_deg), ("torque_Nm", torque_Nm),
+                            ("speed_rpm", speed_rpm)):
+            if value is not None:
+                raise ArgumentError(name, value, "give the duty or one operating point, not "
+                                    "both")
         points = duty_points(duty)
         total = sum(p.hours for p in points)
     else:

@@ -177,14 +177,9 @@ class PointSolver:
         """Solve a turn on ``maps`` (with ``local``, mm/MPa maps: the wear of a step per
         MPa of a cell's own pressure in series with the contact) and what it wears."""
         self.worn.maps, self.worn.local = maps, local
-        T, hg, sg = maps.teeth, maps.hub_grid, maps.sleeve_grid
-        hub = np.zeros((T, hg.nz, hg.ns))
-        sleeve = np.zeros((T, sg.nz, sg.ns))
-        hub_slide = np.zeros((T, hg.nz, hg.ns))
-        sleeve_slide = np.zeros((T, sg.nz, sg.ns))
+        acc = _Stats(self, maps.teeth)
+        worn = _Wear(maps, self.r_b)
         kept: list = []
-        bearing = np.zeros((T, hg.nz, hg.ns))
-        acc = _Stats(self, T)
         for shift, axial in self.floats:
             self.worn.shift_mm = shift
             acc.new_float(axial)
@@ -198,34 +193,15 @@ class PointSolver:
                 # aligned with ideal teeth the solver solves one tooth for all: each of the
                 # loaded teeth is one more sample of the turn
                 n_on = int(np.count_nonzero(out["normal_force_N"]))
-                copies = n_on if teeth.size == 1 and n_on > 1 else 1
-                weight = gf.dz * gf.ds * self.dpsi / len(self.floats) * copies
+                samples = n_on if teeth.size == 1 and n_on > 1 else 1
+                weight = gf.dz * gf.ds * self.dpsi / len(self.floats) * samples
                 slide = np.where(p > 0, np.hypot(vz, vs) * weight, 0.0)  # mm³ per rev
                 work = p * slide  # N·mm per rev
-                t = teeth if T > 1 else np.zeros(teeth.size, dtype=np.intp)
-                s_hub = developed_arc(gf.hub_r_mm, self.r_b)
-                z_sleeve = gf.z_mm[:, :, None] + shift
-                # the mean pressure over each hub map cell's covered part (where a pose's
-                # grid covers at least half of it): the tooth bearing picture
-                w_hub, s_hub_, cover, seen = deposit_many(
-                    [work, slide, np.where(gf.mask, gf.dz * gf.ds / hg.area_mm2, 0.0),
-                     p * (gf.dz * gf.ds / hg.area_mm2)], hg, t, gf.hub_z_mm, s_hub, gf.dz,
-                    gf.ds, T)
-                w_sl, s_sl = deposit_many([work, slide], sg, t, z_sleeve, gf.s_mm[None, None, :],
-                                     gf.dz, gf.ds, T)
-                hub += w_hub
-                hub_slide += s_hub_
-                sleeve += w_sl
-                sleeve_slide += s_sl
-                np.maximum(bearing, np.where(cover > 0.5, seen / np.maximum(cover, 0.5), 0.0),
-                           out=bearing)
+                worn.add(gf, p, teeth, work, slide, shift)
                 if keep:
                     kept.append((int(j), teeth, gf, p, axial, weight))
-                acc.pose(j, out, extra, gf, p, teeth, vz, vs, work / copies)
-        per_k = 1e-3  # k in mm³/(N·m), the work in N·mm
-        hk, sk = per_k / hg.area_mm2, per_k / sg.area_mm2
-        return Turn(self.flank, hub * hk, sleeve * sk, hub_slide * hk, sleeve_slide * sk,
-                    bearing, acc.done(), acc.solves, kept)
+                acc.pose(j, out, extra, gf, p, teeth, vz, vs, work / samples)
+        return worn.turn(self.flank, acc.done(), acc.solves, kept)
 
     def backlash_mm(self, maps: WearMaps, fields: dict) -> float:
         """The backlash at the sweep's first rotation on the worn flanks (arc at the pitch
@@ -266,6 +242,43 @@ def worn_gap_shift(maps: WearMaps, flank: int, gf: GapField, r_b: float) -> NDAr
     far = np.inf
     return (np.min(np.where(gf.mask, worn, far), axis=(1, 2))
             - np.min(np.where(gf.mask, gf.gap_rad, far), axis=(1, 2)))
+
+
+class _Wear:
+    """What the poses of a turn wear, summed on the depth maps' grids (per unit
+    coefficient: the work in N·mm, ``k`` in mm³/(N·m)), and the tooth bearing picture."""
+
+    def __init__(self, maps: WearMaps, r_b: float):
+        T, hg, sg = maps.teeth, maps.hub_grid, maps.sleeve_grid
+        self.T, self.hg, self.sg, self.r_b = T, hg, sg, r_b
+        self.hub, self.hub_slide, self.bearing = (np.zeros((T, hg.nz, hg.ns)) for _ in range(3))
+        self.sleeve, self.sleeve_slide = (np.zeros((T, sg.nz, sg.ns)) for _ in range(2))
+
+    def add(self, gf: GapField, p, teeth, work, slide, shift: float) -> None:
+        """A pose's ``work`` and ``slide`` (per cell, per revolution) on the hub at the
+        hub points facing the cells and on the sleeve at the cells (moved by ``shift``)."""
+        hg, sg, T = self.hg, self.sg, self.T
+        t = teeth if T > 1 else np.zeros(teeth.size, dtype=np.intp)
+        s_hub = developed_arc(gf.hub_r_mm, self.r_b)
+        share = gf.dz * gf.ds / hg.area_mm2
+        w_hub, s_hub_, cover, seen = deposit_many(
+            [work, slide, np.where(gf.mask, share, 0.0), p * share], hg, t, gf.hub_z_mm,
+            s_hub, gf.dz, gf.ds, T)
+        w_sl, s_sl = deposit_many([work, slide], sg, t, gf.z_mm[:, :, None] + shift,
+                                  gf.s_mm[None, None, :], gf.dz, gf.ds, T)
+        self.hub += w_hub
+        self.hub_slide += s_hub_
+        self.sleeve += w_sl
+        self.sleeve_slide += s_sl
+        # the tooth bearing picture: the mean pressure over each hub map cell's covered
+        # part, where a pose's grid covers at least half of it
+        np.maximum(self.bearing, np.where(cover > 0.5, seen / np.maximum(cover, 0.5), 0.0),
+                   out=self.bearing)
+
+    def turn(self, flank: int, stats, solves: int, kept: list) -> Turn:
+        hk, sk = 1e-3 / self.hg.area_mm2, 1e-3 / self.sg.area_mm2
+        return Turn(flank, self.hub * hk, self.sleeve * sk, self.hub_slide * hk,
+                    self.sleeve_slide * sk, self.bearing, stats, solves, kept)
 
 
 class _Stats:
