@@ -179,8 +179,7 @@ def run_history(spec: CouplingSpec, duty: tuple[OperatingPoint, ...], settings: 
         rate = rates(turns, duty, maps, sf)
         approach = min(t.stats["approach_mm"] for t in turns)
         top = max(float(np.max(rate.hub)), float(np.max(rate.sleeve)))
-        full = max(exposure_step(approach, top, accuracy.step_fraction, math.inf),
-                   step_floor)
+        full = exposure_step(approach, top, accuracy.step_fraction, step_floor, end - x)
         dx = min(full, end - x)
         # the implicit part at the rule's step even where the history's end cuts it
         # short: the loads of every step are solved alike

@@ -164,15 +164,15 @@ def slip_velocity(axis: NDArray, z_mm: NDArray, r_mm: NDArray, polar: NDArray,
     return np.broadcast_to(vz, v_s.shape), v_s
 
 
-def exposure_step(approach_mm: float, rate_max: float, fraction: float, remaining: float
-                  ) -> float:
-    """The next step of wear exposure (coefficient times hours): at most ``remaining``, and
-    one that removes at most ``fraction`` of the elastic ``approach_mm`` at the point
-    wearing fastest (``rate_max``, mm per unit exposure); all of ``remaining`` where
-    nothing wears."""
-    if not rate_max > 0:
+def exposure_step(approach_mm: float, rate_max: float, fraction: float, floor: float,
+                  remaining: float) -> float:
+    """The next step of wear exposure (coefficient times hours): one that removes at most
+    ``fraction`` of the elastic ``approach_mm`` at the point wearing fastest
+    (``rate_max``, mm per unit exposure), at least ``floor``; all of ``remaining`` where
+    nothing wears. The caller cuts it at the end of the history."""
+    if not (rate_max > 0 and approach_mm > 0):
         return remaining
-    return min(remaining, fraction * approach_mm / rate_max)
+    return max(fraction * approach_mm / rate_max, floor)
 
 
 def limit_crossing(loss0: ArrayLike, loss1: ArrayLike, limit: float) -> float | None:
