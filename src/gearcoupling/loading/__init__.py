@@ -36,7 +36,7 @@ from .models.registry import (
     models_help,
     resolve_model,
 )
-from .models.surface import DEFAULT_GRID, SurfaceSolver, surface_solver
+from .models.surface import surface_solver
 from .models.surface_capacity import LOAD_GRID
 from .patchmap import PatchMap, most_loaded, patch_maps
 from .plots import (
@@ -54,7 +54,6 @@ from .summary import machine_loads, rotation_table
 
 __all__ = [
     "CSV_COLUMNS",
-    "DEFAULT_GRID",
     "LOAD_GRID",
     "MODELS",
     "PHASES",
@@ -69,7 +68,6 @@ __all__ = [
     "LoadResult",
     "PatchMap",
     "SectorCheck",
-    "SurfaceSolver",
     "body_windup_rad",
     "capacity",
     "capacity_curve",

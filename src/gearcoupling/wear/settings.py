@@ -16,7 +16,7 @@ from numpy.typing import NDArray
 
 from ..arguments import ErrorType, count, real, torque_Nm
 from ..errors import ArgumentError, SpecError
-from ..loading import DEFAULT_GRID
+from ..loading import LOAD_GRID
 from ..spec import CouplingSpec, check_misalignment_deg
 from .coefficients import DEFAULT_REGIME, REGIMES
 
@@ -24,8 +24,9 @@ MAX_SPEED_RPM = 1e6
 MAX_HOURS = 1e7  # a history's hours (over a thousand years)
 MAX_FLOAT_MM = 100.0
 DEFAULT_LIMIT_FRACTION = 0.1  # wear limit: this share of the tooth thickness (our choice)
-DEFAULT_STEP_FRACTION = 0.25  # a step removes at most this share of the elastic approach
-DEFAULT_PHASES = 8  # rotations per tooth pitch of a turn (loading.PHASES)
+DEFAULT_STEP_FRACTION = 0.5  # a step removes at most this share of the elastic approach
+DEFAULT_PHASES = 4  # rotations per tooth pitch of a turn
+DEFAULT_GRID = LOAD_GRID  # the surface model's cells of a loaded tooth (docs/wear.md)
 MAX_PHASES = 64
 FLOAT_PHASES = 8  # samples of an axial float's cycle
 LIFE_CAP_H = 1e9  # the largest life reported (h); a longer one is reported as this
