@@ -24,7 +24,9 @@ from .model import PointSolver, Turn, WearMaps, flank_grids
 from .result import POINT_STATS, WearResult, thicknesses_mm
 from .settings import Accuracy, OperatingPoint, WearSettings
 
-MAX_STEPS = 2000  # a history stops with an error past this many steps
+MAX_STEPS = 5000  # a history stops with an error past this many steps
+MIN_STEP = 1e-5  # the smallest step, as a share of the history's exposure
+TRAPEZOID = False
 SPREAD_CELLS = 2  # map cells a step's wear per MPa is spread to (:func:`spread`)
 
 
@@ -169,16 +171,16 @@ def run_history(spec: CouplingSpec, duty: tuple[OperatingPoint, ...], settings: 
     turns = [s.turn(maps, None, keep) for s in solvers]
     history.add(0.0, maps, turns)
     x, steps, life = 0.0, 0, None
-    step_floor = end / MAX_STEPS
+    step_floor = MIN_STEP * end
     while x < end * (1 - 1e-12) and life is None:
         if steps >= MAX_STEPS:
             raise GearCouplingError(f"wear: {MAX_STEPS} steps did not reach {hours:g} h; "
                                     "raise step_fraction")
         # the step from the last turn's rates; its wear from a turn solved with each
         # cell's own wear over the step in series (implicit in the stiff local part)
-        rate = rates(turns, duty, maps, sf)
+        start = rates(turns, duty, maps, sf)
         approach = min(t.stats["approach_mm"] for t in turns)
-        top = max(float(np.max(rate.hub)), float(np.max(rate.sleeve)))
+        top = max(float(np.max(start.hub)), float(np.max(start.sleeve)))
         full = exposure_step(approach, top, accuracy.step_fraction, step_floor, end - x)
         dx = min(full, end - x)
         # the implicit part at the rule's step even where the history's end cuts it
@@ -187,7 +189,12 @@ def run_history(spec: CouplingSpec, duty: tuple[OperatingPoint, ...], settings: 
         local = WearMaps(full * spread(slide.hub), full * spread(slide.sleeve), maps.hub_grid,
                          maps.sleeve_grid)
         turns = [s.turn(maps, local, keep) for s in solvers]
-        rate = rates(turns, duty, maps, sf)
+        end_rate = rates(turns, duty, maps, sf)
+        if TRAPEZOID:
+            rate = WearMaps(0.5 * (start.hub + end_rate.hub), 0.5 * (start.sleeve + end_rate.sleeve),
+                            maps.hub_grid, maps.sleeve_grid)
+        else:
+            rate = end_rate
         new = maps.advanced(rate.hub, rate.sleeve, dx)
         lam = limit_crossing(*_loss_points(spec, maps, new), settings.limit_fraction)
         if lam is not None:
