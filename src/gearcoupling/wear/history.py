@@ -26,7 +26,11 @@ from .settings import Accuracy, OperatingPoint, WearSettings
 
 MAX_STEPS = 5000  # a history stops with an error past this many steps
 MIN_STEP = 1e-5  # the smallest step, as a share of the history's exposure
-TRAPEZOID = False
+#: the share of a step's own wear taken implicitly (docs/wear.md, Stepping in time): a
+#: cell-sized bump shrinks by 1 - 1/IMPLICIT (-2/3) per step however long, the smooth part
+#: of the history is near the midpoint rule's second order (1/2 would be it exactly, and
+#: leave the cell-sized bumps undamped)
+IMPLICIT = 0.6
 SPREAD_CELLS = 2  # map cells a step's wear per MPa is spread to (:func:`spread`)
 
 
@@ -176,8 +180,8 @@ def run_history(spec: CouplingSpec, duty: tuple[OperatingPoint, ...], settings: 
         if steps >= MAX_STEPS:
             raise GearCouplingError(f"wear: {MAX_STEPS} steps did not reach {hours:g} h; "
                                     "raise step_fraction")
-        # the step from the last turn's rates; its wear from a turn solved with each
-        # cell's own wear over the step in series (implicit in the stiff local part)
+        # the step from the last turn's rates; its wear from a turn solved with IMPLICIT of
+        # each cell's own wear over the step in series (implicit in the stiff local part)
         start = rates(turns, duty, maps, sf)
         approach = min(t.stats["approach_mm"] for t in turns)
         top = max(float(np.max(start.hub)), float(np.max(start.sleeve)))
@@ -186,15 +190,11 @@ def run_history(spec: CouplingSpec, duty: tuple[OperatingPoint, ...], settings: 
         # the implicit part at the rule's step even where the history's end cuts it
         # short: the loads of every step are solved alike
         slide = rates(turns, duty, maps, sf, slide=True)
-        local = WearMaps(full * spread(slide.hub), full * spread(slide.sleeve), maps.hub_grid,
+        c = IMPLICIT * full
+        local = WearMaps(c * spread(slide.hub), c * spread(slide.sleeve), maps.hub_grid,
                          maps.sleeve_grid)
         turns = [s.turn(maps, local, keep) for s in solvers]
-        end_rate = rates(turns, duty, maps, sf)
-        if TRAPEZOID:
-            rate = WearMaps(0.5 * (start.hub + end_rate.hub), 0.5 * (start.sleeve + end_rate.sleeve),
-                            maps.hub_grid, maps.sleeve_grid)
-        else:
-            rate = end_rate
+        rate = rates(turns, duty, maps, sf)
         new = maps.advanced(rate.hub, rate.sleeve, dx)
         lam = limit_crossing(*_loss_points(spec, maps, new), settings.limit_fraction)
         if lam is not None:
