@@ -23,6 +23,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..clearance import sweep
+from ..errors import GearCouplingError
 from ..geometry import FLANKS, developed_arc, hub_model, hub_to_sleeve, sleeve_model
 from ..loading import (
     GapField,
@@ -184,8 +185,7 @@ class PointSolver:
             self.worn.shift_mm = shift
             acc.new_float(axial)
             for j in self.order:
-                out, extra, self.last = self.solver.solve_pose(int(j), self.load_N, self.last,
-                                                               True)
+                out, extra, self.last = self._solve(int(j))
                 gf, p, teeth = extra["field"], extra["pressure_MPa"], extra["teeth"]
                 polar, tangent = self._rows(gf)
                 vz, vs = slip_velocity(self.axis[teeth, j], gf.z_mm, gf.r_mm, polar, tangent,
@@ -202,6 +202,16 @@ class PointSolver:
                     kept.append((int(j), teeth, gf, p, axial, weight))
                 acc.pose(j, out, extra, gf, p, teeth, vz, vs, work / samples)
         return worn.turn(self.flank, acc.done(), acc.solves, kept)
+
+    def _solve(self, j: int):
+        """Rotation ``j`` from the last solved pose; where its search does not settle from
+        there (a worn flank's load split can cycle at the solver's tolerance), cold."""
+        try:
+            return self.solver.solve_pose(j, self.load_N, self.last, True)
+        except GearCouplingError:
+            if self.last is None:
+                raise
+            return self.solver.solve_pose(j, self.load_N, None, True)
 
     def backlash_mm(self, maps: WearMaps, fields: dict) -> float:
         """The backlash at the sweep's first rotation on the worn flanks (arc at the pitch
