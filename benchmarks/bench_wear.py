@@ -63,11 +63,11 @@ def knobs() -> None:
     d = Accuracy()
     settings = [("default", {}),
                 ("step fraction / 2", {"step_fraction": d.step_fraction / 2}),
-                ("step fraction x 2", {"step_fraction": min(1.0, 2 * d.step_fraction)}),
+                ("step fraction / 4", {"step_fraction": d.step_fraction / 4}),
                 ("grid 32 x 24", {"grid": (32, 24)}),
                 ("grid 16 x 12", {"grid": (16, 12)}),
-                ("phases 8", {"phases": 8}),
-                ("phases 2", {"phases": 2})]
+                ("phases 4", {"phases": 4}),
+                ("phases 8", {"phases": 8})]
     print("| knobs | CPU s | steps | life h | largest depth mm | q at the end | "
           "interior p at the end MPa |\n|---|---|---|---|---|---|---|")
     ref = None
