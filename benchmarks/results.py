@@ -46,6 +46,7 @@ FULL = [
      "the bodies tooth by tooth: FE rings, the influence model, the sector's own bodies"),
     ("bench_study.py", [], "studies on dask.distributed"),
     ("bench_random_specs.py", [], "1000 seeded random specs: accepted, finite, closed parts"),
+    ("bench_wear.py", ["--speed", "--knobs"], "wear history: CPU, steps, each knob's effect"),
 ]
 PACKAGES = ("numpy", "scipy", "trimesh", "manifold3d", "matplotlib", "numba", "gmsh",
             "dask", "viser")

@@ -239,6 +239,9 @@ BAD = [
     (["study", "renzo-tolerances", "--scheduler", "tcp://127.0.0.1"], "--scheduler"),
     (["study", "renzo-tolerances", "--scheduler", "http://x.invalid:80"], "--scheduler"),
     (["view", M2, "--angle", "2e6"], "--angle"),
+    (["wear", T, "--hours", "10"], "--speed"),
+    (["wear", T, "--hours", "10", "--speed", "1800", "--coefficient", "-1"], "--coefficient"),
+    (["wear", T, "--point", "1,2000,1800,10", "--speed", "1800"], "--speed"),
     # an inch template: the value as typed, in inches, with the mm value beside it
     (["spec", T, "--set", "hub.crowning.radius=0.1"], "hub.crowning.radius = 0.1 in (2.54 mm)"),
 ]

@@ -20,6 +20,7 @@ HEAVY = ("trimesh", "manifold3d", "viser", "OCP", "meshio", "matplotlib", "dask"
     "gearcoupling.study",
     "gearcoupling.rotordynamics",
     "gearcoupling.coupling",
+    "gearcoupling.wear",
 ])
 def test_kernels_import_no_heavy_backend(module):
     code = (f"import sys, {module}; "
@@ -77,6 +78,7 @@ LAYERS = {
                       "clearance", "loading", "tables"},
     "coupling": {"io", "errors", "forked", "geometry", "spec", "plots", "parts", "export",
                  "clearance", "interference", "loading", "rotordynamics", "tables"},
+    "wear": {"io", "errors", "geometry", "spec", "plots", "clearance", "loading", "tables"},
 }
 # the argument checks (numbers, counts, torques, documented maxima) sit beside the errors,
 # the numeric guards (numpy only) and the interruption's note (stdlib only) below everything

@@ -95,6 +95,8 @@ from .viewer import ViewerApp as ViewerApp
 from .viewer import pose_state as pose_state
 from .viewer import serve as serve
 from .viewer import write_html as write_html
+from .wear import WearResult as WearResult
+from .wear import wear as wear
 
 __version__: str
 __all__: list[str]

@@ -12,7 +12,7 @@ from .common import CREATED, WRITING
 #: the commands, in the order ``--help`` lists them (module ``fea_contact`` is
 #: ``fea-contact``)
 NAMES = ("spec", "sections", "run", "templates", "check", "view", "generate", "sweep",
-         "load", "capacity", "datasheet", "fea", "fea-contact", "stiffness", "study", "hob",
+         "load", "capacity", "wear", "datasheet", "fea", "fea-contact", "stiffness", "study", "hob",
          "charts", "compare", "report")
 
 

@@ -25,6 +25,7 @@ from .capacity import (
 from .inputs import resolve_torque_Nm
 from .kernels.cantilever import CantileverCompliance
 from .kernels.fitted import FittedCompliance
+from .kernels.gapfield import GapField, depth_range, face_range, gap_field, lattice_windows
 from .kernels.windup import solve_windup
 from .models.linear import mesh_stiffness_N_per_mm
 from .models.registry import (
@@ -35,6 +36,7 @@ from .models.registry import (
     models_help,
     resolve_model,
 )
+from .models.surface import surface_solver
 from .models.surface_capacity import LOAD_GRID
 from .patchmap import PatchMap, most_loaded, patch_maps
 from .plots import (
@@ -61,6 +63,7 @@ __all__ = [
     "Capacity",
     "CapacityCurve",
     "FittedCompliance",
+    "GapField",
     "LoadModel",
     "LoadResult",
     "PatchMap",
@@ -71,6 +74,10 @@ __all__ = [
     "capacity_curve",
     "capacity_from_sweep",
     "default_angles",
+    "depth_range",
+    "face_range",
+    "gap_field",
+    "lattice_windows",
     "load",
     "load_from_sweep",
     "load_model",
@@ -93,6 +100,7 @@ __all__ = [
     "sector_check",
     "solve_windup",
     "springs_name",
+    "surface_solver",
     "tooth_load_error",
     "turn_phases",
     "windup_error",

@@ -38,6 +38,7 @@ class CouplingSpec:
     material: Materials = field(default_factory=Materials)  # [material] (load.py)
     units: str = field(default="mm", compare=False)
     inspection: InspectionLimits = field(default_factory=InspectionLimits, compare=False)
+    wear: tuple[tuple[str, Any], ...] = ()  # [wear] as read (wear.py)
 
     def __post_init__(self):
         check_misalignment_deg(math.degrees(self.design_misalignment), "design_misalignment_deg")
@@ -77,7 +78,8 @@ class CouplingSpec:
         tooth = d["tooth"]
         tooth["pressure_angle_deg"] = math.degrees(tooth.pop("pressure_angle"))
         out.update(tooth=tooth, hub=d["hub"], sleeve=d["sleeve"])
-        out.update({t.key: t.write(getattr(self, t.key)) for t in TABLES})
+        out.update({t.key: table for t in TABLES
+                    if (table := t.write(getattr(self, t.key))) or not t.optional})
         cr = out["hub"]["crowning"]
         for key, (attr, _, _) in CROWN_FIELDS.items():
             if attr != key:  # the file's keys of a tabulated path

@@ -38,6 +38,7 @@ from .model import (
     ToothSystem,
 )
 from .values import MAX_NAME_CHARS, MM_PER_INCH, UNITS, _check, _positive, check_misalignment_deg
+from .wear import WEAR_TABLE_KEYS, parse_wear, wear_table
 
 
 @dataclass(frozen=True)
@@ -58,12 +59,16 @@ class SpecTable:
     keys : tuple of str or None
         Its keys, refused before anything is read when unknown (:func:`check_keys`);
         ``None``: ``read`` refuses them in turn.
+    optional : bool
+        Left out of ``to_dict`` when it holds nothing (a table added later: the resolved
+        spec, and so every cache key made of it, stays what it was without it).
     """
 
     key: str
     read: Callable[[Table], Any]
     write: Callable[[Any], dict[str, Any]] = asdict
     keys: tuple[str, ...] | None = None
+    optional: bool = False
 
 
 def _inspection(t: Table) -> InspectionLimits:
@@ -79,6 +84,7 @@ TABLES: tuple[SpecTable, ...] = (
     SpecTable("inspection", _inspection, keys=INSPECTION_LIMITS),
     SpecTable("load", parse_load, without_none),
     SpecTable("material", parse_material, material_table),
+    SpecTable("wear", parse_wear, wear_table, keys=WEAR_TABLE_KEYS, optional=True),
 )
 
 # every key a spec file may hold, per table (unknown keys are reported before anything else)

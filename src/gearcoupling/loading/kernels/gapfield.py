@@ -69,6 +69,9 @@ class GapField:
     hub_z_mm, hub_r_mm : (n, n_face, n_depth) float
         Hub-frame flank coordinates of the hub point facing each cell.
     base_radius : float
+    local_compliance_mm_per_MPa : (n, n_face, n_depth) float or None
+        A compliance of each cell of its own in series with the contact (a worn depth
+        that grows with the cell's pressure over a wear step), or None.
     """
 
     z_mm: NDArray[np.float64]
@@ -82,6 +85,7 @@ class GapField:
     hub_z_mm: NDArray[np.float64]
     hub_r_mm: NDArray[np.float64]
     base_radius: float
+    local_compliance_mm_per_MPa: NDArray[np.float64] | None = None
 
 
 def depth_range(spec: CouplingSpec, misalignment: float) -> tuple[float, float]:

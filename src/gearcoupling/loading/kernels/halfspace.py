@@ -308,6 +308,28 @@ class RigidSprings:
         return self.c * self.area * np.sum(p, axis=(1, 2))
 
 
+class LocalCompliance:
+    """``inner`` (a :class:`GridCompliance`) plus a compliance of each cell of its own,
+    ``c (B, n1, n2)`` mm/MPa: the displacement ``c q`` (a Winkler layer; diagonal, so
+    linear and symmetric). ``deflection_mm`` is ``inner``'s."""
+
+    def __init__(self, inner: GridCompliance, c: ArrayLike):
+        self.inner = inner
+        self.c = np.asarray(c, dtype=float)
+        self.uniform = bool(inner.uniform and not np.any(self.c))
+
+    def displacement(self, q, grids):
+        v = self.inner.displacement(q, grids)
+        local = self.c.reshape(-1, *q.shape[1:])[grids] * q
+        return local if v is None else v + local
+
+    def update(self, p, tolerance: float) -> bool:
+        return self.inner.update(p, tolerance)
+
+    def deflection_mm(self, p):
+        return self.inner.deflection_mm(p)
+
+
 def solve_contact(hs: HalfSpace, gap0_mm: ArrayLike, *, load_N: float | None = None,
                   approach_mm: float | None = None, mask: ArrayLike | None = None,
                   spring_mm_per_N: ArrayLike | None = None,

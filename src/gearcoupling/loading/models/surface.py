@@ -84,6 +84,7 @@ from ..kernels.gapfield import (
 )
 from ..kernels.halfspace import (
     GridCompliance,
+    LocalCompliance,
     RigidSprings,
     composite_modulus,
     half_space,
@@ -91,6 +92,7 @@ from ..kernels.halfspace import (
     load_split,
     solve_contact,
 )
+from ..springs import tooth_compliance
 
 DEFAULT_GRID = (48, 32)  # cells (along the face, across the depth); see bench_surface.py
 COARSE_GRID = (32, 12)
@@ -367,10 +369,20 @@ class SurfaceSolver:
     offsets : (N,) float
         Gap offsets of the loaded flank.
     tolerance : float
+    extra_gap : callable, optional
+        ``extra_gap(j, teeth, gf) -> (n, nf, nd)`` gap (rad, >= 0) added to every gap field
+        ``gf`` of ``teeth`` at rotation ``j`` as it is built (a worn depth ``h`` along the
+        flank normal opens it by ``h / r_b``); called on every field, so it may change
+        between solves (the cached rows hold the gap without it). Its attribute
+        ``uniform`` (default False) says every tooth gets the same addition, which keeps
+        the whole-pitch symmetry of :meth:`plan`; its optional method ``compliance(j,
+        teeth, gf) -> (n, nf, nd)`` (mm/MPa, or None) adds a compliance of each cell of
+        its own in series with the contact (:class:`.halfspace.LocalCompliance`).
     """
 
     def __init__(self, spec: CouplingSpec, sweep_result, flank: str, tooth_compliance, *,
-                 grid=DEFAULT_GRID, offsets=None, tolerance: float = DEFAULT_TOLERANCE):
+                 grid=DEFAULT_GRID, offsets=None, tolerance: float = DEFAULT_TOLERANCE,
+                 extra_gap=None):
         self.spec = spec
         self.grid = _check_grid(grid)
         f = FLANKS.index(flank)
@@ -389,7 +401,9 @@ class SurfaceSolver:
         self.mis = math.radians(sw.misalignment_deg)
         self.r_b = spec.tooth.base_radius
         self.pitch = 2.0 * math.pi / N
-        self.uniform = bool(np.ptp(self.offsets) == 0.0)
+        self.extra_gap = extra_gap
+        self.uniform = bool(np.ptp(self.offsets) == 0.0) and (
+            extra_gap is None or bool(getattr(extra_gap, "uniform", False)))
         self.tooth_compliance = tooth_compliance
         self.e_star = contact_modulus(spec)
         self.tolerance = tolerance
@@ -420,6 +434,8 @@ class SurfaceSolver:
     def _solve(self, gf: GapField, load_N: float, p0, z0, r0, tolerance: float):
         hs = half_space(gf.gap_rad.shape[1:], gf.dz, gf.ds, self.e_star)
         comp = self.tooth_compliance.for_field(gf, p0, z0, r0, tolerance)
+        if gf.local_compliance_mm_per_MPa is not None:
+            comp = LocalCompliance(comp, gf.local_compliance_mm_per_MPa)
         sol = solve_contact(hs, self.r_b * gf.gap_rad, load_N=load_N, mask=gf.mask,
                             tolerance=tolerance, p0=p0, compliance=comp)
         z, r = _located(gf, sol.pressure_MPa, z0, r0)
@@ -445,7 +461,13 @@ class SurfaceSolver:
         rows = [self._rows[key] for key in keys]
         stacked: dict[str, Any] = {f: np.stack([row[k] for row in rows])
                                    for k, f in enumerate(_ROW_FIELDS)}
-        return replace(self._depth[n_depth], dz=float(z[0, 1] - z[0, 0]), **stacked)
+        gf = replace(self._depth[n_depth], dz=float(z[0, 1] - z[0, 0]), **stacked)
+        if self.extra_gap is None:
+            return gf
+        local = getattr(self.extra_gap, "compliance", None)
+        return replace(gf, gap_rad=gf.gap_rad + self.extra_gap(j, teeth, gf),
+                       local_compliance_mm_per_MPa=None if local is None else
+                       local(j, teeth, gf))
 
     def _state(self, j, teeth, level, gf, sol, lift_from, centres) -> SolvedPose:
         c, e = _spans(gf, sol.pressure_MPa)
@@ -734,6 +756,22 @@ def solve_surface(spec: CouplingSpec,
     if keep_fields:
         res["fields"] = fields
     return res
+
+
+def surface_solver(sweep_result, *, torque_Nm: float, grid=DEFAULT_GRID, gap_offset_rad=None,
+                   tolerance: float = DEFAULT_TOLERANCE, extra_gap=None) -> SurfaceSolver:
+    """The :class:`SurfaceSolver` :func:`solve_surface` solves a sweep with at a torque: the
+    flank its sign loads, the tooth springs of the spec's ``[load] stiffness``, the gap
+    offsets of that flank; ``extra_gap`` as :class:`SurfaceSolver` takes it. Its
+    ``solve_pose(j, load_N, start, keep)`` solves one rotation (``load_N = |T| / r_b``)."""
+    spec = sweep_result.spec
+    _, flank = _torque_and_flank(torque_Nm, None)
+    N = sweep_result.theta_deg.shape[0]
+    r_b, R = spec.tooth.base_radius, spec.tooth.pitch_radius
+    return SurfaceSolver(spec, sweep_result, flank,
+                         BendingSprings(tooth_compliance(spec), r_b, R), grid=grid,
+                         offsets=flank_offsets(gap_offset_rad, FLANKS.index(flank), N),
+                         tolerance=tolerance, extra_gap=extra_gap)
 
 
 def _torque_and_flank(torque_Nm: Any, loaded_flank: str | None) -> tuple[float, str]:
