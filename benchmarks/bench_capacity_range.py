@@ -1,0 +1,135 @@
+"""The default model's capacity over the whole supported range: the five templates and
+seeded random specs at 0, 0.5, ..., 6°, each point a capacity and loads at three torques.
+
+Run: ``python benchmarks/bench_capacity_range.py [--count 100] [--seed 38] [--jobs N]
+[--angles 0 0.5 ... 6]``.
+
+Each point is ``gc.capacity(spec, angle)`` and ``gc.load`` at the spec's torque (else the
+capacity there), a tenth and ten times it, on one pose (``tests/capacity_range.py``): *ok*
+(every number finite, the governing criterion named, the loads carrying their torque),
+*finding* (a returned value fails those checks), *refused* (a ``GearCouplingError``: a
+typed refusal, its text kept) or *crash* (any other exception). Printed: the counts, the
+governing criteria, the capacities of 0 (over a limit at no torque), the jumps between
+neighbouring angles under one criterion (``capacity_range.JUMP``), the largest such
+change, the CPU per point and the elapsed time; the details go to
+``outputs/bench_capacity_range.json``. ``--jobs N`` runs N specs at a time in forked
+worker processes (the CPU is each worker's own).
+"""
+
+from __future__ import annotations
+
+import argparse
+import collections
+import multiprocessing
+import os
+import sys
+import time
+import traceback
+from pathlib import Path
+
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+import gearcoupling as gc
+from capacity_range import ANGLES, JUMP, SEED, jumps, point, problems, range_specs
+from gearcoupling.io import write_json
+
+
+def run_spec(work: tuple) -> dict:
+    """One spec's points: a row per angle and its curve's jumps."""
+    spec, angles = work
+    rows, curve = [], []
+    for angle in angles:
+        row: dict = {"angle": angle}
+        t0 = time.process_time()
+        try:
+            c, loads = point(spec, angle)
+            found = problems(c, loads)
+            row.update(outcome="finding" if found else "ok", problems=found,
+                       capacity_Nm=c.capacity_Nm, governing=c.governing, solves=c.solves,
+                       face_end_torque_Nm=c.face_end_torque_Nm)
+            curve.append(c)
+        except gc.GearCouplingError as err:
+            row.update(outcome="refused", error=f"{type(err).__name__}: {err}"[:400])
+        except Exception as err:  # a crash is what this benchmark counts
+            frame = traceback.extract_tb(err.__traceback__)[-1]
+            row.update(outcome="crash", error=f"{type(err).__name__}: {err} ({frame.name}, "
+                       f"{Path(frame.filename).name}:{frame.lineno})"[:400])
+        row["cpu_s"] = time.process_time() - t0
+        rows.append(row)
+    jumped = jumps(curve)
+    change = max((max(a.capacity_Nm, b.capacity_Nm) / min(a.capacity_Nm, b.capacity_Nm)
+                  for a, b in zip(curve, curve[1:], strict=False)
+                  if a.governing == b.governing and a.capacity_Nm and b.capacity_Nm),
+                 default=1.0)
+    return {"spec": spec.name, "teeth": spec.tooth.teeth, "rows": rows, "jumps": jumped,
+            "largest_change": change}
+
+
+def results(work: list[tuple], jobs: int):
+    """:func:`run_spec` of each item of ``work`` in order, ``jobs`` at a time."""
+    if jobs <= 1:
+        yield from map(run_spec, work)
+        return
+    with multiprocessing.get_context("fork").Pool(jobs) as pool:
+        yield from pool.imap(run_spec, work)
+
+
+def main(argv: list[str] | None = None) -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--count", type=int, default=100, help="random specs (default 100)")
+    ap.add_argument("--seed", type=int, default=SEED)
+    ap.add_argument("--angles", nargs="*", type=float, default=list(ANGLES))
+    ap.add_argument("--jobs", type=int, default=1)
+    ap.add_argument("--out", default="outputs/bench_capacity_range.json")
+    a = ap.parse_args(argv)
+    specs = [gc.load_spec(n) for n in gc.template_names()] + range_specs(a.count, a.seed)
+    t0 = time.perf_counter()
+    done = []
+    for k, res in enumerate(results([(s, a.angles) for s in specs], a.jobs)):
+        done.append(res)
+        bad = [r for r in res["rows"] if r["outcome"] != "ok"]
+        print(f"  {k + 1}/{len(specs)} {res['spec']} ({res['teeth']} teeth): "
+              f"{len(res['rows']) - len(bad)}/{len(res['rows'])} ok, "
+              f"{sum(r['cpu_s'] for r in res['rows']):.0f} s CPU"
+              + "".join(f"; {r['angle']:g}° {r['outcome']}" for r in bad), file=sys.stderr,
+              flush=True)
+    elapsed = time.perf_counter() - t0
+    rows = [r for res in done for r in res["rows"]]
+    outcomes = collections.Counter(r["outcome"] for r in rows)
+    governing = collections.Counter(r["governing"] for r in rows if "governing" in r)
+    cpu = sorted(r["cpu_s"] for r in rows)
+    print(f"\n{len(specs)} specs (the {len(gc.template_names())} templates and {a.count} "
+          f"random, seed {a.seed}) x {len(a.angles)} angles = {len(rows)} points; "
+          f"{elapsed:.0f} s elapsed, {a.jobs} job(s)\n")
+    print("| outcome | points |\n|---|---|")
+    for k in ("ok", "finding", "refused", "crash"):
+        print(f"| {k} | {outcomes[k]} |")
+    print("\n| governing | points |\n|---|---|")
+    for k, n in governing.most_common():
+        print(f"| {k} | {n} |")
+    zero = [(res["spec"], r["angle"]) for res in done for r in res["rows"]
+            if r.get("capacity_Nm") == 0.0]
+    print(f"\ncapacity 0 (a limit reached at no torque): {len(zero)} points {zero[:10]}")
+    print(f"no face-end torque search needed (edge contact at any torque): "
+          f"{sum(r.get('face_end_torque_Nm') == 0.0 for r in rows)} points")
+    print(f"CPU per point (capacity and three loads): median {cpu[len(cpu) // 2]:.2f} s, "
+          f"largest {cpu[-1]:.1f} s, total {sum(cpu):.0f} s")
+    worst = max(done, key=lambda res: res["largest_change"])
+    print(f"largest change between neighbouring angles under one criterion: "
+          f"{worst['largest_change']:.3g}x ({worst['spec']})")
+    print(f"jumps over {JUMP:g}x: {sum(len(res['jumps']) for res in done)}")
+    for res in done:
+        for j in res["jumps"]:
+            print(f"  {res['spec']}: {j}")
+    for r_spec in done:
+        for r in r_spec["rows"]:
+            if r["outcome"] != "ok":
+                print(f"  {r_spec['spec']} {r['angle']:g}°: {r['outcome']}: "
+                      f"{r.get('error') or '; '.join(r['problems'])}")
+    path = write_json(Path(a.out), {"args": vars(a), "seconds": elapsed, "specs": done})
+    print(f"\ndetails: {path}")
+
+
+if __name__ == "__main__":
+    main()
