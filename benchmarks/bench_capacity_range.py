@@ -12,7 +12,7 @@ typed refusal, its text kept) or *crash* (any other exception). Printed: the cou
 governing criteria, the capacities of 0 (over a limit at no torque), the jumps between
 neighbouring angles under one criterion (``capacity_range.JUMP``), the largest such
 change, the CPU per point and the elapsed time; the details go to
-``outputs/bench_capacity_range.json``. ``--jobs N`` runs N specs at a time in forked
+``outputs/bench_capacity_range.json`` (rewritten after each spec). ``--jobs N`` runs N specs at a time in forked
 worker processes (the CPU is each worker's own).
 """
 
@@ -88,6 +88,8 @@ def main(argv: list[str] | None = None) -> None:
     done = []
     for k, res in enumerate(results([(s, a.angles) for s in specs], a.jobs)):
         done.append(res)
+        write_json(Path(a.out), {"args": vars(a), "seconds": time.perf_counter() - t0,
+                                 "specs": done})  # so far: a stopped run keeps its points
         bad = [r for r in res["rows"] if r["outcome"] != "ok"]
         print(f"  {k + 1}/{len(specs)} {res['spec']} ({res['teeth']} teeth): "
               f"{len(res['rows']) - len(bad)}/{len(res['rows'])} ok, "
