@@ -2,16 +2,19 @@
 the checks of one point (used by ``tests/test_capacity_range.py`` and
 ``benchmarks/bench_capacity_range.py``).
 
-At each misalignment a point is ``gc.capacity(spec, angle)`` and ``gc.load`` at three
+At each misalignment a point is ``gc.capacity(spec, angle)`` and the load at three
 torques (:func:`torques`: the spec's, else the capacity there; a tenth of it and ten times
 it) on the default model; :func:`problems` lists what is wrong with a point (an empty list:
 every returned number finite, the governing criterion named, the loads carrying their
 torque), :func:`jumps` where a capacity curve changes by more than :data:`JUMP` between
-neighbouring angles without a change of its governing criterion.
+neighbouring angles without a change of regime: of its governing criterion, or of whether
+a patch reaches a face end at the capacity (the capacity falls steeply where it starts to:
+the root stress of a load at the face end is higher, and fewer teeth share).
 """
 
 from __future__ import annotations
 
+import itertools
 import math
 
 import numpy as np
@@ -25,8 +28,8 @@ ANGLES = tuple(0.5 * k for k in range(13))  # 0, 0.5, ..., 6 degrees
 SEED = 38  # of the random specs (issue 38)
 LOAD_ANGLES = (0.0,)  # rotations of each load (one pose: the load is checked, not searched)
 BALANCE_RTOL = 1e-6  # the tooth loads carry the torque (the surface model's own balance)
-JUMP = 3.0  # neighbouring angles 0.5° apart: a capacity changing by more, under the same
-#   governing criterion, is a finding (measured over the benchmark: see docs/safety.md)
+JUMP = 3.0  # neighbouring angles 0.5° apart: a capacity changing by more in one regime is
+#   a finding (measured over the benchmark: see docs/safety.md)
 LOAD_FIELDS = ("tangential_force_N", "normal_force_N", "deflection_mm", "windup_rad",
                "max_pressure_MPa", "interior_pressure_MPa", "edge_load_share",
                "patch_length_mm", "root_stress_MPa", "mesh_stiffness_Nm_per_rad")
@@ -64,11 +67,11 @@ def torques(spec, capacity_Nm: float | None) -> tuple[float, ...]:
 
 
 def point(spec, angle: float):
-    """``(capacity, loads)`` at ``angle``: :func:`gc.capacity` and :func:`gc.load` at each
-    of :func:`torques` (default model, one pose)."""
+    """``(capacity, loads)`` at ``angle``: :func:`gc.capacity` and the load at each of
+    :func:`torques` (default model, one pose: :func:`gc.load_from_sweep` on one sweep)."""
     c = gc.capacity(spec, angle)
-    loads = [gc.load(spec, angle, LOAD_ANGLES, torque_Nm=T) for T in torques(spec, c.capacity_Nm)]
-    return c, loads
+    sw = gc.sweep(spec, angle, LOAD_ANGLES)
+    return c, [gc.load_from_sweep(sw, torque_Nm=T) for T in torques(spec, c.capacity_Nm)]
 
 
 def _finite(v) -> bool:
@@ -108,15 +111,29 @@ def problems(c, loads) -> list[str]:
     return out
 
 
-def jumps(curve) -> list[str]:
-    """Neighbouring points of a capacity curve (ascending angles) whose capacities differ
-    by more than a factor :data:`JUMP` under the same governing criterion."""
+def curve_point(c) -> tuple[float, float | None, str, bool]:
+    """A capacity's point on its curve: ``(angle, capacity_Nm, governing, edge)``, ``edge``
+    where a patch reaches a face end at or below the governing torque (the face-end
+    torque at most ``capacity / K``)."""
+    fe, cap = c.face_end_torque_Nm, c.capacity_Nm
+    edge = fe is not None and cap is not None and fe <= cap / c.accuracy_factor
+    return c.misalignment_deg, cap, c.governing, edge
+
+
+def changes(points) -> list[tuple[float, float, float, bool]]:
+    """``(angle, next angle, factor, regime changed)`` of neighbouring :func:`curve_point`
+    ``points`` (ascending angles) under the same governing criterion, both capacities
+    positive: the factor by which the capacity changes between them (at least 1), and
+    whether the patch reaches a face end at the capacity at one angle and not the other."""
     out = []
-    for a, b in zip(curve, curve[1:], strict=False):
-        ca, cb = a.capacity_Nm, b.capacity_Nm
-        if a.governing != b.governing or not (_finite(ca) and _finite(cb)):
-            continue
-        if max(ca, cb) > JUMP * min(ca, cb):
-            out.append(f"{a.misalignment_deg:g}° -> {b.misalignment_deg:g}°: {ca:.6g} -> "
-                       f"{cb:.6g} N·m ({a.governing})")
+    for (a, ca, ga, ea), (b, cb, gb, eb) in itertools.pairwise(points):
+        if ga == gb and _finite(ca) and _finite(cb) and ca > 0 and cb > 0:
+            out.append((a, b, max(ca, cb) / min(ca, cb), ea != eb))
     return out
+
+
+def jumps(points) -> list[str]:
+    """The :func:`changes` of a capacity curve by more than a factor :data:`JUMP` without a
+    change of regime (governing criterion, face end reached at the capacity or not)."""
+    return [f"{a:g}° -> {b:g}°: x{f:.3g}" for a, b, f, moved in changes(points)
+            if f > JUMP and not moved]

@@ -12,7 +12,6 @@ from numpy.typing import NDArray
 
 from ...errors import GearCouplingError
 from ...geometry import FLANKS
-from ...numeric import TINY
 from ..inputs import LoadProblem, nominal_root_stress_MPa
 from ..limits import CRITERIA
 from .compliance import first_limit_torque_Nmm
