@@ -46,6 +46,23 @@ def test_secant_root_through_a_ratio_that_is_zero_below_a_threshold(start_ln):
     assert len(solved) <= 15
 
 
+@pytest.mark.parametrize("start_ln", [-2.5, -1.7, -1.2])
+def test_secant_root_of_a_ratio_that_falls_before_it_rises(start_ln):
+    """A ratio that falls with the torque on the way up (a load moving off a face end bends
+    a wider strip): ``T + 0.5 exp(-8 (ln T + 1.5)^2)`` about a root at T = 1 falls from
+    0.72 at e^-1.5 to 0.44 at e^-1: the root within SURFACE_RTOL in at most 12 solves."""
+    from gearcoupling.loading.models.surface_capacity import SURFACE_RTOL, _secant_root
+
+    def ratio(T):
+        solved.append(T)
+        return T + 0.5 * math.exp(-8.0 * (math.log(T) + 1.5) ** 2)
+
+    solved: list[float] = []
+    T = _secant_root(ratio, math.exp(start_ln), 1.0, SURFACE_RTOL)
+    assert abs(math.log(T)) <= SURFACE_RTOL  # the root is 1 to 1e-7
+    assert len(solved) <= 12
+
+
 def test_secant_root_of_a_ratio_never_reached_or_reached_at_no_torque():
     """inf where the ratio stays below 1 up to the largest torque, 0 where it is over 1
     down to the smallest (binding teeth), each after a solve there."""
