@@ -5,11 +5,12 @@ and loads that carry their torque, never a Python error.
 Past the critical angle every patch lies at a face end at a small torque, so the surface
 model's interior pressure (the contact-stress criterion) is 0 until the patches reach
 the interior: the capacity search's secant must take such a ratio as a lower bound (it
-took ln 1e-300, and ended at an infinite root or at a torque three times over the limit).
+took ln 1e-300, and ended at an infinite root, or at a torque where every rotation was 2.3
+times over the limit).
 The seeded sweep here is the cheap end of ``benchmarks/bench_capacity_range.py`` (the
-templates at three angles past most critical angles, the first two random specs of at
-most 60 teeth at every angle; the benchmark: the templates and 100 random specs at every
-angle).
+templates at three angles past most critical angles, a random spec of 47 teeth at every
+angle: about 120 s of CPU in all; the benchmark: the templates and 100 random specs at
+every angle).
 """
 
 import csv
@@ -24,7 +25,9 @@ from gearcoupling.cli import main
 
 TEMPLATE_ANGLES = (3.5, 5.0, 6.0)  # issue 38: renzo-1967 and vari-crown at 3.5, end-round
 #   at 5 and 6 raised a math domain error
-RANDOM, MOST_TEETH = 2, 60
+MOST_TEETH = 60  # the random specs of the subset: of at most this many teeth (the cost of a
+RANDOM = (1,)  # capacity grows with the teeth), the second: random-9, 47 teeth, Vari-Crown,
+#   critical misalignment 1.04° (the first, of 16 teeth, costs as much; the benchmark has both)
 
 
 @pytest.mark.parametrize("start_ln", [-5.0, -0.6, 0.2, 1.0, 4.0])
@@ -85,7 +88,7 @@ def test_templates_past_their_critical_angle(name):
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("index", range(RANDOM))
+@pytest.mark.parametrize("index", RANDOM)
 def test_random_specs_over_the_whole_range(index):
     """Every angle finite; between neighbouring angles from 0.5° on, in one regime (the
     governing criterion, a face end reached at the capacity or not), the capacity changes
@@ -93,7 +96,7 @@ def test_random_specs_over_the_whole_range(index):
     sharing to the few teeth of a crowned contact; where the patch starts to reach a face
     end too: random-9 falls 3.1 times from 0.5° to 1°, its critical angle 1.04°, and the
     independent compliance model 3.5 times)."""
-    spec = range_specs(RANDOM, most_teeth=MOST_TEETH)[index]
+    spec = range_specs(index + 1, most_teeth=MOST_TEETH)[index]
     curve = []
     for angle in ANGLES:
         c, loads = point(spec, angle)
