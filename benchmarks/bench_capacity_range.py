@@ -15,7 +15,7 @@ one governing criterion (with and without the patch starting to reach a face end
 capacity) and the jumps over ``capacity_range.JUMP`` in one regime, the CPU per point and
 the elapsed time; the details go to ``outputs/bench_capacity_range.json`` (rewritten after
 each spec). ``--jobs N`` runs N specs at a time in forked worker processes (the CPU is
-each worker's own).
+each worker's own; they die with this process).
 """
 
 from __future__ import annotations
@@ -45,6 +45,7 @@ from capacity_range import (
     problems,
     range_specs,
 )
+from gearcoupling.forked import worker_signals
 from gearcoupling.io import write_json
 
 
@@ -77,7 +78,7 @@ def results(work: list[tuple], jobs: int):
     if jobs <= 1:
         yield from map(run_spec, work)
         return
-    with multiprocessing.get_context("fork").Pool(jobs) as pool:
+    with multiprocessing.get_context("fork").Pool(jobs, initializer=worker_signals) as pool:
         yield from pool.imap(run_spec, work)
 
 

@@ -177,7 +177,9 @@ def _first_root(limits: _SurfaceLimits, name: str, guess_Nmm: NDArray,
     """The rotation where the compliance model reaches criterion ``name`` first (from its
     roots ``guess_Nmm (M,)``) and the surface model's root there (N·mm, to ``rtol``),
     started from the pose already solved nearest to it, where there is one (its ratio and
-    the criterion's slope give the start), else from the compliance model's root."""
+    the criterion's slope give the start, within :data:`MAX_STEP` of it; a ratio of 0: the
+    compliance model's root, kept within a step above it), else from the compliance
+    model's root."""
     fallback = 1e3 * limits.spec.tooth.pitch_radius
     start = np.where(np.isfinite(guess_Nmm) & (guess_Nmm > 0), guess_Nmm, fallback)
     j = int(np.argmin(start))
@@ -188,6 +190,9 @@ def _first_root(limits: _SurfaceLimits, name: str, guess_Nmm: NDArray,
         if ratio > 0 and (name != "face_end" or math.isfinite(limits.solved[k, T][2])):
             T0 = min(max(T * ratio ** (-1.0 / SLOPES[name]), T * math.exp(-MAX_STEP)),
                      T * math.exp(MAX_STEP))
+        elif ratio == 0.0:  # nothing of it at T (no interior pressure yet): above T, and
+            #   within a step of it (the compliance model's root may be absurd there)
+            T0 = min(max(T0, T), T * math.exp(MAX_STEP))
     return j, _rotation_root(limits, name, j, T0, rtol)
 
 
