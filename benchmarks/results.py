@@ -47,6 +47,8 @@ FULL = [
     ("bench_study.py", [], "studies on dask.distributed"),
     ("bench_random_specs.py", [], "1000 seeded random specs: accepted, finite, closed parts"),
     ("bench_wear.py", ["--speed", "--knobs"], "wear history: CPU, steps, each knob's effect"),
+    ("bench_capacity_range.py", ["--jobs", "2"],
+     "the default capacity at 0-6°: the templates and 100 seeded random specs, finite"),
 ]
 PACKAGES = ("numpy", "scipy", "trimesh", "manifold3d", "matplotlib", "numba", "gmsh",
             "dask", "viser")

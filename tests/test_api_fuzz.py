@@ -70,7 +70,7 @@ FUNCTIONS = {
                      "torque_Nm": "torque", "model": "model"}),
     "load_from_sweep": (False, {"sweep_result": "sweep", "torque_Nm": "torque",
                                 "model": "model"}),
-    "capacity": (False, {"spec": "spec", "misalignment_deg": "mis", "model": "model",
+    "capacity": (False, {"spec": "spec", "misalignment_deg": "mis_range", "model": "model",
                          "loaded_flank": "flank", "angles_deg": "angles"}),
     "capacity_curve": (True, {"spec": "spec", "misalignments_deg": "angles",
                               "model": "model", "angles_deg": "angles"}),
@@ -145,6 +145,9 @@ FUNCTIONS = {
                                    "alignment": "alignment", "torque_Nm": "torque",
                                    "model": "model"}),
 }
+# the whole supported range, past industrial-m2's critical misalignment (4.28°) too, where
+# every patch lies at a face end (issue 38: the default capacity raised there)
+KINDS["mis_range"] = ([6.0, 4.5, 0.5, 0.0], KINDS["mis"][1])
 # kinds whose valid values need the fixture objects
 KINDS["sweep"] = (["SWEEP"], [None, 42, "industrial-m2", {}])
 KINDS["specs"] = ([[M2], [SPEC]], [None, [], M2, [SPEC, SPEC], [None], 42])

@@ -12,7 +12,6 @@ from numpy.typing import NDArray
 
 from ...errors import GearCouplingError
 from ...geometry import FLANKS
-from ...numeric import TINY
 from ..inputs import LoadProblem, nominal_root_stress_MPa
 from ..limits import CRITERIA
 from .compliance import first_limit_torque_Nmm
@@ -69,9 +68,11 @@ def surface_torques(problem: LoadProblem, limits: dict[str, NDArray]
     for name in sorted(first, key=lambda k: first[k][1]):
         j, T = first[name]
         search = pressure if name == "contact_stress" else load
-        if name in CRITERIA and (T <= (1.0 + SCREEN_MARGIN) * best or search is pressure):
+        if name in CRITERIA and 0.0 < T < math.inf and (
+                T <= (1.0 + SCREEN_MARGIN) * best or search is pressure):
             # to SURFACE_RTOL on its own grid, from the rough root, with the slope the
-            # rough search measured
+            # rough search measured (none where the rough search found it over the limit
+            # at no torque or never reached)
             T = _rotation_root(search, name, j, T, SURFACE_RTOL if T <= (
                 1.0 + SCREEN_MARGIN) * best else INFO_RTOL, _measured_slope(load, name, j, T))
         if name in CRITERIA and T <= (1.0 + SCREEN_MARGIN) * best:
@@ -176,7 +177,9 @@ def _first_root(limits: _SurfaceLimits, name: str, guess_Nmm: NDArray,
     """The rotation where the compliance model reaches criterion ``name`` first (from its
     roots ``guess_Nmm (M,)``) and the surface model's root there (N·mm, to ``rtol``),
     started from the pose already solved nearest to it, where there is one (its ratio and
-    the criterion's slope give the start), else from the compliance model's root."""
+    the criterion's slope give the start, within :data:`MAX_STEP` of it; a ratio of 0: the
+    compliance model's root, kept within a step above it), else from the compliance
+    model's root."""
     fallback = 1e3 * limits.spec.tooth.pitch_radius
     start = np.where(np.isfinite(guess_Nmm) & (guess_Nmm > 0), guess_Nmm, fallback)
     j = int(np.argmin(start))
@@ -185,7 +188,11 @@ def _first_root(limits: _SurfaceLimits, name: str, guess_Nmm: NDArray,
         k, T = min(limits.solved, key=lambda key: (abs(key[0] - j), abs(math.log(key[1] / T0))))
         ratio = limits.ratio(name, k, T)
         if ratio > 0 and (name != "face_end" or math.isfinite(limits.solved[k, T][2])):
-            T0 = T * ratio ** (-1.0 / SLOPES[name])
+            T0 = min(max(T * ratio ** (-1.0 / SLOPES[name]), T * math.exp(-MAX_STEP)),
+                     T * math.exp(MAX_STEP))
+        elif ratio == 0.0:  # nothing of it at T (no interior pressure yet): above T, and
+            #   within a step of it (the compliance model's root may be absurd there)
+            T0 = min(max(T0, T), T * math.exp(MAX_STEP))
     return j, _rotation_root(limits, name, j, T0, rtol)
 
 
@@ -235,6 +242,8 @@ def _measured_slope(limits: _SurfaceLimits, name: str, j: int, T_Nmm: float) -> 
     more teeth take load, so bending at 1° on renzo-1967 has 0.67, not 1), kept within a
     factor 2 of :data:`SLOPES`; the nominal slope where there are none (face end: 1)."""
     nominal = SLOPES.get(name, 1.0)
+    if not 0.0 < T_Nmm < math.inf:
+        return nominal
     near = sorted((abs(math.log(T / T_Nmm)), T) for k, T in limits.solved
                   if k == j and abs(math.log(T / T_Nmm)) <= math.log(1.25))
     if name not in SLOPES or len(near) < 2:
@@ -257,39 +266,58 @@ def _rotation_root(limits: _SurfaceLimits, name: str, j: int, T0: float,
     return _secant_root(ratio, T0, SLOPES[name] if slope is None else slope, rtol)
 
 
-LOG_T_MAX = math.log(1e18)  # N·mm: a torque never reached
-LOG_T_MIN = math.log(1e-12)
+T_MAX, T_MIN = 1e18, 1e-12  # N·mm: a torque never reached, a vanishing one
+LOG_T_MAX, LOG_T_MIN = math.log(T_MAX), math.log(T_MIN)
+MAX_STEP = 4.0  # ln T: the longest step before a root is bracketed (a factor of 55)
 
 
 def _secant_root(ratio, T0: float, slope: float, rtol: float = SURFACE_RTOL) -> float:
     """``ratio(T) = 1`` for increasing ``ratio``: secant steps on ``ln ratio`` against
     ``ln T`` (nearly straight: the first step takes the slope ``slope``), kept inside the
-    bracket once one is found (bisection where a step leaves it, doubling steps outward
-    before); stops when the step is below ``rtol`` (relative), the first one (from the
-    slope alone) when it is below ``rtol / 2``: there a true slope from half to twice
-    ``slope`` moves the root by less than ``rtol``."""
-    x0, f0 = math.log(T0), math.log(max(ratio(T0), TINY))
-    lo, hi = (-math.inf, x0) if f0 >= 0 else (x0, math.inf)
-    x1 = x0 - f0 / slope
-    if abs(x1 - x0) <= 0.5 * rtol:
-        return math.exp(x1)
-    for _ in range(100):
-        if x1 > LOG_T_MAX:
-            return math.inf
-        if x1 < LOG_T_MIN:  # over the limit at a vanishing torque (binding teeth)
-            return 0.0
-        f1 = math.log(max(ratio(math.exp(x1)), TINY))
-        if f1 >= 0:
-            hi = min(hi, x1)
+    bracket once one is found (bisection where a step leaves it, steps of at most
+    :data:`MAX_STEP` outward before); stops when the step is below ``rtol`` (relative), the
+    first one (from the slope alone) when it is below ``rtol / 2``: there a true slope from
+    half to twice ``slope`` moves the root by less than ``rtol``.
+
+    A ratio of 0 (the criterion's measure is absent at that torque: past the critical
+    misalignment the interior pressure, while every patch lies at a face end) is below 1
+    but has no logarithm: it bounds the root from below and the secant goes on from the
+    last positive ratio. ``inf`` where the ratio stays below 1 up to 1e18 N·mm, 0 where it
+    is at or above 1 down to 1e-12 N·mm (binding teeth: loaded at no torque)."""
+    lo, hi = -math.inf, math.inf  # ln T: the ratio below 1 at lo, at or above 1 at hi
+    last: tuple[float, float] | None = None  # (ln T, ln ratio) of the last positive ratio
+    T = min(max(T0, T_MIN), T_MAX)
+    x = math.log(T)
+    for solve in range(100):
+        r = ratio(T)
+        if math.isnan(r):
+            raise GearCouplingError(f"surface capacity: the model's solve at {T:.6g} N·mm "
+                                    "gave no value of the criterion (NaN)")
+        if r >= 1.0:
+            hi = min(hi, x)
         else:
-            lo = max(lo, x1)
-        step = -f1 * (x1 - x0) / (f1 - f0) if f1 != f0 else -f1 / slope
-        if abs(step) <= rtol:
-            return math.exp(x1 + step)
+            lo = max(lo, x)
+        if r > 0.0:
+            f = math.log(r)
+            step = -f / slope if last is None or last[1] == f else \
+                -f * (x - last[0]) / (f - last[1])
+            last = (x, f)
+            if abs(step) <= (0.5 if solve == 0 else 1.0) * rtol:
+                return math.exp(x + step)
+        else:
+            f, step = -math.inf, MAX_STEP  # nothing of the criterion yet: upward
         if hi - lo <= rtol:
             return math.exp(0.5 * (lo + hi))
-        x2 = x1 + step
-        if not lo < x2 < hi:
-            x2 = 0.5 * (lo + hi) if math.isfinite(lo + hi) else x1 + math.copysign(2.0, step)
-        x0, f0, x1 = x1, f1, x2
+        if math.isfinite(lo + hi):  # bracketed: the step inside, else bisection
+            x = x + step if lo < x + step < hi else 0.5 * (lo + hi)
+        elif hi == LOG_T_MIN:  # over the limit at a vanishing torque (binding teeth)
+            return 0.0
+        elif lo == LOG_T_MAX:  # never reached
+            return math.inf
+        else:  # outward, toward the side the root lies on (a secant pointing back: the
+            #    ratio fell with the torque; the slope's step instead)
+            if (step > 0.0) != (hi == math.inf):
+                step = -f / slope
+            x = min(max(x + min(max(step, -MAX_STEP), MAX_STEP), LOG_T_MIN), LOG_T_MAX)
+        T = math.exp(x)
     raise GearCouplingError(f"surface capacity: no root within {rtol:g} after 100 solves")
