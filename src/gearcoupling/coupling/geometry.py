@@ -21,8 +21,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..clearance import MeshAngles, mesh_angles
-from ..errors import ArgumentError
-from ..spec import MISALIGNMENT_RANGE_DEG, CouplingSpec, as_spec
+from ..errors import ArgumentError, SpecError
+from ..spec import MISALIGNMENT_RANGE_DEG, CouplingSpec, as_spec, file_key
 from .layout import CouplingLayout, ShaftAlignment, is_close
 
 MESHES = ("A", "B")
@@ -188,6 +188,38 @@ def coupling_geometry(spec: CouplingSpec, layout: CouplingLayout,
                             *_axes(ob), ob, annuli)
 
 
+def spec_geometry(spec: CouplingSpec, changes: dict[str, float] | None = None, *,
+                  names: dict[str, str] | None = None) -> CouplingGeometry:
+    """The coupling a double-engagement spec describes (its ``[coupling]`` table), resolved
+    at its ``[alignment]`` with ``changes`` (fields of :class:`ShaftAlignment`) put in
+    place; without an ``[alignment]`` table, at the parallel offset that puts each mesh at
+    the spec's design misalignment (azimuth 0, no angle).
+
+    Every refusal names where the value came from: the spec's key (``coupling.span``,
+    ``alignment.offset``: a :class:`SpecError`) or, for a changed field, its name in
+    ``names`` (an option such as ``--offset``: an :class:`ArgumentError`).
+    """
+    spec = as_spec(spec)
+    changes, names = dict(changes or {}), dict(names or {})
+    if spec.coupling.engagements != 2:
+        raise ArgumentError("engagements", spec.coupling.engagements, "2: the spec describes "
+                            "one engagement ([coupling] engagements = 2 for two)")
+    try:
+        if spec.alignment is not None:
+            base = spec.alignment
+        else:
+            probe = coupling_geometry(spec, spec.coupling, ShaftAlignment())
+            base = ShaftAlignment(offset_mm=probe.span_mm * math.tan(spec.design_misalignment))
+        alignment = base.replace(**changes) if changes else base
+        return coupling_geometry(spec, spec.coupling, alignment)
+    except ArgumentError as err:
+        if err.field in changes:
+            raise ArgumentError(names.get(err.field, err.field), err.value, err.allowed
+                                ) from None
+        table = "alignment" if err.field in ShaftAlignment.__dataclass_fields__ else "coupling"
+        raise SpecError(file_key(table, err.field), err.value, err.allowed) from None
+
+
 def _single(spec: CouplingSpec, layout: CouplingLayout,
             alignment: ShaftAlignment) -> CouplingGeometry:
     """One engagement: the sleeve is fixed to shaft B, so its axis is shaft B's."""
@@ -313,4 +345,5 @@ def _check_span(spec_a: CouplingSpec, spec_b: CouplingSpec, span: float) -> None
                             "on its midplane, must not overlap")
 
 
-__all__ = ["MESHES", "OFFSET_AT", "Annulus", "CouplingGeometry", "coupling_geometry", "turn"]
+__all__ = ["MESHES", "OFFSET_AT", "Annulus", "CouplingGeometry", "coupling_geometry",
+           "spec_geometry", "turn"]
