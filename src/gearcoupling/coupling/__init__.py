@@ -31,5 +31,5 @@ __all__ = ["LOAD_COLUMNS", "MACHINE_LOADS", "MAX_SHAFT_ANGLE_DEG", "MESHES", "OF
            "CouplingLayout", "PlacedPart", "RossPieces", "Segment", "ShaftAlignment",
            "WholeCapacity", "WholeCouplingData", "WholeLoads", "WholeTorsion",
            "allowable_offset", "annulus_EI_Nm2", "beam_frequencies_Hz", "coupling_assembly",
-           "coupling_geometry", "pinned_pinned_Hz", "spec_geometry", "whole_capacity", "whole_coupling_data",
-           "whole_loads"]
+           "coupling_geometry", "pinned_pinned_Hz", "spec_geometry", "whole_capacity",
+           "whole_coupling_data", "whole_loads"]
