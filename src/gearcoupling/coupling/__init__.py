@@ -22,7 +22,15 @@ from .geometry import (
     spec_geometry,
 )
 from .layout import MAX_SHAFT_ANGLE_DEG, SLEEVES, CouplingLayout, ShaftAlignment
-from .loads import LOAD_COLUMNS, MACHINE_LOADS, WholeLoads, whole_loads
+from .loads import (
+    LOAD_COLUMNS,
+    MACHINE_LOADS,
+    WholeLoads,
+    default_turn,
+    loads_from_results,
+    mesh_torque_Nm,
+    whole_loads,
+)
 from .massdata import WholeCouplingData, WholeTorsion, whole_coupling_data
 from .ross import RossPieces
 
@@ -31,5 +39,6 @@ __all__ = ["LOAD_COLUMNS", "MACHINE_LOADS", "MAX_SHAFT_ANGLE_DEG", "MESHES", "OF
            "CouplingLayout", "PlacedPart", "RossPieces", "Segment", "ShaftAlignment",
            "WholeCapacity", "WholeCouplingData", "WholeLoads", "WholeTorsion",
            "allowable_offset", "annulus_EI_Nm2", "beam_frequencies_Hz", "coupling_assembly",
-           "coupling_geometry", "pinned_pinned_Hz", "spec_geometry", "whole_capacity",
+           "coupling_geometry", "default_turn", "loads_from_results",
+           "mesh_torque_Nm", "pinned_pinned_Hz", "spec_geometry", "whole_capacity",
            "whole_coupling_data", "whole_loads"]

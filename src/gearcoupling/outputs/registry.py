@@ -1,5 +1,8 @@
 """Every stage of the pipeline, one :class:`~.stage.Stage` each, in an order where each
-follows the stages it needs (``gc.run`` and ``gc.report`` compute from this table).
+follows the stages it needs (``gc.run`` and ``gc.report`` compute from this table). A
+stage's level says where it runs: in each mesh's scope of a double-engagement coupling
+(the default), once for the spec, for a single engagement only, or for the whole coupling
+only (:attr:`~.stage.Stage.level`).
 
 Adding a stage is adding its entry here and its module's functions (docs/api.md,
 "Extending"). Costs are CPU seconds of the stage on renzo-1967 with the default settings
@@ -13,16 +16,17 @@ from . import files
 from .stage import Stage
 
 FIGURES, MESHES, KERNELS, LOADS = "figures", "meshes", "kernels", "loads"
+SPEC, SINGLE, WHOLE = "spec", "single", "whole"
 
 STAGES: dict[str, Stage] = {s.name: s for s in (
     Stage("spec", "resolved spec (spec.json)", (), "spec:resolve", "spec:files", 0.01,
-          writes=files.SPEC),
+          writes=files.SPEC, level=SPEC),
     Stage("sections", "transverse sections and the crown profile", (), "spec:profile",
-          "spec:profile_files", 0.6, uses=(FIGURES,), writes=files.SECTIONS),
+          "spec:profile_files", 0.6, uses=(FIGURES,), writes=files.SECTIONS, level=SPEC),
     Stage("parts", "hub and sleeve STL", (), "parts:build", "parts:files", 0.6,
-          uses=(MESHES,), writes=tuple(files.part_files())),
+          uses=(MESHES,), writes=tuple(files.part_files()), level=SPEC),
     Stage("step", "hub and sleeve STEP", (), "parts:step", "parts:step_files", 1.7,
-          after=("parts",), writes=files.STEP),
+          after=("parts",), writes=files.STEP, level=SPEC),
     Stage("design", "critical and binding angles", (), "sweep:design", None, 1.0,
           uses=(KERNELS,)),
     Stage("backlash", "smallest backlash against misalignment", ("design",),
@@ -48,16 +52,38 @@ STAGES: dict[str, Stage] = {s.name: s for s in (
           "capacity:plan", "capacity:files", 12.0, parallel=True,
           uses=(FIGURES, KERNELS, LOADS), writes=files.CAPACITY),
     Stage("mass", "masses and inertias of the solids", (), "datasheet:mass", None, 1.0,
-          uses=(MESHES,)),
+          uses=(MESHES,), level=SINGLE),
     Stage("datasheet", "coupling data sheet for a rotor model (API 671)",
           ("capacity", "mass"), "datasheet:plan", "datasheet:files", 12.0, parallel=True,
-          uses=(FIGURES, KERNELS, LOADS), writes=files.DATASHEET),
+          uses=(FIGURES, KERNELS, LOADS), writes=files.DATASHEET, level=SINGLE),
     Stage("hob", "hob centre path and G-code", (), "manufacturing:hob",
-          "manufacturing:hob_files", 0.3, uses=(FIGURES,), writes=files.HOB),
+          "manufacturing:hob_files", 0.3, uses=(FIGURES,), writes=files.HOB, level=SPEC),
     Stage("charts", "nominal measuring charts", (), "manufacturing:charts",
-          "manufacturing:charts_files", 0.3, uses=(FIGURES,), writes=files.CHARTS),
+          "manufacturing:charts_files", 0.3, uses=(FIGURES,), writes=files.CHARTS,
+          level=SPEC),
     Stage("inspection", "a measured hub against the nominal", (), "inspection:inspect",
-          "inspection:files", 3.0, uses=(FIGURES, MESHES), writes=files.INSPECTION),
+          "inspection:files", 3.0, uses=(FIGURES, MESHES), writes=files.INSPECTION,
+          level=SPEC),
+    Stage("alignment", "each mesh's angle and tilt axis at the shaft alignment", (),
+          "whole:alignment", "whole:alignment_files", 0.01, writes=files.ALIGNMENT,
+          level=WHOLE),
+    Stage("whole_loads", "loads on the machines over a turn, the floating member's balance",
+          ("load",), "whole:whole_loads", "whole:whole_loads_files", 0.3, uses=(FIGURES,),
+          writes=files.WHOLE_LOADS, level=WHOLE),
+    Stage("whole_capacity", "the whole coupling's capacity: the smaller mesh's",
+          ("rating",), "whole:whole_capacity", "whole:whole_capacity_files", 0.01,
+          writes=files.WHOLE_CAPACITY, level=WHOLE),
+    Stage("allowable_offset", "allowable parallel offset at the span", (), "whole:offset",
+          "whole:offset_files", 9.0, uses=(KERNELS, LOADS), writes=files.ALLOWABLE_OFFSET,
+          level=WHOLE),
+    Stage("whole_datasheet", "the whole coupling's data sheet (AGMA 9009 halves, torsion, "
+          "lateral frequency)", (), "whole:datasheet", "whole:datasheet_files", 12.0,
+          uses=(MESHES, KERNELS, LOADS), writes=files.WHOLE_DATASHEET, level=WHOLE),
+    Stage("assembly", "every part placed at the alignment (glTF)", (), "whole:assembly",
+          "whole:assembly_files", 1.0, uses=(MESHES,), writes=files.ASSEMBLY, level=WHOLE),
+    Stage("assembly_step", "the placed assembly as STEP AP214", (), "whole:assembly_step",
+          "whole:assembly_step_files", 3.0, after=("assembly",), writes=files.ASSEMBLY_STEP,
+          level=WHOLE),
 )}
 
 #: what ``gc.run`` computes by default: everything a spec alone gives but the capacity
@@ -65,3 +91,12 @@ STAGES: dict[str, Stage] = {s.name: s for s in (
 #: make those); the rating says whether the capacity carries the torque
 RUN = ("spec", "sections", "parts", "step", "sweep", "load", "load_study", "q_graph",
        "rating", "check", "viewer")
+#: what ``gc.run`` adds for a double-engagement coupling: the whole coupling's stages but
+#: its data sheet (each mesh's stages of :data:`RUN` run in its own folder)
+RUN_WHOLE = ("alignment", "whole_loads", "whole_capacity", "allowable_offset", "assembly",
+             "assembly_step")
+
+
+def run_stages(engagements: int = 1) -> tuple[str, ...]:
+    """What ``gc.run`` computes by default for a spec of one or two ``engagements``."""
+    return RUN + RUN_WHOLE if engagements == 2 else RUN
