@@ -175,7 +175,7 @@ def coupling_geometry(spec: CouplingSpec, layout: CouplingLayout,
         raise ArgumentError("layout", layout, "a gearcoupling.coupling.CouplingLayout")
     if not isinstance(alignment, ShaftAlignment):
         raise ArgumentError("alignment", alignment, "a gearcoupling.coupling.ShaftAlignment")
-    spec_b = layout.hub_b or spec_a
+    spec_b = spec_a if layout.hub_b is None else as_spec(layout.hub_b, "hub_b")
     if layout.engagements == 1:
         return _single(spec_a, layout, alignment)
     span, annuli = _floating_parts(spec_a, spec_b, layout)

@@ -181,7 +181,7 @@ def _inputs(scopes: dict[str, Scope], settings: StageSettings, job: Job,
 
 def _folder(folder: Path | None, job: Job) -> Path | None:
     """Where ``job`` writes: the scope's folder in ``folder``."""
-    return None if folder is None or not job.scope else folder / job.scope
+    return folder / job.scope if folder is not None and job.scope else folder
 
 
 def _run_task(task: _Task, inputs: StageInputs, folder: Path | None

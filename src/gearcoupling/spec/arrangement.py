@@ -66,7 +66,8 @@ class CouplingLayout:
     spacer_length_mm : float, optional
         Flange face to flange face; with ``span_mm`` both must agree, left out it follows.
     hub_b : CouplingSpec, optional
-        The spec of the second engagement (hub B and its sleeve ring); default the first.
+        The spec of the second engagement (hub B and its sleeve ring; a template name or
+        TOML path is loaded where the coupling is resolved); default the first.
     """
 
     engagements: int = 2
@@ -88,10 +89,6 @@ class CouplingLayout:
             set_(self, name, _optional(getattr(self, name), name))
         set_(self, "spacer_inner_diameter_mm", _optional(
             self.spacer_inner_diameter_mm, "spacer_inner_diameter_mm", zero=True))
-        if self.hub_b is not None:
-            from .coupling import as_spec  # the spec's module holds a layout as a field
-
-            set_(self, "hub_b", as_spec(self.hub_b, "hub_b"))
         if self.engagements == 1:
             return
         flanged = self.sleeve == "flanged"
