@@ -8,6 +8,7 @@ The parts are :mod:`.model` (and :mod:`.load`), read from their tables by :mod:`
 from __future__ import annotations
 
 import copy
+import dataclasses
 import math
 import os
 from dataclasses import asdict, dataclass, field
@@ -122,14 +123,15 @@ def spec_from_dict(data: dict[str, Any], name: str = "custom") -> CouplingSpec:
     root = Table(data)
     try:
         parts = read_parts(root, name)
+        spec = CouplingSpec(**parts)
     except SpecError as err:
         better = explained(err, root)
         if better is err:
             raise
         raise better from None
-    if hub_b is not None:
-        parts["coupling"] = _with_hub_b(data, hub_b, parts, name)
-    return CouplingSpec(**parts)
+    if hub_b is None:
+        return spec
+    return dataclasses.replace(spec, coupling=_with_hub_b(data, hub_b, parts, name))
 
 
 def _with_hub_b(data: dict[str, Any], hub_b: Any, parts: dict[str, Any],
