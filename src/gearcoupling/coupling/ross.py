@@ -16,13 +16,16 @@ the coupling frame (ROSS's element is diagonal: cross terms are left out, as
 from __future__ import annotations
 
 import math
+import os
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from ..errors import ArgumentError
-from ..rotordynamics import combine, import_ross
+from ..io import atomic_path
+from ..rotordynamics import ROSS_SUFFIXES, combine, import_ross
 
 if TYPE_CHECKING:
     from .massdata import WholeCouplingData
@@ -45,6 +48,20 @@ class RossPieces:
         return {"elements": [type(e).__name__ for e in self.elements],
                 "disks": len(self.disks), "first_node": self.first_node,
                 "last_node": self.last_node}
+
+    def write(self, path: str | os.PathLike) -> Path:
+        """Every piece in one file of ROSS's own format (``.toml`` or ``.json``: ROSS's
+        ``save``, one entry per element and disk keyed by its class and tag), atomically;
+        ``ross.CouplingElement.load`` reads the first (coupling A)."""
+        target = Path(path)
+        if target.suffix.lower() not in ROSS_SUFFIXES:
+            raise ArgumentError("path", str(path), "a .toml or .json file (the formats ROSS "
+                                "saves and loads)")
+        with atomic_path(target) as tmp:
+            tmp.unlink()  # ROSS's save adds to an existing file: start from none
+            for piece in (*self.elements, *self.disks):
+                piece.save(tmp)
+        return target
 
 
 def lateral_diagonal(matrix: np.ndarray, azimuth_deg: float) -> tuple[float, ...]:

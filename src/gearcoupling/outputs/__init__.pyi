@@ -7,7 +7,9 @@ from .capacity import CapacityComparison as CapacityComparison
 from .capacity import Rating as Rating
 from .capacity import compare_capacity as compare_capacity
 from .capacity import comparison_range as comparison_range
+from .executor import Job as Job
 from .executor import compute as compute
+from .executor import jobs as jobs
 from .files import REPORT as REPORT
 from .files import REPORT_PDF as REPORT_PDF
 from .interference import Check as Check

@@ -5,7 +5,7 @@ from __future__ import annotations
 import contextlib
 import os
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 from datetime import UTC, datetime
 from pathlib import Path
@@ -160,6 +160,16 @@ def _verdicts(sec: ReportSection, view: View, meshes: list[View]) -> list[Verdic
         return sec.verdicts(view)
     return [replace(row, check=f"mesh {m.point.mesh}: {row.check}") for m in meshes
             for row in sec.verdicts(m)]
+
+
+def section_verdicts(spec: CouplingSpec, settings: ReportSettings, results: Results,
+                     folder: Path, keys: Sequence[str]) -> list[Verdict]:
+    """The verdicts of the report's sections ``keys`` on these results (a double-engagement
+    coupling's mesh sections once per mesh, each check saying which): what a command
+    prints of its findings."""
+    view, meshes = _views(spec, settings, results, folder)
+    return [row for sec in registry.SECTIONS if sec.key in keys
+            for row in _verdicts(sec, view, meshes)]
 
 
 def _render(spec: CouplingSpec, s: ReportSettings, results: Results, folder: Path,
