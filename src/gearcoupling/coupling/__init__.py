@@ -10,7 +10,7 @@ allowable parallel offset; :func:`whole_coupling_data` the mass-elastic data she
 alignment (meshes, glTF, STEP assembly, overlap of each mesh's hub and sleeve).
 """
 
-from .assembly import CouplingAssembly, PlacedPart, coupling_assembly
+from .assembly import CouplingAssembly, PlacedPart, annulus_mesh, coupling_assembly
 from .beam import Segment, annulus_EI_Nm2, beam_frequencies_Hz, pinned_pinned_Hz
 from .capacity import AllowableOffset, WholeCapacity, allowable_offset, whole_capacity
 from .geometry import (
@@ -37,8 +37,8 @@ from .ross import RossPieces
 __all__ = ["LOAD_COLUMNS", "MACHINE_LOADS", "MAX_SHAFT_ANGLE_DEG", "MESHES", "OFFSET_AT",
            "SLEEVES", "AllowableOffset", "Annulus", "CouplingAssembly", "CouplingGeometry",
            "CouplingLayout", "PlacedPart", "RossPieces", "Segment", "ShaftAlignment",
-           "WholeCapacity", "WholeCouplingData", "WholeLoads", "WholeTorsion",
-           "allowable_offset", "annulus_EI_Nm2", "beam_frequencies_Hz", "coupling_assembly",
-           "coupling_geometry", "default_turn", "loads_from_results",
-           "mesh_torque_Nm", "pinned_pinned_Hz", "spec_geometry", "whole_capacity",
-           "whole_coupling_data", "whole_loads"]
+           "WholeCapacity", "WholeCouplingData", "WholeLoads", "WholeTorsion", "allowable_offset",
+           "annulus_EI_Nm2", "annulus_mesh", "beam_frequencies_Hz", "coupling_assembly",
+           "coupling_geometry", "default_turn", "loads_from_results", "mesh_torque_Nm",
+           "pinned_pinned_Hz", "spec_geometry", "whole_capacity", "whole_coupling_data",
+           "whole_loads"]

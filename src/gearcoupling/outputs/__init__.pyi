@@ -40,6 +40,7 @@ from .registry import RUN as RUN
 from .registry import RUN_WHOLE as RUN_WHOLE
 from .registry import STAGES as STAGES
 from .registry import run_stages as run_stages
+from .settings import ALIGNMENT_SETTINGS as ALIGNMENT_SETTINGS
 from .settings import KNOB_RANGES as KNOB_RANGES
 from .settings import MESH_SCOPES as MESH_SCOPES
 from .settings import OperatingPoint as OperatingPoint

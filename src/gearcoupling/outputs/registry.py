@@ -44,7 +44,7 @@ STAGES: dict[str, Stage] = {s.name: s for s in (
           "interference:files", 1.8, uses=(FIGURES, MESHES, KERNELS),
           writes=files.INTERFERENCE),
     Stage("viewer", "static 3D viewer", (), "viewer:scene", "viewer:files", 0.6,
-          uses=(MESHES, KERNELS, LOADS), writes=files.VIEWER),
+          uses=(MESHES, KERNELS, LOADS), writes=files.VIEWER, level=SPEC),
     Stage("rating", "capacity at the operating point, the torque against it", (),
           "capacity:rating", "capacity:rating_files", 2.0, uses=(KERNELS, LOADS),
           writes=files.RATING),

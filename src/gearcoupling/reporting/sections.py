@@ -386,6 +386,12 @@ def view3d(v: View) -> list[Block]:
     scene = v.get("viewer", StaticViewer)
     if scene is None:
         return [Note(f"Not included: {v.why('viewer')}", "skip")]
+    if v.point.coupling is not None:
+        return [Viewer(scene.html, "The whole coupling at the shaft alignment, rotation 0, "
+                       "every part placed, each mesh's hub flanks coloured by its clearance "
+                       "at its angle; the sleeve rings in quarter cutaway, the floating "
+                       "member's plain parts translucent (drag to turn, scroll to zoom; "
+                       "gearcoupling view SPEC has sliders for the offset and angle).")]
     return [Viewer(scene.html, f"Hub and sleeve at i = {scene.misalignment_deg:g}°, rotation "
                    "0, quarter cutaway, coloured by clearance (drag to turn, scroll to zoom).")]
 
@@ -418,5 +424,6 @@ SECTIONS: tuple[ReportSection, ...] = (
     ReportSection("measured", "Measured part against the nominal", ("inspection",),
                   measured, measured_verdicts, shown=lambda s: s.scan is not None,
                   level="spec"),
-    ReportSection("view", "3D view", ("viewer",), view3d, shown=lambda s: s.viewer),
+    ReportSection("view", "3D view", ("viewer",), view3d, shown=lambda s: s.viewer,
+                  level="spec"),
 )
