@@ -4,6 +4,7 @@ the shaft alignment options checked before any work (docs/coupling.md)."""
 from __future__ import annotations
 
 import argparse
+from typing import Any
 
 from ..coupling import spec_geometry
 from ..errors import ArgumentError
@@ -15,7 +16,7 @@ FIELDS = {"--offset": "offset_mm", "--offset-azimuth": "offset_azimuth_deg",
           "--shaft-angle": "angle_deg", "--angle-azimuth": "angle_azimuth_deg"}
 
 
-def checked_spec(args: argparse.Namespace) -> tuple[CouplingSpec, dict[str, float]]:
+def checked_spec(args: argparse.Namespace) -> tuple[CouplingSpec, dict[str, Any]]:
     """The command's spec and its alignment options as keywords of
     :class:`~gearcoupling.StageSettings`, checked before any work: a double-engagement
     spec's coupling is resolved at the alignment the options make (a refusal names the

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import sys
 from importlib.util import find_spec
+from typing import Any
 
 from ..arguments import parse_count
 from ..coupling import coupling_assembly, spec_geometry
@@ -79,7 +80,7 @@ def assembly_files() -> tuple[str, ...]:
     return ("coupling.glb", *(("coupling.step",) if find_spec("OCP") else ()))
 
 
-def write_assembly(spec: CouplingSpec, out, alignment: dict[str, float],
+def write_assembly(spec: CouplingSpec, out, alignment: dict[str, Any],
                    tolerance_mm: float | None) -> list:
     """A double-engagement spec's parts placed at its alignment (rotation 0):
     ``coupling.glb`` (one named node per part) and ``coupling.step`` (AP214, every part a

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 from ..arguments import GAP_TOLERANCE_MM, TORQUE_RANGE_NM
 from ..errors import ArgumentError
 from ..loading import PHASES, capacity, model_names, models_help
@@ -48,7 +50,7 @@ def register(sub) -> None:
     p.set_defaults(func=run)
 
 
-def run_double(args, spec, alignment: dict[str, float]) -> int:
+def run_double(args, spec, alignment: dict[str, Any]) -> int:
     """Both meshes of a double-engagement spec at one torque, each into its folder, and
     the loads on the machines (``machine_loads.csv``, ``whole_loads.json``, plot)."""
     stages = ["alignment", "load", "rating", "whole_loads"]

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 from ..arguments import GAP_TOLERANCE_MM
 from ..outputs import files, write_sweep
 from ..reporting import ReportSettings, geometry_verdicts
@@ -40,7 +42,7 @@ def register(sub) -> None:
     p.set_defaults(func=run)
 
 
-def run_double(args, spec, alignment: dict[str, float]) -> int:
+def run_double(args, spec, alignment: dict[str, Any]) -> int:
     """Both meshes of a double-engagement spec, each into its folder (the sweep with its
     design angles and plots)."""
     settings = ReportSettings(angles=args.angles, tolerance_mm=args.tolerance, **alignment)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import sys
 import time
+from typing import Any
 
 from ..errors import ArgumentError
 from ..interrupts import reset as forget_interrupt
@@ -72,7 +73,7 @@ def register(sub) -> None:
     p.set_defaults(func=run)
 
 
-def whole_settings(args, alignment: dict[str, float]) -> AssemblySettings:
+def whole_settings(args, alignment: dict[str, Any]) -> AssemblySettings:
     """A double-engagement spec's view: the whole coupling at the alignment the options
     change (``--frame`` is a single engagement's: refused unless left at its default)."""
     if args.frame != "sleeve":

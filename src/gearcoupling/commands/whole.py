@@ -9,6 +9,7 @@ import argparse
 import sys
 from collections.abc import Sequence
 from pathlib import Path
+from typing import Any
 
 from ..errors import ArgumentError
 from ..outputs import (
@@ -70,7 +71,7 @@ def refuse_options(args: argparse.Namespace, options: dict[str, object]) -> None
                                 "are analysed at the angles the shaft alignment gives")
 
 
-def capacity(args: argparse.Namespace, spec: CouplingSpec, alignment: dict[str, float]
+def capacity(args: argparse.Namespace, spec: CouplingSpec, alignment: dict[str, Any]
              ) -> int:
     """``capacity`` on a double-engagement spec: each mesh's capacity against
     misalignment (its folder) and at its angle, the whole coupling's (the smaller), and
@@ -101,7 +102,7 @@ def capacity(args: argparse.Namespace, spec: CouplingSpec, alignment: dict[str, 
     return 0
 
 
-def check(args: argparse.Namespace, spec: CouplingSpec, alignment: dict[str, float]) -> int:
+def check(args: argparse.Namespace, spec: CouplingSpec, alignment: dict[str, Any]) -> int:
     """``check`` on a double-engagement spec: both meshes of the placed assembly over the
     turn, each at its angle and phase (its folder), and the assembly at rotation 0."""
     refuse_options(args, {"method": "boolean", "tolerance": None, "teeth": "sweep",
@@ -119,7 +120,7 @@ def check(args: argparse.Namespace, spec: CouplingSpec, alignment: dict[str, flo
     return status
 
 
-def datasheet(args: argparse.Namespace, spec: CouplingSpec, alignment: dict[str, float]
+def datasheet(args: argparse.Namespace, spec: CouplingSpec, alignment: dict[str, Any]
               ) -> int:
     """``datasheet`` on a double-engagement spec: the whole coupling's data sheet and, with
     ``--ross``, its ROSS pieces in one file."""

@@ -47,8 +47,8 @@ def _capacity_tables(v: View) -> list[Block]:
     if cap is None:
         blocks.append(Note(f"Capacity not computed: {v.why('whole_capacity')}.", "skip"))
     else:
-        rows = [(f"mesh {m}", c.misalignment_deg, c.loaded_flank, c.capacity_Nm,
-                 c.governing.replace("_", " ")) for m, c in cap.meshes.items()]
+        rows: list[tuple] = [(f"mesh {m}", c.misalignment_deg, c.loaded_flank, c.capacity_Nm,
+                              c.governing.replace("_", " ")) for m, c in cap.meshes.items()]
         rows.append(("whole coupling", None, f"mesh {cap.governing_mesh} governs",
                      cap.capacity_Nm, cap.criterion.replace("_", " ")))
         blocks.append(Table(("capacity", "angle (deg)", "loaded flank", "capacity K·T (N·m)",

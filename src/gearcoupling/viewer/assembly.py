@@ -21,6 +21,7 @@ the flanks.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -106,8 +107,8 @@ class AssemblyScene:
                                                                         tolerance_mm)}
         self.meshes["B"] = self.meshes["A"] if geom.spec_b is geom.spec_a else \
             build_scene_meshes(geom.spec_b, tolerance_mm)
-        self.frames: dict[str, object] = {}
-        self.sleeves: dict[str, object] = {}
+        self.frames: dict[str, Any] = {}  # viser scene handles
+        self.sleeves: dict[str, Any] = {}
         self.flanks: dict[str, list[list]] = {}
         self._add_nodes()
         scale = max(geom.span_mm, 4.0 * spec.tooth.pitch_radius)
@@ -181,8 +182,8 @@ class AssemblyScene:
         with self.server.atomic():
             for name, frame in self.frames.items():
                 P = pose.placements[name]
-                frame.wxyz = quaternion_wxyz(P[:3, :3])  # type: ignore[attr-defined]
-                frame.position = tuple(P[:3, 3])  # type: ignore[attr-defined]
+                frame.wxyz = quaternion_wxyz(P[:3, :3])
+                frame.position = tuple(P[:3, 3])
             for mesh, handles in self.flanks.items():
                 for f in range(2):
                     for k, handle in enumerate(handles[f]):
