@@ -19,18 +19,20 @@ GOLDEN = Path(__file__).parent / "golden"
 
 
 def engagement_templates() -> list[str]:
-    """The templates whose engagement (hub, sleeve, load: the spec's ``==``) no earlier
+    """The templates whose engagement's geometry (tooth system, hub, sleeve) no earlier
     template has: the double-engagement templates spacer-double and close-coupled share
     industrial-m2's, so the tests of one engagement's geometry, parts and design angles
-    run on it once (their golden values are its)."""
-    seen: list = []
+    run on it once."""
+    seen: set = set()
     names = []
-    for name in gc.template_names():
-        spec = gc.load_spec(name)
-        if all(spec != s for s in seen):
-            seen.append(spec)
+    specs = {name: gc.load_spec(name) for name in gc.template_names()}
+    for name in sorted(specs, key=lambda n: specs[n].coupling.engagements):  # singles first
+        spec = specs[name]
+        key = (spec.tooth, spec.hub, spec.sleeve)
+        if key not in seen:
+            seen.add(key)
             names.append(name)
-    return names
+    return sorted(names)
 
 
 def golden(spec) -> dict:

@@ -196,8 +196,9 @@ def spec_geometry(spec: CouplingSpec, changes: dict[str, float] | None = None, *
     the spec's design misalignment (azimuth 0, no angle).
 
     Every refusal names where the value came from: the spec's key (``coupling.span``,
-    ``alignment.offset``: a :class:`SpecError`) or, for a changed field, its name in
-    ``names`` (an option such as ``--offset``: an :class:`ArgumentError`).
+    ``alignment.offset``: a :class:`SpecError`) or, where ``changes`` made the alignment
+    refused, the changed field's name in ``names`` (an option such as ``--offset``: an
+    :class:`ArgumentError`).
     """
     spec = as_spec(spec)
     changes, names = dict(changes or {}), dict(names or {})
@@ -213,10 +214,12 @@ def spec_geometry(spec: CouplingSpec, changes: dict[str, float] | None = None, *
         alignment = base.replace(**changes) if changes else base
         return coupling_geometry(spec, spec.coupling, alignment)
     except ArgumentError as err:
-        if err.field in changes:
-            raise ArgumentError(names.get(err.field, err.field), err.value, err.allowed
-                                ) from None
         table = "alignment" if err.field in ShaftAlignment.__dataclass_fields__ else "coupling"
+        changed = err.field if err.field in changes else next(
+            (f for f in ("offset_mm", "angle_deg", *changes) if f in changes), None)
+        if changed is not None and table == "alignment":  # the alignment given made it
+            raise ArgumentError(names.get(changed, changed), changes[changed],
+                                err.allowed) from None
         raise SpecError(file_key(table, err.field), err.value, err.allowed) from None
 
 
