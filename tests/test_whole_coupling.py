@@ -297,7 +297,7 @@ def test_the_report_judges_the_whole_coupling(report):
     loads = json.loads((out / "whole_loads.json").read_text())
     assert loads["equilibrium"]["relative_force"] < 1e-6
     assert 'href="mesh-a/load.csv"' in html and 'href="machine_loads.csv"' in html
-    assert res.verdict == "pass", res.verdict_text
+    assert res.verdict != "fail" and res.verdict_text.startswith("PASS"), res.verdict_text
 
 
 @pytest.mark.slow
@@ -317,7 +317,7 @@ def test_run_writes_both_meshes_and_the_whole_coupling(tmp_path):
     res = gc.run("close-coupled", tmp_path, workers=2, skip=["step", "assembly_step"],
                  **CHEAP)
     summary = json.loads((tmp_path / "run_summary.json").read_text())
-    assert summary["skipped"] == {}
+    assert set(summary["skipped"]) == {"mesh-a/q_graph", "mesh-b/q_graph"}  # no Renzo limits
     assert {"mesh-a/load", "mesh-b/check", "whole_loads", "allowable_offset",
             "assembly"} <= set(summary["step_seconds"])
     assert "mesh-b/load_summary.json" in summary["files"]
@@ -334,9 +334,8 @@ def test_run_writes_both_meshes_and_the_whole_coupling(tmp_path):
 def test_generate_writes_the_placed_assembly_read_back_by_gmsh(tmp_path):
     """coupling.step holds one named volume per part (gmsh over OpenCASCADE) whose centre
     of mass is where the assembly places the part; coupling.glb one node per part."""
+    import gmsh
     import trimesh
-
-    from gearcoupling.fea.backends import gmsh_initialize
 
     assert main(["generate", "close-coupled", "-o", str(tmp_path), "--offset", "0.6"]) == 0
     spec = close_coupled(**{"alignment.offset": 0.6})
@@ -345,9 +344,9 @@ def test_generate_writes_the_placed_assembly_read_back_by_gmsh(tmp_path):
     names = [p.name for p in asm.parts]
     scene = trimesh.load(tmp_path / "coupling.glb", force="scene")
     assert sorted(n for n in scene.graph.nodes_geometry) == sorted(names)
-    gmsh = gmsh_initialize()
+    gmsh.initialize()
     try:
-        gmsh.model.add("read")
+        gmsh.option.setNumber("General.Terminal", 0)
         gmsh.model.occ.importShapes(str(tmp_path / "coupling.step"))
         gmsh.model.occ.synchronize()
         vols = gmsh.model.getEntities(3)

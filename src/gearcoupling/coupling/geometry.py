@@ -201,7 +201,7 @@ def spec_geometry(spec: CouplingSpec, changes: dict[str, float] | None = None, *
     :class:`ArgumentError`).
     """
     spec = as_spec(spec)
-    changes, names = dict(changes or {}), dict(names or {})
+    changes, names = _changes(changes), _names(names)
     if spec.coupling.engagements != 2:
         raise ArgumentError("engagements", spec.coupling.engagements, "2: the spec describes "
                             "one engagement ([coupling] engagements = 2 for two)")
@@ -221,6 +221,26 @@ def spec_geometry(spec: CouplingSpec, changes: dict[str, float] | None = None, *
             raise ArgumentError(names.get(changed, changed), changes[changed],
                                 err.allowed) from None
         raise SpecError(file_key(table, err.field), err.value, err.allowed) from None
+
+
+def _changes(changes: Any) -> dict[str, Any]:
+    """``changes`` as a dict of :class:`ShaftAlignment` fields (None: none)."""
+    if changes is None:
+        return {}
+    fields = tuple(ShaftAlignment.__dataclass_fields__)
+    if not isinstance(changes, dict) or not all(k in fields for k in changes):
+        raise ArgumentError("changes", changes, f"a dict of ShaftAlignment fields: "
+                            f"{', '.join(fields)}")
+    return dict(changes)
+
+
+def _names(names: Any) -> dict[str, str]:
+    """``names`` as a dict of field -> the name a refusal gives it (None: none)."""
+    if names is None:
+        return {}
+    if not isinstance(names, dict) or not all(isinstance(v, str) for v in names.values()):
+        raise ArgumentError("names", names, "a dict of ShaftAlignment field -> name")
+    return dict(names)
 
 
 def _single(spec: CouplingSpec, layout: CouplingLayout,

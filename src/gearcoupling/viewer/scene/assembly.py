@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
-from ...arguments import real
+from ...arguments import flag, real
 from ...coupling import CouplingGeometry, coupling_assembly, mesh_torque_Nm, spec_geometry
 from ...loading import load, resolve_torque_Nm
 from ...spec import CouplingSpec, as_spec
@@ -65,6 +65,7 @@ def assembly_pose(spec: CouplingSpec, psi_deg: float = 0.0,
     """
     spec = as_spec(spec)
     psi = real(psi_deg, "psi_deg", -1e6, 1e6, unit="degrees")
+    flag(pressure, "pressure")
     geom = spec_geometry(spec, changes)
     asm = coupling_assembly(spec, geom.layout, geom.alignment, psi)
     states = {}
