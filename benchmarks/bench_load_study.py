@@ -5,7 +5,8 @@ Run: ``python benchmarks/bench_load_study.py [--spec renzo-1967 industrial-m2]
 [--settings 4x16x10 3x12x8 ...]``. Printed per spec and setting: the CPU time of the
 study (7 misalignments, T/2, T and 2T; the stage ``load_study``) and the largest relative
 deviation of the largest tooth load and of the mean tilting moment from the reference.
-``LoadModel.study`` of the surface model (``SURFACE_STUDY``) quotes these figures.
+They are the figures behind the surface model's ``SURFACE_STUDY``
+(benchmarks/RESULTS.md, ``python benchmarks/results.py --full``).
 """
 
 from __future__ import annotations

@@ -23,7 +23,7 @@ import numpy as np
 
 import gearcoupling as gc
 from gearcoupling.interference import check_interference
-from gearcoupling.reporting import compare_capacity, comparison_range
+from gearcoupling.outputs import compare_capacity, comparison_range
 
 
 def default_report(spec) -> None:

@@ -100,14 +100,13 @@ def breakdown() -> None:
 
 
 def _breakdown_row(spec) -> None:
-    from gearcoupling.reporting.capacity import comparison_range
-    from gearcoupling.reporting.sections import _through  # the report's curve angles
+    from gearcoupling.outputs.capacity import comparison_range, through  # the report's curve
     from gearcoupling.rotordynamics.allowable import allowable_loads, capacity_limit_deg
     from gearcoupling.rotordynamics.stiffness import pitch_rotations, stiffness_from_sweep
     from gearcoupling.rotordynamics.torsion import windup_torques
 
     mis, T = spec.design_misalignment_deg, spec.load.torque_Nm
-    known = [gc.capacity(spec, float(m)) for m in _through(comparison_range([spec], 7)[0], mis)]
+    known = [gc.capacity(spec, float(m)) for m in through(comparison_range([spec], 7)[0], mis)]
     cap = next(c for c in known if c.misalignment_deg == mis)
     sw = gc.sweep(spec, mis, pitch_rotations(spec, default_rotations(spec.load.model)))
     cells = []

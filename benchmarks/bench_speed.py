@@ -1,18 +1,25 @@
 """Before / after: the paths where users wait (issue 26's table), old and new in one run.
 
-Run: ``python benchmarks/bench_speed.py [--against OLD_CHECKOUT [--old-numpy]] [--repeats 5]
-[--command-repeats 2] [--only ROW ...] [--fe] [--ci-log NEW.log [OLD.log]] [--ci]``.
+Run: ``python benchmarks/bench_speed.py [--against OLD_CHECKOUT [--old-numpy] | --at REV]
+[--rounds 1] [--repeats 5] [--command-repeats 2] [--only ROW ...] [--fe]
+[--ci-log NEW.log [OLD.log]] [--ci]``.
 
 Every row runs in fresh subprocesses, one per checkout, with ``PYTHONPATH=<checkout>/src``:
 the library of that checkout, the measuring code of this script for both, on the same
-machine at the same moment (old and new alternate row by row). Printed per row: the
+machine at the same moment (old and new alternate row by row, and with ``--rounds N`` the
+whole set of rows N times, the figures of all rounds together). Printed per row: the
 minimum and the median of the repeats, before and after, and the speed-up of the minima.
-``--old-numpy`` runs the old checkout with ``GEARCOUPLING_NUMBA=0``: its default install,
-where numba was an optional extra.
+``--at REV`` compares with the commit ``REV`` of this repository, checked out into a
+temporary ``git worktree`` (removed after; its numba cache is compiled by the first
+call, before any timing). ``--old-numpy`` runs the old checkout with
+``GEARCOUPLING_NUMBA=0``: its default install, where numba was an optional extra.
 
 - ``map``, ``per-tooth``: :func:`gearcoupling.sweep` of renzo-1967 at 1°, 360 rotations,
   tolerance 1e-6 mm (``benchmarks/bench_sweep.py``'s map), periodic and ``periodic=False``;
   CPU time of the process, repeated in one process after a first call.
+- ``sweep-map``, ``sweep-per-tooth``: the same maps as a user calls them,
+  ``gc.sweep(spec, 1.0, range(360))`` (default tolerance) and with ``periodic=False``;
+  wall time; ``sweep-map-cpu``, ``sweep-per-tooth-cpu``: their CPU time.
 - ``first-map``: the first map in a new process (``import gearcoupling`` apart): what
   ``gearcoupling run`` pays once, with the compiled kernels in numba's cache;
   ``first-map-compile``: the same with an empty cache (a new install: numba compiles);
@@ -61,6 +68,18 @@ for _ in range({repeats}):
     c = time.process_time()
     sweep(spec, 1.0, angles, tolerance_mm=1e-6, periodic={periodic})
     out.append(time.process_time() - c)
+print(json.dumps(out))
+"""
+SWEEP = """
+import json, time
+import gearcoupling as gc
+spec = gc.load_spec({spec!r})
+gc.sweep(spec, 1.0, range(2), periodic={periodic})  # loads what it needs
+out = []
+for _ in range({repeats}):
+    c, w = time.process_time(), time.perf_counter()
+    gc.sweep(spec, 1.0, range(360), periodic={periodic})
+    out.append((time.process_time() - c) if {cpu} else (time.perf_counter() - w))
 print(json.dumps(out))
 """
 FIRST_MAP = """
@@ -162,6 +181,13 @@ def rows(args) -> list[tuple[str, str, str, object]]:
          python_row(MAP.format(spec=SPEC, periodic=True, repeats=r))),
         ("per-tooth", "exact per-tooth map (periodic=False)", "CPU",
          python_row(MAP.format(spec=SPEC, periodic=False, repeats=max(1, r // 2)))),
+        *((f"sweep-{key}{'-cpu' if cpu else ''}", path, "CPU" if cpu else "wall",
+           python_row(SWEEP.format(spec=SPEC, periodic=periodic, cpu=cpu,
+                                   repeats=r if periodic else max(1, r // 2))))
+          for cpu in (False, True)
+          for key, periodic, path in (
+              ("map", True, f"full clearance map, {SPEC}, 1°, 360 rotations (`gc.sweep`)"),
+              ("per-tooth", False, "exact per-tooth map (`periodic=False`)"))),
         ("first-map", "first map in a new process (compiled code cached)", "wall",
          python_row(FIRST_MAP.format(spec=SPEC), processes=r)),
         ("first-map-compile", "first map after install (empty numba cache)", "wall",
@@ -203,43 +229,74 @@ def main(argv: list[str] | None = None) -> int:
                     help="the checkout to compare with (its src/ is imported)")
     ap.add_argument("--old-numpy", action="store_true",
                     help="the old checkout with GEARCOUPLING_NUMBA=0 (its default install)")
+    ap.add_argument("--at", metavar="REV",
+                    help="compare with commit REV of this repository (a temporary worktree)")
+    ap.add_argument("--rounds", type=int, default=1,
+                    help="the rows this many times, old and new alternating")
     ap.add_argument("--repeats", type=int, default=5, help="repeats of the map rows")
     ap.add_argument("--command-repeats", type=int, default=2, help="repeats of run, report")
     ap.add_argument("--only", nargs="*", default=None, metavar="ROW",
-                    help="rows: map per-tooth first-map first-map-compile run run-cpu report "
+                    help="rows: map per-tooth sweep-map sweep-per-tooth sweep-map-cpu "
+                         "sweep-per-tooth-cpu first-map first-map-compile run run-cpu report "
                          "report-cpu fe-table fea-contact sector ci")
     ap.add_argument("--fe", action="store_true", help="also the FE rows (minutes each)")
     ap.add_argument("--ci-log", type=Path, nargs="+", metavar="LOG",
                     help="pytest logs of the whole suite: the new one, then the old one")
     ap.add_argument("--ci", action="store_true", help="time scripts/test.sh in each checkout")
     args = ap.parse_args(argv)
-    if args.repeats < 1 or args.command_repeats < 1:
-        ap.error("--repeats and --command-repeats must be at least 1")
+    if args.repeats < 1 or args.command_repeats < 1 or args.rounds < 1:
+        ap.error("--repeats, --command-repeats and --rounds must be at least 1")
+    if args.at is not None and args.against is not None:
+        ap.error("--at and --against exclude each other")
+    if args.at is None:
+        return compare(args)
+    with tempfile.TemporaryDirectory() as tmp:
+        old = Path(tmp) / "old"
+        subprocess.run(["git", "-C", str(HERE), "worktree", "add", "--detach", str(old),
+                        args.at], check=True, capture_output=True)
+        try:
+            args.against = old
+            return compare(args, label=f"{args.at} (a worktree of it)")
+        finally:
+            subprocess.run(["git", "-C", str(HERE), "worktree", "remove", "--force", str(old)],
+                           check=False, capture_output=True)
+
+
+def compare(args, label: str | None = None) -> int:
+    """The rows of ``args``, printed as a table (old and new where ``args.against``)."""
     checkouts = [HERE] if args.against is None else [args.against.resolve(), HERE]
     if args.old_numpy and args.against is not None:
         ENV[checkouts[0]] = {"GEARCOUPLING_NUMBA": "0"}
     for c in checkouts:
         if not (c / "src" / "gearcoupling").is_dir():
-            ap.error(f"{c}: no src/gearcoupling in it")
+            raise SystemExit(f"{c}: no src/gearcoupling in it")
     head = ["path", "clock"] + (["before (min / median)"] if args.against else []) + \
-        ["after (min / median)"] + (["speed-up"] if args.against else [])
+        ["after (min / median)"] + (["speed-up", "after / before"] if args.against else [])
     print(f"{time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, load average "
           f"{os.getloadavg()[0]:.1f}, {os.cpu_count()} cores; after = {HERE}" +
-          (f", before = {args.against}" if args.against else "") +
-          (" with GEARCOUPLING_NUMBA=0" if args.old_numpy and args.against else ""))
+          (f", before = {label or args.against}" if args.against else "") +
+          (" with GEARCOUPLING_NUMBA=0" if args.old_numpy and args.against else "") +
+          (f"; {args.rounds} rounds" if args.rounds > 1 else ""))
+    table = rows(args)
+    found: list[list[list[float] | Exception]] = [[[] for _ in checkouts] for _ in table]
+    for done in range(args.rounds):
+        for row, (_, _, _, measure) in zip(found, table, strict=True):
+            for j, c in enumerate(checkouts):
+                if isinstance(row[j], Exception):
+                    continue
+                try:
+                    row[j] += measure(c)
+                except (RuntimeError, OSError) as err:
+                    row[j] = err
+        print(f"round {done + 1} of {args.rounds} done", file=sys.stderr, flush=True)
     print("\n| " + " | ".join(head) + " |\n|" + "---|" * len(head))
-    for _, path, clock, measure in rows(args):
-        cells = []
-        for c in checkouts:
-            try:
-                cells.append(measure(c))
-            except (RuntimeError, OSError) as err:
-                cells.append(err)
+    for (_, path, clock, _), cells in zip(table, found, strict=True):
         text = [_fmt(x) if isinstance(x, list) else f"failed: {x}" for x in cells]
         if args.against:
             old, new = cells
             ok = isinstance(old, list) and isinstance(new, list) and old and new
-            text.append(f"{min(old) / min(new):.1f}x" if ok else "-")
+            text += [f"{min(old) / min(new):.1f}x", f"{min(new) / min(old):.2f}x"] if ok else \
+                ["-", "-"]
         print(f"| {path} | {clock} | " + " | ".join(text) + " |", flush=True)
     return 0
 

@@ -7,9 +7,8 @@ brute-force evaluation of the exact flank (``hub_flank_model``) on a dense grid.
 
 Run: ``python benchmarks/bench_sweep.py [--quick] [--against OLD_TREE]``. Times are the
 best of several runs of CPU time of this process (the machine is shared; wall time is
-printed beside it). The numpy path of this checkout (``GEARCOUPLING_NUMBA=0``) is timed
-beside the compiled kernel, and ``--against DIR`` times the same maps with another
-checkout (``DIR/src``), each in a subprocess (``bench_speed.py``'s map rows).
+printed beside it). ``--against DIR`` times the same maps with another checkout
+(``DIR/src``), each in a subprocess (``bench_speed.py``'s map rows).
 """
 
 from __future__ import annotations
@@ -31,8 +30,6 @@ from gearcoupling.clearance.kernel import minimise
 from gearcoupling.clearance.reference import brute_force
 from gearcoupling.geometry.sleeve import sleeve_model
 from gearcoupling.spec import load_spec
-
-HERE = Path(__file__).resolve().parent.parent
 
 
 def timed(fn, repeats):
@@ -77,9 +74,6 @@ def main(argv=None):
                       max(1, repeats // 3))
     print(f"  per tooth (periodic=False, {n} evaluations): {cpu * 1e3:.1f} ms CPU "
           f"({wall * 1e3:.1f} ms wall)")
-    np_p, np_pt = checkout_maps(HERE, repeats, GEARCOUPLING_NUMBA="0")
-    print(f"  numpy path (GEARCOUPLING_NUMBA=0): periodic {np_p * 1e3:.1f} ms CPU, per "
-          f"tooth {np_pt * 1e3:.1f} ms CPU (same run, subprocess)")
     if args.against:
         old, old_pt = checkout_maps(Path(args.against), repeats)
         print(f"  {args.against}: periodic {old * 1e3:.1f} ms CPU, per tooth "

@@ -37,6 +37,7 @@ FULL = [
      "the default tooth springs (fe-fit) against every cached FE tooth table"),
     ("bench_default.py", ["--random", "55", "--no-compute"],
      "the default model and springs against surface with FE springs: capacity, tooth load"),
+    ("bench_load_study.py", [], "the surface model's load studies: cost and accuracy"),
     ("bench_fea_contact.py", ["--from-golden"],
      "the load models against the stored CalculiX contact references (aligned)"),
     ("bench_fea_sector.py", ["--stored", "--sectors", "5"],

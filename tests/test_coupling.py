@@ -131,7 +131,8 @@ def test_an_angle_alone_splits_evenly_and_an_offset_alone_tilts_both_alike(m2):
 def test_two_meshes_at_half_the_shaft_angle_are_two_single_engagements(m2):
     """No offset, a shaft angle split evenly: each mesh is the single-engagement analysis at
     half the angle (loads, wind-up, capacity within 1e-9), hub B's on its cw flanks at -T,
-    which the mirror symmetry of the teeth makes the ccw analysis's loads again."""
+    which the mirror symmetry of the teeth makes the ccw analysis's loads again (to the
+    sweep's tolerance)."""
     lay = CouplingLayout(span_mm=SPAN)
     al = ShaftAlignment(angle_deg=1.5)
     psi = np.arange(16) * 360.0 / (38 * 16) * 3.0
@@ -144,15 +145,20 @@ def test_two_meshes_at_half_the_shaft_angle_are_two_single_engagements(m2):
                                                        abs=1e-9 * T)
         assert got.windup_rad == pytest.approx(single.windup_rad, rel=1e-9)
     a, b = w.results["A"], w.results["B"]
-    assert np.max(b.tangential_force_N) == pytest.approx(np.max(a.tangential_force_N), rel=1e-9)
+    # the cw and ccw flanks are mirror images: their sweeps agree to the clearance search's
+    # tolerance (1e-7 mm; the tracking search does not reach both bit for bit), which moves
+    # a tooth load by up to about 1e-6 of it
+    mirrored = 1e-5
+    assert np.max(b.tangential_force_N) == pytest.approx(np.max(a.tangential_force_N),
+                                                         rel=mirrored)
     assert w.windup_rad() == pytest.approx(a.windup_rad - b.windup_rad, rel=1e-12)
-    assert np.mean(w.windup_rad()) == pytest.approx(2 * np.mean(a.windup_rad), rel=1e-9)
+    assert np.mean(w.windup_rad()) == pytest.approx(2 * np.mean(a.windup_rad), rel=mirrored)
     cap = whole_capacity(m2, lay, al, model=MODEL)
     for m, flank in (("A", "ccw"), ("B", "cw")):
         single = gc.capacity(m2, 0.75, model=MODEL, loaded_flank=flank)
         assert cap.meshes[m].capacity_Nm == pytest.approx(single.capacity_Nm, rel=1e-9)
     ccw = gc.capacity(m2, 0.75, model=MODEL).capacity_Nm
-    assert cap.capacity_Nm == pytest.approx(ccw, rel=1e-9)
+    assert cap.capacity_Nm == pytest.approx(ccw, rel=mirrored)
 
 
 def _space_wrench(res, H, mu):

@@ -10,11 +10,26 @@ from gearcoupling.cli import main
 pytestmark = [pytest.mark.needs_fcl]
 
 
+def table_rows(text: str) -> list[list[str]]:
+    """The cells of the worst-angle table's rows (a row's wrapped lines joined)."""
+    rows: list[list[str]] = []
+    for line in text.splitlines():
+        if line.startswith("│"):
+            cells = [c.strip() for c in line.strip("│").split("│")]
+            if cells[0]:
+                rows.append(cells)
+            else:
+                rows[-1] = [f"{a} {b}".strip() for a, b in zip(rows[-1], cells, strict=True)]
+    return rows
+
+
 def test_free_coupling_exits_0_and_writes_everything(tmp_path, capsys):
     out = tmp_path / "free"
     assert main(["check", "renzo-1967", "--angles", "6", "-o", str(out)]) == 0
     text = capsys.readouterr().out
     assert "worst angles" in text and "no interference" in text
+    rows = table_rows(text)
+    assert len(rows) == 6 and all(r[4] == "none" for r in rows)  # no tooth overlaps
     rows = list(csv.DictReader((out / "interference.csv").read_text().splitlines()))
     assert len(rows) == 6 and all(float(r["min_gap_mm"]) > 0 for r in rows)
     data = json.loads((out / "interference.json").read_text())
@@ -33,9 +48,17 @@ def test_binding_coupling_exits_1(tmp_path, capsys):
     argv = ["check", "renzo-1967", "--misalignment", "1", "--angles", "4", "--set",
             "hub.backlash=0.001", "--method", "distance", "-o", str(out)]
     assert main(argv) == 1
-    assert "INTERFERENCE" in capsys.readouterr().out
+    text = capsys.readouterr().out
+    assert "INTERFERENCE" in text
     data = json.loads((out / "interference.json").read_text())
     assert data["interferes"] is True and data["overlaps"]
+    # each row names the overlapping teeth: the first four and how many more
+    for row in table_rows(text):
+        psi = float(row[0])
+        teeth = sorted({o["tooth"] for o in data["overlaps"]
+                        if abs(o["angle_deg"] - psi) < 0.01})
+        more = f" +{len(teeth) - 4}" if len(teeth) > 4 else ""
+        assert row[4] == " ".join(map(str, teeth[:4])) + more, (row, teeth)
     assert data["max_overlap_depth_mm"] > 0
     assert (out / "worst_hub.stl").exists()
 

@@ -183,8 +183,6 @@ def test_compiled_small_grid_solver_equals_the_batched_transforms(seed, monkeypa
     sum over the contact, double precision); the batched path (DC-FFT) solves the same
     problem: crowned gaps with a cut edge, springs behind, five grids sharing one load.
     Loads, approach and pressure agree within 1e-8 relative at tolerance 1e-11."""
-    if halfspace.compiled() is None:
-        pytest.skip("numba not importable or GEARCOUPLING_NUMBA=0")
     rng = np.random.default_rng(seed)
     n1, n2 = 14, 9
     assert n1 * n2 <= halfspace.COMPILED_MAX_CELLS
@@ -214,8 +212,6 @@ def test_a_compiled_search_that_does_not_settle_hands_over_to_the_batched_one(mo
     going in and out of contact at the tolerance: industrial-m2's load study did) is solved
     by the batched search instead: here every one (limit 1), and the answer is the batched
     path's own."""
-    if halfspace.compiled() is None:
-        pytest.skip("numba not importable or GEARCOUPLING_NUMBA=0")
     x = (np.arange(12) - 6) * 0.3
     gap = x[:, None] ** 2 / 40 + x[None, :8] ** 2 / 10
     hs = half_space((12, 8), 0.3, 0.3, E_STAR)

@@ -174,6 +174,20 @@ def test_verdicts_without_limits_or_inputs_are_not_judged(renzo):
     assert interference_verdict(None, "not run: no python-fcl").verdict == OPEN
 
 
+def test_verdict_cells_are_coloured_by_their_verdict_also_with_a_margin():
+    """A judged row's text carries its margin ("fail: margin -10.9 %"): its cell is still
+    styled fail (red), not open (amber)."""
+    from gearcoupling.reporting.document import Section, Table, render
+
+    rows = [("a", "pass: margin +6.9 %"), ("b", "fail: margin -10.9 %"), ("c", "pass"),
+            ("d", "not judged: no limit set")]
+    page = render("t", "s", ("pass", "x"), [Section("v", "V", [Table(("check", "verdict"),
+                                                                       rows, "",
+                                                                       verdict_column=1)])])
+    classes = re.findall(r'<td class="verdict (\w+)">', page)
+    assert classes == ["pass", "fail", "pass", "open"]
+
+
 def test_overall_verdict_names_failures_and_counts_what_was_not_judged():
     ok = Verdict("a", "1", "2", "x", PASS)
     bad = Verdict("b", "3", "2", "x", FAIL)
@@ -282,6 +296,36 @@ def test_report_renders_in_chromium_and_prints_a_page_per_section(made, tmp_path
     headings = [html.unescape(h) for h in re.findall(r"<h2[^>]*>([^<]+)</h2>", text)]
     assert titles == headings
     assert pages >= len(headings)  # every section starts a page
+
+
+@pytest.mark.needs_browser
+@pytest.mark.slow
+def test_verdict_table_fits_a_1400_px_window(made):
+    """In a 1400 px window the page does not scroll sideways and every verdict text is
+    whole: its cell inside the window, nothing of it clipped, its text inside its cell."""
+    from gearcoupling.browser import chromium
+
+    res, _ = made
+    with chromium() as browser:
+        page = browser.new_page(viewport={"width": 1400, "height": 900})
+        try:
+            page.goto(res.html.as_uri(), wait_until="load")
+            width = page.evaluate("document.documentElement.scrollWidth")
+            cells = page.evaluate("""Array.from(document.querySelectorAll('#verdict td.verdict'))
+                .map(c => { const r = c.getBoundingClientRect(), range = document.createRange();
+                            range.selectNodeContents(c);
+                            const t = range.getBoundingClientRect();
+                            return {text: c.textContent, left: r.left, right: r.right,
+                                    scroll: c.scrollWidth, client: c.clientWidth,
+                                    textLeft: t.left, textRight: t.right}; })""")
+        finally:
+            page.close()
+    assert width <= 1400
+    assert len(cells) >= 8 and max(len(c["text"]) for c in cells) > 100  # long texts there
+    for c in cells:
+        assert 0 <= c["left"] and c["right"] <= 1400, c
+        assert c["scroll"] <= c["client"], c
+        assert c["left"] <= c["textLeft"] and c["textRight"] <= c["right"], c
 
 
 def test_margin_says_whether_the_models_error_band_crosses_the_limit():

@@ -517,13 +517,30 @@ def test_data_sheet_files_and_dataframe(data, tmp_path):
     assert mass == pytest.approx(data.mass["coupling"].mass_kg)
 
 
-def test_datasheet_command_writes_the_files(tmp_path, capsys):
-    # the files, not the model: the compliance model, a second of solves
+def test_datasheet_command_writes_the_files_and_prints_its_key_figures(tmp_path, capsys):
+    """The files, and before their paths the key figures as datasheet.json holds them (4
+    significant digits): masses, secant and tangent torsional stiffness, the allowable
+    misalignment and the capacity. Not the model: the compliance model, a second of
+    solves."""
     code = main(["datasheet", "industrial-m2", "--model", "compliance", "--rotations", "2",
                  "--angles", "36", "-o", str(tmp_path)])
     assert code == 0
     assert {p.name for p in tmp_path.iterdir()} == {*FILES, RECORD_NAME}
-    assert capsys.readouterr().out.split() == [str(tmp_path / f) for f in FILES]
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[-len(FILES):] == [str(tmp_path / f) for f in FILES]
+    data = json.loads((tmp_path / "datasheet.json").read_text(encoding="utf-8"))
+    a, t = data["allowable"], data["torsion"]
+    assert lines[:-len(FILES)] == [
+        f"industrial-m2: i = {data['misalignment_deg']:g}°, T = {data['torque_Nm']:.4g} N·m "
+        f"(compliance model, {data['springs']} springs)",
+        "  mass: " + ", ".join(f"{k} {data['mass'][k]['mass_kg']:.4g} kg"
+                               for k in ("hub", "sleeve", "coupling")),
+        f"  torsional stiffness at the torque: secant {t['secant_Nm_per_rad']:.4g} N·m/rad, "
+        f"tangent {t['tangent_Nm_per_rad']:.4g} N·m/rad",
+        f"  allowable misalignment: {a['misalignment_deg']:.4g}° (limited by the "
+        f"{a['criterion']}, {a['capacity_criterion'].replace('_', ' ')})",
+        f"  capacity at {data['misalignment_deg']:g}°: {data['capacity_Nm']:.4g} N·m (K = "
+        f"{gc.load_spec('industrial-m2').load.accuracy_factor:g} applied)"]
 
 
 @pytest.mark.parametrize("argv, words", [  # more in tests/test_cli_bad_input.py

@@ -39,6 +39,26 @@ def test_critical_misalignment_root_to_1e_4_deg(renzo):
     assert KINDS[res.contact_kind[0, 0, 0]] == "face end"
 
 
+@pytest.mark.parametrize("name, deg", [("renzo-1967", 2.065), ("industrial-m2", 4.28)])
+def test_the_pivot_contact_reaches_the_face_end_where_the_exact_gap_says(name, deg):
+    """Just below the critical misalignment the exact gap (``clearance.reference``: the
+    exact flank, the active interval's ends by bisection, a dense grid in t) of the pivot
+    tooth is lower 1 mm inside the face end than at it, so the contact has not reached the
+    face end: the kernel says so too. (The search that stopped within the tolerance in
+    value, 1e-7 mm, declared it reached here: renzo-1967 at 2.0645°, industrial-m2 at
+    4.2798°.)"""
+    from gearcoupling.clearance.reference import _plane_min
+    from gearcoupling.geometry import hub_model
+
+    spec = gc.load_spec(name)
+    hf = hub_model(spec).half_face
+    inside, at_end = _plane_min(spec, math.radians(deg), 0.0, np.array([hf - 1e-3, hf]),
+                                True, 241)
+    assert inside < at_end - 1e-9
+    assert not pivot_on_face_end(spec, math.radians(deg))
+    assert pivot_on_face_end(spec, math.radians(deg + 0.01))
+
+
 def test_binding_angle_root_to_1e_4_deg(renzo):
     b = binding_angle_deg(renzo)
     assert 1.0 < b < 3.0

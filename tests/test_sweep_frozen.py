@@ -1,8 +1,9 @@
 """The sweep kernel against its frozen outputs (``tests/golden_sweep_kernel.py``): a
 speed-up must not move any minimum by more than 1e-9 mm.
 
-These are regression pins (outputs of an earlier kernel), not an independent reference;
-the kernel against theory and a brute-force exact search is in ``test_sweep_kernel.py``.
+These are regression pins (outputs of the kernel, frozen before a speed-up), not an
+independent reference; the kernel against theory and a brute-force exact search is in
+``test_sweep_kernel.py``.
 
 The minimum *values* are well conditioned and are compared directly. *Where* a minimum
 lies is not: along a flat valley of the gap a change of 1e-12 mm in the value (a
@@ -21,9 +22,20 @@ import numpy as np
 import pytest
 
 from gearcoupling.clearance.flank_table import flank_table
+from gearcoupling.clearance.kernel import MEASURES
 from gearcoupling.clearance.reference import exact_gap
 from gearcoupling.spec import load_spec
-from golden_sweep_kernel import FILE, MISALIGNMENTS_DEG, TEMPLATES, THETA_DEG, minima
+from golden_sweep_kernel import (
+    EXTREME_DEG,
+    EXTREMES,
+    FILE,
+    MISALIGNMENTS_DEG,
+    TEMPLATES,
+    THETA_DEG,
+    extreme_minima,
+    extreme_spec,
+    minima,
+)
 
 VALUES = ("clearance", "normal", "pitch", "pitch_normal")
 TOLERANCE_MM = 1e-9  # values and the gap at the located point, against the frozen kernel
@@ -35,20 +47,6 @@ def frozen():
         return dict(data)
 
 
-@pytest.fixture(params=["numba", "numpy"])
-def backend(request, monkeypatch):
-    """Both point evaluations of :mod:`gearcoupling.clearance.fast`: compiled and numpy."""
-    from gearcoupling.clearance import kernel as clearance
-
-    if request.param == "numba":
-        pytest.importorskip("numba", reason="extra 'fast' not installed")
-        if clearance.kernels() is None:
-            pytest.skip("GEARCOUPLING_NUMBA=0")
-    else:
-        monkeypatch.setattr(clearance, "kernels", lambda: None)
-    return request.param
-
-
 def _exact_normal_gaps(spec, deg: float, theta_rad, z, r) -> np.ndarray:
     """Exact normal gap of tooth 0's cw flank at points ``(z, r)``, one per turning angle."""
     return np.array([exact_gap(spec, math.radians(deg), t, zi, ri, True)[0]
@@ -57,7 +55,7 @@ def _exact_normal_gaps(spec, deg: float, theta_rad, z, r) -> np.ndarray:
 
 @pytest.mark.parametrize("deg", MISALIGNMENTS_DEG)
 @pytest.mark.parametrize("name", TEMPLATES)
-def test_minima_equal_frozen_kernel(frozen, name, deg, backend):
+def test_minima_equal_frozen_kernel(frozen, name, deg):
     got = minima(name, deg)
     for key in VALUES:
         ref = frozen[f"{name}|{deg:g}|{key}"]
@@ -75,3 +73,26 @@ def test_minima_equal_frozen_kernel(frozen, name, deg, backend):
     # and the point found holds the minimum reported (exact flank vs the kernel's table)
     bound = 1e-7 + flank_table(spec, 1e-7).max_error_mm
     assert np.max(np.abs(at_found - got["normal"][fin]), initial=0.0) <= bound
+
+
+@pytest.mark.parametrize("deg", EXTREME_DEG)
+@pytest.mark.parametrize("name", EXTREMES)
+def test_extremes_equal_frozen_kernel(frozen, name, deg):
+    """The extremes (root-fillet contact, 16 mm of interference where the gaps to the
+    involute and to the fillet differ at the fillet start, end_round pieces, heavy
+    binding), each measure alone and all four: values within 1e-9 mm of the frozen ones;
+    radius and turning rate where the point found is the frozen one."""
+    spec = extreme_spec(name)
+    for measures in [MEASURES, *((m,) for m in MEASURES)]:
+        got = extreme_minima(spec, deg, measures)
+        for m in measures:
+            a = got[m]
+            ref = {f: frozen[f"{name}|{deg:g}|{m}|{f}"] for f in ("value_mm", "z_mm", "r_mm",
+                                                                  "t", "rate")}
+            fin = np.isfinite(ref["value_mm"])
+            assert np.array_equal(np.isfinite(a.value_mm), fin), m
+            assert np.max(np.abs(a.value_mm[fin] - ref["value_mm"][fin]),
+                          initial=0.0) <= TOLERANCE_MM, m
+            same = fin & (np.abs(a.z_mm - ref["z_mm"]) <= 1e-9) & (np.abs(a.t - ref["t"]) <= 1e-9)
+            assert np.allclose(a.r_mm[same], ref["r_mm"][same], rtol=0.0, atol=1e-8), m
+            assert np.allclose(a.rate[same], ref["rate"][same], rtol=1e-9, atol=0.0), m

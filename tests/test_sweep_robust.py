@@ -14,7 +14,6 @@ import gearcoupling as gc
 from gearcoupling.arguments import GAP_TOLERANCE_MM
 from gearcoupling.clearance import KINDS, sweep
 from gearcoupling.clearance.flank_table import flank_table
-from gearcoupling.clearance.kernel import _Planes, _Sleeve
 from gearcoupling.clearance.reference import brute_force
 from gearcoupling.errors import GeometryError
 from gearcoupling.geometry.sleeve import sleeve_model
@@ -86,17 +85,27 @@ def test_issue_example_binds_heavily_and_stays_finite():
 
 
 def test_active_interval_wholly_above_the_sleeve_fillet_start():
+    """The active interval of every plane of 180 poses at 6° (the compiled kernel's own
+    ``interval``) lies in [0, 1] and in order where it is feasible, also where all of it
+    lies above the sleeve fillet start (the case of the regression occurs)."""
+    from gearcoupling.clearance import kernel
+
+    compiled = kernel.kernels()
     spec = gc.spec_from_dict(ABOVE_FILLET)
     table, sm = flank_table(spec), sleeve_model(spec)
-    theta = np.radians(np.arange(0.0, 360.0, 2.0))
-    z = np.linspace(-table.half_face, table.half_face, 17)
-    zz, tt = np.meshgrid(z, theta, indexing="ij")
-    planes = _Planes(table, _Sleeve(sm), math.radians(6.0), zz.ravel(), tt.ravel())
-    feasible, (t_lo, _), (t_a, _), (t_hi, _) = planes.active_interval()
-    rq_lo = planes.at(t_lo)[0]
-    assert np.any(feasible & (rq_lo > sm.r_fillet))  # the case of the regression occurs
-    f = feasible
-    assert np.all((t_lo[f] >= 0) & (t_lo[f] <= t_a[f]) & (t_a[f] <= t_hi[f]) & (t_hi[f] <= 1))
+    tab, ws = kernel._compiled_arrays(compiled, table, sm, math.radians(6.0),
+                                      spec.tooth.pitch_radius, 1e-7, 17)
+    po = compiled._entry(tab, 0) + compiled.EPL
+    above = 0
+    for z in np.linspace(-table.half_face, table.half_face, 17):
+        compiled.plane_at(tab, ws, po, z, np.bool_(False))
+        for theta in np.radians(np.arange(0.0, 360.0, 2.0)):
+            feasible, t_lo, _, p_lo, t_a, _, _, t_hi, _, _ = compiled.interval(
+                tab, ws, po, math.cos(theta), math.sin(theta))
+            if feasible:
+                assert 0.0 <= t_lo <= t_a <= t_hi <= 1.0
+                above += math.hypot(p_lo[0], p_lo[1]) > sm.r_fillet
+    assert above > 0
     res = sweep(spec, 6.0, [0.0, 0.5]).check_finite()
     assert np.all(np.isfinite(res.backlash_mm))
 
@@ -210,38 +219,6 @@ def test_plots_return_figures_draw_into_given_axes_and_keep_the_backend(monkeypa
     assert plots.plot_contact_path(res, spec, ax=pair) is host
     with pytest.raises(gc.ArgumentError, match="4 Axes"):
         plots.plot_clearance(res, ax=pair)
-
-
-def test_minimise_steps_alone():
-    """The split steps of the kernel on known functions: second_minima keeps a second
-    coarse minimum nearly as low as the best; ZSearch finds the vertex of a parabola and the
-    corner of a V within the tolerance."""
-    from gearcoupling.clearance.kernel import ZSearch, second_minima
-
-    zg = np.linspace(-1.0, 1.0, 17)
-    v = np.stack([(zg - 0.3) ** 2, np.minimum((zg + 0.7) ** 2, (zg - 0.7) ** 2 + 0.01),
-                  (zg - 0.7) ** 2 + 5.0 * (zg + 0.7) ** 2])
-    j, j2, second = second_minima(v)
-    assert second.tolist() == [False, True, False]
-    assert abs(zg[j[1]] + 0.7) < 0.07 and abs(zg[j2[1]] - 0.7) < 0.07
-
-    class Known:  # gaps of a known shape per row: a parabola and a V (a corner)
-        meas = np.array([2, 2])  # pitch-line rows: no corner step (no form circle)
-        centre = np.array([0.1234, -0.4321])
-
-        def __call__(self, z, rows):
-            c = self.centre[rows]
-            val = np.where(rows == 0, 3.0 * (z - c) ** 2 + 1.0, 2.0 * np.abs(z - c) - 0.5)
-            return val, np.zeros(z.size), np.zeros(z.size, np.int8)
-
-    f = Known()
-    vv, tt, kk = f(np.tile(zg, 2), np.repeat([0, 1], zg.size))
-    vv, tt, kk = (x.reshape(2, zg.size) for x in (vv, tt, kk))
-    tol = 1e-9
-    s = ZSearch(f, zg, vv, tt, kk, np.argmin(vv, axis=1), tol, 1.0).run(40)
-    assert s.best_v[0] == pytest.approx(1.0, abs=tol)
-    assert s.best_v[1] == pytest.approx(-0.5, abs=tol)
-    assert s.best_z == pytest.approx(f.centre, abs=1e-4)
 
 
 def test_sweep_command_at_6_deg_on_the_issue_example(tmp_path):

@@ -342,9 +342,9 @@ def console() -> NoReturn:
     imports, :func:`gearcoupling.interrupts.at_program_start`): a signal at any moment ends
     it with 130 or 143 and one line (:func:`_program_signals`). The exit handlers run and
     the output is flushed as at any exit; the module teardown that follows is left out:
-    with matplotlib, numba, trimesh and scipy loaded it took 0.15-0.5 s after the work was
-    done (``gearcoupling run``). Where another thread is still alive, or a handler or the
-    flush fails, the exit is the ordinary one.
+    with matplotlib, numba, trimesh and scipy loaded it keeps the user waiting after the
+    work is done (``gearcoupling run``). Where another thread is still alive, or a handler
+    or the flush fails, the exit is the ordinary one.
     """
     _program_signals()
     status = main()

@@ -63,12 +63,16 @@ def worker_signals() -> None:
     signal.pthread_sigmask(signal.SIG_UNBLOCK, STOP_SIGNALS)  # blocked over the fork
 
 
-def _map_worker(func: Callable[[Any], Any], items: Sequence[Any], indices: Sequence[int],
-                conn) -> None:
+def _map_worker(func: Callable[..., Any], items: Sequence[Any], indices: Sequence[int],
+                ticking: bool, conn) -> None:
     worker_signals()
     try:
         for i in indices:
-            conn.send(("done", i, func(items[i])))
+            if ticking:  # each step of the item's work is told to the parent as it ends
+                value = func(items[i], lambda i=i: conn.send(("tick", i, None)))
+            else:
+                value = func(items[i])
+            conn.send(("done", i, value))
     except Exception as err:  # re-raised by the parent
         try:
             conn.send(("error", i, err))
@@ -222,35 +226,52 @@ def fork_map(func: Callable[[Any], T], items: Sequence[Any], workers: int = 2,
         started.stop()
 
 
+def _no_tick() -> None:
+    pass
+
+
 class ForkedMap:
     """:func:`fork_map` started now and collected later: the workers run while this
     process does other work. :meth:`results` waits for them (without workers: computes
     the items then); :meth:`stop` kills and reaps those still running, and must follow in
-    a ``finally`` (a started map leaves no worker behind)."""
+    a ``finally`` (a started map leaves no worker behind).
 
-    def __init__(self, func: Callable[[Any], T], items: Sequence[Any], workers: int = 2):
-        self.func, self.items = func, items
+    ``ticking``: ``func(item, tick)`` is called instead of ``func(item)``; each call of
+    ``tick()``, in whichever process runs the item, calls :meth:`results`'s ``tick()`` here
+    (a progress bar's step within an item)."""
+
+    def __init__(self, func: Callable[..., T], items: Sequence[Any], workers: int = 2, *,
+                 ticking: bool = False):
+        self.func, self.items, self.ticking = func, items, ticking
         self.procs: list = []
         self.forked = workers >= 2 and len(items) >= 2 and can_fork()
         if self.forked:
             try:
-                start_workers(_map_worker, [(func, items, range(k, len(items), workers))
+                start_workers(_map_worker, [(func, items, range(k, len(items), workers),
+                                             ticking)
                                             for k in range(min(workers, len(items)))],
                               self.procs)
             except BaseException:
                 self.stop()
                 raise
 
-    def results(self, done: Callable[[int], None] | None = None) -> list:
+    def results(self, done: Callable[[int], None] | None = None,
+                tick: Callable[[], None] | None = None) -> list:
+        """The items' values in order; ``done(n)`` after each with the count so far,
+        ``tick()`` at each step an item tells (``ticking``)."""
+        tick = _no_tick if tick is None else tick
         if not self.forked:
             out = []
             for item in self.items:
-                out.append(self.func(item))
+                out.append(self.func(item, tick) if self.ticking else self.func(item))
                 if done is not None:
                     done(len(out))
             return out
         found: dict[int, Any] = {}
-        for _, i, value in messages(self.procs):
+        for kind, i, value in messages(self.procs):
+            if kind == "tick":
+                tick()
+                continue
             found[i] = value
             if done is not None:
                 done(len(found))

@@ -70,8 +70,7 @@ def fixed_layout(fig: Figure, left: float, right: float, bottom: float, top: flo
     """Place ``fig``'s subplot grid ``left``, ``right``, ``bottom``, ``top`` inches in from
     its edges (``wspace``, ``hspace`` as in :meth:`Figure.subplots_adjust`): the layout a
     layout engine finds for the figure's usual titles and tick labels, measured once. An
-    engine measures every text again on each draw (tight and constrained layout were a
-    fifth of the report's figure time)."""
+    engine measures every text again on each draw."""
     w, h = fig.get_size_inches()
     fig.set_layout_engine("none")
     fig.subplots_adjust(left=left / w, right=1.0 - right / w, bottom=bottom / h,
@@ -80,8 +79,8 @@ def fixed_layout(fig: Figure, left: float, right: float, bottom: float, top: flo
 
 
 def figure_png(fig: Figure, dpi: int) -> bytes:
-    """``fig`` as PNG bytes: RGB, since the figures are opaque, and zlib level 3 (a third
-    faster than matplotlib's RGBA at level 6, and smaller)."""
+    """``fig`` as PNG bytes: RGB, since the figures are opaque, and zlib level 3 (less
+    work than matplotlib's RGBA at level 6, and smaller)."""
     import io
 
     from matplotlib.backends.backend_agg import FigureCanvasAgg

@@ -162,7 +162,7 @@ class FlankTable:
         """``y`` at heights ``t`` (``(..., n)``) from :meth:`plane_coefficients` ``(nt, n)``.
 
         Horner's rule in powers of ``s = 2 t - 1``: 2 operations per coefficient against
-        Clenshaw's 3 (1.4x faster; the values agree to 1e-15 mm on the templates).
+        Clenshaw's 3 (the values agree to 1e-15 mm on the templates).
         """
         if self._power is None:
             return clenshaw(coef, t)
@@ -209,10 +209,8 @@ BLAS_BLOCK = 250_000  # multiply-adds per BLAS call: below OpenBLAS's threading 
 def _product(mat: NDArray[np.float64], v: NDArray[np.float64]) -> NDArray[np.float64]:
     """``mat @ v`` for a small ``mat`` (``(rows, nz)``): numpy's own loop below 20000
     columns, BLAS above in blocks of columns small enough to run in the calling thread. A
-    threaded BLAS wakes its threads for each product: 16 ms for a (13, 24) x (24, 2000)
-    product on a loaded 2-core machine against 0.4 ms in one thread (measured), and the
-    sweep makes hundreds of them; a (12, 24) x (24, 58000) product took 1-16 ms threaded
-    and 1.0-1.2 ms in blocks (measured, loaded machine)."""
+    threaded BLAS wakes its threads for each product, which on a loaded machine costs
+    more than the product itself, and the sweep makes hundreds of them."""
     n = v.shape[1]
     if n <= 20000:
         return np.einsum("ij,jn->in", mat, v)
@@ -227,8 +225,8 @@ def clenshaw(coef: NDArray[np.float64], t: NDArray[np.float64]) -> NDArray[np.fl
     """Chebyshev series in ``2 t - 1`` with coefficients along the first axis.
 
     ``coef : (nt, ...)``, ``t : (...)``; Clenshaw's recurrence, no Vandermonde matrix (the
-    sweep's hot loop: 1.7x faster than ``chebvander`` + ``einsum`` on 1800 rows, same
-    values to 1e-14 mm).
+    sweep's hot loop: less work than ``chebvander`` + ``einsum``, the same values to
+    1e-14 mm).
     """
     x = 2.0 * t - 1.0
     x2 = 2.0 * x

@@ -32,7 +32,7 @@ from ..plots import figure_axes, fixed_layout
 from ..spec import MISALIGNMENT_RANGE_DEG, CouplingSpec
 from .design import binding_angle_deg, critical_misalignment_deg, min_backlash_rad
 from .flank_table import flank_table
-from .kernel import _Sleeve
+from .kernel import sleeve_gaps
 from .result import SweepResult
 from .tooth_map import check_misalignment, flank_minima
 
@@ -139,7 +139,7 @@ def clearance_field(spec: CouplingSpec, misalignment_deg: float, theta_deg: floa
     t = np.ones((nz, 1)) * np.linspace(0.0, 1.0, nt)[None, :]
     r, alpha = table.evaluate(z, t)
     rq, aq, zq = map_polar(r, alpha, z, i, math.radians(theta_deg))
-    circ, _ = _Sleeve(sm).gaps(rq, aq)
+    circ, _ = sleeve_gaps(sm, rq, aq)
     off = (rq < sm.r_form) | (np.abs(zq) > sm.half_face)
     return z, r, np.where(off, np.nan, circ)
 

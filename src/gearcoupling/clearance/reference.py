@@ -6,7 +6,7 @@ kernel's minimiser. :func:`brute_force` evaluates a dense grid of exact flank po
 between the exact ends of the active interval of every plane, steps to the parabolic
 vertex in ``t`` and searches ``z`` by golden sections around the best plane, so that
 corners of the active region (sleeve tip edge meeting a sleeve face end) are resolved.
-About 1 s per turning angle at the defaults.
+Slow by design: for tests and benchmarks, not for sweeps.
 """
 
 from __future__ import annotations

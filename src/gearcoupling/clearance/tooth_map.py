@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import math
-from dataclasses import fields
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -13,13 +12,14 @@ from ..errors import ArgumentError
 from ..geometry import sleeve_model, turning_angles
 from ..spec import CouplingSpec, as_spec, check_misalignment_deg
 from .flank_table import flank_table
-from .kernel import MEASURES, Minimum, minimise
+from .kernel import MEASURES, minimise
 from .result import SweepResult
 
 CHUNK_ANGLES = 1024  # turning angles per kernel call: bounds its memory (~30 kB per angle)
 _KEY_SCALE = 1e11  # turning angles closer than 1e-11 rad share one evaluation
 _KEYS = {"clearance": "circumferential", "normal": "normal", "pitch": "pitch_circumferential",
          "pitch_normal": "pitch_normal"}
+_POINT = (("z", "z_mm"), ("r", "r_mm"), ("kind", "kind"), ("rate", "rate"))  # of the normal
 
 
 def check_misalignment(misalignment_deg: float) -> float:
@@ -57,7 +57,7 @@ def flank_minima(spec: CouplingSpec, misalignment_rad: float, theta, *, toleranc
     table = flank_table(spec, min(GAP_TOLERANCE_MM, tolerance_mm))
     sm = sleeve_model(spec)
     theta = np.asarray(theta, dtype=float)
-    flat = np.mod(theta.ravel(), 2.0 * np.pi)
+    flat = _turn(theta.ravel())
     mirror = np.zeros(flat.shape, dtype=bool)
     if misalignment_rad == 0.0:  # P(theta) is the identity: every turning angle alike
         th, inverse = flat[:1] * 0.0, np.zeros(flat.size, dtype=np.intp)
@@ -68,21 +68,33 @@ def flank_minima(spec: CouplingSpec, misalignment_rad: float, theta, *, toleranc
         _, first, inverse = np.unique(np.round(flat * _KEY_SCALE).astype(np.int64),
                                       return_index=True, return_inverse=True)
         th = flat[first]
-    else:
-        th, inverse = flat, np.arange(flat.size)
+    else:  # in turn, so that each minimum is followed from its neighbour's
+        order = np.argsort(flat, kind="stable")
+        th, inverse = flat[order], np.empty(flat.size, dtype=np.intp)
+        inverse[order] = np.arange(flat.size)
     parts = [minimise(table, sm, misalignment_rad, th[j:j + CHUNK_ANGLES],
                       pitch_radius=spec.tooth.pitch_radius, tolerance_mm=tolerance_mm,
                       grid=grid, measures=measures) for j in range(0, th.size, CHUNK_ANGLES)]
-    res = {m: Minimum(*(np.concatenate([getattr(p[m], f.name) for p in parts])
-                        for f in fields(Minimum))) for m in parts[0]}
-    out: dict[str, NDArray] = {key: res[m].value_mm for key, m in _KEYS.items() if m in res}
-    if "normal" in res:
-        full = res["normal"]
-        out.update(z=full.z_mm, r=full.r_mm, kind=full.kind, rate=full.rate)
-    out = {k: v[inverse] for k, v in out.items()}
+    names = [(key, m, "value_mm") for key, m in _KEYS.items() if m in parts[0]]
+    if "normal" in parts[0]:
+        names += [(key, "normal", f) for key, f in _POINT]
+    found = np.empty((len(names), th.size))
+    for row, (_, m, f) in zip(found, names, strict=True):
+        np.concatenate([getattr(p[m], f) for p in parts], out=row)
+    found = found[:, inverse]  # every turning angle from its evaluation
+    out = {key: row.reshape(theta.shape) for row, (key, _, _) in zip(found, names, strict=True)}
     if "z" in out:
-        out["z"] = np.where(mirror, -out["z"], out["z"])
-    return {k: v.reshape(theta.shape) for k, v in out.items()}, table
+        out["z"] = np.where(mirror.reshape(theta.shape), -out["z"], out["z"])
+        out["kind"] = out["kind"].astype(np.int8)
+    return out, table
+
+
+def _turn(theta: NDArray[np.float64]) -> NDArray[np.float64]:
+    """``theta`` modulo 2 pi, in ``[0, 2 pi)`` (as ``np.mod``, in fewer passes)."""
+    flat = theta - 2.0 * np.pi * np.floor(theta * (0.5 / np.pi))
+    flat[flat < 0.0] += 2.0 * np.pi
+    flat[flat >= 2.0 * np.pi] -= 2.0 * np.pi
+    return flat
 
 
 def sweep(spec: CouplingSpec, misalignment_deg: float, angles_deg: ArrayLike, *,

@@ -7,7 +7,7 @@ from pathlib import Path
 
 from ..arguments import MAXIMA
 from ..errors import ArgumentError, SpecError, brief
-from ..io import parse_override
+from ..io import parse_override, terminal_text
 from ..loading import model_names, models_help, plot_capacity, write_capacity_csv
 from ..outputs import CapacityComparison, compare_capacity, comparison_range
 from ..plots import save_figure
@@ -44,8 +44,8 @@ def register(sub) -> None:
                    "largest critical misalignment of the specs, at least their design angles "
                    "and 0.5)")
     p.add_argument("--count", type=count(2, MAX_COUNT), default=None, metavar="N",
-                   help=f"misalignments from 0 to --max, 2-{MAX_COUNT} (default {DEFAULT_COUNT}: "
-                        "about 2 s each with the surface model)")
+                   help=f"misalignments from 0 to --max, 2-{MAX_COUNT} (default "
+                        f"{DEFAULT_COUNT}; each a capacity search)")
     p.add_argument("--misalignments", type=degree_list, default=None, metavar="DEG,DEG,...",
                    help="the misalignments themselves, comma-separated degrees 0-6 "
                         "(instead of --max and --count)")
@@ -108,6 +108,27 @@ def run(args) -> int:
     out = claim(output_dir(args, spec), [s.to_dict() for s in specs], FILES)
     with progress("capacity", len(specs) * len(mis)) as update:
         comparison = compare_capacity(specs, mis, model=args.model, progress=update)
-    for path in capacity_files(comparison, out, plots=not args.no_plots):
+    paths = capacity_files(comparison, out, plots=not args.no_plots)
+    for line in capacity_lines(comparison):
+        print(line)
+    for path in paths:
         print(path)
     return 0
+
+
+def capacity_lines(comparison: CapacityComparison) -> list[str]:
+    """Per spec (its name as :func:`~gearcoupling.io.terminal_text`), a heading with its
+    critical misalignment, then per misalignment the capacity (K applied), the governing
+    criterion and K."""
+    lines = []
+    for name, curve in comparison.curves.items():
+        crit = comparison.critical_deg.get(name)
+        lines += [f"{terminal_text(name)}: capacity per misalignment ({curve[0].model} model), "
+                  "critical misalignment " + ("none up to 6°" if crit is None else
+                                              f"{crit:.4g}°"),
+                  f"  {'i°':>6}  {'capacity N·m':>12}  {'governing':<16}  K"]
+        for c in curve:
+            cap = "no limit" if c.capacity_Nm is None else f"{c.capacity_Nm:.4g}"
+            lines.append(f"  {c.misalignment_deg:>6.3g}  {cap:>12}  "
+                         f"{c.governing.replace('_', ' '):<16}  {c.accuracy_factor:g}")
+    return lines

@@ -32,7 +32,7 @@ from .engagement import checked_spec
 from .folders import claim, holds_folders
 
 EXIT_INTERFERENCE = 1
-MAX_CHECK_ANGLES = 3600  # every pose is a mesh boolean: about 3600 x 10-100 ms at most
+MAX_CHECK_ANGLES = 3600  # every pose is a mesh boolean: the count bounds the run
 MAX_HALF_WINDOW = MAX_TEETH // 2  # 2K+1 teeth cover the largest coupling
 
 
@@ -73,19 +73,29 @@ def register(sub) -> None:
     p.set_defaults(func=run)
 
 
+def overlapping_teeth(result, index: int, shown: int = 4) -> str:
+    """The hub teeth overlapping at angle ``index``: the first ``shown`` and how many more,
+    or "none"."""
+    teeth = result.teeth_involved(index)
+    if not teeth:
+        return "none"
+    more = len(teeth) - shown
+    return " ".join(map(str, teeth[:shown])) + (f" +{more}" if more > 0 else "")
+
+
 def print_table(result, count: int) -> None:
     from rich.console import Console
     from rich.table import Table
 
     t = Table(title=f"worst angles: {result.spec_name}, i = {result.misalignment_deg:g}°, "
                     f"{result.method} on {result.model}")
-    for col in ("ψ°", "overlap mm³", "depth mm", "gap mm", "teeth", "at tooth: hub/sleeve"):
+    for col in ("ψ°", "overlap mm³", "depth mm", "gap mm", "overlapping teeth",
+                "at tooth: hub/sleeve"):
         t.add_column(col, justify="right", overflow="fold")
     for j in result.worst(count):
-        teeth = result.teeth_involved(j)
-        shown = " ".join(map(str, teeth[:4])) + (f" +{len(teeth) - 4}" if len(teeth) > 4 else "")
         t.add_row(f"{result.angles_deg[j]:.2f}", f"{result.overlap_volume_mm3[j]:.4g}",
-                  f"{result.overlap_depth_mm[j]:.5f}", f"{result.min_gap_mm[j]:+.5f}", shown,
+                  f"{result.overlap_depth_mm[j]:.5f}", f"{result.min_gap_mm[j]:+.5f}",
+                  overlapping_teeth(result, j),
                   f"{result.gap_tooth[j]}: {result.gap_hub_surface[j]}/"
                   f"{result.gap_sleeve_surface[j]}")
     console = Console()

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from ..io import writable_file
+from ..io import terminal_text, writable_file
 from ..loading import PHASES, model_names
 from ..rotordynamics import (
     DEFAULT_STEPS,
@@ -13,6 +13,7 @@ from ..rotordynamics import (
     FILES,
     MAX_TORQUE_NM,
     ROSS_SUFFIXES,
+    CouplingData,
     check_inputs,
     coupling_data,
     import_ross,
@@ -90,7 +91,7 @@ def run(args) -> int:
         return whole.datasheet(args, spec, alignment)
     mis = misalignment_deg(args, spec)
     out = claim(output_dir(args, spec), spec.to_dict(), FILES)
-    with progress(f"datasheet {spec.name}", 4) as update:
+    with progress(f"datasheet {spec.name}", 1) as update:  # the total: coupling_data's
         data = coupling_data(spec, mis, args.torque, model=args.model,
                              rotations=args.rotations, relative_step=args.step,
                              differences=args.differences,
@@ -98,6 +99,26 @@ def run(args) -> int:
     paths = data.write(out)
     if args.ross is not None:
         paths.append(write_ross(data.to_ross(), args.ross))
+    for line in key_figures(data):
+        print(line)
     for path in paths:
         print(path)
     return 0
+
+
+def key_figures(data: CouplingData) -> list[str]:
+    """The data sheet's key figures in a few lines (the spec's name as
+    :func:`~gearcoupling.io.terminal_text`): the masses, the torsional stiffness, the
+    allowable misalignment and the capacity at the operating point."""
+    t, a, m = data.torsion, data.allowable, data.mass
+    why = a.criterion + (f", {a.capacity_criterion.replace('_', ' ')}"
+                         if a.capacity_criterion else "")
+    cap = ("no criterion limits it" if data.capacity_Nm is None else
+           f"{data.capacity_Nm:.4g} N·m (K = {data.spec.load.accuracy_factor:g} applied)")
+    return [f"{terminal_text(data.spec.name)}: i = {data.misalignment_deg:g}°, "
+            f"T = {data.torque_Nm:.4g} N·m ({data.model} model, {data.springs} springs)",
+            "  mass: " + ", ".join(f"{k} {v.mass_kg:.4g} kg" for k, v in m.items()),
+            f"  torsional stiffness at the torque: secant {t.secant_Nm_per_rad:.4g} N·m/rad, "
+            f"tangent {t.tangent_Nm_per_rad:.4g} N·m/rad",
+            f"  allowable misalignment: {a.misalignment_deg:.4g}° (limited by the {why})",
+            f"  capacity at {data.misalignment_deg:g}°: {cap}"]

@@ -1,5 +1,7 @@
 """``gearcoupling spec``: print the resolved spec with derived values (text from the spec
-as data: control characters shown escaped, no rich markup)."""
+as data: control characters shown escaped, no rich markup; numbers to
+:data:`DIGITS` significant digits, so 5.2 in prints as 132.08 mm, infinity as the project's
+JSON writes it, ``"inf"``)."""
 
 from __future__ import annotations
 
@@ -9,6 +11,10 @@ import math
 from ..io import plain, terminal_text
 from ..outputs import resolved_spec
 from .common import add_spec_arguments, spec_from_args
+
+#: significant digits of a printed number: the inch to mm conversion's rounding
+#: (132.07999999999998 for 5.2 in) goes, a micrometre of a 10 m part stays
+DIGITS = 12
 
 
 def register(sub) -> None:
@@ -22,7 +28,7 @@ def run(args) -> int:
     spec = spec_from_args(args)
     data = resolved_spec(spec)
     if args.json:
-        print(json.dumps(plain(data, "spec"), indent=2, allow_nan=False))
+        print(json.dumps(rounded(plain(data, "spec")), indent=2, allow_nan=False))
         return 0
     from rich.console import Console
 
@@ -31,6 +37,17 @@ def run(args) -> int:
     for path, rows in [*_sections(spec.name, head), ("derived", data["derived"])]:
         console.print(_table(path, rows))
     return 0
+
+
+def rounded(data):
+    """``data`` (plain JSON data) with every float to :data:`DIGITS` significant digits."""
+    if isinstance(data, dict):
+        return {k: rounded(v) for k, v in data.items()}
+    if isinstance(data, list):
+        return [rounded(v) for v in data]
+    if isinstance(data, float):
+        return float(f"{data:.{DIGITS}g}")
+    return data
 
 
 def _sections(title: str, data: dict, prefix: str = "") -> list[tuple[str, dict]]:

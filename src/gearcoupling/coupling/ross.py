@@ -19,18 +19,31 @@ import math
 import os
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any, Protocol
 
 import numpy as np
 
 from ..errors import ArgumentError
-from ..io import atomic_path
-from ..rotordynamics import ROSS_SUFFIXES, combine, import_ross
-
-if TYPE_CHECKING:
-    from .massdata import WholeCouplingData
+from ..rotordynamics import combine, import_ross, write_ross
 
 MM_TO_M = 1e-3
+
+
+class CouplingMasses(Protocol):
+    """What :func:`ross_pieces` reads of a :class:`~.massdata.WholeCouplingData` (a
+    protocol, so that this module does not import the one that calls it)."""
+
+    @property
+    def geometry(self) -> Any: ...
+
+    @property
+    def parts(self) -> Any: ...
+
+    @property
+    def matrices(self) -> Any: ...
+
+    @property
+    def torsion(self) -> Any: ...
 
 
 @dataclass(frozen=True, eq=False)
@@ -53,15 +66,7 @@ class RossPieces:
         """Every piece in one file of ROSS's own format (``.toml`` or ``.json``: ROSS's
         ``save``, one entry per element and disk keyed by its class and tag), atomically;
         ``ross.CouplingElement.load`` reads the first (coupling A)."""
-        target = Path(path)
-        if target.suffix.lower() not in ROSS_SUFFIXES:
-            raise ArgumentError("path", str(path), "a .toml or .json file (the formats ROSS "
-                                "saves and loads)")
-        with atomic_path(target) as tmp:
-            tmp.unlink()  # ROSS's save adds to an existing file: start from none
-            for piece in (*self.elements, *self.disks):
-                piece.save(tmp)
-        return target
+        return write_ross([*self.elements, *self.disks], path)
 
 
 def lateral_diagonal(matrix: np.ndarray, azimuth_deg: float) -> tuple[float, ...]:
@@ -77,7 +82,7 @@ def lateral_diagonal(matrix: np.ndarray, azimuth_deg: float) -> tuple[float, ...
     return tuple(out)
 
 
-def ross_pieces(data: WholeCouplingData, n: int = 0, *,
+def ross_pieces(data: CouplingMasses, n: int = 0, *,
                 held_torque: bool = False) -> RossPieces:
     """:class:`RossPieces` of the coupling's data from element ``n`` (module docstring);
     ``held_torque``: the lateral stiffness with the torque held (the wind-up free)."""

@@ -162,7 +162,7 @@ def mesh_part(spec: CouplingSpec, part: str, *, sector: int | None = DEFAULT_SEC
     algorithm : {"delaunay", "hxt"}
         gmsh's 3-D mesher: ``"delaunay"`` with elastic and optimising curving of the
         quadratic elements, or ``"hxt"`` with optimising curving of invalid elements only
-        (3-5 times less CPU on the 3-tooth sectors of the templates, similar quality).
+        (less CPU on the 3-tooth sectors of the templates, similar quality).
 
     Returns
     -------

@@ -59,7 +59,7 @@ MIN_PATCH_ELEMENTS = 1.5  # contact elements across the patch along the face, at
 MATCH_SHARE = 0.1
 #: ccx's equation solver for the contact decks: its preconditioned conjugate gradients gave
 #: renzo-1967's default reference (26 265 nodes) to the 7 digits ccx prints, in as many
-#: contact iterations, with 188 s of CPU and 223 MB against SPOOLES' 446 s and 933 MB
+#: contact iterations, with less CPU and memory than SPOOLES (docs/fea.md has the figures)
 CONTACT_SOLVER = "ITERATIVE CHOLESKY"
 #: ccx's contact-change tolerance (``*CONTROLS, PARAMETERS=CONTACT``, first value; its
 #: default 0.001): an iteration's contact set counts as settled when the number of contact

@@ -1,8 +1,8 @@
 """Signed normal deviation of hub points from the exact nominal flanks.
 
 The exact flank (:func:`~gearcoupling.geometry.hub.hub_flank_model`, Newton inversion at
-a point's ``z`` and ``r``) costs 15-90 µs per point, too much for a million-point scan,
-so :class:`FlankTable` evaluates it on a ``(z, r)`` grid over the measured band and
+a point's ``z`` and ``r``) is too costly per point for a million-point scan, so
+:class:`FlankTable` evaluates it on a ``(z, r)`` grid over the measured band and
 interpolates the polar angle and the normal with quintic splines; the interpolation
 error against the exact kernel is measured at random points and reported
 (``table_error_mm``, typically below 1e-7 mm with the default grid).

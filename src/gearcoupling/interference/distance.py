@@ -1,17 +1,9 @@
 """The distance engine: closest point pair, collision test and penetration depth.
 
-Choice by measurement (``python benchmarks/bench_interference.py --engines``): renzo-1967
-at 1°, tolerance 0.0127 mm, the pose of its smallest clearance, 2 cores; all engines find
-the same distance to 1e-6 mm:
-
-============  =========  ===============  =================  =============  ==========
-model         triangles  fcl distance     libigl both ways   manifold3d     fcl collide
-                         (+ setup once)   (vertex-triangle)  ``min_gap``
-============  =========  ===============  =================  =============  ==========
-tooth pair    968        0.7 ms (+2)      0.8 ms             1.2 ms         0.3 ms
-±1 sector     2840       2.2 ms (+5)      2.5 ms             3.3 ms         0.8 ms
-full parts    46800      37 ms (+96)      50 ms              60 ms          16 ms
-============  =========  ===============  =================  =============  ==========
+Choice by measurement (``python benchmarks/bench_interference.py --engines``; the times
+are in docs/interference.md): on renzo-1967 at 1°, tolerance 0.0127 mm, the pose of its
+smallest clearance, all engines (python-fcl, libigl, manifold3d) find the same distance to
+1e-6 mm.
 
 python-fcl is used for the gap because it is the fastest on large meshes, it is exact on
 the meshes (triangle-triangle, not only vertex-triangle like libigl), it returns the

@@ -58,10 +58,10 @@ class _Delegate:
 
 class FitShapedTable(_Delegate):
     """The FE tooth table between its load points along the fit's shape: the fit times
-    the bilinear interpolation of table / fit at the table's points (exact there). Linear
-    between rows, the table was up to 35 % soft where the far field rises toward the face
-    end (against FE solved between its rows; the fit within −8 … +5 % there, this
-    −6 … +5 %; docs/load.md)."""
+    the bilinear interpolation of table / fit at the table's points (exact there). Read
+    linearly between its rows, the table is too soft where the far field rises toward the
+    face end; along the fit's shape it follows FE solved between the rows (docs/load.md
+    has the errors of both)."""
 
     def __init__(self, table: Any, fit: FittedCompliance):
         super().__init__(table)
@@ -76,12 +76,11 @@ class FitShapedTable(_Delegate):
 
 class HeldAlongFace(_Delegate):
     """A tooth spring read at ``|z|`` held at ``z_hold_mm``: the load models' one spring
-    per tooth at its load centre. At the face end the tooth is up to three times softer
-    under a patch (the FE table's last row), but a rigid tooth on one spring cannot move
-    its load inward as the tooth does there: read there, the default carried 9.6 % less
-    than a CalculiX sector on renzo-1967 at 2° (the unsafe side); held at
-    :data:`~gearcoupling.fea.TABLE_FACE_SHARE` of the half face, 3.6 % and 11 % more on
-    the two poses that reach it (docs/load.md, "The face end")."""
+    per tooth at its load centre. At the face end the tooth is much softer under a patch
+    (the FE table's last row), but a rigid tooth on one spring cannot move its load inward
+    as the tooth does there: read there, the default carries less than a CalculiX sector
+    (the unsafe side); held at :data:`~gearcoupling.fea.TABLE_FACE_SHARE` of the half face,
+    more (docs/load.md, "The face end", has the figures)."""
 
     def __init__(self, springs: Any, z_hold_mm: float):
         super().__init__(springs)

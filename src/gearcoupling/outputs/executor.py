@@ -20,6 +20,7 @@ from __future__ import annotations
 import importlib
 import multiprocessing
 import multiprocessing.connection
+import os
 import time
 from collections import Counter
 from collections.abc import Callable, Sequence
@@ -245,7 +246,7 @@ def _record(state: _State, task: _Task, kind: str, value: Any, files: tuple[Path
 
 
 def compute(spec: CouplingSpec, settings: StageSettings, names: Sequence[str], *,
-            folder: Path | None = None, workers: int = 1,
+            folder: str | os.PathLike | None = None, workers: int = 1,
             progress: Progress | None = None, written: list[Path] | None = None) -> Results:
     """The results of the stages ``names`` and those they need (:func:`plan`), their files
     written into ``folder`` (None: none written); for a double-engagement ``spec`` the
@@ -260,12 +261,13 @@ def compute(spec: CouplingSpec, settings: StageSettings, names: Sequence[str], *
     file is added to as it is written (what an interrupted computation left)."""
     scopes = settings.scopes(spec)
     meshes = tuple(k for k in scopes if k != ROOT)
-    state = _State(spec, settings, folder, scopes, jobs(names, meshes))
+    out = None if folder is None else Path(folder)
+    state = _State(spec, settings, out, scopes, jobs(names, meshes))
     if written is not None:
         state.written = written
-    if folder is not None:
+    if out is not None:
         for mesh in meshes:
-            (folder / mesh).mkdir(exist_ok=True)
+            (out / mesh).mkdir(exist_ok=True)
     total = max(1, round(10 * sum(j.stage.cost for j in state.stages)))
 
     def tick() -> None:

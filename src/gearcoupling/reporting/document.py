@@ -99,13 +99,14 @@ h1 { font-size: 26px; margin: 0 0 4px; }
 h2 { font-size: 20px; margin: 38px 0 10px; padding-top: 6px; border-top: 2px solid #2c3e66; }
 h3 { font-size: 15px; margin: 18px 0 6px; }
 .sub { color: #555; margin: 0 0 14px; }
-table { border-collapse: collapse; margin: 8px 0 14px; font-size: 13px; }
-th, td { border: 1px solid #cfd4dc; padding: 3px 8px; text-align: left; vertical-align: top; }
+table { border-collapse: collapse; margin: 8px 0 14px; font-size: 13px; max-width: 100%; }
+th, td { border: 1px solid #cfd4dc; padding: 3px 8px; text-align: left; vertical-align: top;
+         overflow-wrap: break-word; }
 th { background: #eef1f6; }
 td.num { text-align: right; font-variant-numeric: tabular-nums; }
 caption { caption-side: bottom; text-align: left; color: #555; font-size: 12px;
           padding-top: 4px; }
-.verdict { font-weight: bold; white-space: nowrap; }
+.verdict { font-weight: bold; min-width: 18em; }
 .pass { color: #17702f; } .fail { color: #b3141b; } .open { color: #8a5a00; }
 .banner { padding: 10px 14px; border-radius: 4px; margin: 10px 0 18px; font-size: 15px; }
 .banner.pass { background: #e5f4e8; } .banner.fail { background: #fbe6e6; }
@@ -142,8 +143,7 @@ def _table(t: Table) -> str:
         for i, v in enumerate(row):
             text = html.escape(fmt(v))
             if i == t.verdict_column:
-                key = str(v).split(" ")[0] if str(v).startswith(("pass", "fail")) else \
-                    "not judged"
+                key = str(v).split(":")[0].split(" ")[0]  # "pass: margin ..." is a pass
                 cells.append(f'<td class="verdict {VERDICT_CLASS.get(key, "open")}">{text}</td>')
             elif isinstance(v, int | float) and not isinstance(v, bool):
                 cells.append(f'<td class="num">{text}</td>')

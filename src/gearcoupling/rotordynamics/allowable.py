@@ -14,7 +14,7 @@ the teeth when the shafts move axially), with their extremes.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -78,7 +78,9 @@ class AllowableLoads:
 
 def capacity_limit_deg(spec, torque_Nm: float, top_deg: float, *, model: str | None = None,
                        tolerance_deg: float = ANGLE_TOLERANCE_DEG,
-                       known: Sequence[Capacity] = ()) -> tuple[float | None, str | None]:
+                       known: Sequence[Capacity] = (),
+                       step: Callable[[], Any] | None = None
+                       ) -> tuple[float | None, str | None]:
     """The largest misalignment up to ``top_deg`` whose capacity carries ``|torque_Nm|``
     (``None`` when ``top_deg`` still does), within ``tolerance_deg``, and the criterion
     that governs just beyond it.
@@ -88,7 +90,7 @@ def capacity_limit_deg(spec, torque_Nm: float, top_deg: float, *, model: str | N
     ``tolerance_deg`` / 2 a step, and stops when the bracket or the secant's step from its
     low end is within the tolerance. ``known``: capacities of this spec and model (ccw
     flank) already computed, e.g. the report's capacity curve; they narrow the first
-    bracket and are not solved again.
+    bracket and are not solved again. ``step()`` after each capacity solved.
     """
     need = abs(torque_Nm)
     model = resolve_model(spec, model)
@@ -97,6 +99,8 @@ def capacity_limit_deg(spec, torque_Nm: float, top_deg: float, *, model: str | N
     def margin(deg: float) -> tuple[float, str]:
         if deg not in seen:
             seen[deg] = capacity(spec, deg, model=model)
+            if step is not None:
+                step()
         c = seen[deg]
         cap = math.inf if c.capacity_Nm is None else max(c.capacity_Nm, TINY)
         return math.log(cap / need), c.governing
@@ -152,15 +156,18 @@ def _bracket(seen: dict[float, Capacity], top_deg: float, need: float) -> tuple[
 
 def allowable_misalignment(spec, torque_Nm: float, *, model: str | None = None,
                            tolerance_deg: float = ANGLE_TOLERANCE_DEG,
-                           known: Sequence[Capacity] = ()
+                           known: Sequence[Capacity] = (),
+                           step: Callable[[], Any] | None = None
                            ) -> tuple[float, str, float | None, float | None, str | None]:
     """The allowable misalignment at ``torque_Nm`` (module docstring) as ``(angle_deg,
     criterion, critical_deg, capacity_limit_deg, capacity_criterion)``: ``criterion``
-    ``"capacity"``, ``"critical angle"`` or ``"range"`` as :class:`AllowableLoads`."""
+    ``"capacity"``, ``"critical angle"`` or ``"range"`` as :class:`AllowableLoads`;
+    ``step`` as :func:`capacity_limit_deg`."""
     top = MISALIGNMENT_RANGE_DEG[1]
     critical = critical_misalignment_deg(spec)
     limit, governing = capacity_limit_deg(spec, torque_Nm, critical or top, model=model,
-                                          tolerance_deg=tolerance_deg, known=known)
+                                          tolerance_deg=tolerance_deg, known=known,
+                                          step=step)
     if limit is not None:
         return limit, "capacity", critical, limit, governing
     if critical is not None:
@@ -171,7 +178,8 @@ def allowable_misalignment(spec, torque_Nm: float, *, model: str | None = None,
 def allowable_loads(spec, torque_Nm: float, *, model: str | None = None,
                     angles: int | None = None,
                     tolerance_deg: float = ANGLE_TOLERANCE_DEG,
-                    known: Sequence[Capacity] = ()) -> AllowableLoads:
+                    known: Sequence[Capacity] = (),
+                    step: Callable[[], Any] | None = None) -> AllowableLoads:
     """The allowable misalignment at ``torque_Nm`` and the machine loads over a turn there
     (module docstring): ``angles`` rotations evenly over the turn, default
     :data:`~gearcoupling.loading.PHASES` per tooth pitch
@@ -180,10 +188,10 @@ def allowable_loads(spec, torque_Nm: float, *, model: str | None = None,
     loads summed over the teeth hardly move within a pitch: their max and mean over the
     turn are within 0.13 % of a turn of 72 a pitch on 11 specs, 0.01 % on even tooth
     counts (docs/rotordynamics.md). ``model`` default the spec's; ``known`` as
-    :func:`capacity_limit_deg`."""
+    :func:`capacity_limit_deg`, ``step`` too."""
     model = resolve_model(spec, model)
     angle, criterion, critical, limit, governing = allowable_misalignment(
-        spec, torque_Nm, model=model, tolerance_deg=tolerance_deg, known=known)
+        spec, torque_Nm, model=model, tolerance_deg=tolerance_deg, known=known, step=step)
     turn = turn_phases(spec) if angles is None else np.arange(angles) * 360.0 / angles
     res = load(spec, angle, turn, torque_Nm=torque_Nm, model=model)
     ml = machine_loads(res)

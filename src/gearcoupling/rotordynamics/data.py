@@ -322,8 +322,9 @@ def coupling_data(spec: CouplingSpec, misalignment_deg: float | None = None,
         in two forked ones (2; the default where the machine has two cores and forking is
         safe, :func:`~gearcoupling.forked.default_workers`); the same numbers either way.
     progress : callable, optional
-        ``progress(done, total)`` after the masses and after each chain (in the order they
-        end).
+        ``progress(done, total)`` after each step (:class:`DatasheetSteps`: the masses,
+        the capacity, the matrix, each torque of the wind-up curve, each capacity of the
+        allowable misalignment's search and the turn there).
 
     Examples
     --------
@@ -336,9 +337,9 @@ def coupling_data(spec: CouplingSpec, misalignment_deg: float | None = None,
                                   rotations=rotations, relative_step=relative_step,
                                   differences=differences, turn_angles=turn_angles,
                                   curve_points=curve_points, tolerance_mm=tolerance_mm,
-                                  known=known, workers=workers)
+                                  known=known, workers=workers, progress=progress)
     try:
-        return started.result(progress)
+        return started.result()
     finally:
         started.stop()
 
@@ -390,20 +391,29 @@ def datasheet_plan(spec: CouplingSpec, misalignment_deg: float | None = None,
                    differences: str | None = None, turn_angles: int | None = None,
                    curve_points: int = DEFAULT_POINTS, tolerance_mm: float | None = None,
                    known: Sequence[Capacity] = (),
-                   mass: dict[str, MassProperties] | None = None) -> DatasheetPlan:
+                   mass: dict[str, MassProperties] | None = None,
+                   step: Callable[[], Any] | None = None) -> DatasheetPlan:
     """:func:`coupling_data`'s arguments checked and its chains made (:class:`DatasheetPlan`);
-    the masses computed here unless given (a bad tolerance fails first)."""
+    the masses computed here unless given (a bad tolerance fails first). ``step()`` after
+    the masses and after the capacity at the misalignment, where they are computed here.
+    Each chain takes ``tick`` (default None), called after each of its steps
+    (:class:`DatasheetSteps`)."""
     spec = as_spec(spec)
     mis = (spec.design_misalignment_deg if misalignment_deg is None else
            check_misalignment_deg(misalignment_deg, "misalignment_deg", ArgumentError))
     T = check_inputs(spec, torque_Nm)
     model = resolve_model(spec, model)
     given = known_capacities(spec, model, known)
-    mass = mass_properties(spec, tolerance_mm) if mass is None else mass
+    if mass is None:
+        mass = mass_properties(spec, tolerance_mm)
+        _call(step)
     sw = sweep(spec, mis, pitch_rotations(spec, default_rotations(model) if rotations is None
                                           else rotations))
     windup_torques(T, None, curve_points)  # the number of points checked before any work
-    cap = given.get(float(mis)) or capacity(spec, mis, model=model)
+    cap = given.get(float(mis))
+    if cap is None:
+        cap = capacity(spec, mis, model=model)
+        _call(step)
     grid = windup_torques(T, cap.capacity_Nm, curve_points)
     others = [t for t in grid if t != T]
     halves = [(sw, others[0::2]), (copy.copy(sw), others[1::2])]
@@ -418,51 +428,111 @@ def datasheet_plan(spec: CouplingSpec, misalignment_deg: float | None = None,
     return DatasheetPlan(spec, float(mis), T, cap, grid, mass, (matrix, allowable))
 
 
+class DatasheetSteps:
+    """``progress(done, total)`` of :func:`coupling_data`, a step each: the masses, the
+    capacity at the misalignment, the matrix, each torque of the wind-up curve but the
+    operating one, each capacity the allowable misalignment's search solves, and the turn
+    there. The search's steps are known only as it goes: the total counts
+    :data:`SEARCH_STEPS` for them, and the bar is never full before :meth:`end`."""
+
+    def __init__(self, progress: Callable[[int, int], Any] | None, curve_points: int):
+        self.progress = progress
+        self.done, self.ended = 0, False
+        self.curve(curve_points)
+
+    def curve(self, torques: int) -> None:
+        """The count of the curve's torques to solve (known once the capacity is)."""
+        self.total = 4 + SEARCH_STEPS + torques  # the masses, capacity, matrix and turn
+        self._report()
+
+    def step(self) -> None:
+        """One step done."""
+        self.done += 1
+        self._report()
+
+    def end(self) -> None:
+        """Everything done: the bar full."""
+        self.total, self.ended = self.done, True
+        self._report()
+
+    def _report(self) -> None:
+        if not self.ended:
+            self.total = max(self.total, self.done + 1)
+        if self.progress is not None:
+            self.progress(self.done, self.total)
+
+
+#: capacities the allowable misalignment's search solves, about, on the templates
+#: (:func:`~.allowable.capacity_limit_deg`): what the progress bar expects of it
+SEARCH_STEPS = 4
+
+
 class StartedCouplingData:
     """:func:`coupling_data` started now, its two chains (:class:`DatasheetPlan`) in forked
     workers where it forks, and collected later by :meth:`result`; :meth:`stop` in a
-    ``finally`` kills the workers still running. Arguments as :func:`coupling_data`."""
+    ``finally`` kills the workers still running. Arguments as :func:`coupling_data`;
+    ``progress`` is told each step (:class:`DatasheetSteps`), from here to the result."""
 
     def __init__(self, spec: CouplingSpec, misalignment_deg: float | None = None,
                  torque_Nm: float | None = None, *, workers: int | None = None,
-                 **options: Any):
+                 progress: Callable[[int, int], Any] | None = None, **options: Any):
         self.t0 = time.perf_counter()
         workers = default_workers() if workers is None else workers
         if workers not in (1, 2) or isinstance(workers, bool):
             raise ArgumentError("workers", workers, "1 or 2")
-        self.plan = datasheet_plan(spec, misalignment_deg, torque_Nm, **options)
-        self.map = ForkedMap(lambda task: task(), list(self.plan.tasks), workers)
+        self.steps = DatasheetSteps(progress, options.get("curve_points", DEFAULT_POINTS))
+        self.plan = datasheet_plan(spec, misalignment_deg, torque_Nm, step=self.steps.step,
+                                   **options)
+        self.steps.curve(len(self.plan.grid) - 1)
+        self.map = ForkedMap(lambda task, tick: task(tick=tick), list(self.plan.tasks),
+                             workers, ticking=True)
 
-    def result(self, progress: Callable[[int, int], Any] | None = None) -> CouplingData:
-        if progress is not None:
-            progress(1, 3)  # the masses
-        values = self.map.results(None if progress is None else (lambda n: progress(1 + n, 3)))
+    def result(self) -> CouplingData:
+        values = self.map.results(tick=self.steps.step)
+        self.steps.end()
         return self.plan.combine(values, time.perf_counter() - self.t0)
 
     def stop(self) -> None:
         self.map.stop()
 
 
-def _curves(halves, model: str) -> list[list[float]]:
+def _call(step: Callable[[], Any] | None) -> None:
+    if step is not None:
+        step()
+
+
+def _curves(halves, model: str, tick: Callable[[], Any] | None = None) -> list[list[float]]:
     """The teeth's wind-up from first touch at each ``(sweep, torques)`` of ``halves``, each
-    solve starting from the last pose solved on its sweep."""
-    return [[mesh_windup_from_touch(sw, t, model) for t in torques] for sw, torques in halves]
+    solve starting from the last pose solved on its sweep; ``tick()`` after each."""
+    out: list[list[float]] = []
+    for sw, torques in halves:
+        out.append([])
+        for t in torques:
+            out[-1].append(mesh_windup_from_touch(sw, t, model))
+            _call(tick)
+    return out
 
 
 def _matrix_and_curve(sw, T: float, model: str, relative_step: float | None,
-                      differences: str | None, halves
+                      differences: str | None, halves, tick: Callable[[], Any] | None = None
                       ) -> tuple[StiffnessMatrix, list[list[float]]]:
     """The stiffness matrix at ``T`` on ``sw``, then the wind-up curve's ``halves``
-    (:func:`_curves`; the first on ``sw``, from the matrix's operating point)."""
+    (:func:`_curves`; the first on ``sw``, from the matrix's operating point); ``tick()``
+    after the matrix and after each torque."""
     K = stiffness_from_sweep(sw, T, model=model, relative_step=relative_step,
                              differences=differences)
-    return K, _curves(halves, model)
+    _call(tick)
+    return K, _curves(halves, model, tick)
 
 
-def _allowable_and_curve(allowable: Callable[[], AllowableLoads], halves, model: str
+def _allowable_and_curve(allowable: Callable[..., AllowableLoads], halves, model: str,
+                         tick: Callable[[], Any] | None = None
                          ) -> tuple[AllowableLoads, list[list[float]]]:
-    """The allowable misalignment with its turn, then the wind-up curve's ``halves``."""
-    return allowable(), _curves(halves, model)
+    """The allowable misalignment with its turn, then the wind-up curve's ``halves``;
+    ``tick()`` after each capacity of the search, the turn and each torque."""
+    loads = allowable(step=tick)
+    _call(tick)
+    return loads, _curves(halves, model, tick)
 
 
 __all__ = ["DATASHEET_COLUMNS", "FILES", "MAX_TORQUE_NM", "NOT_MODELLED", "CouplingData",

@@ -38,11 +38,15 @@ def plot_windup(torsion, title: str = ""):
 
 
 def plot_allowable_loads(allowable, title: str = ""):
-    """Bending moment and axial slip force over the turn at the allowable misalignment."""
+    """Bending moment and axial slip force over the turn at the allowable misalignment.
+    The tick labels read as the values (no offset such as "+2.461e2" above the axis, no
+    powers of ten); the bending moment, nearly even over the turn, is drawn from 0."""
     fig, (a0, a1) = new_figure(2, 1, figsize=(7.5, 5), sharex=True, layout="constrained")
     psi = allowable.angles_deg
     a0.plot(psi, allowable.bending_moment_Nm, color="C0")
     a0.set_ylabel("bending moment (N·m)")
+    top = float(np.max(allowable.bending_moment_Nm, initial=0.0))
+    a0.set_ylim(0.0, 1.1 * top if top > 0 else 1.0)  # the line below the frame
     a1.plot(psi, allowable.axial_slip_force_N, color="C1", label="axial slip force")
     a1.plot(psi, allowable.axial_force_N, color="C2", label="thrust along the hub axis")
     a1.plot(psi, allowable.radial_force_N, color="C3", label="radial force")
@@ -50,6 +54,8 @@ def plot_allowable_loads(allowable, title: str = ""):
     a1.set_xlabel("rotation ψ (deg)")
     a1.legend(fontsize=8, loc="best")
     a0.set_title(title, fontsize=10)
+    for ax in (a0, a1):
+        ax.ticklabel_format(axis="y", useOffset=False, style="plain")
     return fig
 
 

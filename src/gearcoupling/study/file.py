@@ -288,7 +288,7 @@ def load_study(path: str | Path) -> Study:
 
 def _check_list_lengths(text: str, src: str) -> None:
     """Refuse a ``values`` list longer than :data:`MAX_SAMPLES` from the text's commas,
-    before it is parsed (2 million values take seconds to parse); only a file with more
+    before it is parsed (a list of millions is slow to parse); only a file with more
     commas than that is scanned."""
     if text.count(",") <= MAX_SAMPLES:
         return

@@ -6,9 +6,9 @@ scale and contact band, the legend, a status line per flank, the clearance-vs-θ
 with every tooth's current θ marked, and a button that saves the static HTML.
 
 Controls stay responsive: GUI callbacks only record that something changed; one worker
-thread applies the newest settings (a pose costs one exact sweep call, about 30 ms for
-renzo-1967, plus colour and transform messages), so a fast slider drag skips stale
-poses instead of queueing them. Meshes are rebuilt only for a new level of detail.
+thread applies the newest settings (a pose costs one exact sweep call plus colour and
+transform messages), so a fast slider drag skips stale poses instead of queueing them.
+Meshes are rebuilt only for a new level of detail.
 """
 
 from __future__ import annotations

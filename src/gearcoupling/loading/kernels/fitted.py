@@ -249,7 +249,7 @@ class FittedCompliance(CantileverCompliance):
         flush with the face end) it is held at its value there, as the table is: the
         process has no data there. Evaluated by a bicubic spline of the log of
         :meth:`exact_correction` on :data:`CORRECTION_GRID` knots over ``|z|`` and ``r``
-        (the process costs 3 µs a point; docs/load.md has the spline's error)."""
+        (the process itself is costly per point; docs/load.md has the spline's error)."""
         shape = np.broadcast_shapes(np.shape(z_mm), np.shape(r_mm))
         spline = self._correction_spline
         if spline is None:

@@ -34,7 +34,6 @@ Units: lengths in mm, pressures and moduli in MPa (N/mm^2), forces in N.
 from __future__ import annotations
 
 import math
-import os
 from collections.abc import Callable
 from dataclasses import dataclass
 from functools import lru_cache
@@ -151,15 +150,10 @@ class HalfSpace:
 
 
 @lru_cache(maxsize=1)
-def compiled() -> ModuleType | None:
-    """The compiled per-grid solver (:mod:`._contact_compiled`), or None without numba (or
-    with ``GEARCOUPLING_NUMBA=0``): then every grid takes the batched numpy path."""
-    if os.environ.get("GEARCOUPLING_NUMBA", "1") == "0":
-        return None
-    try:
-        from . import _contact_compiled
-    except ImportError:
-        return None
+def compiled() -> ModuleType:
+    """The compiled per-grid solver (:mod:`._contact_compiled`), imported at its first use."""
+    from . import _contact_compiled
+
     return _contact_compiled
 
 
@@ -486,10 +480,8 @@ def _per_grid_loads(grids: _Grids, W: NDArray[np.float64], p: NDArray[np.float64
     where unloaded), the iterations, the largest final change and the half-space
     displacement of the pressure.
     """
-    kern = compiled() if grids.compliance.uniform and np.prod(grids.hs.shape) <= \
-        COMPILED_MAX_CELLS else None
-    if kern is not None:
-        out = _per_grid_loads_compiled(kern, grids, W, p, tolerance)
+    if grids.compliance.uniform and np.prod(grids.hs.shape) <= COMPILED_MAX_CELLS:
+        out = _per_grid_loads_compiled(compiled(), grids, W, p, tolerance)
         if out is not None:
             return out
     A, m, g0 = grids.area, grids.m, grids.g0

@@ -142,12 +142,11 @@ CapacitySearch = Callable[[LoadProblem, dict[str, NDArray]],
                           tuple[dict[str, float], Sequence[PoseSearch]]]
 
 COSTS = ("fast", "slow")  # the cost classes of :attr:`LoadModel.cost`
-# the surface model's load studies: 3 rotations per tooth pitch on 12 x 8 cells; against 8
-# rotations on the load criteria's 24 x 16 cells (LOAD_GRID), at the 7 misalignments of the
-# studies (1/7 to 7/7 of the design angle) and T/2, T, 2T: the largest tooth load within
-# 0.45 % (renzo-1967) and 0.34 % (industrial-m2), the mean tilting moment within 0.33 % and
-# 0.44 %, at a fifth of the time (2.9 s against 13.1 s of CPU, renzo-1967); 4 rotations on
-# 16 x 10 cells were within 0.31 % and 0.44 % at 4.4 s (benchmarks/bench_load_study.py)
+# the surface model's load studies: 3 rotations per tooth pitch on 12 x 8 cells, a fraction
+# of the cost of 8 rotations on the load criteria's 24 x 16 cells (LOAD_GRID) for the same
+# largest tooth load and mean tilting moment within half a percent at the 7 misalignments
+# of the studies and T/2, T, 2T (``python benchmarks/bench_load_study.py`` measures each
+# setting; benchmarks/RESULTS.md holds its figures)
 SURFACE_STUDY = (3, (12, 8))
 
 
@@ -165,9 +164,9 @@ class LoadModel:
         ``capacity(problem, limits)``: how capacity searches with the model
         (:data:`CapacitySearch`).
     cost : {"fast", "slow"}
-        ``fast``: every rotation at once in well under a second (studies sample it freely);
-        ``slow``: about a second per distinct pose (callers solve one tooth pitch, few
-        rotations, on a coarser grid where they can).
+        ``fast``: every rotation in one solve (studies sample it freely); ``slow``: a solve
+        per distinct pose (callers solve one tooth pitch, few rotations, on a coarser grid
+        where they can).
     rotations : int
         Rotations per tooth pitch a capacity search takes by default (the largest tooth
         load varies by about 2 % over a pitch: ``benchmarks/bench_surface.py``).
