@@ -29,7 +29,7 @@ from ..coupling import annulus_mesh
 from ..errors import ArgumentError
 from ..geometry import FLANKS
 from ..spec import CouplingSpec
-from .nodes import HUB_RGB, SLEEVE_RGB, _opacity
+from .nodes import HUB_RGB, SLEEVE_RGB, _opacity, add_legend
 from .scene import (
     COLOR_MODES,
     CUTAWAYS,
@@ -38,8 +38,6 @@ from .scene import (
     build_scene_meshes,
     default_color_scale_mm,
     flank_colors,
-    legend,
-    legend_title,
     quaternion_wxyz,
 )
 from .scene.assembly import ALIGNMENT_FIELDS, AssemblyPose, assembly_pose
@@ -225,21 +223,9 @@ class AssemblyScene:
 
     def _add_legend(self) -> None:
         """Colour legend beside the coupling (the static HTML has no GUI panel)."""
-        size = 1.5 * self.spec.tooth.module
-        step = 1.6 * size
         x = 0.9 * max(self.spec.sleeve.outer_diameter, 2 * self.spec.tooth.pitch_radius)
-        mode = self.settings.color_mode
-        entries = legend(self.color_scale_mm, mode=mode)
-        z_top = self.pose.geometry.span_mm + (len(entries) + 1) * step
-        scene = self.server.scene
-        scene.add_label("/legend/title", legend_title(mode),
-                        position=(x - 0.5 * size, 0.0, z_top + step), anchor="bottom-left")
-        for j, (label, rgb) in enumerate(entries):
-            z = z_top - j * step
-            scene.add_box(f"/legend/box{j}", color=rgb, dimensions=(size, size, size),
-                          position=(x, 0.0, z))
-            scene.add_label(f"/legend/label{j}", label, position=(x + size, 0.0, z),
-                            anchor="center-left")
+        add_legend(self.server.scene, self.spec, self.settings.color_mode,
+                   self.color_scale_mm, x, self.pose.geometry.span_mm)
 
     def describe(self) -> str:
         """What the scene shows, in one line."""

@@ -10,19 +10,18 @@ worker thread of :class:`~.server.LiveApp` (a slider drag skips stale poses).
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
-from pathlib import Path
 
 import numpy as np
 
 from ..coupling import spec_geometry
-from ..io import default_output_dir, markdown_text
+from ..io import markdown_text
 from ..spec import MAX_SHAFT_ANGLE_DEG, MISALIGNMENT_RANGE_DEG, CouplingSpec
 from .assembly import AssemblyScene, AssemblySettings
 from .html import save_html
 from .live import LiveApp
 from .nodes import import_viser
-from .scene import COLOR_MODES, CUTAWAYS, legend_markdown, lod_tolerance, view_tolerance
+from .panel import Controls
+from .scene import CUTAWAYS, legend_markdown, lod_tolerance, view_tolerance
 
 CHANGES = {"offset": "pose", "offset_azimuth": "pose", "angle": "pose",
            "angle_azimuth": "pose", "rotation": "pose", "band": "pose",
@@ -30,11 +29,13 @@ CHANGES = {"offset": "pose", "offset_azimuth": "pose", "angle": "pose",
 """Control -> the kind of change it makes (what :meth:`AssemblyApp.apply` redoes)."""
 
 
-class AssemblyPanel:
+class AssemblyPanel(Controls):
     """The controls of the whole coupling's viewer, built in ``gui`` (a viser GUI API):
     the shaft alignment (start values: ``settings`` or the spec's ``[alignment]``, the
     offset slider up to the offset that puts a mesh at 6°), the rotation with play/pause,
     colours and the cutaway."""
+
+    CHANGES = CHANGES
 
     def __init__(self, gui, spec: CouplingSpec, settings: AssemblySettings,
                  color_scale_mm: float, span_mm: float, start: dict[str, float]):
@@ -58,27 +59,13 @@ class AssemblyPanel:
             self.play = gui.add_button("Play", icon=None)
             self.speed = gui.add_slider("speed (°/s)", 1.0, 90.0, 1.0, 15.0)
         with gui.add_folder("Colours"):
-            self.color_mode = gui.add_dropdown("colour by", COLOR_MODES,
-                                               initial_value=st.color_mode)
-            self.scale = gui.add_number("colour scale (mm)", round(color_scale_mm, 5),
-                                        min=1e-5, max=10.0, step=1e-4)
-            self.band = gui.add_number("contact band (mm)", st.band_mm, min=0.0, max=1.0,
-                                       step=1e-4)
+            self.add_colours(gui, st.color_mode, color_scale_mm, st.band_mm)
             self.legend = gui.add_markdown(legend_markdown(color_scale_mm, st.color_mode))
             self.status = gui.add_markdown("")
         with gui.add_folder("Parts"):
             self.cutaway = gui.add_dropdown("sleeve rings' cutaway", CUTAWAYS,
                                             initial_value=st.cutaway)
-        with gui.add_folder("Share"):
-            self.save = gui.add_button("Save static HTML")
-            self.saved = gui.add_markdown("")
-
-    def on_change(self, mark: Callable[[str], None]) -> None:
-        """Call ``mark(kind)`` (:data:`CHANGES`; ``"save"`` for the save button) when a
-        control changes."""
-        for name, kind in CHANGES.items():
-            getattr(self, name).on_update(lambda _event, kind=kind: mark(kind))
-        self.save.on_click(lambda _event: mark("save"))
+        self.add_share(gui)
 
     def read(self, st: AssemblySettings) -> None:
         """Copy the alignment, rotation and band into ``st``."""
@@ -112,27 +99,19 @@ class AssemblyApp(LiveApp):
                  settings: AssemblySettings | None = None, lod: str = "coarse",
                  tolerance_mm: float | None = None, html_path=None):
         import_viser()
-        self.spec = spec
         settings = AssemblySettings() if settings is None else settings
         tol = view_tolerance(spec, lod_tolerance(spec, lod) if tolerance_mm is None
                              else tolerance_mm)
         geom = spec_geometry(spec, settings.changes())  # a bad alignment: no server
-        super().__init__(host, port)
-        self.html_path = Path(html_path) if html_path else \
-            default_output_dir(spec.name) / "viewer.html"
-        try:
+        super().__init__(spec, host, port, html_path)
+
+        def build() -> None:
             self.scene = AssemblyScene(self.server, spec, settings, tol)
-            a = geom.alignment
             self.panel = AssemblyPanel(self.server.gui, spec, settings,
                                        self.scene.color_scale_mm, geom.span_mm,
-                                       a.summary())
-            self.panel.on_change(self._mark)
-            self.panel.play.on_click(lambda _: self._toggle_play())
-            self.panel.show_scene(self.scene)
-        except BaseException:
-            self.server.stop()  # bad input: leave no server behind
-            raise
-        self._start()
+                                       geom.alignment.summary())
+
+        self._build(build)
 
     def _apply(self, dirty: set[str]) -> None:
         """Any of pose, scale, cutaway, save."""
@@ -140,10 +119,7 @@ class AssemblyApp(LiveApp):
         if "cutaway" in dirty:
             sc.set_cutaway(panel.cutaway.value)
         panel.read(st)
-        if "scale" in dirty and panel.scale.value > 0:
-            st.color_scale_mm = float(panel.scale.value)
-            st.color_mode = panel.color_mode.value
-            panel.legend.content = legend_markdown(sc.color_scale_mm, st.color_mode)
+        self._new_scale(dirty)
         if dirty & {"pose", "scale"}:
             sc.set_pose()
             self.pose_updates += 1

@@ -8,11 +8,15 @@ import errno
 import socket
 import threading
 import time
+from collections.abc import Callable
+from pathlib import Path
 from typing import Any
 
 from ..errors import ArgumentError
-from ..io import markdown_text
+from ..io import default_output_dir, markdown_text
+from ..spec import CouplingSpec
 from .nodes import import_viser
+from .scene import legend_markdown
 
 PLAY_INTERVAL_S = 0.1
 PORT_TRIES = 10  # ports tried from the one asked for before giving up
@@ -49,12 +53,16 @@ class LiveApp:
     next :data:`PORT_TRIES` - 1 tried), and one worker thread that applies the newest GUI
     changes (:meth:`apply`, given by the subclass's ``_apply``), turning the rotation while
     playing. The subclass builds its scene and its panel (with ``rotation``, ``speed``,
-    ``play`` and ``status`` controls) and calls :meth:`_start`."""
+    ``play`` and ``status`` controls) in :meth:`_build`."""
 
-    panel: Any  # the subclass's GUI panel
+    panel: Any  # the subclass's GUI panel and scene
+    scene: Any
 
-    def __init__(self, host: str, port: int):
+    def __init__(self, spec: CouplingSpec, host: str, port: int, html_path=None):
         viser = import_viser()
+        self.spec = spec
+        self.html_path = Path(html_path) if html_path else \
+            default_output_dir(spec.name) / "viewer.html"
         port = free_port(host, port)  # viser itself would retry without end
         self.server = viser.ViserServer(host=host, port=port, verbose=False)
         self.server.gui.configure_theme(control_width="large", show_share_button=False)
@@ -71,8 +79,18 @@ class LiveApp:
         self._worker = threading.Thread(target=self._run, name="gearcoupling-viewer",
                                         daemon=True)
 
-    def _start(self) -> None:
-        """Start the worker (the scene and panel are built)."""
+    def _build(self, build: Callable[[], None]) -> None:
+        """``build()`` the scene and the panel, wire the panel's controls, show the scene,
+        then start the worker; on any error the server stops first (bad input leaves no
+        server behind)."""
+        try:
+            build()
+            self.panel.on_change(self._mark)
+            self.panel.play.on_click(lambda _: self._toggle_play())
+            self.panel.show_scene(self.scene)
+        except BaseException:
+            self.server.stop()
+            raise
         self._worker.start()
 
     @property
@@ -131,6 +149,17 @@ class LiveApp:
 
     def _apply(self, dirty: set[str]) -> None:
         raise NotImplementedError
+
+    def _new_scale(self, dirty: set[str]) -> bool:
+        """Take the colour scale and mode from the panel where they changed (a scale of 0
+        is left as it was), with the legend; whether they did."""
+        if "scale" not in dirty or not self.panel.scale.value > 0:
+            return False
+        st = self.scene.settings
+        st.color_scale_mm = float(self.panel.scale.value)
+        st.color_mode = self.panel.color_mode.value
+        self.panel.legend.content = legend_markdown(self.scene.color_scale_mm, st.color_mode)
+        return True
 
     def stop(self) -> None:
         """Stop the worker and the server."""

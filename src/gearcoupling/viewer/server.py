@@ -16,11 +16,9 @@ from __future__ import annotations
 import ipaddress
 import math
 import socket
-from pathlib import Path
 
 from ..arguments import choice, count
 from ..errors import ArgumentError, GearCouplingError
-from ..io import default_output_dir
 from ..spec import CouplingSpec, as_spec
 from .assembly import AssemblySettings
 from .assembly_app import AssemblyApp
@@ -32,7 +30,6 @@ from .scene import (
     LOD_DIVISORS,
     ClearanceCurve,
     clearance_curve,
-    legend_markdown,
     lod_tolerance,
     plot_series,
     view_tolerance,
@@ -85,26 +82,19 @@ class ViewerApp(LiveApp):
                  settings: ViewSettings | None = None, lod: str = "coarse",
                  tolerance_mm: float | None = None, html_path=None):
         import_viser()
-        self.spec = spec
         if settings is None:
             settings = ViewSettings(misalignment_deg=math.degrees(spec.design_misalignment))
         tol = view_tolerance(spec, lod_tolerance(spec, lod) if tolerance_mm is None
                              else tolerance_mm)
-        super().__init__(host, port)
-        self.html_path = Path(html_path) if html_path else \
-            default_output_dir(spec.name) / "viewer.html"
+        super().__init__(spec, host, port, html_path)
         self._curve: ClearanceCurve | None = None
-        try:
+
+        def build() -> None:
             self.scene = CouplingScene(self.server, spec, settings, tol)
             self.panel = Panel(self.server.gui, spec, settings, self.scene.color_scale_mm,
                                lod if tolerance_mm is None else None, self._plot_data())
-            self.panel.on_change(self._mark)
-            self.panel.play.on_click(lambda _: self._toggle_play())
-            self.panel.show_scene(self.scene)
-        except BaseException:
-            self.server.stop()  # bad input: leave no server behind
-            raise
-        self._start()
+
+        self._build(build)
 
     def _plot_data(self) -> tuple:
         """The clearance plot's data at the scene's pose (the curve is kept per
@@ -124,10 +114,7 @@ class ViewerApp(LiveApp):
         if "cutaway" in dirty:
             sc.set_cutaway(panel.cutaway.value)
         panel.read_display(st)
-        if "scale" in dirty and panel.scale.value > 0:
-            st.color_scale_mm = float(panel.scale.value)
-            st.color_mode = panel.color_mode.value
-            panel.legend.content = legend_markdown(sc.color_scale_mm, st.color_mode)
+        if self._new_scale(dirty):
             sc.recolor()
         if dirty & {"pose", "misalignment", "lod"}:
             sc.set_pose(panel.misalignment.value, panel.rotation.value)
