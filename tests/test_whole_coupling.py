@@ -224,6 +224,22 @@ def test_stage_settings_refuse_what_does_not_apply(tmp_path):
     assert "engagements = 2" in res.skipped["alignment"]
 
 
+def test_a_link_at_a_meshs_folder_is_refused_before_any_work(tmp_path, capsys):
+    """A mesh's folder is the pipeline's own: a symbolic link planted there (its files
+    would go where it points) is refused, naming it, before anything is written."""
+    out, elsewhere = tmp_path / "out", tmp_path / "elsewhere"
+    out.mkdir()
+    elsewhere.mkdir()
+    (out / "mesh-b").symlink_to(elsewhere, target_is_directory=True)
+    with pytest.raises(gc.ArgumentError, match="mesh-b") as err:
+        gc.run("close-coupled", out, only=["sweep"], workers=1)
+    assert "symbolic link" in err.value.allowed
+    line = _one_line_error(capsys, ["sweep", "close-coupled", "-o", str(out)])
+    assert "mesh-b" in line and "symbolic link" in line
+    assert list(elsewhere.iterdir()) == [] and sorted(p.name for p in out.iterdir()) == \
+        ["mesh-b"]
+
+
 # --------------------------------------------------------------------------- commands
 
 
