@@ -25,6 +25,8 @@ import pytest
 
 import gearcoupling as gc
 
+from golden_values import engagement_templates
+
 # marker -> (Python modules, executable, what to install)
 REQUIRES = {
     "needs_fea": (("gmsh", "OCP"), "ccx", "pip install 'gearcoupling[fea]'; "
@@ -76,7 +78,7 @@ def renzo():
     return gc.load_spec("renzo-1967")
 
 
-@pytest.fixture(scope="session", params=gc.template_names())
+@pytest.fixture(scope="session", params=engagement_templates())
 def template(request):
     return gc.load_spec(request.param)
 

@@ -18,6 +18,23 @@ from gearcoupling.geometry.hub import form_radius, hub_model, tip_radius
 GOLDEN = Path(__file__).parent / "golden"
 
 
+def engagement_templates() -> list[str]:
+    """The templates whose engagement's geometry (tooth system, hub, sleeve) no earlier
+    template has: the double-engagement templates spacer-double and close-coupled share
+    industrial-m2's, so the tests of one engagement's geometry, parts and design angles
+    run on it once."""
+    seen: set = set()
+    names = []
+    specs = {name: gc.load_spec(name) for name in gc.template_names()}
+    for name in sorted(specs, key=lambda n: specs[n].coupling.engagements):  # singles first
+        spec = specs[name]
+        key = (spec.tooth, spec.hub, spec.sleeve)
+        if key not in seen:
+            seen.add(key)
+            names.append(name)
+    return sorted(names)
+
+
 def golden(spec) -> dict:
     """Derived values and flank points (3 planes x 3 radii, both flanks) of a spec."""
     m = hub_model(spec)

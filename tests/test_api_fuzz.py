@@ -144,6 +144,9 @@ FUNCTIONS = {
     "whole_coupling_data": (True, {"spec": "spec", "layout": "layout",
                                    "alignment": "alignment", "torque_Nm": "torque",
                                    "model": "model"}),
+    "spec_geometry": (False, {"spec": "double", "changes": "changes", "names": "names"}),
+    "assembly_pose": (False, {"spec": "double", "psi_deg": "real", "changes": "changes",
+                              "band_mm": "length", "pressure": "flag"}),
 }
 # the whole supported range, past industrial-m2's critical misalignment (4.28°) too, where
 # every patch lies at a face end (issue 38: the default capacity raised there)
@@ -163,6 +166,12 @@ KINDS["units"] = (["mm", "in"], ["cm", None, 1, ""])
 KINDS["layout"] = (["LAYOUT"], [None, 42, "one-piece", {}, 300.0])
 KINDS["alignment"] = (["ALIGNMENT"], [42, {}, "0.4", [0.4], 0.4])
 KINDS["turn"] = (KINDS["angles"][0], [v for v in KINDS["angles"][1] if v is not None])
+# a double-engagement spec (its [coupling] and [alignment]) and changes of its alignment
+KINDS["double"] = (["close-coupled"], [None, 42, M2, SPEC, "no-such-template", [], ""])
+KINDS["changes"] = ([None, {}, {"offset_mm": 0.2}, {"angle_deg": 0.5, "angle_azimuth_deg": 10}],
+                    [{"offset_mm": NAN}, {"offset_mm": 1e3}, {"bogus": 1.0}, "offset", [0.2],
+                     {"angle_deg": INF}, {"offset_mm": "0.2"}])
+KINDS["names"] = ([None, {"offset_mm": "--offset"}], [42, "offset", {"offset_mm": 1}, [1]])
 KINDS["dict"] = ([{}, {"tooth": {"teeth": 38, "module": 2.0}, "hub": {"face_width": 16.0}}],
                  [None, [1], "x", {"tooth": 5}, {"tooth": {"teeth": NAN}}])
 

@@ -24,6 +24,7 @@ from gearcoupling.parts import SURFACE_KINDS, build_part
 from gearcoupling.parts.deviation import exact_samples
 
 import clients
+from golden_values import engagement_templates
 
 SPEC = "industrial-m2"
 
@@ -91,7 +92,7 @@ def test_gmsh_reads_the_msh_with_named_groups(hub, gmsh):
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("name", gc.template_names())
+@pytest.mark.parametrize("name", engagement_templates())
 @pytest.mark.parametrize("part", ["hub", "sleeve"])
 def test_gmsh_reads_the_step_volume_and_exact_points(tmp_path, gmsh, name, part):
     """Dense exact kernel points (crown ends, tips, fillets, roots, flanks on random teeth,

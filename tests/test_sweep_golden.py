@@ -15,9 +15,9 @@ import pytest
 import gearcoupling as gc
 from gearcoupling.clearance.design import binding_angle_deg, critical_misalignment_deg
 
-from golden_values import GOLDEN
+from golden_values import GOLDEN, engagement_templates
 
-NAMES = gc.template_names()
+NAMES = engagement_templates()
 
 
 def _want(name: str) -> dict:

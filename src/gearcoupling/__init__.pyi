@@ -23,6 +23,7 @@ from .coupling import WholeLoads as WholeLoads
 from .coupling import allowable_offset as allowable_offset
 from .coupling import coupling_assembly as coupling_assembly
 from .coupling import coupling_geometry as coupling_geometry
+from .coupling import spec_geometry as spec_geometry
 from .coupling import whole_capacity as whole_capacity
 from .coupling import whole_coupling_data as whole_coupling_data
 from .coupling import whole_loads as whole_loads
@@ -68,6 +69,7 @@ from .loading import sector_check as sector_check
 from .outputs import CapacityComparison as CapacityComparison
 from .outputs import OperatingPoint as OperatingPoint
 from .outputs import RunResult as RunResult
+from .outputs import Scope as Scope
 from .outputs import StageSettings as StageSettings
 from .outputs import compare_capacity as compare_capacity
 from .outputs import run as run
@@ -90,8 +92,12 @@ from .study import Study as Study
 from .study import StudyRun as StudyRun
 from .study import load_study as load_study
 from .study import run_study as run_study
+from .viewer import AssemblyApp as AssemblyApp
+from .viewer import AssemblyPose as AssemblyPose
+from .viewer import AssemblySettings as AssemblySettings
 from .viewer import PoseState as PoseState
 from .viewer import ViewerApp as ViewerApp
+from .viewer import assembly_pose as assembly_pose
 from .viewer import pose_state as pose_state
 from .viewer import serve as serve
 from .viewer import write_html as write_html

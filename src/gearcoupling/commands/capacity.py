@@ -12,14 +12,16 @@ from ..loading import model_names, models_help, plot_capacity, write_capacity_cs
 from ..outputs import CapacityComparison, compare_capacity, comparison_range
 from ..plots import save_figure
 from ..spec import MISALIGNMENT_RANGE_DEG, load_spec
+from . import whole
 from .common import (
+    add_alignment_arguments,
     add_spec_arguments,
     count,
     number_in,
     output_dir,
     progress,
-    spec_from_args,
 )
+from .engagement import checked_spec
 from .folders import claim, holds_folders
 
 FILES = ("capacity.csv", "capacity.png")
@@ -48,6 +50,7 @@ def register(sub) -> None:
                    help="the misalignments themselves, comma-separated degrees 0-6 "
                         "(instead of --max and --count)")
     p.add_argument("--no-plots", action="store_true", help="write only the CSV")
+    add_alignment_arguments(p)
     p.set_defaults(func=run)
 
 
@@ -89,7 +92,9 @@ def run(args) -> int:
     if args.misalignments is not None and (args.max is not None or args.count is not None):
         raise ArgumentError("--misalignments", ",".join(map(str, args.misalignments)),
                             "give either --misalignments or --max/--count")
-    spec = spec_from_args(args)
+    spec, alignment = checked_spec(args)
+    if spec.coupling.engagements == 2:
+        return whole.capacity(args, spec, alignment)
     overrides = dict(parse_override(t) for t in args.overrides)
     specs = [spec, *(_compared_spec(s, overrides) for s in args.compare)]
     names = [s.name for s in specs]

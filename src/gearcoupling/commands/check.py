@@ -15,8 +15,10 @@ import numpy as np
 
 from ..interference import check_interference
 from ..outputs import files, write_interference
+from . import whole
 from .common import (
     MAX_TEETH,
+    add_alignment_arguments,
     add_misalignment_argument,
     add_spec_arguments,
     count,
@@ -25,8 +27,8 @@ from .common import (
     output_dir,
     positive_length,
     progress,
-    spec_from_args,
 )
+from .engagement import checked_spec
 from .folders import claim, holds_folders
 
 EXIT_INTERFERENCE = 1
@@ -67,6 +69,7 @@ def register(sub) -> None:
                    help="also measure the free turn of the hub on the meshes (backlash)")
     p.add_argument("--worst", type=count(1, MAX_CHECK_ANGLES), default=10, metavar="N",
                    help=f"rows of the worst-angle table, 1-{MAX_CHECK_ANGLES} (default 10)")
+    add_alignment_arguments(p)
     p.set_defaults(func=run)
 
 
@@ -107,7 +110,9 @@ def print_table(result, count: int) -> None:
 
 @holds_folders
 def run(args) -> int:
-    spec = spec_from_args(args)
+    spec, alignment = checked_spec(args)
+    if spec.coupling.engagements == 2:
+        return whole.check(args, spec, alignment)
     mis = misalignment_deg(args, spec)
     angles = 360.0 * np.arange(args.angles) / args.angles
     out = claim(output_dir(args, spec), spec.to_dict(), files.INTERFERENCE)

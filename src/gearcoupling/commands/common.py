@@ -117,6 +117,36 @@ def misalignment_deg(args: argparse.Namespace, spec: CouplingSpec) -> float:
     return check_misalignment_deg(args.misalignment, "--misalignment", ArgumentError)
 
 
+#: the options of a double-engagement coupling's shaft alignment, each with the keyword of
+#: :class:`~gearcoupling.StageSettings` it sets
+ALIGNMENT_OPTIONS = {"--offset": "offset_mm", "--offset-azimuth": "offset_azimuth_deg",
+                     "--shaft-angle": "shaft_angle_deg", "--angle-azimuth": "angle_azimuth_deg"}
+
+
+def add_alignment_arguments(parser: argparse.ArgumentParser) -> None:
+    """``--offset MM``, ``--offset-azimuth DEG``, ``--shaft-angle DEG`` and
+    ``--angle-azimuth DEG``: a double-engagement spec's ``[alignment]``, key by key."""
+    group = parser.add_argument_group(
+        "shaft alignment", "a double-engagement spec ([coupling] engagements = 2): each in "
+        "place of its key of the spec's [alignment] (docs/coupling.md); each mesh is analysed "
+        "at the angle and rotation phase it gives")
+    group.add_argument("--offset", type=number_in(0.0, unit="mm"), default=None, metavar="MM",
+                       help="parallel offset of shaft B at the coupling's centre, >= 0 mm")
+    group.add_argument("--offset-azimuth", type=number_in(-720.0, 720.0, "degrees"),
+                       default=None, metavar="DEG", help="its direction about shaft A")
+    group.add_argument("--shaft-angle", type=number_in(0.0, 12.0, "degrees"), default=None,
+                       metavar="DEG", help="angle between the shafts, 0-12 degrees")
+    group.add_argument("--angle-azimuth", type=number_in(-720.0, 720.0, "degrees"),
+                       default=None, metavar="DEG", help="the direction shaft B leans toward")
+
+
+def alignment_given(args: argparse.Namespace) -> dict[str, float]:
+    """The alignment options given, by option (:data:`ALIGNMENT_OPTIONS`)."""
+    values = {o: getattr(args, o.removeprefix("--").replace("-", "_"), None)
+              for o in ALIGNMENT_OPTIONS}
+    return {o: v for o, v in values.items() if v is not None}
+
+
 def spec_from_args(args: argparse.Namespace) -> CouplingSpec:
     overrides = dict(parse_override(text) for text in args.overrides)
     return load_spec(args.spec, **overrides)

@@ -19,7 +19,9 @@ from ..rotordynamics import (
     import_ross,
     write_ross,
 )
+from . import whole
 from .common import (
+    add_alignment_arguments,
     add_misalignment_argument,
     add_spec_arguments,
     count,
@@ -27,8 +29,8 @@ from .common import (
     number_in,
     output_dir,
     progress,
-    spec_from_args,
 )
+from .engagement import checked_spec
 from .folders import claim, holds_folders
 
 
@@ -63,7 +65,9 @@ def register(sub) -> None:
                         f"(default {PHASES} per tooth pitch)")
     p.add_argument("--ross", type=ross_file, default=None, metavar="FILE",
                    help="also write the ROSS coupling element to FILE (.toml or .json, "
-                        "ROSS's formats; the rotordynamics extra)")
+                        "ROSS's formats; the rotordynamics extra; a double-engagement "
+                        "spec: the whole coupling's pieces)")
+    add_alignment_arguments(p)
     p.set_defaults(func=run)
 
 
@@ -78,12 +82,14 @@ def ross_file(text: str) -> Path:
 
 @holds_folders
 def run(args) -> int:
-    spec = spec_from_args(args)
-    mis = misalignment_deg(args, spec)
+    spec, alignment = checked_spec(args)
     check_inputs(spec, args.torque)
     if args.ross is not None:
         import_ross()  # a missing extra is refused before the computation
         writable_file(args.ross, "--ross")
+    if spec.coupling.engagements == 2:
+        return whole.datasheet(args, spec, alignment)
+    mis = misalignment_deg(args, spec)
     out = claim(output_dir(args, spec), spec.to_dict(), FILES)
     with progress(f"datasheet {spec.name}", 1) as update:  # the total: coupling_data's
         data = coupling_data(spec, mis, args.torque, model=args.model,

@@ -2,12 +2,16 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 from ..arguments import GAP_TOLERANCE_MM, TORQUE_RANGE_NM
+from ..errors import ArgumentError
 from ..loading import PHASES, capacity, model_names, models_help
 from ..outputs import files, write_load
-from ..reporting import capacity_verdict, load_verdicts
+from ..reporting import ReportSettings, capacity_verdict, load_verdicts
 from .common import (
     MAX_ANGLES,
+    add_alignment_arguments,
     add_misalignment_argument,
     add_spec_arguments,
     count,
@@ -15,11 +19,12 @@ from .common import (
     output_dir,
     positive_length,
     progress,
-    spec_from_args,
     torque,
 )
+from .engagement import checked_spec
 from .findings import print_findings
 from .folders import claim, holds_folders
+from .whole import compute_whole, findings, print_paths
 
 
 def register(sub) -> None:
@@ -41,12 +46,42 @@ def register(sub) -> None:
     p.add_argument("--no-plots", action="store_true", help="write only the CSV and JSON")
     p.add_argument("--quick-plots", action="store_true",
                    help="only the tooth-load and patch plots (skip the misalignment studies)")
+    add_alignment_arguments(p)
     p.set_defaults(func=run)
+
+
+def run_double(args, spec, alignment: dict[str, Any]) -> int:
+    """Both meshes of a double-engagement spec at one torque, each into its folder, and
+    the loads on the machines (``machine_loads.csv``, ``whole_loads.json``, plot)."""
+    stages = ["alignment", "load", "rating", "whole_loads"]
+    if not args.quick_plots:
+        stages[2:2] = ["load_study", "q_graph"]
+    settings = ReportSettings(torque_Nm=args.torque, model=args.model,
+                              tolerance_mm=args.tolerance, **alignment)
+    res, out, paths = compute_whole(args, spec, stages, settings, "load")
+    status = findings(spec, settings, res, out, ["loads", "capacity"], f"{spec.name}: each "
+                      "mesh at its angle:")
+    if res.has("whole_loads"):
+        eq = res.values["whole_loads"].summary()
+        for m in ("A", "B"):
+            mesh = eq[f"mesh_{m}"]
+            print(f"  mesh {m} on shaft {m}: bending moment up to "
+                  f"{mesh['bending_moment_Nm']['max']:.4g} N·m, radial force up to "
+                  f"{mesh['radial_force_N']['max']:.4g} N, axial force "
+                  f"{mesh['axial_force_N']['min']:.4g} to {mesh['axial_force_N']['max']:.4g} N")
+    print_paths(paths)
+    return status
 
 
 @holds_folders
 def run(args) -> int:
-    spec = spec_from_args(args)
+    spec, alignment = checked_spec(args)
+    if spec.coupling.engagements == 2:
+        if args.angles is not None:
+            raise ArgumentError("--angles", args.angles, f"not for a double-engagement spec: "
+                                f"its meshes take {PHASES} rotations per tooth pitch over "
+                                "the coupling's turn")
+        return run_double(args, spec, alignment)
     mis = misalignment_deg(args, spec)
     out = claim(output_dir(args, spec), spec.to_dict(),
                 (*files.LOAD, *files.LOAD_STUDY, *files.Q_GRAPH))

@@ -13,8 +13,10 @@ from ..hob import check_hob_diameter
 from ..inspection import GRADES, LIMITS, grade_limits
 from ..io import require_file
 from ..loading import model_names, models_help
+from ..outputs import run_folders
 from ..reporting import KNOB_RANGES, ReportSettings, report, report_files
 from .common import (
+    add_alignment_arguments,
     add_misalignment_argument,
     add_spec_arguments,
     count,
@@ -22,10 +24,10 @@ from .common import (
     output_dir,
     positive_length,
     progress,
-    spec_from_args,
     torque,
 )
 from .compare import parse_limits
+from .engagement import checked_spec
 from .folders import claim, holds_folders
 
 #: the accuracy knobs the command takes, as options
@@ -68,12 +70,14 @@ def register(sub) -> None:
                         "and allowable misalignment: the costliest section)")
     p.add_argument("--pdf", action="store_true",
                    help="also print report.pdf through headless chromium (browser extra)")
+    add_alignment_arguments(p)
     p.set_defaults(func=run)
 
 
 @holds_folders
 def run(args) -> int:
-    spec = spec_from_args(args)
+    spec, alignment = checked_spec(args)
+    n = spec.coupling.engagements
     if args.hob_diameter is not None:
         check_hob_diameter(spec, args.hob_diameter, "--hob-diameter")
     if args.scan is not None:
@@ -82,14 +86,15 @@ def run(args) -> int:
     if args.grade is not None:
         grade_limits(spec, args.grade, "--grade")
     knobs = {k: getattr(args, k) for k in KNOBS if getattr(args, k) is not None}
-    settings = ReportSettings(misalignment_deg=misalignment_deg(args, spec),
+    settings = ReportSettings(misalignment_deg=None if n == 2 else misalignment_deg(args, spec),
                               torque_Nm=args.torque, model=args.model, scan=args.scan,
                               scan_units=args.units, grade=args.grade,
                               limits=parse_limits(args.limit),
                               hob_diameter_mm=args.hob_diameter, viewer=not args.no_viewer,
                               datasheet=not args.no_datasheet,
-                              **knobs)
-    out = claim(output_dir(args, spec), spec.to_dict(), report_files(settings, args.pdf))
+                              **knobs, **alignment)
+    out = claim(output_dir(args, spec), spec.to_dict(), report_files(settings, args.pdf, n),
+                run_folders(n))
     with progress(f"report {spec.name}", 1) as update:
         try:
             result = report(spec, out, pdf=args.pdf, settings=settings, progress=update)

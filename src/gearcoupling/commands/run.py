@@ -6,9 +6,10 @@ from __future__ import annotations
 import sys
 
 from ..errors import ArgumentError
-from ..outputs import STEPS, Rating, run_files
+from ..outputs import STEPS, Rating, run_files, run_folders
 from ..outputs import run as run_all
-from .common import add_spec_arguments, count, output_dir, progress, spec_from_args
+from .common import add_alignment_arguments, add_spec_arguments, count, output_dir, progress
+from .engagement import checked_spec
 from .folders import claim, holds_folders
 
 
@@ -20,6 +21,7 @@ def register(sub) -> None:
     p.add_argument("--skip", metavar="KEYS", default="", help="comma-separated steps to skip")
     p.add_argument("--workers", type=count(1, 2), default=None,
                    help="1: one process; 2: two (default where there are two cores)")
+    add_alignment_arguments(p)
     p.set_defaults(func=run)
 
 
@@ -35,14 +37,22 @@ def _keys(option: str, text: str | None) -> list[str]:
 def run(args) -> int:
     only = _keys("--only", args.only) if args.only is not None else None
     skip = _keys("--skip", args.skip)
-    spec = spec_from_args(args)
-    out = claim(output_dir(args, spec), spec.to_dict(), run_files(only, skip))
+    spec, alignment = checked_spec(args)
+    n = spec.coupling.engagements
+    out = claim(output_dir(args, spec), spec.to_dict(), run_files(only, skip, n),
+                run_folders(n))
     with progress(spec.name, 1) as update:
-        res = run_all(spec, out, only=only, skip=skip, workers=args.workers, progress=update)
+        res = run_all(spec, out, only=only, skip=skip, workers=args.workers, progress=update,
+                      **alignment)
     for key, reason in res.skipped.items():
-        print(f"gearcoupling: {STEPS[key]} skipped: {reason}", file=sys.stderr)
-    if res.results.has("rating"):  # what the report will judge: said now, not only there
-        print(f"gearcoupling: {res.results.get('rating', Rating).sentence()}", file=sys.stderr)
+        scope, _, name = key.rpartition("/")
+        where = f" ({scope})" if scope else ""
+        print(f"gearcoupling: {STEPS[name]}{where} skipped: {reason}", file=sys.stderr)
+    for scope in ("", *run_folders(n)):  # what the report will judge: said now
+        rating = res.results.scope(scope).values.get("rating")
+        if isinstance(rating, Rating):
+            where = f"{scope}: " if scope else ""
+            print(f"gearcoupling: {where}{rating.sentence()}", file=sys.stderr)
     steps = ", ".join(f"{k} {s:.1f} s" for k, s in res.seconds.items())
     print(f"gearcoupling: {len(res.files)} files in {res.wall_seconds:.1f} s with "
           f"{res.workers} worker(s) ({steps})", file=sys.stderr)

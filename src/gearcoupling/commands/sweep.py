@@ -2,11 +2,14 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 from ..arguments import GAP_TOLERANCE_MM
 from ..outputs import files, write_sweep
-from ..reporting import geometry_verdicts
+from ..reporting import ReportSettings, geometry_verdicts
 from .common import (
     MAX_ANGLES,
+    add_alignment_arguments,
     add_misalignment_argument,
     add_spec_arguments,
     count,
@@ -14,10 +17,11 @@ from .common import (
     output_dir,
     positive_length,
     progress,
-    spec_from_args,
 )
+from .engagement import checked_spec
 from .findings import print_findings
 from .folders import claim, holds_folders
+from .whole import compute_whole, findings, print_paths
 
 
 def register(sub) -> None:
@@ -34,12 +38,26 @@ def register(sub) -> None:
     p.add_argument("--no-plots", action="store_true", help="write only the CSV and JSON")
     p.add_argument("--quick-plots", action="store_true",
                    help="skip the backlash, R_c and generation studies among the plots")
+    add_alignment_arguments(p)
     p.set_defaults(func=run)
+
+
+def run_double(args, spec, alignment: dict[str, Any]) -> int:
+    """Both meshes of a double-engagement spec, each into its folder (the sweep with its
+    design angles and plots)."""
+    settings = ReportSettings(angles=args.angles, tolerance_mm=args.tolerance, **alignment)
+    res, out, paths = compute_whole(args, spec, ["alignment", "sweep"], settings, "sweep")
+    status = findings(spec, settings, res, out, ["design-angles"], f"{spec.name}: checks at "
+                      "each mesh's angle:")
+    print_paths(paths)
+    return status
 
 
 @holds_folders
 def run(args) -> int:
-    spec = spec_from_args(args)
+    spec, alignment = checked_spec(args)
+    if spec.coupling.engagements == 2:
+        return run_double(args, spec, alignment)
     mis = misalignment_deg(args, spec)
     out = claim(output_dir(args, spec), spec.to_dict(), files.SWEEP)
     with progress(f"sweep {spec.name}", 3) as update:

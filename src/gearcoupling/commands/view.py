@@ -4,14 +4,18 @@ from __future__ import annotations
 
 import sys
 import time
+from typing import Any
 
+from ..errors import ArgumentError
 from ..interrupts import reset as forget_interrupt
 from ..io import writable_file
+from ..outputs import ALIGNMENT_SETTINGS
 from ..viewer import (
     COLOR_MODES,
     CUTAWAYS,
     FRAMES,
     LOD_DIVISORS,
+    AssemblySettings,
     ViewSettings,
     check_pose,
     exposure_warning,
@@ -20,6 +24,7 @@ from ..viewer import (
     write_html,
 )
 from .common import (
+    add_alignment_arguments,
     add_misalignment_argument,
     add_spec_arguments,
     count,
@@ -28,9 +33,9 @@ from .common import (
     output_dir,
     positive,
     positive_length,
-    spec_from_args,
     writing_into,
 )
+from .engagement import checked_spec
 
 MAX_SERVE_S = 365 * 24 * 3600.0  # a year (time.sleep overflows far beyond)
 
@@ -64,17 +69,34 @@ def register(sub) -> None:
     p.add_argument("--serve-seconds", type=positive("s", MAX_SERVE_S), default=None,
                    metavar="S", help=f"stop the server after S seconds, at most {MAX_SERVE_S:g} "
                    "(default: until Ctrl-C)")
+    add_alignment_arguments(p)
     p.set_defaults(func=run)
 
 
+def whole_settings(args, alignment: dict[str, Any]) -> AssemblySettings:
+    """A double-engagement spec's view: the whole coupling at the alignment the options
+    change (``--frame`` is a single engagement's: refused unless left at its default)."""
+    if args.frame != "sleeve":
+        raise ArgumentError("--frame", args.frame, "not for a double-engagement spec: its "
+                            "view is the coupling frame (shaft A's), every part placed")
+    _, psi = check_pose(0.0, args.angle, ("--misalignment", "--angle"))
+    return AssemblySettings(**{ALIGNMENT_SETTINGS[k]: v for k, v in alignment.items()},
+                            psi_deg=psi,
+                            cutaway=args.cutaway, color_mode=args.color_by)
+
+
 def run(args) -> int:
-    spec = spec_from_args(args)
-    mis = misalignment_deg(args, spec)
-    mis, psi = check_pose(mis, args.angle, ("--misalignment", "--angle"))
+    spec, alignment = checked_spec(args)
     if args.html is not None:
         writing_into(writable_file(args.html, "--html").parent, create=False)
-    settings = ViewSettings(misalignment_deg=mis, psi_deg=psi, cutaway=args.cutaway,
-                            color_mode=args.color_by, frame=args.frame)
+    settings: ViewSettings | AssemblySettings
+    if spec.coupling.engagements == 2:
+        settings = whole_settings(args, alignment)
+    else:
+        mis, psi = check_pose(misalignment_deg(args, spec), args.angle,
+                              ("--misalignment", "--angle"))
+        settings = ViewSettings(misalignment_deg=mis, psi_deg=psi, cutaway=args.cutaway,
+                                color_mode=args.color_by, frame=args.frame)
     tol = lod_tolerance(spec, args.lod) if args.tolerance is None else args.tolerance
     if args.html is not None:
         t0 = time.perf_counter()

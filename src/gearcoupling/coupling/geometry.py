@@ -21,8 +21,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..clearance import MeshAngles, mesh_angles
-from ..errors import ArgumentError
-from ..spec import MISALIGNMENT_RANGE_DEG, CouplingSpec, as_spec
+from ..errors import ArgumentError, SpecError
+from ..spec import MISALIGNMENT_RANGE_DEG, CouplingSpec, as_spec, file_key
 from .layout import CouplingLayout, ShaftAlignment, is_close
 
 MESHES = ("A", "B")
@@ -175,7 +175,7 @@ def coupling_geometry(spec: CouplingSpec, layout: CouplingLayout,
         raise ArgumentError("layout", layout, "a gearcoupling.coupling.CouplingLayout")
     if not isinstance(alignment, ShaftAlignment):
         raise ArgumentError("alignment", alignment, "a gearcoupling.coupling.ShaftAlignment")
-    spec_b = layout.hub_b or spec_a
+    spec_b = spec_a if layout.hub_b is None else as_spec(layout.hub_b, "hub_b")
     if layout.engagements == 1:
         return _single(spec_a, layout, alignment)
     span, annuli = _floating_parts(spec_a, spec_b, layout)
@@ -186,6 +186,61 @@ def coupling_geometry(spec: CouplingSpec, layout: CouplingLayout,
     ob = np.array(angles.centre_b_mm)
     return CouplingGeometry(spec_a, spec_b, layout, alignment, span, angles,
                             *_axes(ob), ob, annuli)
+
+
+def spec_geometry(spec: CouplingSpec, changes: dict[str, float] | None = None, *,
+                  names: dict[str, str] | None = None) -> CouplingGeometry:
+    """The coupling a double-engagement spec describes (its ``[coupling]`` table), resolved
+    at its ``[alignment]`` with ``changes`` (fields of :class:`ShaftAlignment`) put in
+    place; without an ``[alignment]`` table, at the parallel offset that puts each mesh at
+    the spec's design misalignment (azimuth 0, no angle).
+
+    Every refusal names where the value came from: the spec's key (``coupling.span``,
+    ``alignment.offset``: a :class:`SpecError`) or, where ``changes`` made the alignment
+    refused, the changed field's name in ``names`` (an option such as ``--offset``: an
+    :class:`ArgumentError`).
+    """
+    spec = as_spec(spec)
+    changes, names = _changes(changes), _names(names)
+    if spec.coupling.engagements != 2:
+        raise ArgumentError("engagements", spec.coupling.engagements, "2: the spec describes "
+                            "one engagement ([coupling] engagements = 2 for two)")
+    try:
+        if spec.alignment is not None:
+            base = spec.alignment
+        else:
+            probe = coupling_geometry(spec, spec.coupling, ShaftAlignment())
+            base = ShaftAlignment(offset_mm=probe.span_mm * math.tan(spec.design_misalignment))
+        alignment = base.replace(**changes) if changes else base
+        return coupling_geometry(spec, spec.coupling, alignment)
+    except ArgumentError as err:
+        table = "alignment" if err.field in ShaftAlignment.__dataclass_fields__ else "coupling"
+        changed = err.field if err.field in changes else next(
+            (f for f in ("offset_mm", "angle_deg", *changes) if f in changes), None)
+        if changed is not None and table == "alignment":  # the alignment given made it
+            raise ArgumentError(names.get(changed, changed), changes[changed],
+                                err.allowed) from None
+        raise SpecError(file_key(table, err.field), err.value, err.allowed) from None
+
+
+def _changes(changes: Any) -> dict[str, Any]:
+    """``changes`` as a dict of :class:`ShaftAlignment` fields (None: none)."""
+    if changes is None:
+        return {}
+    fields = tuple(ShaftAlignment.__dataclass_fields__)
+    if not isinstance(changes, dict) or not all(k in fields for k in changes):
+        raise ArgumentError("changes", changes, f"a dict of ShaftAlignment fields: "
+                            f"{', '.join(fields)}")
+    return dict(changes)
+
+
+def _names(names: Any) -> dict[str, str]:
+    """``names`` as a dict of field -> the name a refusal gives it (None: none)."""
+    if names is None:
+        return {}
+    if not isinstance(names, dict) or not all(isinstance(v, str) for v in names.values()):
+        raise ArgumentError("names", names, "a dict of ShaftAlignment field -> name")
+    return dict(names)
 
 
 def _single(spec: CouplingSpec, layout: CouplingLayout,
@@ -313,4 +368,5 @@ def _check_span(spec_a: CouplingSpec, spec_b: CouplingSpec, span: float) -> None
                             "on its midplane, must not overlap")
 
 
-__all__ = ["MESHES", "OFFSET_AT", "Annulus", "CouplingGeometry", "coupling_geometry", "turn"]
+__all__ = ["MESHES", "OFFSET_AT", "Annulus", "CouplingGeometry", "coupling_geometry",
+           "spec_geometry", "turn"]

@@ -16,13 +16,15 @@ the coupling frame (ROSS's element is diagonal: cross terms are left out, as
 from __future__ import annotations
 
 import math
+import os
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any, Protocol
 
 import numpy as np
 
 from ..errors import ArgumentError
-from ..rotordynamics import combine, import_ross
+from ..rotordynamics import combine, import_ross, write_ross
 
 MM_TO_M = 1e-3
 
@@ -59,6 +61,12 @@ class RossPieces:
         return {"elements": [type(e).__name__ for e in self.elements],
                 "disks": len(self.disks), "first_node": self.first_node,
                 "last_node": self.last_node}
+
+    def write(self, path: str | os.PathLike) -> Path:
+        """Every piece in one file of ROSS's own format (``.toml`` or ``.json``: ROSS's
+        ``save``, one entry per element and disk keyed by its class and tag), atomically;
+        ``ross.CouplingElement.load`` reads the first (coupling A)."""
+        return write_ross([*self.elements, *self.disks], path)
 
 
 def lateral_diagonal(matrix: np.ndarray, azimuth_deg: float) -> tuple[float, ...]:

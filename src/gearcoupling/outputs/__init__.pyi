@@ -7,7 +7,9 @@ from .capacity import CapacityComparison as CapacityComparison
 from .capacity import Rating as Rating
 from .capacity import compare_capacity as compare_capacity
 from .capacity import comparison_range as comparison_range
+from .executor import Job as Job
 from .executor import compute as compute
+from .executor import jobs as jobs
 from .files import REPORT as REPORT
 from .files import REPORT_PDF as REPORT_PDF
 from .interference import Check as Check
@@ -31,12 +33,18 @@ from .pipeline import RunResult as RunResult
 from .pipeline import default_workers as default_workers
 from .pipeline import run as run
 from .pipeline import run_files as run_files
+from .pipeline import run_folders as run_folders
 from .pipeline import settings_from as settings_from
 from .pipeline import stage_files as stage_files
 from .registry import RUN as RUN
+from .registry import RUN_WHOLE as RUN_WHOLE
 from .registry import STAGES as STAGES
+from .registry import run_stages as run_stages
+from .settings import ALIGNMENT_SETTINGS as ALIGNMENT_SETTINGS
 from .settings import KNOB_RANGES as KNOB_RANGES
+from .settings import MESH_SCOPES as MESH_SCOPES
 from .settings import OperatingPoint as OperatingPoint
+from .settings import Scope as Scope
 from .settings import StageSettings as StageSettings
 from .spec import CrownProfile as CrownProfile
 from .spec import resolved_spec as resolved_spec
@@ -49,3 +57,6 @@ from .sweep import BacklashCurve as BacklashCurve
 from .sweep import DesignPoint as DesignPoint
 from .sweep import write_sweep as write_sweep
 from .viewer import StaticViewer as StaticViewer
+from .whole import Assembly as Assembly
+from .whole import AssemblyStep as AssemblyStep
+from .whole import datasheet_rows as datasheet_rows

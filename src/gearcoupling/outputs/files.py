@@ -37,6 +37,14 @@ HOB_PROGRAM = ("hob_path.csv", "hob_program.nc", "hob.json")
 HOB = (*HOB_PROGRAM, "hob_path.png")
 CHARTS = ("charts.png", "nominal_traces.csv", "charts.json")
 INSPECTION = ("inspection.csv", "inspection.png", "deviation_map.png")
+#: the whole coupling's stages (a double-engagement spec; docs/coupling.md)
+ALIGNMENT = ("alignment.json",)
+WHOLE_LOADS = ("machine_loads.csv", "whole_loads.json", "machine_loads.png")
+WHOLE_CAPACITY = ("whole_capacity.json",)
+ALLOWABLE_OFFSET = ("allowable_offset.json",)
+WHOLE_DATASHEET = ("whole_datasheet.json", "whole_datasheet.csv", "torsion_chain.csv")
+ASSEMBLY = ("coupling.glb", "assembly.json")
+ASSEMBLY_STEP = ("coupling.step",)
 RUN_SUMMARY = "run_summary.json"
 REPORT = "report.html"
 REPORT_PDF = "report.pdf"

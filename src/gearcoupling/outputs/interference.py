@@ -33,10 +33,12 @@ class Check:
 
 
 def check(inputs: StageInputs) -> Check:
-    """The stage ``check``: ``check_angles`` poses over a turn at the misalignment."""
-    n = inputs.settings.check_angles
-    result = check_interference(inputs.spec, inputs.point.misalignment_deg,
-                                np.arange(n) * 360.0 / n)
+    """The stage ``check``: ``check_angles`` poses over a turn at the misalignment (less a
+    mesh's phase: a double-engagement coupling's meshes as the placed assembly poses
+    them)."""
+    n, p = inputs.settings.check_angles, inputs.point
+    result = check_interference(inputs.spec, p.misalignment_deg,
+                                p.rotations(np.arange(n) * 360.0 / n))
     return reference(inputs.spec, result)
 
 

@@ -84,12 +84,13 @@ def study_misalignments(spec: CouplingSpec, top_deg: float | None = None,
 
 
 def turn_loads(inputs: StageInputs) -> LoadResult:
-    """The stage ``load``: the loads over a turn, ``phases`` rotations per tooth pitch."""
+    """The stage ``load``: the loads over a turn, ``phases`` rotations per tooth pitch (less
+    a mesh's phase)."""
     p = inputs.point
     if p.torque_Nm is None:
         raise SkipStage(NO_TORQUE)
     s = inputs.settings
-    sw = sweep(inputs.spec, p.misalignment_deg, turn_phases(inputs.spec, s.phases),
+    sw = sweep(inputs.spec, p.misalignment_deg, p.rotations(turn_phases(inputs.spec, s.phases)),
                tolerance_mm=s.tolerance_mm)
     return load_from_sweep(sw, torque_Nm=p.torque_Nm, model=p.model)
 

@@ -16,10 +16,10 @@ from ..errors import ArgumentError
 from ..forked import can_fork
 from ..io import output_folder, writable_targets, write_json
 from ..spec import CouplingSpec, as_spec
-from .executor import compute, plan
+from .executor import compute, jobs
 from .files import RUN_SUMMARY
-from .registry import RUN, STAGES
-from .settings import StageSettings
+from .registry import RUN, STAGES, run_stages
+from .settings import MESH_SCOPES, StageSettings
 from .stage import Results
 
 #: the stages ``gearcoupling run --only`` takes, each with what it computes
@@ -42,11 +42,13 @@ class RunResult:
     results: Results = field(default_factory=Results, repr=False, compare=False)
 
     def summary(self) -> dict[str, Any]:
-        """``run_summary.json``: stages with their seconds and files, skipped stages, wall
-        time and workers."""
+        """``run_summary.json``: stages with their seconds and files (relative to the
+        folder: a mesh's in ``mesh-a/``, ``mesh-b/``), skipped stages, wall time and
+        workers."""
         return {"spec": self.spec_name, "workers": self.workers,
                 "wall_seconds": self.wall_seconds, "step_seconds": self.seconds,
-                "skipped": self.skipped, "files": [p.name for p in self.files]}
+                "skipped": self.skipped,
+                "files": [p.relative_to(self.out).as_posix() for p in self.files]}
 
 
 def chosen(only: Iterable[str] | None, skip: Iterable[str], default: Iterable[str] = RUN
@@ -76,16 +78,28 @@ def _names(value: Any, name: str) -> set[str]:
 S = TypeVar("S", bound=StageSettings)
 
 
-def run_files(only: Iterable[str] | None = None, skip: Iterable[str] = ()) -> list[str]:
-    """The files :func:`run` may write with these ``only`` and ``skip`` (those of the
-    stages it computes, :attr:`~.stage.Stage.writes`, and ``run_summary.json``), each once,
-    in the order of the stages."""
-    return [*stage_files(chosen(only, skip)), RUN_SUMMARY]
+def run_files(only: Iterable[str] | None = None, skip: Iterable[str] = (),
+              engagements: int = 1) -> list[str]:
+    """The files :func:`run` may write with these ``only`` and ``skip`` for a spec of one
+    or two ``engagements`` (those of the stages it computes, :attr:`~.stage.Stage.writes`,
+    and ``run_summary.json``), each once, in the order of the stages."""
+    return [*stage_files(chosen(only, skip, run_stages(engagements)), engagements),
+            RUN_SUMMARY]
 
 
-def stage_files(names: Iterable[str]) -> list[str]:
-    """The files the stages ``names`` and those they need may write, each once."""
-    return list(dict.fromkeys(f for stage in plan(list(names)) for f in stage.writes))
+def stage_files(names: Iterable[str], engagements: int = 1) -> list[str]:
+    """The files the stages ``names`` and those they need may write, each once: for two
+    ``engagements`` a mesh's in its folder (``mesh-a/sweep.csv``, :func:`run_folders`)."""
+    meshes = MESH_SCOPES if engagements == 2 else ()
+    return list(dict.fromkeys(f"{j.scope}/{f}" if j.scope else f
+                              for j in jobs(list(names), meshes) if j.refused is None
+                              for f in j.stage.writes))
+
+
+def run_folders(engagements: int = 1) -> tuple[str, ...]:
+    """The folders of their own that :func:`run` and :func:`~gearcoupling.report` make: a
+    double-engagement coupling's meshes' (``mesh-a``, ``mesh-b``)."""
+    return MESH_SCOPES if engagements == 2 else ()
 
 
 def settings_from(settings: S | None, options: dict[str, Any], kind: type[S],
@@ -123,8 +137,10 @@ def run(spec: CouplingSpec, out: str | os.PathLike, *, only: Iterable[str] | Non
         :func:`~gearcoupling.io.output_folder`, or anything but a regular file where a
         stage writes one, :func:`run_files`: before any stage runs).
     only, skip : iterable of str
-        Stages of :data:`STEPS` to run (default :data:`~.registry.RUN`), or to leave out;
-        the stages they need are computed too.
+        Stages of :data:`STEPS` to run (default :data:`~.registry.RUN`, and for a
+        double-engagement spec :data:`~.registry.RUN_WHOLE`), or to leave out; the stages
+        they need are computed too. A double-engagement spec's mesh-level stages run for
+        each mesh, their files in ``mesh-a/`` and ``mesh-b/`` (docs/coupling.md).
     workers : int, optional
         1 runs every stage in this process; 2 (the default where the machine has two
         cores and this process runs no other thread) runs them in two forked processes
@@ -134,7 +150,8 @@ def run(spec: CouplingSpec, out: str | os.PathLike, *, only: Iterable[str] | Non
         ``progress(done, total)`` as stages finish (tenths of their expected seconds).
     settings : StageSettings, optional
         The operating point and accuracy knobs; or give them as keyword arguments
-        (``misalignment_deg``, ``torque_Nm``, ``angles``, ...).
+        (``misalignment_deg``, ``torque_Nm``, ``angles``, ...; for a double-engagement
+        spec ``offset_mm``, ``shaft_angle_deg`` and their azimuths).
 
     Returns
     -------
@@ -150,17 +167,19 @@ def run(spec: CouplingSpec, out: str | os.PathLike, *, only: Iterable[str] | Non
     """
     spec = as_spec(spec)
     output_folder(out, "out", create=False)
-    keys = chosen(only, skip)
-    writable_targets(out, run_files(only, skip), field="out")
+    engagements = spec.coupling.engagements
+    keys = chosen(only, skip, run_stages(engagements))
+    writable_targets(out, run_files(only, skip, engagements), run_folders(engagements),
+                     field="out")
     s = settings_from(settings, options, StageSettings, "run")
     s.resolve(spec)
     n = default_workers(workers)
     folder = output_folder(out, "out")
-    stages = plan(keys)
+    planned = jobs(keys, run_folders(engagements))
     t0 = time.perf_counter()
     results = compute(spec, s, keys, folder=folder, workers=n, progress=progress)
-    used = 2 if n == 2 and len(stages) >= 2 and can_fork() else 1
-    files = results.all_files([st.name for st in stages])
+    used = 2 if n == 2 and len(planned) >= 2 and can_fork() else 1
+    files = results.all_files([j.key for j in planned])
     result = RunResult(spec.name, folder, tuple(files), dict(results.seconds),
                        dict(results.skipped), time.perf_counter() - t0, used, results)
     summary = write_json(folder / RUN_SUMMARY, result.summary())

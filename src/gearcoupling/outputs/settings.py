@@ -1,8 +1,10 @@
 """What the pipeline's stages compute and how finely: the operating point and the accuracy
-knobs that ``gc.run`` and ``gc.report`` share, checked once."""
+knobs that ``gc.run`` and ``gc.report`` share, checked once, and where each stage runs
+(:class:`Scope`: the spec, or each mesh of a double-engagement coupling)."""
 
 from __future__ import annotations
 
+import dataclasses
 import os
 from dataclasses import asdict, dataclass, field
 from typing import Any
@@ -10,15 +12,24 @@ from typing import Any
 import numpy as np
 
 from ..arguments import GAP_TOLERANCE_MM, PHASES, choice, count, positive, real, torque_Nm
+from ..coupling import MESHES, CouplingGeometry, mesh_torque_Nm, spec_geometry
 from ..errors import ArgumentError
 from ..io import as_path
 from ..loading import model_names, resolve_torque_Nm
-from ..spec import CouplingSpec, check_misalignment_deg
+from ..spec import MAX_SHAFT_ANGLE_DEG, CouplingLayout, CouplingSpec, check_misalignment_deg
 
 # (smallest, largest) of each count: enough to draw, small enough to stay interactive
 KNOB_RANGES = {"angles": (8, 3600), "phases": (1, 64), "capacity_count": (2, 200),
                "check_angles": (1, 720), "patch_teeth": (1, 12),
                "fit_points": (100, 1_000_000), "dpi": (50, 300)}
+#: the settings that change a double-engagement spec's ``[alignment]``, each with the
+#: field of :class:`~gearcoupling.coupling.ShaftAlignment` it sets
+ALIGNMENT_SETTINGS = {"offset_mm": "offset_mm", "offset_azimuth_deg": "offset_azimuth_deg",
+                      "shaft_angle_deg": "angle_deg", "angle_azimuth_deg": "angle_azimuth_deg"}
+#: the root scope (a single engagement, or the whole of a double-engagement coupling)
+ROOT = ""
+#: a mesh's spec is a single engagement
+SINGLE_LAYOUT = CouplingLayout(engagements=1)
 
 
 @dataclass(frozen=True)
@@ -28,7 +39,13 @@ class StageSettings:
     Attributes
     ----------
     misalignment_deg : float, optional
-        The misalignment analysed (default the spec's design angle).
+        The misalignment analysed (default the spec's design angle); a single
+        engagement's only.
+    offset_mm, offset_azimuth_deg, shaft_angle_deg, angle_azimuth_deg : float, optional
+        A double-engagement coupling's shaft alignment, each in place of its key of the
+        spec's ``[alignment]`` (``offset``, ``offset_azimuth_deg``, ``angle_deg``,
+        ``angle_azimuth_deg``; docs/coupling.md): each mesh is analysed at the angle and
+        rotation phase it gives.
     torque_Nm : float, optional
         Signed torque (default ``[load] torque_Nm``; without one the loads are skipped).
     model : {"linear", "compliance", "surface"}, optional
@@ -59,6 +76,10 @@ class StageSettings:
 
     misalignment_deg: float | None = None
     torque_Nm: float | None = None
+    offset_mm: float | None = None
+    offset_azimuth_deg: float | None = None
+    shaft_angle_deg: float | None = None
+    angle_azimuth_deg: float | None = None
     model: str | None = None
     angles: int = 360
     tolerance_mm: float = GAP_TOLERANCE_MM
@@ -80,6 +101,14 @@ class StageSettings:
         real(self.tolerance_mm, "tolerance_mm", 1e-9, 1e-3, unit="mm")
         if self.misalignment_deg is not None:
             check_misalignment_deg(self.misalignment_deg, "misalignment_deg", ArgumentError)
+        if self.offset_mm is not None:
+            real(self.offset_mm, "offset_mm", 0.0, unit="mm")
+        if self.shaft_angle_deg is not None:
+            real(self.shaft_angle_deg, "shaft_angle_deg", 0.0, MAX_SHAFT_ANGLE_DEG,
+                 unit="degrees")
+        for name in ("offset_azimuth_deg", "angle_azimuth_deg"):
+            if getattr(self, name) is not None:
+                real(getattr(self, name), name, -720.0, 720.0, unit="degrees")
         if self.model is not None:
             choice(self.model, "model", model_names())
         if self.torque_Nm is not None:
@@ -94,34 +123,114 @@ class StageSettings:
         if not isinstance(self.limits, dict):
             raise ArgumentError("limits", self.limits, "a dict of limit name -> mm")
 
-    def as_dict(self) -> dict[str, Any]:
-        """Plain data (the report's settings table)."""
+    def as_dict(self, engagements: int = 1) -> dict[str, Any]:
+        """Plain data (the report's settings table); the alignment's settings only for
+        two ``engagements``, the misalignment only for one."""
         d = asdict(self)
         d["scan"] = (None if self.scan is None else f"{len(self.scan)} points"
                      if isinstance(self.scan, np.ndarray) else os.fspath(self.scan))
+        for name in (("misalignment_deg",) if engagements == 2 else ALIGNMENT_SETTINGS):
+            d.pop(name)
         return d
 
+    def alignment_changes(self) -> dict[str, float]:
+        """The alignment's settings given, by the field of
+        :class:`~gearcoupling.coupling.ShaftAlignment` each sets."""
+        return {field_: float(getattr(self, name)) for name, field_ in
+                ALIGNMENT_SETTINGS.items() if getattr(self, name) is not None}
+
     def resolve(self, spec: CouplingSpec) -> OperatingPoint:
-        """The operating point these settings give ``spec``."""
-        mis = spec.design_misalignment_deg if self.misalignment_deg is None else \
-            self.misalignment_deg
-        mis = check_misalignment_deg(mis, "misalignment_deg", ArgumentError)
+        """The operating point these settings give ``spec``: a single engagement's, or the
+        whole of a double-engagement coupling's (its resolved ``coupling``; the
+        misalignment the larger mesh angle). Settings that do not apply to the spec are
+        refused: an alignment for one engagement, a misalignment for two."""
         torque = None
         if self.torque_Nm is not None or spec.load.torque_Nm is not None:
             torque = resolve_torque_Nm(spec, self.torque_Nm)
-        return OperatingPoint(float(mis), torque, self.model or spec.load.model)
+        model = self.model or spec.load.model
+        changes = self.alignment_changes()
+        if spec.coupling.engagements == 1:
+            if changes:
+                name = next(n for n, f in ALIGNMENT_SETTINGS.items() if f in changes)
+                raise ArgumentError(name, getattr(self, name), "only for a double-engagement "
+                                    "coupling ([coupling] engagements = 2): one engagement "
+                                    "takes misalignment_deg")
+            mis = spec.design_misalignment_deg if self.misalignment_deg is None else \
+                self.misalignment_deg
+            mis = check_misalignment_deg(mis, "misalignment_deg", ArgumentError)
+            return OperatingPoint(float(mis), torque, model)
+        if self.misalignment_deg is not None:
+            raise ArgumentError("misalignment_deg", self.misalignment_deg, "not for a double-"
+                                "engagement coupling: each mesh's angle follows from the "
+                                "shaft alignment (offset_mm, shaft_angle_deg and their "
+                                "azimuths, or the spec's [alignment])")
+        geom = spec_geometry(spec, changes, names={f: n for n, f in
+                                                   ALIGNMENT_SETTINGS.items()})
+        top = max(geom.misalignment_deg(m) for m in geom.meshes)
+        return OperatingPoint(check_misalignment_deg(top, "misalignment_deg", ArgumentError),
+                              torque, model, coupling=geom)
+
+    def scopes(self, spec: CouplingSpec) -> dict[str, Scope]:
+        """Where the stages run: the root (the spec at :meth:`resolve`'s point) and, for a
+        double-engagement coupling, each mesh (``mesh-a``, ``mesh-b``): its hub's spec at
+        its angle, its torque (hub B's the negative: the sleeve drives it, docs/coupling.md)
+        and its rotation phase."""
+        point = self.resolve(spec)
+        out = {ROOT: Scope(ROOT, spec, point)}
+        geom = point.coupling
+        if geom is None:
+            return out
+        for m in geom.meshes:
+            mesh_spec = dataclasses.replace(geom.spec(m), name=f"{spec.name}, mesh {m}",
+                                            coupling=SINGLE_LAYOUT, alignment=None)
+            torque = None if point.torque_Nm is None else mesh_torque_Nm(m, point.torque_Nm)
+            mis = check_misalignment_deg(geom.misalignment_deg(m), "misalignment_deg",
+                                         ArgumentError)
+            out[scope_name(m)] = Scope(scope_name(m), mesh_spec, OperatingPoint(
+                mis, torque, point.model, phase_deg=geom.tilt_axis_deg(m), mesh=m))
+        return out
+
+
+def scope_name(mesh: str) -> str:
+    """The scope (and folder) of a mesh: ``mesh-a``, ``mesh-b``."""
+    return f"mesh-{mesh.lower()}"
+
+
+#: the folders of a double-engagement coupling's meshes
+MESH_SCOPES = tuple(scope_name(m) for m in MESHES)
 
 
 @dataclass(frozen=True)
 class OperatingPoint:
     """The operating point of a run: misalignment (deg), signed torque (N·m, None: no
-    torque given) and load model."""
+    torque given) and load model. In a mesh's scope of a double-engagement coupling also
+    its rotation phase (the turns over which it is analysed are the coupling's less
+    ``phase_deg``: its tilt axis's azimuth) and its name; at the root of one, the resolved
+    ``coupling``."""
 
     misalignment_deg: float
     torque_Nm: float | None
     model: str
+    phase_deg: float = 0.0
+    mesh: str = ""
+    coupling: CouplingGeometry | None = field(default=None, compare=False, repr=False)
+
+    def rotations(self, angles_deg: np.ndarray) -> np.ndarray:
+        """The engagement's rotations at the coupling's rotations ``angles_deg``: less the
+        phase (the same array where there is none)."""
+        return angles_deg - self.phase_deg if self.phase_deg else angles_deg
 
     @property
     def flank(self) -> str:
         """The loaded flank: ``cw`` under a negative torque, else ``ccw``."""
         return "cw" if (self.torque_Nm or 0.0) < 0 else "ccw"
+
+
+@dataclass(frozen=True)
+class Scope:
+    """Where a stage runs: ``name`` (the root ``""``, or a mesh's ``mesh-a`` / ``mesh-b``,
+    also the folder of its files), the spec it analyses and its operating point."""
+
+    name: str
+    spec: CouplingSpec
+    point: OperatingPoint

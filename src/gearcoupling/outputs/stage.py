@@ -21,6 +21,16 @@ from .settings import OperatingPoint, StageSettings
 
 R = TypeVar("R")
 
+#: where a stage runs (:attr:`Stage.level`): in each engagement's scope, once for the whole
+#: spec, only for a single engagement, only for the whole of a double-engagement coupling
+LEVELS = ("mesh", "spec", "single", "whole")
+
+
+def key_of(scope: str, name: str) -> str:
+    """The key of stage ``name``'s result in ``scope``: its name at the root (``""``),
+    ``scope/name`` in a mesh's scope."""
+    return f"{scope}/{name}" if scope else name
+
 
 class SkipStage(GearCouplingError):
     """A stage that does not apply to this spec or these settings (no torque for the loads,
@@ -61,6 +71,12 @@ class Stage:
     writes : tuple of str
         The names of the files it may write (:mod:`~gearcoupling.outputs.files`): checked
         before any stage runs.
+    level : str
+        One of :data:`LEVELS`. ``mesh``: the analysis of one engagement at its operating
+        point, run once per mesh of a double-engagement coupling (``mesh-a/``,
+        ``mesh-b/``); ``spec``: once, of the spec (hub A and the sleeve); ``single``: a
+        single engagement's only; ``whole``: the whole of a double-engagement coupling's
+        only, reading both meshes' results (:mod:`~gearcoupling.outputs.executor`).
     """
 
     name: str
@@ -73,6 +89,7 @@ class Stage:
     uses: tuple[str, ...] = ()
     after: tuple[str, ...] = ()
     writes: tuple[str, ...] = ()
+    level: str = "mesh"
 
     def run(self, inputs: StageInputs) -> Any:
         """The stage's result, or its :class:`Plan` where it is :attr:`parallel`."""
@@ -128,6 +145,20 @@ class Results:
     def all_files(self, order: Sequence[str]) -> list[Path]:
         """The files of the stages ``order``, in that order."""
         return [p for name in order for p in self.files.get(name, ())]
+
+    def scope(self, scope: str) -> Results:
+        """The results as a job in ``scope`` sees them: the scope's own (``mesh-a/sweep``
+        read as ``sweep``) and the root's; all of them at the root (``""``)."""
+        if not scope:
+            return self
+        prefix = f"{scope}/"
+
+        def own(data: Mapping[str, Any]) -> dict[str, Any]:
+            return {**{k: v for k, v in data.items() if "/" not in k},
+                    **{k[len(prefix):]: v for k, v in data.items() if k.startswith(prefix)}}
+
+        return Results(own(self.values), own(self.files), own(self.seconds),
+                       own(self.skipped))
 
 
 @dataclass(frozen=True)

@@ -86,9 +86,10 @@ def backlash_points(spec: CouplingSpec, point: DesignPoint) -> BacklashCurve:
 
 
 def turn(inputs: StageInputs) -> SweepResult:
-    """The stage ``sweep``: the settings' rotations over a turn, checked finite."""
-    s = inputs.settings
-    return sweep(inputs.spec, inputs.point.misalignment_deg, turn_angles(s.angles),
+    """The stage ``sweep``: the settings' rotations over a turn (less a mesh's phase),
+    checked finite."""
+    s, p = inputs.settings, inputs.point
+    return sweep(inputs.spec, p.misalignment_deg, p.rotations(turn_angles(s.angles)),
                  tolerance_mm=s.tolerance_mm).check_finite()
 
 

@@ -2,7 +2,7 @@
 printed to PDF, that says what the coupling is, what it carries and whether it passes
 against the spec's limits (and which limits were not set)."""
 
-from .build import ReportResult, report, report_files
+from .build import ReportResult, report, report_files, section_verdicts
 from .sections import SECTIONS
 from .settings import KNOB_RANGES, ReportSettings
 from .verdict import FAIL, Verdict, capacity_verdict, geometry_verdicts, load_verdicts
@@ -22,4 +22,5 @@ __all__ = [
     "load_verdicts",
     "report",
     "report_files",
+    "section_verdicts",
 ]

@@ -5,7 +5,7 @@ from __future__ import annotations
 import contextlib
 import os
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 from datetime import UTC, datetime
 from pathlib import Path
@@ -24,8 +24,10 @@ from ..outputs import (
     REPORT,
     REPORT_PDF,
     Results,
+    Scope,
     compute,
     default_workers,
+    run_folders,
     settings_from,
     stage_files,
 )
@@ -34,7 +36,7 @@ from . import sections as registry
 from .document import Note, Section, Table, render
 from .pdf import print_pdf
 from .settings import ReportSettings
-from .verdict import COLUMNS, overall
+from .verdict import COLUMNS, Verdict, overall
 from .view import ReportSection, View
 
 
@@ -94,7 +96,9 @@ def report(spec: CouplingSpec, out: str | os.PathLike, *, pdf: bool = False,
     output_folder(out, "out", create=False)
     s = settings_from(settings, options, ReportSettings, "report")
     flag(pdf, "pdf")
-    writable_targets(out, report_files(s, pdf), field="out")
+    engagements = spec.coupling.engagements
+    writable_targets(out, report_files(s, pdf, engagements), run_folders(engagements),
+                     field="out")
     n = default_workers(workers)
     t0 = time.perf_counter()
     s.resolve(spec)
@@ -103,10 +107,10 @@ def report(spec: CouplingSpec, out: str | os.PathLike, *, pdf: bool = False,
         browser_backend()
     created = not Path(out).exists()
     folder = output_folder(out, "out")
-    shown = [sec for sec in registry.SECTIONS if sec.shown(s)]
+    shown = [sec for sec in registry.SECTIONS if sec.applies(s, engagements)]
     written: list[Path] = []
     try:
-        results = compute(spec, s, report_stages(s), folder=folder,
+        results = compute(spec, s, report_stages(s, engagements), folder=folder,
                           workers=n, progress=progress, written=written)
         return _render(spec, s, results, folder, shown, pdf, t0)
     except BaseException:  # an error or an interruption: no partial report is left
@@ -114,24 +118,69 @@ def report(spec: CouplingSpec, out: str | os.PathLike, *, pdf: bool = False,
         raise
 
 
-def report_stages(settings: ReportSettings) -> list[str]:
-    """The stages a report with these settings shows."""
-    return [n for sec in registry.SECTIONS if sec.shown(settings) for n in sec.stages]
+def report_stages(settings: ReportSettings, engagements: int = 1) -> list[str]:
+    """The stages a report with these settings shows on a spec of ``engagements``."""
+    return [n for sec in registry.SECTIONS if sec.applies(settings, engagements)
+            for n in sec.stages]
 
 
-def report_files(settings: ReportSettings, pdf: bool = False) -> list[str]:
-    """The files :func:`report` may write: those of its stages, ``report.html`` and, with
-    ``pdf``, ``report.pdf``."""
-    return [*stage_files(report_stages(settings)), REPORT, *([REPORT_PDF] if pdf else [])]
+def report_files(settings: ReportSettings, pdf: bool = False, engagements: int = 1
+                 ) -> list[str]:
+    """The files :func:`report` may write on a spec of ``engagements``: those of its
+    stages (a double-engagement coupling's meshes' in ``mesh-a/``, ``mesh-b/``),
+    ``report.html`` and, with ``pdf``, ``report.pdf``."""
+    return [*stage_files(report_stages(settings, engagements), engagements), REPORT,
+            *([REPORT_PDF] if pdf else [])]
+
+
+def _views(spec: CouplingSpec, s: ReportSettings, results: Results, folder: Path
+           ) -> tuple[View, list[View]]:
+    """The report's view (the spec at the root) and each mesh's of a double-engagement
+    coupling (none for one engagement)."""
+    scopes: dict[str, Scope] = s.scopes(spec)
+    root = scopes.pop("")
+    view = View(spec, s, root.point, results, folder)
+    return view, [View(sc.spec, s, sc.point, results.scope(name), folder / name, name)
+                  for name, sc in scopes.items()]
+
+
+def _sections(sec: ReportSection, view: View, meshes: list[View]) -> list[Section]:
+    """A section as rendered: once, or once per mesh (its title saying which)."""
+    if sec.level != "mesh" or not meshes:
+        return [Section(sec.key, sec.title, sec.render(view))]
+    return [Section(f"{sec.key}-{m.scope}", f"{sec.title}: mesh {m.point.mesh} "
+                    f"(i = {m.point.misalignment_deg:.4g}°)", sec.render(m)) for m in meshes]
+
+
+def _verdicts(sec: ReportSection, view: View, meshes: list[View]) -> list[Verdict]:
+    """A section's verdicts: once, or per mesh (each check saying which)."""
+    if sec.verdicts is None:
+        return []
+    if sec.level != "mesh" or not meshes:
+        return sec.verdicts(view)
+    return [replace(row, check=f"mesh {m.point.mesh}: {row.check}") for m in meshes
+            for row in sec.verdicts(m)]
+
+
+def section_verdicts(spec: CouplingSpec, settings: ReportSettings, results: Results,
+                     folder: Path, keys: Sequence[str]) -> list[Verdict]:
+    """The verdicts of the report's sections ``keys`` on these results (a double-engagement
+    coupling's mesh sections once per mesh, each check saying which): what a command
+    prints of its findings."""
+    view, meshes = _views(spec, settings, results, folder)
+    return [row for sec in registry.SECTIONS if sec.key in keys
+            for row in _verdicts(sec, view, meshes)]
 
 
 def _render(spec: CouplingSpec, s: ReportSettings, results: Results, folder: Path,
             shown: list[ReportSection], pdf: bool, t0: float) -> ReportResult:
-    point = s.resolve(spec)
-    view = View(spec, s, point, results, folder)
-    sections = [Section(sec.key, sec.title, sec.render(view)) for sec in shown]
-    verdicts = [row for sec in registry.SECTIONS if sec.verdicts is not None
-                for row in sec.verdicts(view)]
+    view, meshes = _views(spec, s, results, folder)
+    point = view.point
+    sections = [one for sec in shown for one in _sections(sec, view, meshes)]
+    engagements = spec.coupling.engagements
+    verdicts = [row for sec in registry.SECTIONS
+                if sec.level != {1: "whole", 2: "single"}[engagements]
+                for row in _verdicts(sec, view, meshes)]
     cls, text = overall(verdicts)
     head = Section("verdict", "Verdict against the spec's limits", [
         Table(COLUMNS, [v.row() for v in verdicts], "pass / fail only against a limit; "
@@ -144,13 +193,26 @@ def _render(spec: CouplingSpec, s: ReportSettings, results: Results, folder: Pat
     title = f"Gear coupling design report: {spec.name}"
     when = datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC")
     torque = point.torque_Nm
-    sub = (f"i = {point.misalignment_deg:g}°, "
+    sub = (_where(view, meshes) + ", "
            + (f"T = {torque:.4g} N·m" if torque is not None else "no torque")
            + f", {point.model} load model · gearcoupling {__version__} · {when}")
     write_text(html_path, render(title, sub, (cls, text), [head, *sections]))
     pdf_path = print_pdf(html_path, folder / REPORT_PDF) if pdf else None
     return ReportResult(html_path, pdf_path, data, cls, text, dict(results.seconds),
                         time.perf_counter() - t0)
+
+
+def _where(view: View, meshes: list[View]) -> str:
+    """The misalignment of the subtitle: the angle, or a double-engagement coupling's
+    alignment and mesh angles."""
+    if not meshes:
+        return f"i = {view.point.misalignment_deg:g}°"
+    a = view.point.coupling.alignment if view.point.coupling is not None else None
+    shafts = "" if a is None else (f"offset {a.offset_mm:g} mm at {a.offset_azimuth_deg:g}°, "
+                                   f"shaft angle {a.angle_deg:g}° at "
+                                   f"{a.angle_azimuth_deg:g}°: ")
+    return shafts + ", ".join(f"mesh {m.point.mesh} i = {m.point.misalignment_deg:.4g}°"
+                              for m in meshes)
 
 
 def _discard(folder: Path, written: list[Path], created: bool) -> None:
@@ -186,8 +248,13 @@ def _provenance(view: View, files: tuple[Path, ...], wall: float) -> Section:
     p = view.point
     used = {"misalignment_deg": p.misalignment_deg, "torque_Nm": p.torque_Nm,
             "model": p.model}
+    if p.coupling is not None:  # the alignment the meshes' angles come from
+        a = p.coupling.alignment
+        used = {"offset_mm": a.offset_mm, "offset_azimuth_deg": a.offset_azimuth_deg,
+                "shaft_angle_deg": a.angle_deg, "angle_azimuth_deg": a.angle_azimuth_deg,
+                "torque_Nm": p.torque_Nm, "model": p.model}
     settings = []
-    for k, v in view.settings.as_dict().items():
+    for k, v in view.settings.as_dict(view.spec.coupling.engagements).items():
         if k in used:
             k, v = f"{k} (used)", used[k]
         elif isinstance(v, dict):
@@ -195,7 +262,8 @@ def _provenance(view: View, files: tuple[Path, ...], wall: float) -> Section:
         settings.append((k, v))
     timing = [(k, round(v, 2)) for k, v in view.results.seconds.items()]
     timing.append(("all stages, wall", round(wall, 2)))
-    listing = [(p.name, p.stat().st_size) for p in files if p.exists()]
+    listing = [(p.relative_to(view.folder).as_posix(), p.stat().st_size) for p in files
+               if p.exists()]
     return Section("settings", "Settings, timing and files", [
         Table(("setting", "value"), settings, "Inputs and accuracy knobs of this report "
               "(gc.report keyword arguments; gearcoupling report options)."),

@@ -40,6 +40,7 @@ from .verdict import (
     load_verdicts,
 )
 from .view import ReportSection, View
+from .whole import whole, whole_datasheet, whole_verdicts
 
 
 def _sweep_settings(sw: SweepResult) -> str:
@@ -87,7 +88,9 @@ def coupling(v: View) -> list[Block]:
              f"degrees, as resolved from the spec file (written in {spec.units})."),
         Row([Table(("spec key", "value"),
                    _flatten({k: data[k] for k in ("tooth", "hub", "sleeve", "load",
-                                                  "material")}), "The resolved spec."),
+                                                  "material", "coupling", "alignment",
+                                                  "hub_b") if k in data}),
+                   "The resolved spec."),
              Table(("derived value", "value"), list(spec.derived.items()),
                    "Derived values (renzo_z0 at the design angle: Renzo eq. 4).")])]
     if prof is not None:
@@ -383,6 +386,12 @@ def view3d(v: View) -> list[Block]:
     scene = v.get("viewer", StaticViewer)
     if scene is None:
         return [Note(f"Not included: {v.why('viewer')}", "skip")]
+    if v.point.coupling is not None:
+        return [Viewer(scene.html, "The whole coupling at the shaft alignment, rotation 0, "
+                       "every part placed, each mesh's hub flanks coloured by its clearance "
+                       "at its angle; the sleeve rings in quarter cutaway, the floating "
+                       "member's plain parts translucent (drag to turn, scroll to zoom; "
+                       "gearcoupling view SPEC has sliders for the offset and angle).")]
     return [Viewer(scene.html, f"Hub and sleeve at i = {scene.misalignment_deg:g}°, rotation "
                    "0, quarter cutaway, coloured by clearance (drag to turn, scroll to zoom).")]
 
@@ -390,7 +399,14 @@ def view3d(v: View) -> list[Block]:
 #: the report's sections in their order
 SECTIONS: tuple[ReportSection, ...] = (
     ReportSection("coupling", "The coupling: spec and derived values", ("sections",),
-                  coupling),
+                  coupling, level="spec"),
+    ReportSection("whole", "The whole coupling: meshes, capacity against offset, loads on "
+                  "the machines", ("alignment", "whole_capacity", "allowable_offset",
+                                   "whole_loads", "assembly"), whole, whole_verdicts,
+                  level="whole"),
+    ReportSection("whole-datasheet", "The whole coupling's data sheet (AGMA 9009 halves, "
+                  "torsion, lateral frequency)", ("whole_datasheet",), whole_datasheet,
+                  shown=lambda s: s.datasheet, level="whole"),
     ReportSection("clearance", "Clearance, backlash and contact over the turn", ("sweep",),
                   clearance),
     ReportSection("design-angles", "Critical and binding angles",
@@ -400,12 +416,14 @@ SECTIONS: tuple[ReportSection, ...] = (
     ReportSection("capacity", "Capacity per criterion against misalignment",
                   ("rating", "capacity"), capacity, capacity_verdicts),
     ReportSection("datasheet", "Coupling data sheet for rotordynamics, after API 671",
-                  ("datasheet",), datasheet, shown=lambda s: s.datasheet),
+                  ("datasheet",), datasheet, shown=lambda s: s.datasheet, level="single"),
     ReportSection("interference", "Interference check of the meshes", ("check",),
                   interference, interference_verdicts),
     ReportSection("manufacturing", "Hob program and measuring charts", ("hob", "charts"),
-                  manufacturing),
+                  manufacturing, level="spec"),
     ReportSection("measured", "Measured part against the nominal", ("inspection",),
-                  measured, measured_verdicts, shown=lambda s: s.scan is not None),
-    ReportSection("view", "3D view", ("viewer",), view3d, shown=lambda s: s.viewer),
+                  measured, measured_verdicts, shown=lambda s: s.scan is not None,
+                  level="spec"),
+    ReportSection("view", "3D view", ("viewer",), view3d, shown=lambda s: s.viewer,
+                  level="spec"),
 )

@@ -19,13 +19,16 @@ R = TypeVar("R")
 @dataclass(frozen=True)
 class View:
     """What a renderer reads: the spec, the settings, the operating point, the stages'
-    results and the folder their files are in (the report's own)."""
+    results and the folder their files are in (the report's own). A mesh's view of a
+    double-engagement coupling (``scope`` ``mesh-a``, ``mesh-b``) reads the mesh's spec,
+    point, results and folder; its figures link their data in that folder."""
 
     spec: CouplingSpec
     settings: ReportSettings
     point: OperatingPoint
     results: Results
     folder: Path
+    scope: str = ""
 
     def get(self, name: str, kind: type[R]) -> R | None:
         """The result of stage ``name`` (None where it was skipped)."""
@@ -38,7 +41,10 @@ class View:
     def figure(self, key: str, title: str, png: str, settings: str, data_file: str | None,
                note: str = "") -> Figure:
         """A figure from a stage's picture ``png`` in the folder; ``data_file`` the name of
-        its data beside it."""
+        its data beside it (linked from the report's folder)."""
+        if self.scope:
+            key = f"{key}-{self.scope}"
+            data_file = None if data_file is None else f"{self.scope}/{data_file}"
         return Figure(key, title, (self.folder / png).read_bytes(), settings, data_file, note)
 
 
@@ -57,6 +63,11 @@ class ReportSection:
         ``verdicts(view) -> list of Verdict``: the checks it judges.
     shown : callable
         ``shown(settings) -> bool``: whether the report has it.
+    level : str
+        Like its stages' (:attr:`gearcoupling.outputs.Stage.level`): ``mesh`` (the
+        default: rendered once per mesh of a double-engagement coupling, its title and
+        its verdicts saying which), ``spec`` (once), ``single`` (a single engagement's
+        only) or ``whole`` (a double-engagement coupling's only).
     """
 
     key: str
@@ -65,3 +76,9 @@ class ReportSection:
     render: Callable[[View], list[Block]]
     verdicts: Callable[[View], list[Verdict]] | None = None
     shown: Callable[[ReportSettings], bool] = lambda s: True
+    level: str = "mesh"
+
+    def applies(self, settings: ReportSettings, engagements: int) -> bool:
+        """Whether a report with these settings on a spec of ``engagements`` has it."""
+        wrong = {1: "whole", 2: "single"}[engagements]
+        return self.level != wrong and self.shown(settings)

@@ -96,15 +96,17 @@ def coupling_element(data, *, held_torque: bool = False, axial_N_per_m: float = 
 
 
 def write_ross(element, path: str | os.PathLike) -> Path:
-    """Save a ROSS element in ROSS's own file format (``.toml`` or ``.json``, by ROSS's
-    ``save``), atomically: ``ross.CouplingElement.load(path)`` reads it back."""
+    """Save a ROSS element (or a list of them: one entry each, keyed by class and tag) in
+    ROSS's own file format (``.toml`` or ``.json``, by ROSS's ``save``), atomically:
+    ``ross.CouplingElement.load(path)`` reads the first back."""
     target = Path(path)
     if target.suffix.lower() not in ROSS_SUFFIXES:
         raise ArgumentError("--ross", str(path), "a .toml or .json file (the formats ROSS "
                             "saves and loads)")
     with atomic_path(target) as tmp:
         tmp.unlink()  # ROSS's save adds to an existing file: start from none
-        element.save(tmp)
+        for one in element if isinstance(element, list | tuple) else [element]:
+            one.save(tmp)
     return target
 
 

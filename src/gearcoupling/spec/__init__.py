@@ -5,6 +5,13 @@ the crown kinds (:mod:`.kinds`) and the checks that need the geometry (:mod:`.ch
 The rest of the package imports them from here; the geometry takes spec objects, and the
 functions here load template names for it (:mod:`.surfaces`)."""
 
+from .arrangement import (
+    MAX_SHAFT_ANGLE_DEG,
+    SLEEVES,
+    CouplingLayout,
+    ShaftAlignment,
+    file_key,
+)
 from .checks import check_spec, derived_values
 from .coupling import CouplingSpec, as_spec, load_spec, spec_from_dict
 from .file import (
@@ -63,10 +70,12 @@ __all__ = [
     "INSPECTION_LIMITS",
     "MAX_END_TANGENT_DEG",
     "MAX_NAME_CHARS",
+    "MAX_SHAFT_ANGLE_DEG",
     "MISALIGNMENT_RANGE_DEG",
     "MM_PER_INCH",
     "MODULE_RANGE_MM",
     "PRESSURE_ANGLE_RANGE_DEG",
+    "SLEEVES",
     "SPEC_KEYS",
     "STEEL",
     "STIFFNESS_SOURCES",
@@ -75,6 +84,7 @@ __all__ = [
     "TIP_KINDS",
     "UNITS",
     "UNIT_SIBLINGS",
+    "CouplingLayout",
     "CouplingSpec",
     "CrownKind",
     "Crowning",
@@ -86,6 +96,7 @@ __all__ = [
     "LoadSpec",
     "Material",
     "Materials",
+    "ShaftAlignment",
     "Sleeve",
     "SpecTable",
     "ToothSystem",
@@ -96,6 +107,7 @@ __all__ = [
     "default_dedendum",
     "default_fillet_radius",
     "derived_values",
+    "file_key",
     "hub_flank",
     "load_spec",
     "parse_load",

@@ -8,6 +8,7 @@ The parts are :mod:`.model` (and :mod:`.load`), read from their tables by :mod:`
 from __future__ import annotations
 
 import copy
+import dataclasses
 import math
 import os
 from dataclasses import asdict, dataclass, field
@@ -17,6 +18,7 @@ from typing import Any
 
 from ..errors import ArgumentError, SpecError
 from ..io import Table, as_path, read_toml, set_dotted
+from .arrangement import SINGLE, CouplingLayout, ShaftAlignment
 from .checks import check_spec, derived_values
 from .file import TABLES, check_keys, explained, read_parts, resolve_spec_path
 from .kinds import CROWN_FIELDS
@@ -39,10 +41,24 @@ class CouplingSpec:
     units: str = field(default="mm", compare=False)
     inspection: InspectionLimits = field(default_factory=InspectionLimits, compare=False)
     wear: tuple[tuple[str, Any], ...] = ()  # [wear] as read (wear.py)
+    #: [coupling]: one engagement (the default) or two, with hub B (``hub_b``) and the
+    #: floating member; [alignment]: the shafts (docs/coupling.md). An engagement is
+    #: compared by its hub and sleeve: these are left out of ``==``.
+    coupling: CouplingLayout = field(default=SINGLE, compare=False)
+    alignment: ShaftAlignment | None = field(default=None, compare=False)
 
     def __post_init__(self):
         check_misalignment_deg(math.degrees(self.design_misalignment), "design_misalignment_deg")
+        if self.alignment is not None and self.coupling.engagements == 1:
+            raise SpecError("alignment", self.alignment.summary(), "only for a double-"
+                            "engagement coupling ([coupling] engagements = 2): a single "
+                            "engagement's mesh takes design_misalignment_deg")
         check_spec(self)  # the checks that need the geometry kernels (spec -> geometry)
+
+    @property
+    def engagements(self) -> int:
+        """1 (one hub in a sleeve) or 2 (two hubs in a floating member)."""
+        return self.coupling.engagements
 
     @property
     def design_misalignment_deg(self) -> float:
@@ -80,6 +96,8 @@ class CouplingSpec:
         out.update(tooth=tooth, hub=d["hub"], sleeve=d["sleeve"])
         out.update({t.key: table for t in TABLES
                     if (table := t.write(getattr(self, t.key))) or not t.optional})
+        if self.coupling.hub_b is not None:
+            out["hub_b"] = self.coupling.hub_b.to_dict()["hub"]
         cr = out["hub"]["crowning"]
         for key, (attr, _, _) in CROWN_FIELDS.items():
             if attr != key:  # the file's keys of a tabulated path
@@ -101,14 +119,47 @@ def spec_from_dict(data: dict[str, Any], name: str = "custom") -> CouplingSpec:
     if not isinstance(name, str):
         raise ArgumentError("name", name, "a str")
     check_keys(data)
-    root = Table(copy.deepcopy(data))
+    data = copy.deepcopy(data)
+    hub_b = data.pop("hub_b", None)
+    root = Table(data)
     try:
-        return CouplingSpec(**read_parts(root, name))
+        parts = read_parts(root, name)
+        spec = CouplingSpec(**parts)
     except SpecError as err:
         better = explained(err, root)
         if better is err:
             raise
         raise better from None
+    if hub_b is None:
+        return spec
+    return dataclasses.replace(spec, coupling=_with_hub_b(data, hub_b, parts, name))
+
+
+def _with_hub_b(data: dict[str, Any], hub_b: Any, parts: dict[str, Any],
+                name: str) -> CouplingLayout:
+    """The layout of ``parts`` with hub B: the file ``data`` with each key of ``[hub_b]``
+    (a sub-table counts as one key) in place of that of ``[hub]``; its refusals name
+    ``hub_b``."""
+    layout = parts["coupling"]
+    if layout.engagements == 1:
+        raise SpecError("hub_b", "[hub_b]", "only for a double-engagement coupling "
+                        "([coupling] engagements = 2)")
+    if not isinstance(hub_b, dict):
+        raise SpecError("hub_b", hub_b, "must be a TOML table (keys of [hub])")
+    hub = dict(data.get("hub") or {}) if isinstance(data.get("hub"), dict) else {}
+    for one, other in (("backlash", "tooth_thickness"), ("tooth_thickness", "backlash")):
+        if one in hub_b:
+            hub.pop(other, None)  # one of the pair says the other
+    merged = {k: v for k, v in data.items() if k not in ("coupling", "alignment")}
+    merged["hub"] = {**hub, **copy.deepcopy(hub_b)}
+    try:
+        spec_b = spec_from_dict(merged, name)
+    except SpecError as err:
+        field_ = err.field.replace("hub.", "hub_b.", 1) if err.field.startswith("hub.") \
+            else err.field
+        raise SpecError(field_, err.value, err.allowed, err.shown) from None
+    return CouplingLayout(**{**{f: getattr(layout, f) for f in layout.__dataclass_fields__},
+                             "hub_b": spec_b})
 
 
 def load_spec(name_or_path: str | Path, **overrides: Any) -> CouplingSpec:

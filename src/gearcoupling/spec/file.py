@@ -24,6 +24,14 @@ import numpy as np
 from ..errors import GeometryError, SpecError, brief
 from ..geometry import HubModel, feed_path, inv_inverse, radius_squared
 from ..io import Table, bundled_names, escaped, resolve_bundled, unknown_key
+from .arrangement import (
+    ALIGNMENT_KEYS,
+    COUPLING_KEYS,
+    read_alignment,
+    read_coupling,
+    write_alignment,
+    write_coupling,
+)
 from .kinds import CROWN_FIELDS, CROWN_KINDS
 from .load import material_table, parse_load, parse_material, without_none
 from .model import (
@@ -85,18 +93,28 @@ TABLES: tuple[SpecTable, ...] = (
     SpecTable("load", parse_load, without_none),
     SpecTable("material", parse_material, material_table),
     SpecTable("wear", parse_wear, wear_table, keys=WEAR_TABLE_KEYS, optional=True),
+    SpecTable("coupling", read_coupling, write_coupling, COUPLING_KEYS,
+              optional=True),
+    SpecTable("alignment", read_alignment, write_alignment, ALIGNMENT_KEYS,
+              optional=True),
 )
+
+#: the keys of a hub table and its sub-tables (``[hub]``, and ``[hub_b]``: hub B of a
+#: double-engagement coupling, each of its keys replacing that of ``[hub]``)
+HUB_KEYS: dict[str, tuple[str, ...]] = {
+    "": ("face_width", "tooth_thickness", "backlash", "tip", "root", "crowning", "body"),
+    ".tip": ("kind", "diameter"),
+    ".root": ("dedendum", "fillet_radius"),
+    ".crowning": ("kind", *CROWN_FIELDS, "generation"),
+    ".body": ("bore_diameter", "length"),
+}
 
 # every key a spec file may hold, per table (unknown keys are reported before anything else)
 SPEC_KEYS: dict[str, tuple[str, ...]] = {
     "": ("units", "name", "design_misalignment_deg", "tooth", "hub", "sleeve",
-         *(t.key for t in TABLES)),
+         *(t.key for t in TABLES), "hub_b"),
     "tooth": ("teeth", "module", "diametral_pitch", "pressure_angle_deg"),
-    "hub": ("face_width", "tooth_thickness", "backlash", "tip", "root", "crowning", "body"),
-    "hub.tip": ("kind", "diameter"),
-    "hub.root": ("dedendum", "fillet_radius"),
-    "hub.crowning": ("kind", *CROWN_FIELDS, "generation"),
-    "hub.body": ("bore_diameter", "length"),
+    **{f"{hub}{sub}": keys for hub in ("hub", "hub_b") for sub, keys in HUB_KEYS.items()},
     "sleeve": ("face_width", "minor_diameter", "major_diameter", "space_width", "tip_chamfer",
                "root_fillet_radius", "outer_diameter"),
     **{t.key: t.keys for t in TABLES if t.keys is not None},

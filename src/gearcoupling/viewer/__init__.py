@@ -7,13 +7,17 @@ viser is imported only when a server is made and is an optional extra
 (``pip install 'gearcoupling[viewer]'``).
 """
 
+from .assembly import AssemblyScene, AssemblySettings
+from .assembly_app import AssemblyApp
 from .html import static_html, write_html
 from .nodes import FRAMES, ViewSettings
 from .scene import (
     COLOR_MODES,
     CUTAWAYS,
     LOD_DIVISORS,
+    AssemblyPose,
     PoseState,
+    assembly_pose,
     build_scene_meshes,
     check_pose,
     lod_tolerance,
@@ -26,9 +30,14 @@ __all__ = [
     "CUTAWAYS",
     "FRAMES",
     "LOD_DIVISORS",
+    "AssemblyApp",
+    "AssemblyPose",
+    "AssemblyScene",
+    "AssemblySettings",
     "PoseState",
     "ViewSettings",
     "ViewerApp",
+    "assembly_pose",
     "build_scene_meshes",
     "check_pose",
     "exposure_warning",

@@ -21,8 +21,11 @@ from pathlib import Path
 from ..errors import ArgumentError
 from ..io import writable_file, write_text
 from ..spec import CouplingSpec, as_spec
+from .assembly import AssemblyScene, AssemblySettings
 from .nodes import CouplingScene, ViewSettings, import_viser
 from .still import still_png
+
+Scene = CouplingScene | AssemblyScene
 
 
 def free_port(host: str = "127.0.0.1") -> int:
@@ -32,15 +35,18 @@ def free_port(host: str = "127.0.0.1") -> int:
         return int(s.getsockname()[1])
 
 
-def scene_html(scene: CouplingScene, *, dark_mode: bool = False) -> str:
+def scene_html(scene: Scene, *, dark_mode: bool = False) -> str:
     """The current scene of a running viewer as one HTML document, titled and captioned,
     with its still picture shown until WebGL draws."""
     page = scene.server.get_scene_serializer().as_html(dark_mode=dark_mode)
     return dress(page, scene)
 
 
-def describe(scene: CouplingScene) -> str:
-    """What the scene shows, in one line: spec, misalignment, rotation, colours, cutaway."""
+def describe(scene: Scene) -> str:
+    """What the scene shows, in one line: spec, misalignment (or a double-engagement
+    coupling's alignment and mesh angles), rotation, colours, cutaway."""
+    if isinstance(scene, AssemblyScene):
+        return scene.describe()
     st = scene.settings
     return (f"{scene.spec.name}: misalignment i = {st.misalignment_deg:g}°, rotation "
             f"ψ = {st.psi_deg:g}° ({st.frame} frame still), coloured by {st.color_mode}, "
@@ -118,11 +124,14 @@ _SCRIPT = """<script>(function () {
 })();</script>"""
 
 
-def dress(page: str, scene: CouplingScene) -> str:
+def dress(page: str, scene: Scene) -> str:
     """Viser's HTML ``page`` with the scene's title, caption and still picture."""
     text = html.escape(describe(scene))
-    st = scene.settings
-    meshes = int(st.show_sleeve) + int(st.show_hub) * (1 + 2 * scene.spec.tooth.teeth)
+    if isinstance(scene, AssemblyScene):
+        meshes = scene.draws()
+    else:
+        st = scene.settings
+        meshes = int(st.show_sleeve) + int(st.show_hub) * (1 + 2 * scene.spec.tooth.teeth)
     src = "data:image/png;base64," + base64.b64encode(still_png(scene)).decode("ascii")
     head = _STYLE + _SCRIPT % max(meshes, 1)
     body = (f'<div id="gc-caption">{text}</div>'
@@ -135,12 +144,13 @@ def dress(page: str, scene: CouplingScene) -> str:
     return page.replace("<body>", "<body>" + body, 1)
 
 
-def save_html(scene: CouplingScene, path: str | os.PathLike) -> Path:
+def save_html(scene: Scene, path: str | os.PathLike) -> Path:
     """Write the current scene's HTML atomically (usual file mode, to be shared)."""
     return write_text(path, scene_html(scene))
 
 
-def write_html(spec: CouplingSpec, path: str | os.PathLike, *, settings: ViewSettings | None = None,
+def write_html(spec: CouplingSpec, path: str | os.PathLike, *,
+               settings: ViewSettings | AssemblySettings | None = None,
                tolerance_mm: float | None = None) -> Path:
     """Write the static HTML of a coupling scene (:func:`static_html`) to ``path`` (parent
     folders are created; written atomically)."""
@@ -148,32 +158,42 @@ def write_html(spec: CouplingSpec, path: str | os.PathLike, *, settings: ViewSet
     return write_text(path, static_html(spec, settings=settings, tolerance_mm=tolerance_mm))
 
 
-def static_html(spec: CouplingSpec, *, settings: ViewSettings | None = None,
+def static_html(spec: CouplingSpec, *, settings: ViewSettings | AssemblySettings | None = None,
                 tolerance_mm: float | None = None) -> str:
     """The static HTML of a coupling scene, one self-contained page.
 
     Parameters
     ----------
     spec : CouplingSpec
-    settings : ViewSettings, optional
-        Pose and display; default: the spec's design misalignment, rotation 0, quarter
-        cutaway.
+        A double-engagement spec shows the whole coupling: every part placed at the
+        shaft alignment, each mesh coloured at its own angle and rotation.
+    settings : ViewSettings or AssemblySettings, optional
+        Pose and display; default: the spec's design misalignment (the spec's
+        ``[alignment]`` for two engagements: :class:`AssemblySettings`), rotation 0,
+        quarter cutaway.
     tolerance_mm : float, optional
         Chordal tolerance of the meshes (default coarse, module / 20). Most of the page
         is viser's client; the scene's meshes add to it in proportion to their triangles
         (``benchmarks/bench_viewer.py``).
     """
     spec = as_spec(spec)
-    if settings is not None and not isinstance(settings, ViewSettings):
-        raise ArgumentError("settings", str(settings)[:60], "a ViewSettings")
+    double = spec.coupling.engagements == 2
+    kind = AssemblySettings if double else ViewSettings
+    if settings is not None and not isinstance(settings, kind):
+        raise ArgumentError("settings", str(settings)[:60], f"a {kind.__name__}"
+                            + (" (a double-engagement spec)" if double else ""))
     viser = import_viser()
     if settings is None:
-        settings = ViewSettings(misalignment_deg=_design_deg(spec))
+        settings = AssemblySettings() if double else \
+            ViewSettings(misalignment_deg=_design_deg(spec))
     # a private server on a free local port: the serializer needs one; no client connects.
     # viser prints its address banner to stdout: keep it out of the caller's output
     with contextlib.redirect_stdout(io.StringIO()):
         server = viser.ViserServer(host="127.0.0.1", port=free_port(), verbose=False)
     try:
+        if isinstance(settings, AssemblySettings):
+            return scene_html(AssemblyScene(server, spec, settings, tolerance_mm,
+                                            legend_in_scene=True))
         return scene_html(CouplingScene(server, spec, settings, tolerance_mm,
                                         legend_in_scene=True))
     finally:

@@ -282,25 +282,29 @@ class CouplingScene:
     # ---------------------------------------------------------------- legend
 
     def _add_legend(self) -> None:
-        """Colour legend above the coupling, right of the axis: boxes with labels (for
-        the static HTML, which has no GUI panel)."""
-        spec = self.spec
-        size = 1.5 * spec.tooth.module
-        step = 1.6 * size
+        """Colour legend above the coupling, right of the axis (for the static HTML, which
+        has no GUI panel)."""
         bounds = self.meshes.sleeve.bounds
-        x = 0.9 * bounds[1][0]
-        mode = self.settings.color_mode
-        entries = legend(self.color_scale_mm, mode=mode)
-        z_top = bounds[1][2] + (len(entries) + 1) * step
-        scene = self.server.scene
-        scene.add_label("/legend/title", legend_title(mode),
-                        position=(x - 0.5 * size, 0.0, z_top + step), anchor="bottom-left")
-        for j, (label, rgb) in enumerate(entries):
-            z = z_top - j * step
-            scene.add_box(f"/legend/box{j}", color=rgb, dimensions=(size, size, size),
-                          position=(x, 0.0, z))
-            scene.add_label(f"/legend/label{j}", label, position=(x + size, 0.0, z),
-                            anchor="center-left")
+        add_legend(self.server.scene, self.spec, self.settings.color_mode,
+                   self.color_scale_mm, 0.9 * bounds[1][0], bounds[1][2])
+
+
+def add_legend(scene, spec: CouplingSpec, mode: str, scale_mm: float, x: float,
+               z_bottom: float) -> None:
+    """The colour legend of ``mode`` as boxes with labels in a viser ``scene``, from
+    ``z_bottom`` up at ``x`` (sized by the module)."""
+    size = 1.5 * spec.tooth.module
+    step = 1.6 * size
+    entries = legend(scale_mm, mode=mode)
+    z_top = z_bottom + (len(entries) + 1) * step
+    scene.add_label("/legend/title", legend_title(mode),
+                    position=(x - 0.5 * size, 0.0, z_top + step), anchor="bottom-left")
+    for j, (label, rgb) in enumerate(entries):
+        z = z_top - j * step
+        scene.add_box(f"/legend/box{j}", color=rgb, dimensions=(size, size, size),
+                      position=(x, 0.0, z))
+        scene.add_label(f"/legend/label{j}", label, position=(x + size, 0.0, z),
+                        anchor="center-left")
 
 
 def _opacity(value: float) -> float | None:

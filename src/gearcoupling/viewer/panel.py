@@ -9,6 +9,7 @@ shows what :class:`~.server.ViewerApp` computed; it holds no state of the scene.
 from __future__ import annotations
 
 from collections.abc import Callable
+from typing import ClassVar
 
 import numpy as np
 
@@ -26,7 +27,34 @@ CHANGES = {"misalignment": "misalignment", "rotation": "pose", "frame": "pose",
 """Control -> the kind of change it makes (what :meth:`~.server.ViewerApp.apply` redoes)."""
 
 
-class Panel:
+class Controls:
+    """What a viewer's panel shares: the "Share" folder with the button that saves the
+    static HTML, and the wiring of its controls to the kinds of change they make
+    (``CHANGES``: control -> kind)."""
+
+    CHANGES: ClassVar[dict[str, str]] = {}
+
+    def add_colours(self, gui, mode: str, scale_mm: float, band_mm: float) -> None:
+        """The colour mode, the colour scale and the contact band."""
+        self.color_mode = gui.add_dropdown("colour by", COLOR_MODES, initial_value=mode)
+        self.scale = gui.add_number("colour scale (mm)", round(scale_mm, 5), min=1e-5,
+                                    max=10.0, step=1e-4)
+        self.band = gui.add_number("contact band (mm)", band_mm, min=0.0, max=1.0, step=1e-4)
+
+    def add_share(self, gui) -> None:
+        with gui.add_folder("Share"):
+            self.save = gui.add_button("Save static HTML")
+            self.saved = gui.add_markdown("")
+
+    def on_change(self, mark: Callable[[str], None]) -> None:
+        """Call ``mark(kind)`` (``CHANGES``; ``"save"`` for the save button) when a control
+        changes."""
+        for name, kind in self.CHANGES.items():
+            getattr(self, name).on_update(lambda _event, kind=kind: mark(kind))
+        self.save.on_click(lambda _event: mark("save"))
+
+
+class Panel(Controls):
     """The controls of one viewer, built in ``gui`` (a ``viser`` GUI API).
 
     Parameters
@@ -42,6 +70,8 @@ class Panel:
     plot_data : tuple of arrays
         Start data of the clearance plot (:func:`~.scene.plot_series`).
     """
+
+    CHANGES = CHANGES
 
     def __init__(self, gui, spec: CouplingSpec, settings: ViewSettings, color_scale_mm: float,
                  lod: str | None, plot_data: tuple):
@@ -63,12 +93,7 @@ class Panel:
                                   scales=_scales(plot_data),
                                   axes=({"label": "θ (°)"}, {"label": "mm", "size": 60}))
         with gui.add_folder("Clearance"):
-            self.color_mode = gui.add_dropdown("colour by", COLOR_MODES,
-                                               initial_value=st.color_mode)
-            self.scale = gui.add_number("colour scale (mm)", round(color_scale_mm, 5),
-                                        min=1e-5, max=10.0, step=1e-4)
-            self.band = gui.add_number("contact band (mm)", st.band_mm, min=0.0, max=1.0,
-                                       step=1e-4)
+            self.add_colours(gui, st.color_mode, color_scale_mm, st.band_mm)
             self.show_contacts = gui.add_checkbox("mark contact points", st.show_contacts)
             self.show_interference = gui.add_checkbox("show interference (red)",
                                                       st.show_interference)
@@ -85,16 +110,7 @@ class Panel:
             self.lod = gui.add_dropdown("level of detail", options,
                                         initial_value=lod or "custom")
             self.mesh_info = gui.add_markdown("")
-        with gui.add_folder("Share"):
-            self.save = gui.add_button("Save static HTML")
-            self.saved = gui.add_markdown("")
-
-    def on_change(self, mark: Callable[[str], None]) -> None:
-        """Call ``mark(kind)`` (:data:`CHANGES`; ``"save"`` for the save button) when a
-        control changes."""
-        for name, kind in CHANGES.items():
-            getattr(self, name).on_update(lambda _event, kind=kind: mark(kind))
-        self.save.on_click(lambda _event: mark("save"))
+        self.add_share(gui)
 
     def read_display(self, st: ViewSettings) -> None:
         """Copy the display controls (parts, contacts, interference, band, frame) into

@@ -18,6 +18,7 @@ from numpy.typing import NDArray
 
 from ..numeric import TINY
 from ..plots import import_matplotlib
+from .assembly import AssemblyScene
 from .nodes import HUB_RGB, SLEEVE_RGB, CouplingScene
 from .scene import INTERFERENCE_RGB, Patch, flank_colors, hub_rotation, legend, legend_title
 
@@ -53,23 +54,41 @@ def _scene_triangles(scene: CouplingScene) -> tuple[NDArray, NDArray]:
     return np.concatenate([t for t, _ in parts]), np.concatenate([c for _, c in parts])
 
 
-def _camera(radius: float) -> tuple[NDArray, NDArray]:
-    """Camera position ``(3,)`` and the rows ``(right, up, forward)`` of its frame."""
-    eye = np.asarray(CAMERA) * radius
-    fwd = -eye / np.linalg.norm(eye)
+def _assembly_triangles(scene: AssemblyScene) -> tuple[NDArray, NDArray, NDArray]:
+    """The whole coupling's triangles, each part at its placement, their RGB and their
+    opacity (the floating member's plain parts translucent, as in the scene)."""
+    parts = []
+    for patch, placement, rgb, alpha in scene.patches():
+        tri, colour = _triangles(patch, placement[:3, :3], rgb)
+        parts.append((tri + placement[:3, 3], colour, np.full(len(tri), alpha)))
+    return tuple(np.concatenate([p[i] for p in parts]) for i in range(3))  # type: ignore
+
+
+def _camera(eye: NDArray, target: NDArray) -> tuple[NDArray, NDArray]:
+    """Camera position ``(3,)`` and the rows ``(right, up, forward)`` of its frame looking
+    from ``eye`` at ``target`` (``+z`` up)."""
+    eye = np.asarray(eye, dtype=float)
+    fwd = (np.asarray(target, dtype=float) - eye)
+    fwd /= np.linalg.norm(fwd)
     right = np.cross(fwd, [0.0, 0.0, 1.0])
     right /= np.linalg.norm(right)
     return eye, np.stack([right, np.cross(right, fwd), fwd])
 
 
-def still_png(scene: CouplingScene, size_px: tuple[int, int] = SIZE_PX) -> bytes:
+def still_png(scene: CouplingScene | AssemblyScene, size_px: tuple[int, int] = SIZE_PX
+              ) -> bytes:
     """The scene at its pose as PNG bytes (about a second for 30 000 triangles)."""
     import_matplotlib()
     from matplotlib.collections import PolyCollection
     from matplotlib.figure import Figure
 
-    tri, rgb = _scene_triangles(scene)
-    eye, frame = _camera(scene.spec.tooth.pitch_radius)
+    if isinstance(scene, AssemblyScene):
+        tri, rgb, alpha = _assembly_triangles(scene)
+        eye, frame = _camera(scene.camera_eye, scene.look_at)
+    else:
+        tri, rgb = _scene_triangles(scene)
+        alpha = np.ones(len(tri))
+        eye, frame = _camera(np.asarray(CAMERA) * scene.spec.tooth.pitch_radius, np.zeros(3))
     normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
     to_eye = eye - tri.mean(axis=1)
     facing = np.einsum("ij,ij->i", normal, to_eye)
@@ -77,14 +96,15 @@ def still_png(scene: CouplingScene, size_px: tuple[int, int] = SIZE_PX) -> bytes
                                  TINY)
     keep = facing > 0  # closed, outward-wound solids: the back faces are hidden
     cam = (tri[keep] - eye) @ frame.T  # (n, 3, 3): right, up, depth
-    shade = rgb[keep] * (0.55 + 0.45 * cosine[keep, None])
+    shade = np.column_stack([np.clip(rgb[keep] * (0.55 + 0.45 * cosine[keep, None]), 0, 1),
+                             alpha[keep]])
     focal = 1.0 / math.tan(math.radians(FOV_DEG) / 2)
     xy = focal * cam[..., :2] / cam[..., 2:3]
     order = np.argsort(-cam[..., 2].mean(axis=1), kind="stable")  # far to near
     w, h = size_px
     fig = Figure(figsize=(w / 100, h / 100), dpi=100)
     ax = fig.add_axes((0.0, 0.0, 1.0, 1.0))
-    ax.add_collection(PolyCollection(xy[order], facecolors=np.clip(shade[order], 0, 1),
+    ax.add_collection(PolyCollection(xy[order], facecolors=shade[order],
                                      edgecolors="face", linewidths=0.4, antialiased=False))
     ax.set_xlim(-w / h, w / h)
     ax.set_ylim(-1.0, 1.0)
@@ -96,7 +116,7 @@ def still_png(scene: CouplingScene, size_px: tuple[int, int] = SIZE_PX) -> bytes
     return buf.getvalue()
 
 
-def _draw_legend(fig, scene: CouplingScene) -> None:
+def _draw_legend(fig, scene: CouplingScene | AssemblyScene) -> None:
     """The colour legend at the top right, as in the scene."""
     mode = scene.settings.color_mode
     fig.text(0.66, 0.93, legend_title(mode), fontsize=8)

@@ -7,9 +7,12 @@ turn these into scene nodes), and no load solve (loads come from the caller).
   of every tooth and flank there, the contact points and interfering teeth;
 - :mod:`.colors`: clearance, separation and pressure colours and their legend;
 - :mod:`.curves`: the clearance-vs-θ plot;
-- :mod:`.interference`: the hub ∩ sleeve volume at a pose (manifold3d).
+- :mod:`.interference`: the hub ∩ sleeve volume at a pose (manifold3d);
+- :mod:`.assembly`: a double-engagement coupling's parts placed at the shaft alignment and
+  each mesh's pose state.
 """
 
+from .assembly import ALIGNMENT_FIELDS, AssemblyPose, assembly_pose
 from .colors import (
     COLOR_MODES,
     INTERFERENCE_RGB,
@@ -49,17 +52,20 @@ from .pose import (
 )
 
 __all__ = [
+    "ALIGNMENT_FIELDS",
     "COLOR_MODES",
     "CUTAWAYS",
     "INTERFERENCE_RGB",
     "LOD_DIVISORS",
     "NO_CONTACT_RGB",
     "VIEW_SWEEP_TOLERANCE_MM",
+    "AssemblyPose",
     "ClearanceCurve",
     "HubPieces",
     "Patch",
     "PoseState",
     "SceneMeshes",
+    "assembly_pose",
     "build_scene_meshes",
     "check_pose",
     "clearance_colors",
