@@ -147,6 +147,8 @@ FUNCTIONS = {
     "spec_geometry": (False, {"spec": "double", "changes": "changes", "names": "names"}),
     "assembly_pose": (False, {"spec": "double", "psi_deg": "real", "changes": "changes",
                               "band_mm": "length", "pressure": "flag"}),
+    "wear": (True, {"spec": "spec", "misalignment_deg": "wear_mis", "torque_Nm": "torque",
+                    "speed_rpm": "speed", "hours": "hours"}),
 }
 # the whole supported range, past industrial-m2's critical misalignment (4.28°) too, where
 # every patch lies at a face end (issue 38: the default capacity raised there)
@@ -162,6 +164,10 @@ KINDS["chordal"] = ([0.01, 0.002], [0.0, -1.0, NAN, 1e-300, "0.01", None])
 KINDS["points"] = ([5, 11, 101], [0, 4, 10**9, 2.5, "11", None, True])
 KINDS["hob"] = ([60.0, 80], [NAN, 0.0, 1e9, "60", None, 5.0])
 KINDS["units"] = (["mm", "in"], ["cm", None, 1, ""])
+# wear: None is the design angle there, so it is not among the bad angles
+KINDS["wear_mis"] = ([0.5, 1.0], [v for v in KINDS["mis"][1] if v is not None])
+KINDS["speed"] = ([1800.0, 60], [NAN, INF, 0.0, -1.0, "1800", None, 1e300])
+KINDS["hours"] = ([10.0, 0.5], [NAN, INF, 0.0, -5.0, "10", 1e300, [1.0]])
 # the whole coupling: None is a default where it is allowed, so it is not among the bad
 KINDS["layout"] = (["LAYOUT"], [None, 42, "one-piece", {}, 300.0])
 KINDS["alignment"] = (["ALIGNMENT"], [42, {}, "0.4", [0.4], 0.4])

@@ -16,7 +16,7 @@ ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = sorted((ROOT / "examples").glob("[0-9][0-9]_*.py"))
 HEAVY = {"07_finite_elements.py": "needs_fea", "08_studies.py": "needs_dask",
          "10_viewer_and_report.py": "needs_viewer", "11_rotordynamics.py": "needs_ross"}
-SLOW = {"06_outputs_pipeline.py", *HEAVY}  # over about 5 s
+SLOW = {"06_outputs_pipeline.py", "13_wear.py", *HEAVY}  # over about 5 s
 
 
 def _params():

@@ -61,8 +61,9 @@ def test_index_error_moves_one_gap_by_eps_over_r(spec):
         base = exact_map(spec, i, psi, no_errors(N), 1e-7)
         d = exact_map(spec, i, psi, errors(position_mm=(k, eps)), 1e-7) - base
         # exact geometry (the tooth's flanks rotated): only tooth k moves, by eps/R; at 1°
-        # the sweep's first-order gap angle normal/(r_b rate) differs by (1/rate - 1) eps/R
-        assert np.max(np.abs(np.delete(d, k, axis=1))) == 0.0
+        # the sweep's first-order gap angle normal/(r_b rate) differs by (1/rate - 1) eps/R;
+        # the other teeth to rounding (the tracking search starts from another minimum)
+        assert np.max(np.abs(np.delete(d, k, axis=1))) <= 1e-9 * eps / R
         np.testing.assert_allclose(d[:, k], off[:, k, None] * np.ones((2, psi.size)), rtol=rel)
 
 

@@ -167,16 +167,18 @@ def record_files(folder: str | os.PathLike, key: str,
                  made: Iterable[str | os.PathLike]) -> Path:
     """Record in ``folder`` that a command of settings ``key`` made the files ``made``
     (paths in the folder), keeping the entries of the other files that are still as
-    recorded; written atomically."""
+    recorded (a file of ``made`` still as recorded was not written again: an earlier
+    command's file of the same moment); written atomically."""
     base = Path(folder)
     files = {name: entry for name, entry in _read_record(base).items()
              if _unchanged(base, name, entry)}
     for path in map(Path, made):
+        name = os.path.relpath(path, base)
         try:
             st = path.lstat()
         except OSError:
             continue
-        files[os.path.relpath(path, base)] = {"key": key, "size": st.st_size,
-                                              "mtime_ns": st.st_mtime_ns}
+        if name not in files:
+            files[name] = {"key": key, "size": st.st_size, "mtime_ns": st.st_mtime_ns}
     return write_json(base / RECORD_NAME, {"version": _RECORD_VERSION,
                                            "files": dict(sorted(files.items()))})
