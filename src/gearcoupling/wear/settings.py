@@ -140,6 +140,11 @@ class WearSettings:
         The wear limit: a tooth's thickness loss as a share of its thickness.
     required_life_h : float or None
         Judged against the life where given.
+    speed_rpm, hours : float or None
+        The speed and the hours of running at the pipeline's operating point (its angle
+        and torque): where both are given the spec asks for wear, and ``gc.run`` and
+        ``gc.report`` compute it (the stage ``wear``); :func:`~.api.wear` takes them as
+        its defaults.
     """
 
     regime: str = DEFAULT_REGIME
@@ -149,6 +154,8 @@ class WearSettings:
     sleeve_factor: float = 1.0
     limit_fraction: float = DEFAULT_LIMIT_FRACTION
     required_life_h: float | None = None
+    speed_rpm: float | None = None
+    hours: float | None = None
     source: str = field(default=REGIMES[DEFAULT_REGIME].source, compare=False)
 
     @classmethod
@@ -176,11 +183,18 @@ class WearSettings:
             lo, hi = min(regime.low, k), max(regime.high, k)
         return cls(regime.name, k, (lo, hi), values.get("sleeve_factor", 1.0),
                    values.get("limit_fraction", DEFAULT_LIMIT_FRACTION),
-                   values.get("required_life_h"), regime.source)
+                   values.get("required_life_h"), values.get("speed_rpm"),
+                   values.get("hours"), regime.source)
+
+    @property
+    def asked(self) -> bool:
+        """Whether the settings ask for a history at the operating point (a speed and
+        hours)."""
+        return self.speed_rpm is not None and self.hours is not None
 
 
 _KEYS = ("regime", "coefficient_mm3_per_Nm", "coefficient_band_mm3_per_Nm", "sleeve_factor",
-         "limit_fraction", "required_life_h")
+         "limit_fraction", "required_life_h", "speed_rpm", "hours")
 
 
 def _check(key: str, value: Any, prefix: str, error: ErrorType) -> Any:
@@ -204,6 +218,10 @@ def _check(key: str, value: Any, prefix: str, error: ErrorType) -> Any:
         return real(value, name, 0.0, 1e3, error=error)
     if key == "limit_fraction":
         return real(value, name, 0.0, 1.0, open_lo=True, open_hi=True, error=error)
+    if key == "speed_rpm":
+        return real(value, name, 0.0, MAX_SPEED_RPM, open_lo=True, unit="rpm", error=error)
+    if key == "hours":
+        return real(value, name, 0.0, MAX_HOURS, open_lo=True, unit="h", error=error)
     return real(value, name, 0.0, 1e9, open_lo=True, unit="h", error=error)
 
 
