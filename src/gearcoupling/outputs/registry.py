@@ -53,7 +53,7 @@ STAGES: dict[str, Stage] = {s.name: s for s in (
           "capacity:plan", "capacity:files", 4.7, parallel=True,
           uses=(FIGURES, KERNELS, LOADS), writes=files.CAPACITY),
     Stage("wear", "wear over life at the operating point, the life to the wear limit", (),
-          "wear:history", "wear:files", 40.0, uses=(FIGURES, KERNELS, LOADS),
+          "wear:history", "wear:files", 55.0, uses=(FIGURES, KERNELS, LOADS),
           writes=files.WEAR),
     Stage("mass", "masses and inertias of the solids", (), "datasheet:mass", None, 0.1,
           uses=(MESHES,), level=SINGLE),
