@@ -167,3 +167,16 @@ def test_partial_slip_is_said_in_the_section(worn):
     notes = [b.text for b in report_sections.wear(_view(spec, out, Results({"wear": gross})))
              if isinstance(b, Note)]
     assert not any("partial slip" in n for n in notes)
+
+
+@pytest.mark.parametrize("options, field", [
+    ({"wear_hours": float("nan"), "wear_speed_rpm": 900.0}, "wear_hours"),
+    ({"wear_hours": 10.0, "wear_speed_rpm": -1.0}, "wear_speed_rpm"),
+    ({"wear_hours": 1e300, "wear_speed_rpm": 900.0}, "wear_hours"),
+    ({"wear_grid": (2, 8)}, "wear_grid"),
+    ({"wear_grid": "16x8"}, "wear_grid"),
+    ({"wear_phases": 0}, "wear_phases"),
+])
+def test_bad_wear_settings_are_refused_naming_the_field(options, field):
+    with pytest.raises(gc.ArgumentError, match=field):
+        StageSettings(**options)
