@@ -17,7 +17,7 @@ from ..errors import ArgumentError
 from ..geometry import FLANKS
 from ..io import writable_file, write_text
 from .html import free_port
-from .nodes import CouplingScene, ViewSettings, import_viser
+from .nodes import CouplingScene, ViewSettings, add_legend_entries, import_viser
 from .scene.wear import hub_flank_depths, wear_colors, wear_legend
 
 
@@ -60,19 +60,10 @@ class WearScene(CouplingScene):
         self._flanks = [[], []]  # the clearance colours no longer apply
 
     def _add_wear_legend(self) -> None:
-        scene, size = self.server.scene, 1.5 * self.spec.tooth.module
         bounds = self.meshes.sleeve.bounds
-        x, step = 0.9 * bounds[1][0], 1.6 * size
         entries = wear_legend(self.top_mm) if self.top_mm > 0 else wear_legend(1.0)[:1]
-        z_top = bounds[1][2] + (len(entries) + 1) * step
-        scene.add_label("/legend/title", "worn depth of the hub flanks (along the normal)",
-                        position=(x - 0.5 * size, 0.0, z_top + step), anchor="bottom-left")
-        for j, (label, rgb) in enumerate(entries):
-            z = z_top - j * step
-            scene.add_box(f"/legend/box{j}", color=rgb, dimensions=(size, size, size),
-                          position=(x, 0.0, z))
-            scene.add_label(f"/legend/label{j}", label, position=(x + size, 0.0, z),
-                            anchor="center-left")
+        add_legend_entries(self.server.scene, self.spec, "worn depth of the hub flanks "
+                           "(along the normal)", entries, 0.9 * bounds[1][0], bounds[1][2])
 
     def describe(self) -> str:
         """What the page shows, in one line."""
