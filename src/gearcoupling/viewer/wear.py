@@ -58,6 +58,7 @@ class WearScene(CouplingScene):
                 self.heat_maps[f].append(self.server.scene.add_glb(
                     f"/hub/flanks/{name}/{k:03d}", glb, visible=st.show_hub))
         self._flanks = [[], []]  # the clearance colours no longer apply
+        self._contacts.visible = False  # the pose's first-touch points: not the wear's
 
     def _add_wear_legend(self) -> None:
         bounds = self.meshes.sleeve.bounds
