@@ -40,7 +40,7 @@ def _study(tmp_path, head: str, body: str, hours: float = 100.0):
 DESIGN = """\
 [study]
 base = "renzo-1967"
-chunk = 1
+chunk = 2
 outputs = ["wear_life_h", "q"]
 """
 COEFFICIENTS = """\
