@@ -180,3 +180,12 @@ def test_partial_slip_is_said_in_the_section(worn):
 def test_bad_wear_settings_are_refused_naming_the_field(options, field):
     with pytest.raises(gc.ArgumentError, match=field):
         StageSettings(**options)
+
+
+def test_a_spec_name_is_drawn_as_written_in_the_wear_plots(worn):
+    from gearcoupling.wear import plot_wear_history, plot_wear_maps
+
+    result = worn[2].results.get("wear", gc.WearResult)
+    hostile = dataclasses.replace(result, spec=result.spec.replace(name="a$b_{x}$"))
+    for fig in (plot_wear_maps(hostile), plot_wear_history(hostile)):
+        assert fig.get_suptitle().startswith(r"a\$b_{x}\$: "), fig.get_suptitle()
