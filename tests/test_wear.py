@@ -13,7 +13,7 @@ import pytest
 import gearcoupling as gc
 from gearcoupling.cli import main
 from gearcoupling.geometry import hub_to_sleeve, sleeve_model
-from gearcoupling.wear import REGIMES, OperatingPoint, WearSettings, wear, write_wear
+from gearcoupling.wear import REGIMES, DutyPoint, WearSettings, wear, write_wear
 from gearcoupling.wear.history import tooth_losses
 from gearcoupling.wear.model import PointSolver, WearMaps, flank_grids
 from gearcoupling.wear.settings import Accuracy
@@ -179,7 +179,7 @@ def test_backlash_grows_by_the_worn_depth_over_cos_phi(renzo):
     """A uniform depth h on the hub and sleeve flanks of both sides opens each flank's gap
     by 2h along the normal: the backlash, measured on the worn whole-face grids, grows by
     4 h R / r_b at the pitch circle."""
-    point = OperatingPoint(1.0, 2000.0, 1800.0, 1.0)
+    point = DutyPoint(1.0, 2000.0, 1800.0, 1.0)
     acc = Accuracy.checked(grid=COARSE["grid"], phases=COARSE["phases"])
     hg, sg = flank_grids(renzo, (point,), acc.grid)
     zero = WearMaps(np.zeros((2, 1, hg.nz, hg.ns)), np.zeros((2, 1, sg.nz, sg.ns)), hg, sg)

@@ -29,6 +29,7 @@ from .common import (
 from .compare import parse_limits
 from .engagement import checked_spec
 from .folders import claim, holds_folders
+from .run import add_wear_arguments, wear_asked, wear_options
 
 #: the accuracy knobs the command takes, as options
 KNOBS = {"angles": "rotations over a turn of the clearance sweep",
@@ -71,6 +72,7 @@ def register(sub) -> None:
     p.add_argument("--pdf", action="store_true",
                    help="also print report.pdf through headless chromium (browser extra)")
     add_alignment_arguments(p)
+    add_wear_arguments(p)
     p.set_defaults(func=run)
 
 
@@ -92,9 +94,10 @@ def run(args) -> int:
                               limits=parse_limits(args.limit),
                               hob_diameter_mm=args.hob_diameter, viewer=not args.no_viewer,
                               datasheet=not args.no_datasheet,
-                              **knobs, **alignment)
-    out = claim(output_dir(args, spec), spec.to_dict(), report_files(settings, args.pdf, n),
-                run_folders(n))
+                              **knobs, **alignment, **wear_options(args))
+    wear_asked(settings, spec)  # a wear option without its pair: refused naming it
+    out = claim(output_dir(args, spec), spec.to_dict(),
+                report_files(settings, args.pdf, n, spec), run_folders(n))
     with progress(f"report {spec.name}", 1) as update:
         try:
             result = report(spec, out, pdf=args.pdf, settings=settings, progress=update)

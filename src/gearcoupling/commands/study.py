@@ -107,7 +107,10 @@ def _optimise(study, out: Path, *, plots: bool) -> int:
         return 1
     keys = [q.key for q in study.parameters]
     print("optimum: " + ", ".join(f"{k} = {result.best[k]:.6g}" for k in keys)
-          + f"; capacity {options['objective']} {result.best['objective']:.1f} N m, critical "
+          + (f"; wear life {result.best['objective']:.4g} h at "
+             f"{max(options['angles_deg']):g}°" if options["objective"] == "wear_life_h" else
+             f"; capacity {options['objective']} {result.best['objective']:.1f} N m")
+          + ", critical "
           f"misalignment {result.best['critical_misalignment_deg']}")
     curves = compare_curves(study, result.best)
     report = {"best": result.best, "evaluations": len(result.rows),

@@ -7,7 +7,15 @@ import argparse
 
 from ..arguments import parse_number
 from ..errors import ArgumentError
-from ..wear import DEFAULT_PHASES, DEFAULT_STEP_FRACTION, MAX_PHASES, REGIMES, wear, write_wear
+from ..wear import (
+    DEFAULT_PHASES,
+    DEFAULT_STEP_FRACTION,
+    MAX_PHASES,
+    REGIMES,
+    WearSettings,
+    wear,
+    write_wear,
+)
 from .common import (
     add_misalignment_argument,
     add_spec_arguments,
@@ -51,9 +59,11 @@ def register(sub) -> None:
                    help="torque in N·m, non-zero; the sign picks the loaded flank; write a "
                         "negative one as --torque=-5e3 (default: the spec's)")
     p.add_argument("--speed", type=positive("rpm"), default=None, metavar="RPM",
-                   help="speed in rpm, > 0 (required unless --point gives the duty)")
+                   help="speed in rpm, > 0 (default: the spec's [wear] speed_rpm; required "
+                        "without it unless --point gives the duty)")
     p.add_argument("--hours", type=positive("h"), default=None, metavar="H",
-                   help="hours of running, > 0 (default: the sum of the --point hours)")
+                   help="hours of running, > 0 (default: the sum of the --point hours, else the "
+                        "spec's [wear] hours)")
     p.add_argument("--point", dest="points", action="append", type=_point, default=[],
                    metavar="DEG,NM,RPM,HOURS",
                    help="an operating point of a duty (repeatable; the points run "
@@ -94,8 +104,9 @@ def run(args) -> int:
             if value is not None:
                 raise ArgumentError(flag, value, "give the duty by --point alone")
         duty = args.points
-    elif args.speed is None:
-        raise ArgumentError("--speed", None, "is required (rpm, > 0), or give --point")
+    elif args.speed is None and WearSettings.from_spec(spec).speed_rpm is None:
+        raise ArgumentError("--speed", None, "is required (rpm, > 0) unless the spec's "
+                            "[wear] sets speed_rpm, or give --point")
     mis = None if duty else misalignment_deg(args, spec)
     out = output_dir(args, spec)
     with progress(f"wear {spec.name}", 1000) as update:

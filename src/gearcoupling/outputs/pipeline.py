@@ -79,11 +79,12 @@ S = TypeVar("S", bound=StageSettings)
 
 
 def run_files(only: Iterable[str] | None = None, skip: Iterable[str] = (),
-              engagements: int = 1) -> list[str]:
+              engagements: int = 1, wear: bool = False) -> list[str]:
     """The files :func:`run` may write with these ``only`` and ``skip`` for a spec of one
     or two ``engagements`` (those of the stages it computes, :attr:`~.stage.Stage.writes`,
-    and ``run_summary.json``), each once, in the order of the stages."""
-    return [*stage_files(chosen(only, skip, run_stages(engagements)), engagements),
+    and ``run_summary.json``), each once, in the order of the stages; ``wear``: the spec
+    asks for wear (:meth:`~.settings.StageSettings.wear_asked`)."""
+    return [*stage_files(chosen(only, skip, run_stages(engagements, wear)), engagements),
             RUN_SUMMARY]
 
 
@@ -137,10 +138,12 @@ def run(spec: CouplingSpec, out: str | os.PathLike, *, only: Iterable[str] | Non
         :func:`~gearcoupling.io.output_folder`, or anything but a regular file where a
         stage writes one, :func:`run_files`: before any stage runs).
     only, skip : iterable of str
-        Stages of :data:`STEPS` to run (default :data:`~.registry.RUN`, and for a
-        double-engagement spec :data:`~.registry.RUN_WHOLE`), or to leave out; the stages
-        they need are computed too. A double-engagement spec's mesh-level stages run for
-        each mesh, their files in ``mesh-a/`` and ``mesh-b/`` (docs/coupling.md).
+        Stages of :data:`STEPS` to run (default :data:`~.registry.RUN`, for a
+        double-engagement spec also :data:`~.registry.RUN_WHOLE`, and the stage ``wear``
+        where the spec's ``[wear]`` or the settings give a speed and hours), or to leave
+        out; the stages they need are computed too. A double-engagement spec's mesh-level
+        stages run for each mesh, their files in ``mesh-a/`` and ``mesh-b/``
+        (docs/coupling.md).
     workers : int, optional
         1 runs every stage in this process; 2 (the default where the machine has two
         cores and this process runs no other thread) runs them in two forked processes
@@ -168,10 +171,11 @@ def run(spec: CouplingSpec, out: str | os.PathLike, *, only: Iterable[str] | Non
     spec = as_spec(spec)
     output_folder(out, "out", create=False)
     engagements = spec.coupling.engagements
-    keys = chosen(only, skip, run_stages(engagements))
-    writable_targets(out, run_files(only, skip, engagements), run_folders(engagements),
-                     field="out")
     s = settings_from(settings, options, StageSettings, "run")
+    wear = s.wear_asked(spec)
+    keys = chosen(only, skip, run_stages(engagements, wear))
+    writable_targets(out, run_files(only, skip, engagements, wear), run_folders(engagements),
+                     field="out")
     s.resolve(spec)
     n = default_workers(workers)
     folder = output_folder(out, "out")

@@ -52,6 +52,9 @@ STAGES: dict[str, Stage] = {s.name: s for s in (
     Stage("capacity", "capacity per criterion against misalignment", ("design", "rating"),
           "capacity:plan", "capacity:files", 4.7, parallel=True,
           uses=(FIGURES, KERNELS, LOADS), writes=files.CAPACITY),
+    Stage("wear", "wear over life at the operating point, the life to the wear limit", (),
+          "wear:history", "wear:files", 55.0, uses=(FIGURES, KERNELS, LOADS),
+          writes=files.WEAR),
     Stage("mass", "masses and inertias of the solids", (), "datasheet:mass", None, 0.1,
           uses=(MESHES,), level=SINGLE),
     Stage("datasheet", "coupling data sheet for a rotor model (API 671)",
@@ -97,6 +100,11 @@ RUN_WHOLE = ("alignment", "whole_loads", "whole_capacity", "allowable_offset", "
              "assembly_step")
 
 
-def run_stages(engagements: int = 1) -> tuple[str, ...]:
-    """What ``gc.run`` computes by default for a spec of one or two ``engagements``."""
-    return RUN + RUN_WHOLE if engagements == 2 else RUN
+#: what ``gc.run`` adds where the spec (or the settings) asks for wear: a speed and hours
+RUN_WEAR = ("wear",)
+
+
+def run_stages(engagements: int = 1, wear: bool = False) -> tuple[str, ...]:
+    """What ``gc.run`` computes by default for a spec of one or two ``engagements``, with
+    the wear history where ``wear`` (the spec asks for it)."""
+    return (*RUN, *(RUN_WEAR if wear else ()), *(RUN_WHOLE if engagements == 2 else ()))

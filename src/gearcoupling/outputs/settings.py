@@ -21,11 +21,25 @@ from ..spec import MAX_SHAFT_ANGLE_DEG, CouplingLayout, CouplingSpec, check_misa
 # (smallest, largest) of each count: enough to draw, small enough to stay interactive
 KNOB_RANGES = {"angles": (8, 3600), "phases": (1, 64), "capacity_count": (2, 200),
                "check_angles": (1, 720), "patch_teeth": (1, 12),
-               "fit_points": (100, 1_000_000), "dpi": (50, 300)}
+               "fit_points": (100, 1_000_000), "dpi": (50, 300), "wear_phases": (1, 64)}
 #: the settings that change a double-engagement spec's ``[alignment]``, each with the
 #: field of :class:`~gearcoupling.coupling.ShaftAlignment` it sets
 ALIGNMENT_SETTINGS = {"offset_mm": "offset_mm", "offset_azimuth_deg": "offset_azimuth_deg",
                       "shaft_angle_deg": "angle_deg", "angle_azimuth_deg": "angle_azimuth_deg"}
+MAX_WEAR_HOURS = 1e7  # as gearcoupling.wear's
+MAX_WEAR_SPEED_RPM = 1e6
+
+
+def wear_grid(grid: Any) -> tuple[int, int]:
+    """``wear_grid``: (cells along the face, cells across the depth), each 4-512."""
+    try:
+        nf, nd = (count(v, "wear_grid", 4, 512) for v in grid)
+    except (TypeError, ValueError):
+        raise ArgumentError("wear_grid", grid, "(cells along the face, cells across the "
+                            "depth), each 4-512") from None
+    return nf, nd
+
+
 #: the root scope (a single engagement, or the whole of a double-engagement coupling)
 ROOT = ""
 #: a mesh's spec is a single engagement
@@ -72,6 +86,15 @@ class StageSettings:
         (mm) as for :func:`gearcoupling.compare_part`.
     dpi : int
         Figure resolution.
+    wear_hours, wear_speed_rpm : float, optional
+        The hours and the speed of the stage ``wear`` at the operating point, each in place
+        of its key of the spec's ``[wear]`` (``hours``, ``speed_rpm``): where both are
+        given (here or there) the stage runs and is among ``gc.run``'s defaults.
+    wear_grid : (int, int), optional
+        The wear history's surface model cells per loaded tooth (default the wear default,
+        docs/wear.md).
+    wear_phases : int
+        The wear history's rotations per tooth pitch.
     """
 
     misalignment_deg: float | None = None
@@ -94,6 +117,10 @@ class StageSettings:
     grade: int | None = None
     limits: dict[str, float] = field(default_factory=dict)
     dpi: int = 110
+    wear_hours: float | None = None
+    wear_speed_rpm: float | None = None
+    wear_grid: tuple[int, int] | None = None
+    wear_phases: int = 2
 
     def __post_init__(self):
         for name, (lo, hi) in KNOB_RANGES.items():
@@ -122,6 +149,36 @@ class StageSettings:
             count(self.grade, "grade", 1, 11)
         if not isinstance(self.limits, dict):
             raise ArgumentError("limits", self.limits, "a dict of limit name -> mm")
+        if self.wear_hours is not None:
+            real(self.wear_hours, "wear_hours", 0.0, MAX_WEAR_HOURS, open_lo=True, unit="h")
+        if self.wear_speed_rpm is not None:
+            real(self.wear_speed_rpm, "wear_speed_rpm", 0.0, MAX_WEAR_SPEED_RPM, open_lo=True,
+                 unit="rpm")
+        if self.wear_grid is not None:
+            wear_grid(self.wear_grid)
+
+    def wear_asked(self, spec: CouplingSpec) -> bool:
+        """Whether the stage ``wear`` runs on ``spec``: a speed and hours given, each here
+        or in the spec's ``[wear]``; one without the other is refused, and where they are
+        given the spec's ``[wear]`` values are checked (a :class:`SpecError` naming
+        ``wear.<key>``) before any work."""
+        table = dict(spec.wear)
+        if table:
+            from ..wear import WearSettings  # the wear package only where a spec has [wear]
+
+            WearSettings.from_spec(spec)
+        given = {"wear_hours": self.wear_hours, "wear_speed_rpm": self.wear_speed_rpm}
+        keys = {"wear_hours": "hours", "wear_speed_rpm": "speed_rpm"}
+        have = {name: value if value is not None else table.get(keys[name])
+                for name, value in given.items()}
+        missing = [name for name, value in have.items() if value is None]
+        if len(missing) == 1:
+            other = next(n for n in have if n not in missing)
+            what = other if given[other] is not None else f"[wear] {keys[other]}"
+            raise ArgumentError(missing[0], None, f"needed with {what}: a wear history takes "
+                                f"both the hours and the speed (or the spec's [wear] "
+                                f"{keys[missing[0]]})")
+        return not missing
 
     def as_dict(self, engagements: int = 1) -> dict[str, Any]:
         """Plain data (the report's settings table); the alignment's settings only for

@@ -97,7 +97,7 @@ def report(spec: CouplingSpec, out: str | os.PathLike, *, pdf: bool = False,
     s = settings_from(settings, options, ReportSettings, "report")
     flag(pdf, "pdf")
     engagements = spec.coupling.engagements
-    writable_targets(out, report_files(s, pdf, engagements), run_folders(engagements),
+    writable_targets(out, report_files(s, pdf, engagements, spec), run_folders(engagements),
                      field="out")
     n = default_workers(workers)
     t0 = time.perf_counter()
@@ -107,10 +107,10 @@ def report(spec: CouplingSpec, out: str | os.PathLike, *, pdf: bool = False,
         browser_backend()
     created = not Path(out).exists()
     folder = output_folder(out, "out")
-    shown = [sec for sec in registry.SECTIONS if sec.applies(s, engagements)]
+    shown = [sec for sec in registry.SECTIONS if sec.applies(s, engagements, spec)]
     written: list[Path] = []
     try:
-        results = compute(spec, s, report_stages(s, engagements), folder=folder,
+        results = compute(spec, s, report_stages(s, engagements, spec), folder=folder,
                           workers=n, progress=progress, written=written)
         return _render(spec, s, results, folder, shown, pdf, t0)
     except BaseException:  # an error or an interruption: no partial report is left
@@ -118,18 +118,20 @@ def report(spec: CouplingSpec, out: str | os.PathLike, *, pdf: bool = False,
         raise
 
 
-def report_stages(settings: ReportSettings, engagements: int = 1) -> list[str]:
-    """The stages a report with these settings shows on a spec of ``engagements``."""
-    return [n for sec in registry.SECTIONS if sec.applies(settings, engagements)
+def report_stages(settings: ReportSettings, engagements: int = 1,
+                  spec: CouplingSpec | None = None) -> list[str]:
+    """The stages a report with these settings shows on a spec of ``engagements`` (on
+    ``spec`` where given: without it, also those a spec may ask for, the wear history)."""
+    return [n for sec in registry.SECTIONS if sec.applies(settings, engagements, spec)
             for n in sec.stages]
 
 
-def report_files(settings: ReportSettings, pdf: bool = False, engagements: int = 1
-                 ) -> list[str]:
-    """The files :func:`report` may write on a spec of ``engagements``: those of its
-    stages (a double-engagement coupling's meshes' in ``mesh-a/``, ``mesh-b/``),
-    ``report.html`` and, with ``pdf``, ``report.pdf``."""
-    return [*stage_files(report_stages(settings, engagements), engagements), REPORT,
+def report_files(settings: ReportSettings, pdf: bool = False, engagements: int = 1,
+                 spec: CouplingSpec | None = None) -> list[str]:
+    """The files :func:`report` may write on a spec of ``engagements`` (``spec``: as
+    :func:`report_stages`): those of its stages (a double-engagement coupling's meshes'
+    in ``mesh-a/``, ``mesh-b/``), ``report.html`` and, with ``pdf``, ``report.pdf``."""
+    return [*stage_files(report_stages(settings, engagements, spec), engagements), REPORT,
             *([REPORT_PDF] if pdf else [])]
 
 

@@ -29,9 +29,13 @@ from ..outputs import (
     StaticViewer,
 )
 from ..spec import CouplingSpec
+from ..wear import WearResult
 from .datasheet import datasheet
 from .document import Block, Note, Row, Table, Viewer
 from .verdict import (
+    FAIL,
+    OPEN,
+    PASS,
     Verdict,
     capacity_verdict,
     geometry_verdicts,
@@ -292,6 +296,73 @@ def capacity_verdicts(v: View) -> list[Verdict]:
                              None if rating is None else rating.capacity)]
 
 
+# --------------------------------------------------------------------------- wear
+
+
+def wear(v: View) -> list[Block]:
+    """The wear history at the operating point: the life with its band, the flanks'
+    depth maps and tooth bearing pictures over time, backlash, q and pressure against
+    hours, and what the numbers rest on (partial slip)."""
+    res = v.get("wear", WearResult)
+    if res is None:
+        return [Note(f"Not computed: {v.why('wear')}", "skip")]
+    summ = res.summary()
+    s, p = res.settings, res.duty[0]
+    lo, hi = res.life_band_h
+    start, end = summ["loads_start"], summ["loads_end"]
+    flank = "ccw" if p.torque_Nm > 0 else "cw"
+    rows = [("life to the wear limit", res.life_h, f"h ({res.life_basis})"),
+            (f"life across the {s.regime} band", f"{lo:.4g} – {hi:.4g}", "h"),
+            ("required life", s.required_life_h, "h ([wear] required_life_h)"),
+            ("hours run", summ["hours"], f"h in {res.steps} steps"),
+            ("wear limit: tooth thinning", summ["limit_thickness_loss_mm"]["hub"],
+             f"mm ({s.limit_fraction:g} of the hub tooth's thickness)"),
+            ("largest worn depth, hub / sleeve",
+             f"{summ['max_depth_mm']['hub'] * 1e3:.4g} / "
+             f"{summ['max_depth_mm']['sleeve'] * 1e3:.4g}", "µm"),
+            ("backlash, start → end", f"{res.backlash_mm[0, 0] * 1e3:.4g} → "
+             f"{res.backlash_mm[-1, 0] * 1e3:.4g}", "µm"),
+            ("q, start → end", f"{start['q'][0]:.3g} → {end['q'][0]:.3g}", ""),
+            ("peak pressure, start → end", f"{start['max_pressure_MPa'][0]:.4g} → "
+             f"{end['max_pressure_MPa'][0]:.4g}", "MPa"),
+            ("teeth with edge contact, start → end",
+             f"{start['edge_contact_teeth'][0]:.0f} → {end['edge_contact_teeth'][0]:.0f}", "")]
+    how = (f"Archard wear at i = {p.misalignment_deg:g}°, T = {p.torque_Nm:.4g} N·m on the "
+           f"{flank} flanks, {p.speed_rpm:.4g} rpm; k = {s.coefficient_mm3_per_Nm:.3g} "
+           f"mm³/(N·m) ({s.regime}), sleeve factor {s.sleeve_factor:g}; surface model on "
+           f"{res.accuracy.grid[0]} × {res.accuracy.grid[1]} cells, {res.accuracy.phases} "
+           f"rotations per tooth pitch, a step at most {res.accuracy.step_fraction:g} of the "
+           "elastic approach (docs/wear.md).")
+    return [Table(("quantity", "value", "unit"), rows, how),
+            *(Note(text, "warn") for text in res.notes()),
+            Note(f"The coefficient's source: {s.source}."),
+            v.figure("wear-maps", "Worn depth on the developed flanks over time, beside the "
+                     "tooth bearing pictures", "wear_maps.png", how, "wear_depth.csv"),
+            v.figure("wear-history", "Depth, backlash, q and pressure against hours",
+                     "wear_history.png", how, "wear.csv")]
+
+
+def wear_verdicts(v: View) -> list[Verdict]:
+    """The life against ``[wear] required_life_h``, judged only where the spec sets it
+    (nothing where no wear was computed)."""
+    res = v.get("wear", WearResult)
+    if res is None:
+        return []
+    check = "wear life ≥ required life"
+    found = f"{res.life_h:.4g} h ({res.life_basis})"
+    need = res.settings.required_life_h
+    if need is None:
+        return [Verdict(check, found, "–", "–", OPEN, "no limit set ([wear] required_life_h)")]
+    lo, hi = res.life_band_h
+    crosses = lo < need <= hi
+    where = ("crosses the limit: the check could go the other way" if crosses else
+             "stays on the same side of the limit")
+    return [Verdict(check, found, f"≥ {need:.4g} h", "[wear] required_life_h",
+                    PASS if res.life_h >= need else FAIL,
+                    f"across the {res.settings.regime} band {lo:.4g}–{hi:.4g} h: {where}",
+                    crosses)]
+
+
 # --------------------------------------------------------------------------- checks
 
 
@@ -415,6 +486,9 @@ SECTIONS: tuple[ReportSection, ...] = (
                   ("load", "q_graph"), loads, loads_verdicts),
     ReportSection("capacity", "Capacity per criterion against misalignment",
                   ("rating", "capacity"), capacity, capacity_verdicts),
+    ReportSection("wear", "Wear over life: worn flanks, backlash and the life to the wear "
+                  "limit", ("wear",), wear, wear_verdicts,
+                  asked=lambda s, spec: s.wear_asked(spec)),
     ReportSection("datasheet", "Coupling data sheet for rotordynamics, after API 671",
                   ("datasheet",), datasheet, shown=lambda s: s.datasheet, level="single"),
     ReportSection("interference", "Interference check of the meshes", ("check",),

@@ -68,6 +68,9 @@ class ReportSection:
         default: rendered once per mesh of a double-engagement coupling, its title and
         its verdicts saying which), ``spec`` (once), ``single`` (a single engagement's
         only) or ``whole`` (a double-engagement coupling's only).
+    asked : callable, optional
+        ``asked(settings, spec) -> bool``: whether the spec asks for it (the wear history,
+        where ``[wear]`` gives a speed and hours); None: every spec.
     """
 
     key: str
@@ -77,8 +80,12 @@ class ReportSection:
     verdicts: Callable[[View], list[Verdict]] | None = None
     shown: Callable[[ReportSettings], bool] = lambda s: True
     level: str = "mesh"
+    asked: Callable[[ReportSettings, CouplingSpec], bool] | None = None
 
-    def applies(self, settings: ReportSettings, engagements: int) -> bool:
-        """Whether a report with these settings on a spec of ``engagements`` has it."""
+    def applies(self, settings: ReportSettings, engagements: int,
+                spec: CouplingSpec | None = None) -> bool:
+        """Whether a report with these settings on a spec of ``engagements`` has it (on
+        ``spec`` where given: None counts every section the spec could ask for)."""
         wrong = {1: "whole", 2: "single"}[engagements]
-        return self.level != wrong and self.shown(settings)
+        return self.level != wrong and self.shown(settings) and (
+            self.asked is None or spec is None or self.asked(settings, spec))

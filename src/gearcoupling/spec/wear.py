@@ -9,7 +9,7 @@ from ..io import Table
 
 #: the keys of ``[wear]``
 WEAR_TABLE_KEYS = ("regime", "coefficient_mm3_per_Nm", "coefficient_band_mm3_per_Nm",
-                   "sleeve_factor", "limit_fraction", "required_life_h")
+                   "sleeve_factor", "limit_fraction", "required_life_h", "speed_rpm", "hours")
 
 
 def parse_wear(data: Any) -> tuple[tuple[str, Any], ...]:

@@ -24,7 +24,8 @@ from ..errors import GearCouplingError
 from ..loading import capacity, load
 from ..spec import CouplingSpec
 from .file import ANGLE_OUTPUTS, LOAD_OUTPUTS, OUTPUTS, TOLERANCE_OUTPUTS, build_spec, spec_hash
-from .tolerance import Tolerances, tolerance_sample
+from .tolerance import Tolerances, draw_errors, gap_offsets_rad, tolerance_sample
+from .wear import wear_life_h
 
 
 def _version() -> str:
@@ -98,6 +99,8 @@ def evaluate(payload: dict[str, Any], inputs: dict[str, Any], sample: int = 0) -
             loads = load_outputs(spec, mis, torque, angles=int(acc["load_angles"]),
                                  model=payload["conditions"].get("load_model"))
             row.update({k: v for k, v in loads.items() if k in wanted})
+        if "wear_life_h" in wanted:
+            row["wear_life_h"] = wear_life_h(spec, mis, torque, acc)
     except GearCouplingError as err:
         row["error"] = f"{type(err).__name__}: {err}"
         row.update({k: None for k in names if k in wanted})
@@ -107,9 +110,14 @@ def evaluate(payload: dict[str, Any], inputs: dict[str, Any], sample: int = 0) -
 def _tolerance_row(payload, spec: CouplingSpec, mis: float, torque, sample: int) -> dict[str, Any]:
     t = payload["tolerances"]
     acc = payload["accuracy"]
-    out = tolerance_sample(spec, mis, Tolerances(**t["values"]), payload["seed"], sample,
-                           path=t["path"], torque_Nm=torque, steps=int(acc["steps"]),
+    tol = Tolerances(**t["values"])
+    out = tolerance_sample(spec, mis, tol, payload["seed"], sample, path=t["path"],
+                           torque_Nm=torque, steps=int(acc["steps"]),
                            tolerance_mm=acc["tolerance_mm"], model=t["model"])
+    if "wear_life_h" in payload["outputs"]:  # the sample's own draw (seeded as above)
+        err = draw_errors(tol, spec.tooth.teeth, np.random.default_rng([payload["seed"],
+                                                                        sample]))
+        out["wear_life_h"] = wear_life_h(spec, mis, torque, acc, gap_offsets_rad(spec, err))
     return {k: v for k, v in out.items() if k in payload["outputs"]}
 
 

@@ -84,16 +84,25 @@ CONDITIONS = ("misalignment_deg", "torque_Nm")
 SPEC_OUTPUTS = ("critical_misalignment_deg", "binding_angle_deg")
 ANGLE_OUTPUTS = ("min_backlash_mm", "contact_z_min_mm", "contact_z_max_mm")
 LOAD_OUTPUTS = ("max_tooth_load_N", "q", "capacity_Nm")
-OUTPUTS = SPEC_OUTPUTS + ANGLE_OUTPUTS + LOAD_OUTPUTS
-TOLERANCE_OUTPUTS = ("backlash_mm", "teeth_in_contact_min", "teeth_in_contact_mean",
+#: the wear life (``gc.wear``'s ``life_h``) at the study's angle and torque, the speed and
+#: hours of the spec's ``[wear]`` (the base spec's, ``[set]`` or ``[[vary]]``)
+WEAR_OUTPUTS = ("wear_life_h",)
+OUTPUTS = SPEC_OUTPUTS + ANGLE_OUTPUTS + LOAD_OUTPUTS + WEAR_OUTPUTS
+#: a tolerance Monte Carlo's outputs without the wear life (what it gives by default)
+TOLERANCE_DEFAULT = ("backlash_mm", "teeth_in_contact_min", "teeth_in_contact_mean",
                      "max_tooth_load_N", "capacity_Nm", "nominal_capacity_Nm", "K")
+TOLERANCE_OUTPUTS = TOLERANCE_DEFAULT + WEAR_OUTPUTS
 TOLERANCE_KEYS = ("index_sd_mm", "pitch_sd_mm", "hub_runout_mm", "sleeve_runout_mm",
                   "thickness_sd_mm", "crown_sd_mm")
 LIMIT_KEYS = ("index_mm", "pitch_mm", "thickness_mm", "crown_mm")
 ACCURACY = {"tolerance_mm": GAP_TOLERANCE_MM, "angle_tolerance_deg": 1e-4, "steps": 16,
             "load_angles": 72}
+#: the wear history's knobs (``gc.wear``'s defaults), in ``[accuracy]`` only where given
+WEAR_ACCURACY = {"wear_face_cells": 24, "wear_depth_cells": 16, "wear_phases": 2}
 MAX_SAMPLES = MAXIMA["samples"]
-OBJECTIVES = ("mean", "min")  # of a crown optimisation
+#: of a crown optimisation: the mean or min capacity over the angles, or the wear life at
+#: the largest angle
+OBJECTIVES = ("mean", "min", "wear_life_h")
 
 
 @dataclass(frozen=True)
@@ -265,7 +274,7 @@ def load_study(path: str | Path) -> Study:
     if "tolerances" in root.data:
         tolerances = _tolerances(Table(root.get("tolerances", dict), "tolerances", source=src,
                                        text=text))
-        outputs = tuple(o for o in outputs if o in TOLERANCE_OUTPUTS) or TOLERANCE_OUTPUTS
+        outputs = tuple(o for o in outputs if o in TOLERANCE_OUTPUTS) or TOLERANCE_DEFAULT
     elif any(o in TOLERANCE_OUTPUTS and o not in OUTPUTS for o in outputs):
         s.fail("study.outputs", list(outputs), "tolerance outputs need a [tolerances] table")
     root.done()
@@ -278,12 +287,30 @@ def load_study(path: str | Path) -> Study:
     _check_base_and_values(params, src, text, p.stem, base_path.stem, base_text, fixed)
     study = Study(name, src, base_path.stem, base_text, fixed, params, method, samples, seed,
                   chunk, outputs, conditions, accuracy, plots, tolerances, optimise)
+    _check_wear_asked(study)
     if optimise is not None:
         optimise_options(study)
         return study
     for i, plot in enumerate(plots):
         _check_plot(plot, i, study, text)
     return study
+
+
+def _check_wear_asked(study: Study) -> None:
+    """A study asking for the wear life (an output or the optimisation's objective) names
+    its speed and hours: ``[wear] speed_rpm`` and ``hours`` of the base spec, ``[set]`` or a
+    ``[[vary]]`` key; else refused naming ``study.outputs`` (or ``optimise.objective``)."""
+    objective = (study.optimise or {}).get("objective")
+    if "wear_life_h" not in study.outputs and objective != "wear_life_h":
+        return
+    base = build_spec(study.base_name, study.base_text, study.fixed)
+    given = {k for k, _ in base.wear} | {q.key.removeprefix("wear.") for q in study.parameters}
+    missing = [k for k in ("speed_rpm", "hours") if k not in given]
+    if missing:
+        where = "study.outputs" if "wear_life_h" in study.outputs else "optimise.objective"
+        raise SpecError(f"{study.source} {where}", "wear_life_h", "the wear life needs "
+                        f"[wear] {' and '.join(missing)} in the base spec, [set] "
+                        f"(\"wear.{missing[0]}\" = ...) or a [[vary]] key")
 
 
 def _check_list_lengths(text: str, src: str) -> None:
@@ -349,12 +376,16 @@ def _accuracy(root: Table, src: str, text: str) -> dict[str, Any]:
     entry points allow."""
     acc_r = Table(root.get("accuracy", dict, {}), "accuracy", source=src, text=text)
     accuracy = {k: acc_r.get(k, type(v), v) for k, v in ACCURACY.items()}
+    accuracy.update({k: acc_r.get(k, int) for k in WEAR_ACCURACY if k in acc_r.data})
     acc_r.done()
     limits = {"tolerance_mm": lambda v, f: sweep_tolerance_mm(v, f, SpecError),
               "angle_tolerance_deg": lambda v, f: real(v, f, *ANGLE_TOLERANCE_RANGE_DEG,
                                                        unit="degrees", error=SpecError),
               "steps": lambda v, f: count(v, f, 1, MAXIMA["steps"], error=SpecError),
-              "load_angles": lambda v, f: count(v, f, 1, MAXIMA["angles"], error=SpecError)}
+              "load_angles": lambda v, f: count(v, f, 1, MAXIMA["angles"], error=SpecError),
+              "wear_face_cells": lambda v, f: count(v, f, 4, 512, error=SpecError),
+              "wear_depth_cells": lambda v, f: count(v, f, 4, 512, error=SpecError),
+              "wear_phases": lambda v, f: count(v, f, 1, 64, error=SpecError)}
     for k, v in accuracy.items():
         limits[k](v, f"{src}:{line_of(text, k)} accuracy.{k}")
     return accuracy

@@ -7,7 +7,9 @@ in ``[set]``; ``[optimise]`` gives the angles, the objective and the evaluation 
 
     [optimise]
     angles_deg = [0.25, 0.5, 0.75, 1.0]
-    objective = "mean"          # mean or min of the capacity over the angles
+    objective = "mean"          # mean or min of the capacity over the angles, or
+                                # "wear_life_h": the wear life at the largest angle (the
+                                # spec's [wear] speed and hours, [conditions] torque)
     max_evaluations = 40
     compare = ["renzo-1967"]    # specs whose capacity curves are plotted beside the optimum
     model = "compliance"        # capacity model (default the spec's; "renzo": closed form)
@@ -36,6 +38,7 @@ from ..spec import CouplingSpec, load_spec
 from .file import Study, build_spec, optimise_options, spec_hash
 from .runner import pyarrow_modules
 from .tolerance import ideal_map, linear_outputs, rotations
+from .wear import wear_life_h
 
 PENALTY_NM = 1e12
 
@@ -89,7 +92,12 @@ def crown_row(study: Study, inputs: dict[str, Any], options: dict[str, Any]) -> 
         row["min_backlash_mm"] = backlash * spec.tooth.pitch_radius
         crit_ok = crit is None or crit >= top
         row["feasible"] = bool(crit_ok and backlash > 0)
-        value = row[f"capacity_{options['objective']}_Nm"]
+        if options["objective"] == "wear_life_h":  # at the largest angle: the most sliding
+            row["wear_life_h"] = wear_life_h(spec, top, study.conditions.get("torque_Nm"),
+                                             acc)
+            value = row["wear_life_h"]
+        else:
+            value = row[f"capacity_{options['objective']}_Nm"]
         # infeasible: penalised by how far the constraints are missed, so the search returns
         short = (0.0 if crit_ok else top - crit) + max(0.0, -backlash) * 1e3
         row["objective"] = value if row["feasible"] else value - PENALTY_NM * (1e-9 + short)
@@ -100,7 +108,8 @@ def crown_row(study: Study, inputs: dict[str, Any], options: dict[str, Any]) -> 
 
 def optimise_crown(study: Study, *, on_row: Callable[[dict[str, Any]], None] | None = None
                    ) -> Optimum:
-    """Maximise the study's capacity objective over its ``[[vary]]`` ranges.
+    """Maximise the study's objective (the capacity, or the wear life) over its
+    ``[[vary]]`` ranges.
 
     One parameter: bounded Brent (``minimize_scalar``); more: Nelder-Mead in coordinates
     scaled to the unit box (out-of-box points are clipped and evaluated). Every evaluation

@@ -24,6 +24,7 @@ from .scene import (
     pose_state,
 )
 from .server import ViewerApp, exposure_warning, serve
+from .wear import WearScene, wear_html, write_wear_html
 
 __all__ = [
     "COLOR_MODES",
@@ -37,6 +38,7 @@ __all__ = [
     "PoseState",
     "ViewSettings",
     "ViewerApp",
+    "WearScene",
     "assembly_pose",
     "build_scene_meshes",
     "check_pose",
@@ -45,5 +47,7 @@ __all__ = [
     "pose_state",
     "serve",
     "static_html",
+    "wear_html",
     "write_html",
+    "write_wear_html",
 ]

@@ -293,11 +293,19 @@ def add_legend(scene, spec: CouplingSpec, mode: str, scale_mm: float, x: float,
                z_bottom: float) -> None:
     """The colour legend of ``mode`` as boxes with labels in a viser ``scene``, from
     ``z_bottom`` up at ``x`` (sized by the module)."""
+    add_legend_entries(scene, spec, legend_title(mode), legend(scale_mm, mode=mode), x,
+                       z_bottom)
+
+
+def add_legend_entries(scene, spec: CouplingSpec, title: str,
+                       entries: list[tuple[str, tuple[int, int, int]]], x: float,
+                       z_bottom: float) -> None:
+    """A legend ``title`` over ``entries`` ``(label, rgb)`` as boxes with labels in a viser
+    ``scene``, from ``z_bottom`` up at ``x`` (sized by the module)."""
     size = 1.5 * spec.tooth.module
     step = 1.6 * size
-    entries = legend(scale_mm, mode=mode)
     z_top = z_bottom + (len(entries) + 1) * step
-    scene.add_label("/legend/title", legend_title(mode),
+    scene.add_label("/legend/title", title,
                     position=(x - 0.5 * size, 0.0, z_top + step), anchor="bottom-left")
     for j, (label, rgb) in enumerate(entries):
         z = z_top - j * step

@@ -18,7 +18,7 @@ from .settings import (
     DEFAULT_STEP_FRACTION,
     MAX_PHASES,
     Accuracy,
-    OperatingPoint,
+    DutyPoint,
     WearSettings,
 )
 
@@ -31,7 +31,7 @@ __all__ = [
     "MAX_PHASES",
     "REGIMES",
     "Accuracy",
-    "OperatingPoint",
+    "DutyPoint",
     "Regime",
     "WearResult",
     "WearSettings",

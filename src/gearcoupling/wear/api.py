@@ -15,7 +15,7 @@ from .settings import (
     DEFAULT_STEP_FRACTION,
     MAX_HOURS,
     Accuracy,
-    OperatingPoint,
+    DutyPoint,
     WearSettings,
     duty_points,
     gap_offsets,
@@ -47,10 +47,11 @@ def wear(spec: CouplingSpec | str, misalignment_deg: float | None = None,
         the band, the sleeve factor, the wear limit and a required life.
     misalignment_deg, torque_Nm, speed_rpm, hours : float, optional
         One operating point: 0-6°, a non-zero signed torque (default the spec's
-        ``[load]`` torque; positive loads the ccw flanks), speed > 0 and hours > 0. The
-        misalignment defaults to the spec's design angle.
+        ``[load]`` torque; positive loads the ccw flanks), speed > 0 and hours > 0 (default
+        the spec's ``[wear]`` ``speed_rpm`` and ``hours``). The misalignment defaults to the
+        spec's design angle.
     duty : sequence, optional
-        Instead: several operating points, each an :class:`OperatingPoint` or
+        Instead: several operating points, each a :class:`DutyPoint` or
         ``(misalignment_deg, torque_Nm, speed_rpm, hours)``, run interleaved, each for its
         share of the time (torques of both signs wear both flanks); ``hours`` then
         defaults to their sum.
@@ -105,8 +106,12 @@ def wear(spec: CouplingSpec | str, misalignment_deg: float | None = None,
         torque = resolve_torque_Nm(spec, torque_Nm, zero=False)
         mis = misalignment_deg if misalignment_deg is not None else \
             spec.design_misalignment_deg
-        points = (OperatingPoint.checked(mis, torque, speed_rpm, hours,
-                                         axial_float_mm=axial_float_mm),)
+        speed = speed_rpm if speed_rpm is not None else settings.speed_rpm
+        if speed is None:
+            raise ArgumentError("speed_rpm", None, "a speed > 0 rpm (or the spec's [wear] "
+                                "speed_rpm)")
+        points = (DutyPoint.checked(mis, torque, speed, hours if hours is not None else
+                                    settings.hours, axial_float_mm=axial_float_mm),)
         total = points[0].hours
     run = real(hours if hours is not None else total, "hours", 0.0, MAX_HOURS,
                open_lo=True, unit="h")

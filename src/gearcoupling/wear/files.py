@@ -37,20 +37,21 @@ def write_wear_summary(result: WearResult, folder: str | Path) -> Path:
     return write_json(Path(folder) / "wear_summary.json", result.summary())
 
 
-def write_wear_plots(result: WearResult, folder: str | Path) -> list[Path]:
+def write_wear_plots(result: WearResult, folder: str | Path, dpi: int = 130) -> list[Path]:
     """``wear_maps.png`` (depth maps and tooth bearing pictures over time) and
-    ``wear_history.png`` (backlash, q and pressures against hours)."""
+    ``wear_history.png`` (backlash, q and pressures against hours), at ``dpi``."""
     folder = Path(folder)
-    return [save_figure(plot_wear_maps(result), folder / "wear_maps.png"),
-            save_figure(plot_wear_history(result), folder / "wear_history.png")]
+    return [save_figure(plot_wear_maps(result), folder / "wear_maps.png", dpi),
+            save_figure(plot_wear_history(result), folder / "wear_history.png", dpi)]
 
 
-def write_wear(result: WearResult, folder: str | Path, *, plots: bool = True) -> list[Path]:
+def write_wear(result: WearResult, folder: str | Path, *, plots: bool = True,
+               dpi: int = 130) -> list[Path]:
     """Every file of a wear history into ``folder`` (which must exist); their paths."""
     paths = [write_wear_csv(result, folder), write_depth_csv(result, folder),
              write_wear_summary(result, folder)]
     if plots:
-        paths += write_wear_plots(result, folder)
+        paths += write_wear_plots(result, folder, dpi)
     return paths
 
 

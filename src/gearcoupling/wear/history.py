@@ -22,7 +22,7 @@ from ..spec import CouplingSpec
 from .kernels import exposure_step, limit_crossing
 from .model import PointSolver, Turn, WearMaps, flank_grids
 from .result import POINT_STATS, WearResult, thicknesses_mm
-from .settings import Accuracy, OperatingPoint, WearSettings
+from .settings import Accuracy, DutyPoint, WearSettings
 
 MAX_STEPS = 5000  # a history stops with an error past this many steps
 MIN_STEP = 1e-5  # the smallest step, as a share of the history's exposure
@@ -138,7 +138,7 @@ def _bearings(maps: WearMaps, turns: list[Turn]) -> NDArray:
     return out
 
 
-def rates(turns: list[Turn], duty: tuple[OperatingPoint, ...], like: WearMaps,
+def rates(turns: list[Turn], duty: tuple[DutyPoint, ...], like: WearMaps,
           sleeve_factor: float, slide: bool = False) -> WearMaps:
     """Depth per unit exposure (mm per mm³/(N·m)·h) of every map, ``(2, T, nz, ns)``: each
     point's depth per revolution times its revolutions per hour and its share of the
@@ -153,7 +153,7 @@ def rates(turns: list[Turn], duty: tuple[OperatingPoint, ...], like: WearMaps,
     return WearMaps(hub, sleeve, like.hub_grid, like.sleeve_grid)
 
 
-def run_history(spec: CouplingSpec, duty: tuple[OperatingPoint, ...], settings: WearSettings,
+def run_history(spec: CouplingSpec, duty: tuple[DutyPoint, ...], settings: WearSettings,
                 accuracy: Accuracy, hours: float, *, gap_offset_rad: Any = None,
                 progress: Callable[[int, int], None] | None = None,
                 keep: bool = False) -> WearResult:

@@ -36,7 +36,7 @@ from ..loading import (
 )
 from ..spec import CouplingSpec
 from .kernels import FlankGrid, deposit_many, sample, sleeve_rows, slip_runs, slip_velocity
-from .settings import FLOAT_PHASES, Accuracy, OperatingPoint
+from .settings import FLOAT_PHASES, Accuracy, DutyPoint
 
 MAP_CELLS_PER_GRID_CELL = 4  # depth-map cells along the face per pressure-grid cell
 
@@ -97,7 +97,7 @@ def facing_depth(maps: WearMaps, flank: int, teeth: NDArray[np.intp], gf: GapFie
     return hub + sleeve
 
 
-def flank_grids(spec: CouplingSpec, duty: tuple[OperatingPoint, ...], grid: tuple[int, int]
+def flank_grids(spec: CouplingSpec, duty: tuple[DutyPoint, ...], grid: tuple[int, int]
                 ) -> tuple[FlankGrid, FlankGrid]:
     """The depth maps' grids: every active depth and face position any point of the duty
     loads (the widest misalignment's), ``grid``'s rows and four times its cells along the
@@ -140,7 +140,7 @@ class PointSolver:
     """One operating point: its sweep and surface solver, kept between turns (each turn
     starts from the last solved pose)."""
 
-    def __init__(self, spec: CouplingSpec, point: OperatingPoint, accuracy: Accuracy,
+    def __init__(self, spec: CouplingSpec, point: DutyPoint, accuracy: Accuracy,
                  maps: WearMaps, gap_offset_rad: Any = None):
         self.spec, self.point = spec, point
         self.flank = 1 if point.torque_Nm > 0 else 0

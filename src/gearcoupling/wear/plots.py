@@ -8,6 +8,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..geometry import FLANKS
+from ..io import plot_text
 from ..plots import import_matplotlib, new_figure
 from .result import WearResult
 
@@ -64,9 +65,9 @@ def plot_wear_maps(result: WearResult):
         bar.set_label(unit, fontsize=7)
         bar.ax.tick_params(labelsize=7)
     p = result.duty[0]
-    fig.suptitle(f"{result.spec.name}: wear at {p.misalignment_deg:g}°, {p.torque_Nm:.4g} N·m, "
-                 f"{p.speed_rpm:.4g} rpm" + (" (duty of several points)" if len(result.duty) > 1
-                                             else ""), fontsize=10)
+    several = " (duty of several points)" if len(result.duty) > 1 else ""
+    fig.suptitle(f"{plot_text(result.spec.name)}: wear at {p.misalignment_deg:g}°, "
+                 f"{p.torque_Nm:.4g} N·m, {p.speed_rpm:.4g} rpm{several}", fontsize=10)
     return fig
 
 
@@ -111,7 +112,7 @@ def plot_wear_history(result: WearResult):
         if a.get_legend_handles_labels()[0]:
             a.legend(fontsize=7)
     lo, hi = result.life_band_h
-    fig.suptitle(f"{result.spec.name}: life {result.life_h:.4g} h ({result.life_basis}; "
+    fig.suptitle(f"{plot_text(result.spec.name)}: life {result.life_h:.4g} h ({result.life_basis}; "
                  f"{lo:.3g}-{hi:.3g} h across the {s.regime} band), k = "
                  f"{s.coefficient_mm3_per_Nm:.3g} mm³/(N·m)", fontsize=10)
     return fig

@@ -13,7 +13,7 @@ from numpy.typing import NDArray
 from ..geometry import FLANKS
 from ..tables import dataframe
 from .kernels import FlankGrid
-from .settings import LIFE_CAP_H, Accuracy, OperatingPoint, WearSettings
+from .settings import LIFE_CAP_H, Accuracy, DutyPoint, WearSettings
 
 #: the loads of every operating point at every state (``(S, P)`` arrays of the result)
 POINT_STATS = ("max_tooth_load_N", "q", "max_pressure_MPa", "max_interior_pressure_MPa",
@@ -50,7 +50,7 @@ class WearResult:
     """
 
     spec: Any = field(repr=False)
-    duty: tuple[OperatingPoint, ...]
+    duty: tuple[DutyPoint, ...]
     settings: WearSettings
     accuracy: Accuracy
     hours_requested: float

@@ -33,8 +33,9 @@ LIFE_CAP_H = 1e9  # the largest life reported (h); a longer one is reported as t
 
 
 @dataclass(frozen=True)
-class OperatingPoint:
-    """One operating point of a duty.
+class DutyPoint:
+    """One duty point: an operating point of a wear duty (not the pipeline's
+    :class:`gearcoupling.OperatingPoint`).
 
     Attributes
     ----------
@@ -63,7 +64,7 @@ class OperatingPoint:
     @classmethod
     def checked(cls, misalignment_deg: Any, torque: Any, speed_rpm: Any, hours: Any, *,
                 axial_float_mm: Any = 0.0, float_cycles_per_rev: Any = 1.0, where: str = ""
-                ) -> OperatingPoint:
+                ) -> DutyPoint:
         """A point from call arguments, each refused with an :class:`ArgumentError` naming
         ``where`` + the argument."""
         return cls(check_misalignment_deg(misalignment_deg, f"{where}misalignment_deg",
@@ -82,10 +83,10 @@ class OperatingPoint:
         return 60.0 * self.speed_rpm
 
 
-def duty_points(points: Any) -> tuple[OperatingPoint, ...]:
-    """A duty: a non-empty sequence of :class:`OperatingPoint` (or of ``(misalignment_deg,
+def duty_points(points: Any) -> tuple[DutyPoint, ...]:
+    """A duty: a non-empty sequence of :class:`DutyPoint` (or of ``(misalignment_deg,
     torque_Nm, speed_rpm, hours)``), at most 64."""
-    if isinstance(points, OperatingPoint):
+    if isinstance(points, DutyPoint):
         points = [points]
     if isinstance(points, str | bytes | dict) or not hasattr(points, "__len__") \
             or not 1 <= len(points) <= 64:
@@ -93,7 +94,7 @@ def duty_points(points: Any) -> tuple[OperatingPoint, ...]:
                             "(misalignment_deg, torque_Nm, speed_rpm, hours)")
     out = []
     for i, p in enumerate(points):
-        if isinstance(p, OperatingPoint):
+        if isinstance(p, DutyPoint):
             p = (p.misalignment_deg, p.torque_Nm, p.speed_rpm, p.hours, p.axial_float_mm,
                  p.float_cycles_per_rev)
         if isinstance(p, str | bytes | dict) or not hasattr(p, "__len__") \
@@ -101,7 +102,7 @@ def duty_points(points: Any) -> tuple[OperatingPoint, ...]:
             raise ArgumentError(f"duty[{i}]", p, "(misalignment_deg, torque_Nm, speed_rpm, "
                                 "hours[, axial_float_mm[, float_cycles_per_rev]])")
         extra = dict(zip(("axial_float_mm", "float_cycles_per_rev"), p[4:], strict=False))
-        out.append(OperatingPoint.checked(*p[:4], **extra, where=f"duty[{i}]."))
+        out.append(DutyPoint.checked(*p[:4], **extra, where=f"duty[{i}]."))
     return tuple(out)
 
 
@@ -139,6 +140,11 @@ class WearSettings:
         The wear limit: a tooth's thickness loss as a share of its thickness.
     required_life_h : float or None
         Judged against the life where given.
+    speed_rpm, hours : float or None
+        The speed and the hours of running at the pipeline's operating point (its angle
+        and torque): where both are given the spec asks for wear, and ``gc.run`` and
+        ``gc.report`` compute it (the stage ``wear``); :func:`~.api.wear` takes them as
+        its defaults.
     """
 
     regime: str = DEFAULT_REGIME
@@ -148,6 +154,8 @@ class WearSettings:
     sleeve_factor: float = 1.0
     limit_fraction: float = DEFAULT_LIMIT_FRACTION
     required_life_h: float | None = None
+    speed_rpm: float | None = None
+    hours: float | None = None
     source: str = field(default=REGIMES[DEFAULT_REGIME].source, compare=False)
 
     @classmethod
@@ -175,11 +183,18 @@ class WearSettings:
             lo, hi = min(regime.low, k), max(regime.high, k)
         return cls(regime.name, k, (lo, hi), values.get("sleeve_factor", 1.0),
                    values.get("limit_fraction", DEFAULT_LIMIT_FRACTION),
-                   values.get("required_life_h"), regime.source)
+                   values.get("required_life_h"), values.get("speed_rpm"),
+                   values.get("hours"), regime.source)
+
+    @property
+    def asked(self) -> bool:
+        """Whether the settings ask for a history at the operating point (a speed and
+        hours)."""
+        return self.speed_rpm is not None and self.hours is not None
 
 
 _KEYS = ("regime", "coefficient_mm3_per_Nm", "coefficient_band_mm3_per_Nm", "sleeve_factor",
-         "limit_fraction", "required_life_h")
+         "limit_fraction", "required_life_h", "speed_rpm", "hours")
 
 
 def _check(key: str, value: Any, prefix: str, error: ErrorType) -> Any:
@@ -203,6 +218,10 @@ def _check(key: str, value: Any, prefix: str, error: ErrorType) -> Any:
         return real(value, name, 0.0, 1e3, error=error)
     if key == "limit_fraction":
         return real(value, name, 0.0, 1.0, open_lo=True, open_hi=True, error=error)
+    if key == "speed_rpm":
+        return real(value, name, 0.0, MAX_SPEED_RPM, open_lo=True, unit="rpm", error=error)
+    if key == "hours":
+        return real(value, name, 0.0, MAX_HOURS, open_lo=True, unit="h", error=error)
     return real(value, name, 0.0, 1e9, open_lo=True, unit="h", error=error)
 
 
@@ -239,5 +258,5 @@ class Accuracy:
 
 
 __all__ = ["DEFAULT_LIMIT_FRACTION", "DEFAULT_PHASES", "DEFAULT_STEP_FRACTION",
-           "FLOAT_PHASES", "LIFE_CAP_H", "Accuracy", "OperatingPoint", "WearSettings",
+           "FLOAT_PHASES", "LIFE_CAP_H", "Accuracy", "DutyPoint", "WearSettings",
            "duty_points", "gap_offsets"]
