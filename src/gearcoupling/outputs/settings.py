@@ -17,6 +17,7 @@ from ..errors import ArgumentError
 from ..io import as_path
 from ..loading import model_names, resolve_torque_Nm
 from ..spec import MAX_SHAFT_ANGLE_DEG, CouplingLayout, CouplingSpec, check_misalignment_deg
+from ..wear import WearSettings
 
 # (smallest, largest) of each count: enough to draw, small enough to stay interactive
 KNOB_RANGES = {"angles": (8, 3600), "phases": (1, 64), "capacity_count": (2, 200),
@@ -164,8 +165,6 @@ class StageSettings:
         ``wear.<key>``) before any work."""
         table = dict(spec.wear)
         if table:
-            from ..wear import WearSettings  # the wear package only where a spec has [wear]
-
             WearSettings.from_spec(spec)
         given = {"wear_hours": self.wear_hours, "wear_speed_rpm": self.wear_speed_rpm}
         keys = {"wear_hours": "hours", "wear_speed_rpm": "speed_rpm"}

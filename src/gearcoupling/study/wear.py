@@ -9,6 +9,7 @@ from typing import Any
 from numpy.typing import ArrayLike
 
 from ..spec import CouplingSpec
+from ..wear import wear
 from .file import WEAR_ACCURACY
 
 
@@ -17,8 +18,6 @@ def wear_life_h(spec: CouplingSpec, misalignment_deg: float, torque_Nm: float | 
     """Hours to the wear limit (at most ``gearcoupling.wear.LIFE_CAP_H``); ``torque_Nm``
     None: the spec's; ``gap_offset_rad`` a tolerance draw's per-tooth offsets (the teeth
     then wear each on its own)."""
-    from ..wear import wear
-
     knobs = {**WEAR_ACCURACY, **{k: v for k, v in accuracy.items() if k in WEAR_ACCURACY}}
     res = wear(spec, misalignment_deg, torque_Nm,
                grid=(int(knobs["wear_face_cells"]), int(knobs["wear_depth_cells"])),

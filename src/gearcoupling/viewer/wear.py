@@ -16,6 +16,7 @@ import numpy as np
 from ..errors import ArgumentError
 from ..geometry import FLANKS
 from ..io import writable_file, write_text
+from ..wear import WearResult
 from .html import free_port
 from .nodes import CouplingScene, ViewSettings, add_legend_entries, import_viser
 from .scene.wear import hub_flank_depths, wear_colors, wear_legend
@@ -92,8 +93,6 @@ def wear_html(result: Any, *, psi_deg: float = 0.0,
     tolerance_mm : float, optional
         Chordal tolerance of the meshes (default coarse, module / 20).
     """
-    from ..wear import WearResult
-
     if not isinstance(result, WearResult):
         raise ArgumentError("result", str(result)[:60], "a WearResult (gc.wear)")
     viser = import_viser()
