@@ -179,7 +179,10 @@ def test_each_mesh_is_the_single_engagement_at_its_angle_torque_and_phase(split_
                                                 rel=1e-9)
         sw = mesh.get("sweep", gc.SweepResult)
         ref = gc.sweep(spec, 0.3, sw.angles_deg)
-        assert np.array_equal(sw.normal_clearance_mm, ref.normal_clearance_mm)
+        # the same to the search's rounding (the tracking search starts from the
+        # neighbouring rotation's minimum, and the stage's rotations start elsewhere)
+        np.testing.assert_allclose(sw.normal_clearance_mm, ref.normal_clearance_mm, rtol=0,
+                                   atol=1e-9)
         psi = np.arange(36) * 10.0
         phases.append(psi[0] - sw.angles_deg[0])
     assert abs(abs(phases[0] - phases[1]) - 180.0) < 1e-9  # an angle alone: 180° apart
