@@ -79,8 +79,12 @@ def test_secant_root_of_a_ratio_never_reached_or_reached_at_no_torque():
     assert over == 0.0 and min(solved) == pytest.approx(T_MIN, rel=1e-12)
 
 
+# the single engagements: the double templates' meshes are industrial-m2's hubs and sleeve
+SINGLE = [n for n in gc.template_names() if gc.load_spec(n).coupling.engagements == 1]
+
+
 @pytest.mark.slow
-@pytest.mark.parametrize("name", gc.template_names())
+@pytest.mark.parametrize("name", SINGLE)
 def test_templates_past_their_critical_angle(name):
     for angle in TEMPLATE_ANGLES:
         c, loads = point(gc.load_spec(name), angle)
