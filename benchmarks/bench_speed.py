@@ -24,11 +24,15 @@ call, before any timing). ``--old-numpy`` runs the old checkout with
   ``gearcoupling run`` pays once, with the compiled kernels in numba's cache;
   ``first-map-compile``: the same with an empty cache (a new install: numba compiles);
   wall time, one process per repeat (``first-map-compile`` once).
-- ``run``, ``report``: ``gearcoupling run renzo-1967`` and ``gearcoupling report
-  renzo-1967`` into a temporary folder; wall time of the command (exit status 1, the
-  report's failed check, counts as done); ``run-cpu``, ``report-cpu``: the same, CPU time
-  (user + system) of the command and the workers it forks, which a loaded machine
-  changes less than wall time.
+- ``run``, ``report``, ``datasheet``: ``gearcoupling run renzo-1967``, ``gearcoupling
+  report renzo-1967`` and ``gearcoupling datasheet renzo-1967`` into a temporary folder;
+  wall time of the command (exit status 1, the report's failed check, counts as done);
+  ``run-cpu``, ``report-cpu``, ``datasheet-cpu``: the same, CPU time (user + system) of
+  the command and the workers it forks, which a loaded machine changes less than wall time.
+- ``capacity``: the default capacity, ``gc.capacity(spec, angle)`` at 1 and 3°,
+  of the templates and the random specs of 170-260 teeth of ``tests/random_specs.py``
+  (``springs_specs(55)``, the springs data set); CPU per call, the mean over the set, in
+  one process after a first capacity (compiled kernels, flank tables).
 - with ``--fe`` (minutes each, once): ``fe-table``, the FE tooth-spring table of renzo-1967
   (``stiffness = "fe"``, the cache bypassed: ``refresh``, a temporary cache folder);
   ``fea-contact``, ``gearcoupling fea-contact renzo-1967`` (aligned, default mesh);
@@ -89,6 +93,24 @@ spec, angles = load_spec({spec!r}), np.arange(360.0)
 t = time.perf_counter()
 sweep(spec, 1.0, angles, tolerance_mm=1e-6)
 print(json.dumps([time.perf_counter() - t]))
+"""
+CAPACITY = """
+import json, sys, time
+sys.path.insert(0, {tests!r})
+import gearcoupling as gc
+from random_specs import springs_specs
+specs = [gc.load_spec(n) for n in gc.template_names()]
+specs += [s for s in springs_specs(55) if 170 <= s.tooth.teeth <= 260]
+gc.capacity(gc.load_spec("industrial-m2"), 1.0)  # loads what it needs
+out = []
+for _ in range({repeats}):
+    c, n = time.process_time(), 0
+    for spec in specs:
+        for a in (1.0, 3.0):
+            gc.capacity(spec, a)
+            n += 1
+    out.append((time.process_time() - c) / n)
+print(json.dumps(out))
 """
 FE_TABLE = """
 import json, tempfile, time
@@ -197,6 +219,13 @@ def rows(args) -> list[tuple[str, str, str, object]]:
         ("report", f"gearcoupling report {SPEC}", "wall", command_row(["report", SPEC], rc)),
         ("report-cpu", f"gearcoupling report {SPEC}", "CPU",
          command_row(["report", SPEC], rc, "CPU")),
+        ("datasheet", f"gearcoupling datasheet {SPEC}", "wall",
+         command_row(["datasheet", SPEC], rc)),
+        ("datasheet-cpu", f"gearcoupling datasheet {SPEC}", "CPU",
+         command_row(["datasheet", SPEC], rc, "CPU")),
+        ("capacity", "default capacity per angle (templates, random specs of 170-260 teeth;"
+         " 1° and 3°)", "CPU",
+         python_row(CAPACITY.format(tests=str(HERE / "tests"), repeats=1))),
     ]
     if args.fe:
         out += [
@@ -238,7 +267,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--only", nargs="*", default=None, metavar="ROW",
                     help="rows: map per-tooth sweep-map sweep-per-tooth sweep-map-cpu "
                          "sweep-per-tooth-cpu first-map first-map-compile run run-cpu report "
-                         "report-cpu fe-table fea-contact sector ci")
+                         "report-cpu datasheet datasheet-cpu capacity fe-table fea-contact "
+                         "sector ci")
     ap.add_argument("--fe", action="store_true", help="also the FE rows (minutes each)")
     ap.add_argument("--ci-log", type=Path, nargs="+", metavar="LOG",
                     help="pytest logs of the whole suite: the new one, then the old one")

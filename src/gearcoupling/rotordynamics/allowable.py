@@ -90,7 +90,9 @@ def capacity_limit_deg(spec, torque_Nm: float, top_deg: float, *, model: str | N
     ``tolerance_deg`` / 2 a step, and stops when the bracket or the secant's step from its
     low end is within the tolerance. ``known``: capacities of this spec and model (ccw
     flank) already computed, e.g. the report's capacity curve; they narrow the first
-    bracket and are not solved again. ``step()`` after each capacity solved.
+    bracket and are not solved again (one below the torque above the largest that carries
+    it: ``top_deg`` is not solved).
+    ``step()`` after each capacity solved.
     """
     need = abs(torque_Nm)
     model = resolve_model(spec, model)
@@ -105,10 +107,15 @@ def capacity_limit_deg(spec, torque_Nm: float, top_deg: float, *, model: str | N
         cap = math.inf if c.capacity_Nm is None else max(c.capacity_Nm, TINY)
         return math.log(cap / need), c.governing
 
-    f_hi, governing = margin(top_deg)
-    if f_hi >= 0:
-        return None, None
-    lo, hi = _bracket(seen, top_deg, need)
+    # the capacity falls with the angle: a known one below the torque above the largest
+    # known to carry it brackets the angle, and says top_deg does not carry it either
+    lo, above = _bracket(seen, top_deg, need)
+    if above is None:
+        f_hi, governing = margin(top_deg)
+        if f_hi >= 0:
+            return None, None
+        lo, above = _bracket(seen, top_deg, need)
+    hi = top_deg if above is None else above  # top_deg does not carry the torque
     f_lo, g = margin(lo)
     if f_lo < 0:
         return 0.0, g
@@ -142,15 +149,16 @@ def known_capacities(spec, model: str, known: Sequence[Capacity]) -> dict[float,
     return out
 
 
-def _bracket(seen: dict[float, Capacity], top_deg: float, need: float) -> tuple[float, float]:
+def _bracket(seen: dict[float, Capacity], top_deg: float, need: float
+             ) -> tuple[float, float | None]:
     """The narrowest ``(lo, hi)`` within 0 to ``top_deg`` that the capacities ``seen`` give:
     ``lo`` the largest angle known to carry ``need`` (else 0), ``hi`` the smallest known
-    angle above it that does not (``top_deg`` does not)."""
+    angle above it that does not (None: none known)."""
     carries = sorted(d for d, c in seen.items() if 0 <= d <= top_deg
                      and (c.capacity_Nm is None or c.capacity_Nm >= need))
     lo = carries[-1] if carries else 0.0
-    hi = min(d for d, c in seen.items() if lo < d <= top_deg and c.capacity_Nm is not None
-             and c.capacity_Nm < need)
+    hi = min((d for d, c in seen.items() if lo < d <= top_deg and c.capacity_Nm is not None
+              and c.capacity_Nm < need), default=None)
     return lo, hi
 
 

@@ -309,7 +309,8 @@ def coupling_data(spec: CouplingSpec, misalignment_deg: float | None = None,
         :data:`~gearcoupling.loading.PHASES` per tooth pitch
         (:func:`~.allowable.allowable_loads`).
     curve_points : int
-        Torques on the wind-up curve.
+        Torques on the wind-up curve, at ``(i / (n - 1))^2`` of its end
+        (:func:`~.torsion.windup_torques`).
     tolerance_mm : float, optional
         Chordal tolerance of the part meshes (default module / 200; accuracy knob).
     known : sequence of Capacity

@@ -34,6 +34,7 @@ from ..loading import (
     resolve_torque_Nm,
     springs_name,
 )
+from ..loading.models.surface import start_from
 from ..spec import MISALIGNMENT_RANGE_DEG, as_spec
 from .pose import generalized_forces, translation_gap_offsets
 from .torsion import windup_beyond_touch
@@ -257,7 +258,7 @@ def stiffness_from_sweep(sw: SweepResult, torque_Nm: float, *, model: str | None
     forward = differences == "forward"
     dQdu, dcdu = np.zeros((n, 5, 5)), np.zeros((n, 5))
     _translations(case, sw, res0.loaded_flank, h_t, dQdu, dcdu, (Q0, c0) if forward else None)
-    _tilts(case, sw, h_a, (Q0, c0), dQdu, dcdu, forward)
+    _tilts(case, sw, res0.loaded_flank, h_a, (Q0, c0), dQdu, dcdu, forward)
     dQdT, dcdT = _difference(lambda t: case.state(sw, torque=t)[:2], case.torque_Nm, h_T,
                              (Q0, c0) if forward else None)
     per_rotation = np.array([_held_windup(dQdu[j], dcdu[j], dQdT[j], dcdT[j])
@@ -301,6 +302,7 @@ def _translations(case: _Case, sw: SweepResult, flank: str, h: float, dQdu: NDAr
     alpha = math.radians(sw.misalignment_deg)
     for j, psi in enumerate(np.asarray(sw.angles_deg, float)):
         one = case.sweep(alpha, [psi])
+        start_from(one, sw, j, flank)  # the shifted poses start from the operating one
         for e in _SHIFTS:
             def moved(x, e=e, one=one):
                 d = np.zeros(3)
@@ -312,8 +314,8 @@ def _translations(case: _Case, sw: SweepResult, flank: str, h: float, dQdu: NDAr
                 moved, 0.0, h, None if base is None else (base[0][j], base[1][j]))
 
 
-def _tilts(case: _Case, sw: SweepResult, h: float, base: tuple[NDArray, NDArray],
-           dQdu: NDArray, dcdu: NDArray, forward: bool) -> None:
+def _tilts(case: _Case, sw: SweepResult, flank: str, h: float,
+           base: tuple[NDArray, NDArray], dQdu: NDArray, dcdu: NDArray, forward: bool) -> None:
     """Fill the tilt columns from sweeps at the neighbouring tilt vectors, turned back onto
     the operating tilt axis: about ``x`` at a misalignment (central, or backward from the
     operating point ``base`` = (Q, chi) within ``h`` of 6°; ``forward``: one-sided from
@@ -330,10 +332,11 @@ def _tilts(case: _Case, sw: SweepResult, h: float, base: tuple[NDArray, NDArray]
     else:
         poses = [(alpha + s * h, 0.0) for s in ((-1.0, -2.0) if backward else (1.0, -1.0))]
     found = {}
-    for A in {A for A, _ in poses}:
+    for A in sorted({A for A, _ in poses}):
         same = [k for k, (Ak, _) in enumerate(poses) if Ak == A]
-        F, M, chi, _ = case.solve(case.sweep(A, np.concatenate(
-            [psi - math.degrees(poses[k][1]) for k in same])))
+        tilted = case.sweep(A, np.concatenate([psi - math.degrees(poses[k][1]) for k in same]))
+        start_from(tilted, sw, 0, flank)  # its first pose, rotation 0, next to the operating one
+        F, M, chi, _ = case.solve(tilted)
         for m, k in enumerate(same):
             part = slice(m * n, (m + 1) * n)
             found[k] = (generalized_forces(F[part], M[part], A, poses[k][1]), chi[part])

@@ -108,6 +108,11 @@ _ROW_FIELDS = ("z_mm", "gap_rad", "mask", "face_cut", "hub_z_mm", "hub_r_mm")
 #: the last solved pose of each sweep and flank: a later load on the sweep (another torque)
 #: starts from it; held as long as the sweep is
 _LAST_POSE: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+#: every pose solved on a sweep of at most :data:`KEPT_POSES` distinct rotations, by flank
+#: and rotation: a load on a sweep next to one of them starts from it (:func:`start_from`);
+#: held as long as the sweep is
+_POSES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+KEPT_POSES = 16
 
 ARRAYS = ("gap_angle_rad", "deflection_mm", "bending_deflection_mm", "tangential_force_N",
           "normal_force_N", "contact_z_mm", "contact_r_mm", "max_pressure_MPa",
@@ -774,6 +779,19 @@ def surface_solver(sweep_result, *, torque_Nm: float, grid=DEFAULT_GRID, gap_off
                          tolerance=tolerance, extra_gap=extra_gap)
 
 
+def start_from(sweep_result, solved, rotation: int, flank: str) -> bool:
+    """Start the next load on ``sweep_result`` from the pose of rotation ``rotation`` last
+    solved on the sweep ``solved`` on ``flank`` (a pose next to it: shifted or tilted by a
+    difference step) instead of the last pose solved on ``sweep_result`` or a cold start;
+    False where ``solved`` kept no such pose (:data:`KEPT_POSES`). Only where the search
+    starts moves: the answer is the same within the solver's tolerance."""
+    pose = _POSES.get(solved, {}).get(flank, {}).get(int(rotation))
+    if pose is None:
+        return False
+    _LAST_POSE.setdefault(sweep_result, {})[flank] = pose
+    return True
+
+
 def _torque_and_flank(torque_Nm: Any, loaded_flank: str | None) -> tuple[float, str]:
     """The torque as a finite float and the loaded flank (by default the one its sign
     loads: ccw for >= 0)."""
@@ -818,12 +836,17 @@ def _loaded_poses(solver: SurfaceSolver, sw, flank: str, load_N: float, res: dic
     # another load on this sweep starts where the last one ended (phases wrap around
     # the pitch, so the last pose neighbours the first)
     last = _LAST_POSE.get(sw, {}).get(flank)
+    poses = {}
     for i, j in enumerate(order):
         out, extra, last = solver.solve_pose(int(j), load_N, last, keep_fields)
         solved[int(j)] = (out, extra)
+        if order.size <= KEPT_POSES:
+            poses[int(j)] = last
         if progress is not None:
             progress(i + 1, order.size)
     _LAST_POSE.setdefault(sw, {})[flank] = last
+    if poses:
+        _POSES.setdefault(sw, {})[flank] = poses
     for j in range(M):
         out, extra = solved[int(source[j])]
         s = int(shift[j])
