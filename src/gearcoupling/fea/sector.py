@@ -54,7 +54,7 @@ from .write import inp_mesh_lines
 
 #: the hub is meshed turned this share of the way from the sector's first touch to the
 #: wind-up (module docstring; before issue 42, -0.01: just short of first touch)
-START_SHARE = 0.4
+START_SHARE = 0.25
 MAX_MISALIGNMENT_DEG = 6.0
 
 
