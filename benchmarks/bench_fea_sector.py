@@ -1,7 +1,8 @@
 """The misaligned contact reference: a CalculiX tooth sector against the load models.
 
 Run: ``python benchmarks/bench_fea_sector.py [--runs FILE] [--stored] [--sectors K ...]
-[--poses I ...]``.
+[--poses I ...]``; ``--against OLD_CHECKOUT [--poses I ...] [--rounds R]`` instead times
+the five-tooth sector pose before and after (:func:`against`).
 For each pose (spec, misalignment, turning angle, torque, element size, and the model and
 tooth springs that pick the wind-up), :func:`gearcoupling.sector_check` solves the model
 (wind-up + bodies, the most loaded tooth); the FE sector of ``K`` teeth on that tooth is
@@ -19,6 +20,9 @@ import argparse
 import itertools
 import json
 import os
+import subprocess
+import sys
+import time
 from dataclasses import replace
 from pathlib import Path
 
@@ -124,6 +128,71 @@ def models_at_windup(pose, run: dict) -> None:
                   f"{' · '.join(f'{r:.3f}' for r in W_fe / Wm)} |")
 
 
+SOLVE = """
+import json, resource, sys, tempfile
+from pathlib import Path
+sys.path.insert(0, {bench!r})
+import bench_fea_sector as b
+name, mis, rot, T, size, model, springs = b.POSES[{pose}]
+spec = b.with_springs(b.pose_spec(name), springs)
+with tempfile.TemporaryDirectory() as work:
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    chk = b.gc.sector_check(spec, mis, rotation_deg=rot, torque_Nm=T, model=model, sector=5,
+                            size_mm=size, workdir=work)
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cvg = (Path(work) / "fe_sector.cvg").read_text().splitlines()
+rows = [ln.split() for ln in cvg if ln.split()[:1] == ["1"]]
+k = chk.compared[0]
+print(json.dumps({{"cpu": after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime,
+                  "wall": chk.fe.solve_seconds, "nodes": chk.fe.nodes,
+                  "increments": len({{r[1] for r in rows}}), "iterations": len(rows),
+                  "contact_elements": [int(r[4]) for r in rows],
+                  "tooth": chk.fe.teeth[k], "load_N": chk.fe.tangential_force_N[k]}}))
+"""
+
+
+def solve_in(checkout: Path, pose: int) -> dict:
+    """One five-tooth pose solved by ``checkout``'s library in a new process: the CPU time
+    of its child processes (the ccx run; gmsh meshes in the process itself), ccx's wall
+    time, increments and equilibrium iterations (its ``.cvg``) and the compared tooth's
+    load."""
+    env = {**os.environ, "PYTHONPATH": str(checkout / "src"), "OPENBLAS_NUM_THREADS": "1"}
+    code = SOLVE.format(bench=str(Path(__file__).resolve().parent), pose=pose)
+    out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True,
+                         text=True, check=False)
+    if out.returncode:
+        raise SystemExit(f"{checkout}, pose {pose}: {out.stderr.strip()[-2000:]}")
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+def against(old: Path, poses: list[int], rounds: int) -> None:
+    """Each pose's five-tooth sector solved by ``old`` and by this checkout, alternating,
+    ``rounds`` times: the solver's CPU and wall time, its iterations, and the compared
+    tooth's load, new / old."""
+    print(f"{time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, load average "
+          f"{os.getloadavg()[0]:.1f}, {os.cpu_count()} cores; after = {ROOT}, before = {old}")
+    print("\n| pose | nodes | solver CPU s before / after | new / old | ccx wall s before / "
+          "after | increments · iterations before / after | compared tooth | load N before "
+          "/ after | change |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for i in poses:
+        got: dict[str, list[dict]] = {"old": [], "new": []}
+        for _ in range(rounds):
+            got["old"].append(solve_in(old, i))
+            got["new"].append(solve_in(ROOT, i))
+        o = min(got["old"], key=lambda r: r["cpu"])
+        n = min(got["new"], key=lambda r: r["cpu"])
+        name, mis, rot = POSES[i][:3]
+        print(f"| {name} {mis:g}°, {rot:g}° | {n['nodes']} | {o['cpu']:.0f} / {n['cpu']:.0f} | "
+              f"{n['cpu'] / o['cpu']:.2f}x | {o['wall']:.0f} / {n['wall']:.0f} | "
+              f"{o['increments']} · {o['iterations']} / {n['increments']} · "
+              f"{n['iterations']} | {n['tooth']} | {o['load_N']:.1f} / {n['load_N']:.1f} | "
+              f"{100 * (n['load_N'] / o['load_N'] - 1):+.2f} % |", flush=True)
+        for label in ("old", "new"):
+            print(f"<!-- {name} {mis:g}° {label}: contact elements per iteration "
+                  f"{[r['contact_elements'] for r in got[label]]} -->", flush=True)
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--runs", type=Path, default=ROOT / "outputs" / "bench_fea_sector.json")
@@ -131,7 +200,14 @@ def main() -> None:
     ap.add_argument("--stored", action="store_true", help="only the runs in --runs")
     ap.add_argument("--poses", nargs="*", type=int, default=None,
                     help="indices into POSES (default: all)")
+    ap.add_argument("--against", type=Path, metavar="OLD_CHECKOUT",
+                    help="time the five-tooth pose: OLD_CHECKOUT's src/ against this one's")
+    ap.add_argument("--rounds", type=int, default=1, help="with --against: old, new this "
+                    "many times (the least CPU of each is printed)")
     a = ap.parse_args()
+    if a.against is not None:
+        against(a.against.resolve(), a.poses if a.poses is not None else [0, 6], a.rounds)
+        return
     poses = POSES if a.poses is None else [POSES[i] for i in a.poses]
     runs = fe_runs(poses, a.sectors, a.runs, solve=not a.stored)
     print("## The misaligned sector reference (cyclic cuts, turned by the wind-up)")
