@@ -47,6 +47,9 @@ from scipy import fft
 from ...errors import ArgumentError, GearCouplingError
 from ...numeric import TINY, divide
 
+#: the gap scale of a flat grid (a span below it: straight teeth at no misalignment, where
+#: every contactable cell has the same gap): its gap residual is measured against this
+GAP_SCALE_FLOOR_MM = 1e-9
 DEFAULT_TOLERANCE = 1e-8  # relative: |dp| summed / |p| summed and gap residual / gap scale
 MAX_ITER = 4000
 FFT_BLOCK_BYTES = 210_000  # spectra per transform call (4 grids of 48 x 32 in double)
@@ -461,7 +464,7 @@ class _Grids:
         self.area = hs.cell_area
         self.gmin = np.min(np.where(m, g0, np.inf), axis=(1, 2))  # (B,) first touch
         span = np.max(np.where(m, g0, -np.inf), axis=(1, 2)) - self.gmin
-        self.scale = np.maximum(np.where(np.isfinite(span), span, 0.0), 1e-12)
+        self.scale = np.maximum(np.where(np.isfinite(span), span, 0.0), GAP_SCALE_FLOOR_MM)
         self.tau_self = 1.0 / float(influence(0.0, 0.0, hs.dx, hs.dy, hs.e_star_MPa))
 
     def operator(self, q, grids, single: bool = False):
@@ -481,11 +484,12 @@ class _Grids:
         band = m & (g <= self.gmin[b] + 1e-3 * (hi - self.gmin[b]) + 1e-15)
         return band.astype(float)
 
-    def too_many(self, it: int, res: float):
+    def too_many(self, it: int, res: float, gap: float | None = None):
+        left = f"relative change {res:.3g}" + (
+            "" if gap is None else f", gap residual {gap:.3g} of the gap scale")
         return GearCouplingError(
-            f"contact solver did not converge in {self.max_iter} iterations (relative "
-            f"change {res:.3g} > tolerance {self.tolerance:.3g}): loosen the tolerance or "
-            "coarsen the grid")
+            f"contact solver did not converge in {self.max_iter} iterations ({left}; "
+            f"tolerance {self.tolerance:.3g}): loosen the tolerance or coarsen the grid")
 
 
 def _per_grid_loads(grids: _Grids, W: NDArray[np.float64], p: NDArray[np.float64],
@@ -525,12 +529,13 @@ def _per_grid_loads(grids: _Grids, W: NDArray[np.float64], p: NDArray[np.float64
     G_old = np.ones(B)
     delta = np.zeros(B)
     res = np.zeros(B)
+    gap_worst = 0.0
     active = loaded.copy()
     it = 0
     while np.any(active):
         it += 1
         if it > grids.max_iter:
-            raise grids.too_many(it, float(np.max(res)))
+            raise grids.too_many(it, float(np.max(res)), gap_worst)
         ix = np.flatnonzero(active)
         every_grid = ix.size == B  # views, not copies, while every grid iterates
         pa, ma, ua, ta = (p, m, u, t) if every_grid else (p[ix], m[ix], u[ix], t[ix])
@@ -584,6 +589,7 @@ def _per_grid_loads(grids: _Grids, W: NDArray[np.float64], p: NDArray[np.float64
         else:
             u[ix], p[ix], t[ix] = ua, pn, ta
         gap_err = np.sqrt(G / n_on) / grids.scale[ix]
+        gap_worst = float(np.max(gap_err, initial=0.0))
         done = (res[ix] <= tolerance) & (gap_err <= tolerance) & ~has_over
         active[ix[done]] = False
         if single and it >= SINGLE_PRECISION_ITER:  # stalled on rounding: on in double
