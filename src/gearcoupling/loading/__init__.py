@@ -36,7 +36,7 @@ from .models.registry import (
     models_help,
     resolve_model,
 )
-from .models.surface import surface_solver
+from .models.surface import start_from, surface_solver
 from .models.surface_capacity import LOAD_GRID
 from .patchmap import PatchMap, most_loaded, patch_maps
 from .plots import (
@@ -100,6 +100,7 @@ __all__ = [
     "sector_check",
     "solve_windup",
     "springs_name",
+    "start_from",
     "surface_solver",
     "tooth_load_error",
     "turn_phases",

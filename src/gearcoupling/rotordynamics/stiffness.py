@@ -33,8 +33,8 @@ from ..loading import (
     resolve_model,
     resolve_torque_Nm,
     springs_name,
+    start_from,
 )
-from ..loading.models.surface import start_from
 from ..spec import MISALIGNMENT_RANGE_DEG, as_spec
 from .pose import generalized_forces, translation_gap_offsets
 from .torsion import windup_beyond_touch
