@@ -49,7 +49,7 @@ from ...numeric import TINY, divide
 
 #: the gap scale of a flat grid (a span below it: straight teeth at no misalignment, where
 #: every contactable cell has the same gap): its gap residual is measured against this
-GAP_SCALE_FLOOR_MM = 1e-9
+GAP_SCALE_FLOOR_MM = 1e-7
 DEFAULT_TOLERANCE = 1e-8  # relative: |dp| summed / |p| summed and gap residual / gap scale
 MAX_ITER = 4000
 FFT_BLOCK_BYTES = 210_000  # spectra per transform call (4 grids of 48 x 32 in double)
