@@ -164,12 +164,10 @@ class StageSettings:
         or in the spec's ``[wear]``; one without the other is refused, and where they are
         given the spec's ``[wear]`` values are checked (a :class:`SpecError` naming
         ``wear.<key>``) before any work."""
-        table = dict(spec.wear)
-        if table:
-            WearSettings.from_spec(spec)
+        table = WearSettings.from_spec(spec)
         given = {"wear_hours": self.wear_hours, "wear_speed_rpm": self.wear_speed_rpm}
         keys = {"wear_hours": "hours", "wear_speed_rpm": "speed_rpm"}
-        have = {name: value if value is not None else table.get(keys[name])
+        have = {name: value if value is not None else getattr(table, keys[name])
                 for name, value in given.items()}
         missing = [name for name, value in have.items() if value is None]
         if len(missing) == 1:

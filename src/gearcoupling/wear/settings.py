@@ -186,12 +186,6 @@ class WearSettings:
                    values.get("required_life_h"), values.get("speed_rpm"),
                    values.get("hours"), regime.source)
 
-    @property
-    def asked(self) -> bool:
-        """Whether the settings ask for a history at the operating point (a speed and
-        hours)."""
-        return self.speed_rpm is not None and self.hours is not None
-
 
 _KEYS = ("regime", "coefficient_mm3_per_Nm", "coefficient_band_mm3_per_Nm", "sleeve_factor",
          "limit_fraction", "required_life_h", "speed_rpm", "hours")
